@@ -1,0 +1,90 @@
+/* Haptic device plugins (kind TACTA_KIND_DEVICE): the function table and the data it sees.
+ *
+ * Positions are in the world frame (m); the engine maps nothing. read() and write() run in the
+ * 1 kHz path: no allocation, no lock, no throw. A device that cannot deliver a sample reports it
+ * through its state; the engine then sends zero force and reports the reason.
+ */
+#ifndef TACTA_DEVICE_API_H
+#define TACTA_DEVICE_API_H
+
+#include "tacta/plugin.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tacta_device_capabilities {
+  double workspace_min[3];  /* m, world frame */
+  double workspace_max[3];  /* m */
+  double peak_force;        /* N, never exceeded by the engine */
+  double continuous_force;  /* N */
+  double usable_stiffness;  /* N/m, largest stable rendered stiffness at the nominal rate */
+  double nominal_rate;      /* Hz */
+  uint32_t dof_in;          /* sensed degrees of freedom (3 position, 6 with orientation) */
+  uint32_t dof_out;         /* actuated degrees of freedom (3 force, 6 with torque) */
+} tacta_device_capabilities;
+
+typedef struct tacta_device_sample {
+  double time;           /* s, the device's timestamp */
+  double position[3];    /* m */
+  double orientation[4]; /* unit quaternion w, x, y, z */
+  double velocity[3];    /* m/s */
+  uint32_t buttons;      /* bit i set = button i pressed */
+} tacta_device_sample;
+
+typedef struct tacta_device_command {
+  double force[3];  /* N, already clamped to peak_force by the engine */
+  double torque[3]; /* N m, zero where dof_out < 6 */
+} tacta_device_command;
+
+/* Device states, as read() and status() return them. */
+typedef int32_t tacta_device_state;
+#define TACTA_DEVICE_CONNECTED 0
+#define TACTA_DEVICE_DISCONNECTED 1 /* not (or no longer) connected: zero force */
+#define TACTA_DEVICE_FAULT 2        /* a fault the device reports: zero force */
+#define TACTA_DEVICE_FINISHED 3     /* a replay reached the end of its log */
+
+typedef struct tacta_device_setup {
+  uint32_t struct_size;
+  const tacta_param_value* params; /* validated against the schema, schema order */
+  uint32_t param_count;
+  const char* base_directory; /* the scene's folder: relative TEXT paths resolve against it */
+  uint64_t seed;              /* for noise; the same seed gives the same run */
+  double tick;                /* s, the haptic period the engine will call at */
+} tacta_device_setup;
+
+typedef struct tacta_device_api {
+  /* required: may allocate and read files; writes a reason on failure. */
+  tacta_status (*create)(const tacta_device_setup* setup, void** instance, char* message,
+                         size_t message_capacity);
+  /* required */
+  void (*destroy)(void* instance);
+  /* required */
+  tacta_status (*connect)(void* instance, char* message, size_t message_capacity);
+  /* required */
+  void (*disconnect)(void* instance);
+  /* required: the sample for simulated time `time` (s). 1 kHz path. */
+  tacta_device_state (*read)(void* instance, double time, tacta_device_sample* sample);
+  /* required: the force to render until the next write. 1 kHz path. */
+  void (*write)(void* instance, double time, const tacta_device_command* command);
+  /* required */
+  void (*capabilities)(void* instance, tacta_device_capabilities* capabilities);
+  /* optional: current state and, when not connected, why (NUL-terminated). */
+  tacta_device_state (*status)(void* instance, char* reason, size_t reason_capacity);
+} tacta_device_api;
+
+#define TACTA_DEVICE_API_FIELD(member, required) \
+  { #member, offsetof(tacta_device_api, member), required }
+
+static const tacta_api_field tacta_device_api_fields[] = {
+    TACTA_DEVICE_API_FIELD(create, 1),       TACTA_DEVICE_API_FIELD(destroy, 1),
+    TACTA_DEVICE_API_FIELD(connect, 1),      TACTA_DEVICE_API_FIELD(disconnect, 1),
+    TACTA_DEVICE_API_FIELD(read, 1),         TACTA_DEVICE_API_FIELD(write, 1),
+    TACTA_DEVICE_API_FIELD(capabilities, 1), TACTA_DEVICE_API_FIELD(status, 0),
+};
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TACTA_DEVICE_API_H */

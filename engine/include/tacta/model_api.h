@@ -1,0 +1,113 @@
+/* Elastic model plugins (kind TACTA_KIND_MODEL): the function table and the data it sees.
+ *
+ * The engine owns the body state (positions, velocities, forces) so that a body can change model
+ * while the scene runs; a model instance owns only what it precomputes (stiffness blocks,
+ * factorisations, history). create() may allocate; step() runs in the 1 kHz path and must not
+ * allocate, lock or throw: it reports trouble through the returned TACTA_STEP_* bits.
+ * Units: SI throughout (m, s, kg, N, Pa, J).
+ */
+#ifndef TACTA_MODEL_API_H
+#define TACTA_MODEL_API_H
+
+#include "tacta/plugin.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Material in SI units; the engine fills both (E, nu) and (lambda, mu) consistently. */
+typedef struct tacta_material {
+  double youngs_modulus;     /* E, Pa */
+  double poisson_ratio;      /* nu, dimensionless, in (-1, 0.5) */
+  double density;            /* rho, kg/m^3 (kg/m^2 for planar meshes of unit thickness) */
+  double lame_lambda;        /* lambda, Pa */
+  double lame_mu;            /* mu (shear modulus), Pa */
+  double rayleigh_mass;      /* alpha, 1/s: damping force -alpha M v */
+  double rayleigh_stiffness; /* beta, s: damping force -beta K v */
+} tacta_material;
+
+/* The rest geometry and topology of a body. Arrays are owned by the engine and outlive the model
+ * instance. Any of the element lists may be empty; edges always hold every unique element edge. */
+typedef struct tacta_mesh_view {
+  uint32_t node_count;
+  const double* rest_positions; /* 3 per node, m */
+  uint32_t tet_count;
+  const uint32_t* tets; /* 4 per tet, positively oriented (det(x1-x0, x2-x0, x3-x0) > 0) */
+  uint32_t triangle_count;
+  const uint32_t* triangles; /* 3 per triangle: the boundary surface, outward, counter-clockwise */
+  uint32_t quad_count;
+  const uint32_t* quads; /* 4 per quad, counter-clockwise (planar meshes such as the unit square) */
+  uint32_t edge_count;
+  const uint32_t* edges; /* 2 per edge, unique and undirected, i < j */
+  uint32_t dimension;    /* 3 for volume meshes; 2 for planar meshes (unit thickness, 1 m) */
+} tacta_mesh_view;
+
+/* What create() receives. Everything is valid only during create() unless stated otherwise. */
+typedef struct tacta_model_setup {
+  uint32_t struct_size;
+  const tacta_mesh_view* mesh;     /* valid for the instance's lifetime */
+  const tacta_material* material;
+  const double* masses;  /* 1 per node, kg: lumped by the engine; valid for the lifetime */
+  const uint8_t* fixed;  /* 1 per node, 1 = held at its current position; valid for the lifetime */
+  const tacta_param_value* params; /* validated against the descriptor's schema, schema order */
+  uint32_t param_count;
+  double dt; /* the step the engine will use, s (the haptic tick unless the body runs slower) */
+} tacta_model_setup;
+
+/* The state a step advances, in place. The engine has already added gravity (m g), contact and
+ * user forces into external_forces, which are constant over the step. */
+typedef struct tacta_body_state {
+  uint32_t node_count;
+  double* positions;             /* 3 per node, m */
+  double* velocities;            /* 3 per node, m/s */
+  const double* external_forces; /* 3 per node, N */
+  double time;                   /* s, at the start of the step */
+} tacta_body_state;
+
+/* Step result bits: 0 is success. The engine freezes the body on any fault bit. */
+#define TACTA_STEP_OK 0u
+#define TACTA_STEP_NOT_FINITE (1u << 0)          /* fault: NaN or infinity in the new state */
+#define TACTA_STEP_DIVERGED (1u << 1)            /* fault: energy or displacement blew up */
+#define TACTA_STEP_SOLVER_NOT_CONVERGED (1u << 2) /* warning: iterative solver hit its limit */
+#define TACTA_STEP_INVERTED_ELEMENT (1u << 3)    /* warning: an element turned inside out */
+#define TACTA_STEP_FAULT_MASK (TACTA_STEP_NOT_FINITE | TACTA_STEP_DIVERGED)
+
+typedef struct tacta_model_api {
+  /* required: build an instance for one body; may allocate. Writes a reason on failure. */
+  tacta_status (*create)(const tacta_model_setup* setup, void** instance, char* message,
+                         size_t message_capacity);
+  /* required */
+  void (*destroy)(void* instance);
+  /* required: advance state by dt seconds. 1 kHz path: no allocation, no lock, no throw. */
+  uint32_t (*step)(void* instance, tacta_body_state* state, double dt);
+
+  /* optional: the state was set from outside (first step, a model swap, a reset, a freeze);
+   * re-initialise any history (e.g. central differences' previous position = x - dt v). */
+  void (*begin)(void* instance, const tacta_body_state* state, double dt);
+  /* optional: elastic (strain) energy at these positions, J. */
+  double (*elastic_energy)(void* instance, const double* positions);
+  /* optional: internal forces at these positions (3 per node, N), elastic only; used by tests
+   * (zero at rest, rigid motions, patch tests) and by the haptic local contact model. */
+  void (*internal_forces)(void* instance, const double* positions, double* forces);
+  /* optional: change one parameter (schema index) while running; not from the 1 kHz path. */
+  tacta_status (*set_param)(void* instance, uint32_t index, const tacta_param_value* value,
+                            char* message, size_t message_capacity);
+  /* optional: von Mises stress per node (Pa), for colour maps and VTK output. */
+  void (*node_stress)(void* instance, const double* positions, double* von_mises);
+} tacta_model_api;
+
+#define TACTA_MODEL_API_FIELD(member, required) \
+  { #member, offsetof(tacta_model_api, member), required }
+
+static const tacta_api_field tacta_model_api_fields[] = {
+    TACTA_MODEL_API_FIELD(create, 1),          TACTA_MODEL_API_FIELD(destroy, 1),
+    TACTA_MODEL_API_FIELD(step, 1),            TACTA_MODEL_API_FIELD(begin, 0),
+    TACTA_MODEL_API_FIELD(elastic_energy, 0),  TACTA_MODEL_API_FIELD(internal_forces, 0),
+    TACTA_MODEL_API_FIELD(set_param, 0),       TACTA_MODEL_API_FIELD(node_stress, 0),
+};
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TACTA_MODEL_API_H */

@@ -1,0 +1,177 @@
+// A scene as loaded and checked from YAML: every value here is validated (types, ranges, units,
+// plugin parameter schemas), so building the world from it cannot fail on input. SI units.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tacta/error.hpp"
+#include "tacta/plugin.h"
+
+namespace tacta {
+
+using Vec3 = std::array<double, 3>;
+
+// Plugin parameter values resolved against the plugin's schema (schema order, defaults filled),
+// owning the storage that the C views in `values` point into.
+class ParamSet {
+ public:
+  ParamSet() = default;
+  ParamSet(const ParamSet& other) { *this = other; }
+  ParamSet& operator=(const ParamSet& other);
+  ParamSet(ParamSet&&) noexcept = default;
+  ParamSet& operator=(ParamSet&&) noexcept = default;
+
+  // Appends one value (in schema order); text and vector storage are copied in.
+  void add_number(const std::string& name, double number);
+  void add_text(const std::string& name, const std::string& text, double choice_index = 0);
+  void add_vector(const std::string& name, std::vector<double> values);
+
+  const tacta_param_value* data() const { return values_.data(); }
+  uint32_t size() const { return static_cast<uint32_t>(values_.size()); }
+  const std::vector<std::string>& names() const { return names_; }
+  const tacta_param_value* find(const std::string& name) const;
+
+ private:
+  void relink();  // re-points the C views after a copy or a growth
+  std::vector<std::string> names_;
+  std::vector<tacta_param_value> values_;
+  enum class Kind { Number, Text, Vector };
+  std::vector<Kind> kinds_;
+  std::vector<std::string> texts_;           // 1 per value; used by TEXT and CHOICE
+  std::vector<std::vector<double>> vectors_;  // 1 per value; used by VECTOR
+};
+
+struct MaterialDesc {
+  double youngs_modulus = 0;      // E, Pa
+  double poisson_ratio = 0;       // nu
+  double density = 1000;          // rho, kg/m^3
+  double lame_lambda = 0;         // Pa (derived from E, nu when those are given, and vice versa)
+  double lame_mu = 0;             // Pa
+  double rayleigh_mass = 0;       // alpha, 1/s
+  double rayleigh_stiffness = 0;  // beta, s
+};
+
+// Where the body's mesh comes from: a file or a built-in primitive.
+struct MeshSourceDesc {
+  enum class Kind { File, BoxGrid, BeamGrid, QuadGrid, Sphere } kind = Kind::File;
+  std::string path;                 // File: absolute, resolved against the scene folder
+  Vec3 size{1, 1, 1};               // BoxGrid/BeamGrid: edge lengths, m; QuadGrid: x, y used
+  std::array<int, 3> cells{1, 1, 1};  // grid cells along x, y, z (QuadGrid: x, y)
+  Vec3 origin{0, 0, 0};             // corner with the smallest coordinates, m (Sphere: centre)
+  double radius = 0.05;             // Sphere, m
+  int subdivisions = 2;             // Sphere resolution
+  double voxel_size = 0;            // File with a surface only: tet grid cell, m (0 = automatic)
+  Vec3 scale{1, 1, 1};              // applied to file coordinates (e.g. mm -> m: 0.001)
+  Vec3 translate{0, 0, 0};          // applied after scale, m
+};
+
+struct FixedRegionDesc {
+  std::optional<std::array<Vec3, 2>> box;  // nodes inside [min, max], m, are fixed
+  std::vector<uint32_t> indices;           // explicit node indices
+};
+
+struct BodyDesc {
+  std::string name;
+  MeshSourceDesc mesh;
+  MaterialDesc material;
+  std::string model;  // model plugin name
+  ParamSet model_params;
+  std::vector<FixedRegionDesc> fixed;
+  // Initial state: per-node displacement/velocity overrides, and uniform ones.
+  struct NodeVector { uint32_t node; Vec3 value; };
+  std::vector<NodeVector> initial_displacement;  // m
+  std::vector<NodeVector> initial_velocity;      // m/s
+  Vec3 uniform_velocity{0, 0, 0};                // m/s, added to every free node
+  std::optional<uint32_t> probe_node;            // node whose displacement compare/plots follow
+  double step_rate_hz = 0;  // 0: step at the haptic rate; else on its own thread at this rate
+  bool collide = true;
+  SourceLocation where;
+};
+
+// A rigid tool carried by a device (the stylus tip) or a static obstacle.
+struct ShapeDesc {
+  enum class Kind { Sphere, Capsule, Box, Plane, Mesh } kind = Kind::Sphere;
+  double radius = 0.002;       // m (Sphere, Capsule)
+  double half_length = 0.01;   // m (Capsule, along the tool axis)
+  Vec3 half_extents{0.1, 0.1, 0.1};  // m (Box)
+  Vec3 normal{0, 1, 0};        // Plane
+  double offset = 0;           // Plane: n . x = offset, m
+  std::string path;            // Mesh: convex hull of this file
+  Vec3 position{0, 0, 0};      // m
+};
+
+struct DeviceDesc {
+  std::string name;
+  std::string plugin;  // device plugin name
+  ParamSet params;
+  ShapeDesc tool;                    // what the device holds (its collision shape)
+  double coupling_stiffness = 500;   // N/m, virtual coupling device <-> proxy
+  double coupling_damping = 1.0;     // N s/m
+  std::string touches;               // body name, empty = all bodies
+  SourceLocation where;
+};
+
+struct ObstacleDesc {
+  std::string name;
+  ShapeDesc shape;
+  double friction = 0.3;
+};
+
+struct CollisionDesc {
+  bool enabled = false;
+  std::string broad_phase = "bvh";  // collision plugin names
+  std::string narrow_phase = "ccd";
+  std::string convex = "convex";
+  ParamSet broad_params, narrow_params, convex_params;
+  double friction = 0.3;            // Coulomb coefficient, body-body and body-obstacle
+  bool self_collision = false;
+  double thickness = 1e-4;          // m, contact margin
+};
+
+struct SwapDesc {
+  double time = 0;  // s
+  std::string body;  // body name, "*" = every body
+  std::string model;
+  ParamSet params;
+};
+
+struct ClockDesc {
+  enum class Mode { Lockstep, Realtime } mode = Mode::Lockstep;
+  double haptic_rate_hz = 1000;
+  double render_rate_hz = 60;
+  double duration_s = 1.0;
+};
+
+struct OutputDesc {
+  bool frames = false;               // PNG frames from the render task
+  std::vector<double> frame_times;   // s; empty with frames=true: every frame
+  int frame_width = 800, frame_height = 600;
+  bool vtk = false;                  // .vtu series + .pvd
+  double vtk_interval_s = 1.0 / 60;  // s between VTK frames
+  bool trace = true;                 // trace.csv
+  bool trajectory = false;           // trajectory.csv: every node, every record interval
+  double record_interval_s = 0;      // s; 0 = every tick
+  std::vector<std::string> plots;    // "phase_portrait", "force", "energy", "displacement"
+  std::vector<uint32_t> plot_nodes;  // nodes the phase portrait follows (default: corners)
+};
+
+struct SceneDesc {
+  std::string path;         // the scene file
+  std::string directory;    // its folder; relative paths resolve against it
+  std::string name;
+  Vec3 gravity{0, -9.81, 0};  // m/s^2
+  ClockDesc clock;
+  std::vector<BodyDesc> bodies;
+  std::vector<DeviceDesc> devices;
+  std::vector<ObstacleDesc> obstacles;
+  CollisionDesc collision;
+  std::vector<SwapDesc> swaps;
+  OutputDesc output;
+  uint64_t seed = 1;
+};
+
+}  // namespace tacta

@@ -1,0 +1,75 @@
+// SDK adapter: write a haptic device as a class; device_descriptor<T>() fills tacta_device_api.
+//
+// T needs:
+//   static constexpr const char* kName, kDescription;  static constexpr uint32_t kVersion;
+//   static constexpr std::array<tacta_param_spec, N> kParams;
+//   explicit T(const tacta_device_setup&)                    may throw std::invalid_argument
+//   void connect()                                          may throw (message goes to the host)
+//   void disconnect() noexcept
+//   tacta_device_state read(double time, tacta_device_sample&) noexcept     1 kHz path
+//   void write(double time, const tacta_device_command&) noexcept          1 kHz path
+//   tacta_device_capabilities capabilities() const noexcept
+// optionally:
+//   tacta_device_state status(char* reason, size_t capacity) const noexcept
+#pragma once
+
+#include "tacta/device_api.h"
+#include "tacta/sdk/common.hpp"
+
+namespace tacta::sdk {
+
+template <class T>
+struct DeviceAdapter {
+  static tacta_status create(const tacta_device_setup* setup, void** instance, char* message,
+                             size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { *instance = new T(*setup); });
+  }
+  static void destroy(void* instance) noexcept { delete static_cast<T*>(instance); }
+  static tacta_status connect(void* instance, char* message, size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { static_cast<T*>(instance)->connect(); });
+  }
+  static void disconnect(void* instance) noexcept { static_cast<T*>(instance)->disconnect(); }
+  static tacta_device_state read(void* instance, double time, tacta_device_sample* sample) noexcept {
+    return static_cast<T*>(instance)->read(time, *sample);
+  }
+  static void write(void* instance, double time, const tacta_device_command* command) noexcept {
+    static_cast<T*>(instance)->write(time, *command);
+  }
+  static void capabilities(void* instance, tacta_device_capabilities* out) noexcept {
+    *out = static_cast<T*>(instance)->capabilities();
+  }
+  static tacta_device_state status(void* instance, char* reason, size_t capacity) noexcept {
+    return static_cast<T*>(instance)->status(reason, capacity);
+  }
+
+  static tacta_device_api table() {
+    tacta_device_api api{};
+    api.create = &create;
+    api.destroy = &destroy;
+    api.connect = &connect;
+    api.disconnect = &disconnect;
+    api.read = &read;
+    api.write = &write;
+    api.capabilities = &capabilities;
+    if constexpr (requires(const T& t, char* r) { t.status(r, size_t{0}); }) api.status = &status;
+    return api;
+  }
+};
+
+template <class T>
+const tacta_descriptor* device_descriptor() {
+  static const tacta_device_api api = DeviceAdapter<T>::table();
+  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
+                                           TACTA_ABI_ID,
+                                           TACTA_KIND_DEVICE,
+                                           T::kName,
+                                           T::kVersion,
+                                           T::kDescription,
+                                           T::kParams.data(),
+                                           static_cast<uint32_t>(T::kParams.size()),
+                                           &api,
+                                           sizeof(api)};
+  return &descriptor;
+}
+
+}  // namespace tacta::sdk

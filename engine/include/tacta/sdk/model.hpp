@@ -1,0 +1,82 @@
+// SDK adapter: write an elastic model as a class; model_descriptor<T>() fills tacta_model_api.
+//
+// T needs:
+//   static constexpr const char* kName, kDescription;  static constexpr uint32_t kVersion;
+//   static constexpr std::array<tacta_param_spec, N> kParams;
+//   explicit T(const tacta_model_setup&)            may throw std::invalid_argument on bad input
+//   uint32_t step(tacta_body_state&, double dt) noexcept      1 kHz path: no allocation
+// and optionally, each filling the matching optional entry only when present:
+//   void begin(const tacta_body_state&, double dt) noexcept
+//   double elastic_energy(const double* positions) noexcept
+//   void internal_forces(const double* positions, double* forces) noexcept
+//   void set_param(uint32_t index, const tacta_param_value&)   may throw
+//   void node_stress(const double* positions, double* von_mises) noexcept
+#pragma once
+
+#include "tacta/model_api.h"
+#include "tacta/sdk/common.hpp"
+
+namespace tacta::sdk {
+
+template <class T>
+struct ModelAdapter {
+  static tacta_status create(const tacta_model_setup* setup, void** instance, char* message,
+                             size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { *instance = new T(*setup); });
+  }
+  static void destroy(void* instance) noexcept { delete static_cast<T*>(instance); }
+  static uint32_t step(void* instance, tacta_body_state* state, double dt) noexcept {
+    return static_cast<T*>(instance)->step(*state, dt);
+  }
+  static void begin(void* instance, const tacta_body_state* state, double dt) noexcept {
+    static_cast<T*>(instance)->begin(*state, dt);
+  }
+  static double elastic_energy(void* instance, const double* positions) noexcept {
+    return static_cast<T*>(instance)->elastic_energy(positions);
+  }
+  static void internal_forces(void* instance, const double* positions, double* forces) noexcept {
+    static_cast<T*>(instance)->internal_forces(positions, forces);
+  }
+  static tacta_status set_param(void* instance, uint32_t index, const tacta_param_value* value,
+                                char* message, size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { static_cast<T*>(instance)->set_param(index, *value); });
+  }
+  static void node_stress(void* instance, const double* positions, double* von_mises) noexcept {
+    static_cast<T*>(instance)->node_stress(positions, von_mises);
+  }
+
+  static tacta_model_api table() {
+    tacta_model_api api{};
+    api.create = &create;
+    api.destroy = &destroy;
+    api.step = &step;
+    if constexpr (requires(T& t, const tacta_body_state& s) { t.begin(s, 0.0); }) api.begin = &begin;
+    if constexpr (requires(T& t, const double* x) { t.elastic_energy(x); })
+      api.elastic_energy = &elastic_energy;
+    if constexpr (requires(T& t, const double* x, double* f) { t.internal_forces(x, f); })
+      api.internal_forces = &internal_forces;
+    if constexpr (requires(T& t, const tacta_param_value& v) { t.set_param(0u, v); })
+      api.set_param = &set_param;
+    if constexpr (requires(T& t, const double* x, double* s) { t.node_stress(x, s); })
+      api.node_stress = &node_stress;
+    return api;
+  }
+};
+
+template <class T>
+const tacta_descriptor* model_descriptor() {
+  static const tacta_model_api api = ModelAdapter<T>::table();
+  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
+                                           TACTA_ABI_ID,
+                                           TACTA_KIND_MODEL,
+                                           T::kName,
+                                           T::kVersion,
+                                           T::kDescription,
+                                           T::kParams.data(),
+                                           static_cast<uint32_t>(T::kParams.size()),
+                                           &api,
+                                           sizeof(api)};
+  return &descriptor;
+}
+
+}  // namespace tacta::sdk
