@@ -1,0 +1,31 @@
+// Subcommands of `tacta`: each lives in its own file and registers itself at start-up, so adding
+// a command touches no shared list. Exit codes: 0 ok, 1 runtime fault, 2 bad input.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <vector>
+
+namespace tacta::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFault = 1;
+inline constexpr int kExitBadInput = 2;
+
+// Adds a subcommand to app; its callback stores the exit code in exit_code.
+using CommandFactory = std::function<void(CLI::App& app, int& exit_code)>;
+
+inline std::vector<CommandFactory>& command_factories() {
+  static std::vector<CommandFactory> factories;
+  return factories;
+}
+
+// Use at namespace scope in a command's file:
+//   static const bool registered = tacta::cli::register_command(&add_plugins_command);
+inline bool register_command(CommandFactory factory) {
+  command_factories().push_back(std::move(factory));
+  return true;
+}
+
+}  // namespace tacta::cli
