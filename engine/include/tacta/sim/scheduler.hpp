@@ -1,0 +1,55 @@
+// The two clocks. Lockstep: simulated time, 1 ms ticks as fast as the CPU allows, a frame every
+// 1/60 s of simulated time, all on the calling thread: same inputs, same outputs, bit for bit.
+// Realtime: a haptic thread on absolute 1 kHz deadlines and a render thread at 60 Hz; they share
+// only a triple buffer. Both measure every tick's duration.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "tacta/sim/tick_stats.hpp"
+
+namespace tacta {
+
+// What the haptic thread runs every tick. Must not allocate, lock or throw.
+class HapticTask {
+ public:
+  virtual ~HapticTask() = default;
+  // Advances the world from `time` by `dt` (s). Returns false to stop the run early.
+  virtual bool tick(uint64_t index, double time, double dt) noexcept = 0;
+  // Called at each frame boundary of simulated time, on the haptic thread: publish a snapshot.
+  virtual void publish(double time) noexcept = 0;
+};
+
+// What the render thread runs at the frame rate: take the newest snapshot and draw or save it.
+class RenderTask {
+ public:
+  virtual ~RenderTask() = default;
+  virtual void frame(double wall_time) = 0;
+};
+
+enum class ClockMode { Lockstep, Realtime };
+
+struct ScheduleOptions {
+  ClockMode mode = ClockMode::Lockstep;
+  double haptic_rate_hz = 1000;
+  double render_rate_hz = 60;
+  double duration_s = 1;
+  std::atomic<bool>* stop = nullptr;                  // set from outside to end the run early
+  std::function<void(double fraction)> on_progress;   // called from the scheduling thread, ~10 Hz
+};
+
+struct ScheduleResult {
+  uint64_t ticks = 0;
+  uint64_t frames = 0;
+  uint64_t deadline_misses = 0;  // realtime: ticks that ended after their deadline
+  double max_start_jitter_ms = 0;  // realtime: latest tick start after its scheduled start
+  double wall_time_s = 0;
+  bool stopped_early = false;
+  TickSummary tick;
+};
+
+ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render, const ScheduleOptions& options);
+
+}  // namespace tacta

@@ -1,0 +1,171 @@
+// Lockstep and realtime scheduling of the haptic and render tasks (see scheduler.hpp).
+#include "tacta/sim/scheduler.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+namespace tacta {
+
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+double ms_between(SteadyClock::time_point a, SteadyClock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+uint64_t tick_count(const ScheduleOptions& o) {
+  return static_cast<uint64_t>(std::llround(o.duration_s * o.haptic_rate_hz));
+}
+
+// Index of the last tick before which a frame boundary falls: frames happen when simulated time
+// crosses k / render_rate, checked after each tick.
+struct FrameClock {
+  double period_s;
+  uint64_t next_frame = 1;
+  bool due(double time_s) {
+    // A small tolerance (1 ns) keeps 1/60 s boundaries from slipping a tick through rounding.
+    if (time_s + 1e-9 < static_cast<double>(next_frame) * period_s) return false;
+    while (time_s + 1e-9 >= static_cast<double>(next_frame) * period_s) ++next_frame;
+    return true;
+  }
+};
+
+bool stop_requested(const ScheduleOptions& o) {
+  return o.stop != nullptr && o.stop->load(std::memory_order_relaxed);
+}
+
+ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const ScheduleOptions& o) {
+  ScheduleResult result;
+  const uint64_t ticks = tick_count(o);
+  const double dt = 1.0 / o.haptic_rate_hz;
+  TickRecorder recorder(ticks);
+  FrameClock frames{1.0 / o.render_rate_hz};
+  const auto run_start = SteadyClock::now();
+  auto last_progress = run_start;
+  haptic.publish(0.0);
+  render.frame(0.0);
+  ++result.frames;
+  for (uint64_t k = 0; k < ticks; ++k) {
+    // Time from the tick index, not by accumulation, so long runs do not drift.
+    const double time = static_cast<double>(k) * dt;
+    const auto t0 = SteadyClock::now();
+    const bool keep_going = haptic.tick(k, time, dt);
+    const auto t1 = SteadyClock::now();
+    recorder.record(ms_between(t0, t1));
+    ++result.ticks;
+    const double end_time = static_cast<double>(k + 1) * dt;
+    if (frames.due(end_time) || k + 1 == ticks || !keep_going) {
+      haptic.publish(end_time);
+      render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
+      ++result.frames;
+    }
+    if (o.on_progress && ms_between(last_progress, t1) > 100) {
+      last_progress = t1;
+      o.on_progress(static_cast<double>(k + 1) / static_cast<double>(ticks));
+    }
+    if (!keep_going || stop_requested(o)) {
+      result.stopped_early = k + 1 < ticks;
+      break;
+    }
+  }
+  result.wall_time_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
+  result.tick = recorder.summary();
+  return result;
+}
+
+// Absolute-deadline sleep on the monotonic clock, so the 1 kHz period does not accumulate drift.
+void sleep_until(const timespec& deadline) {
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) != 0) {
+  }
+}
+
+timespec add_ns(timespec t, int64_t ns) {
+  t.tv_sec += static_cast<time_t>(ns / 1000000000);
+  t.tv_nsec += static_cast<long>(ns % 1000000000);
+  if (t.tv_nsec >= 1000000000) {
+    t.tv_nsec -= 1000000000;
+    ++t.tv_sec;
+  }
+  return t;
+}
+
+double ms_after(const timespec& a, const timespec& b) {  // b - a in ms
+  return static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 + static_cast<double>(b.tv_nsec - a.tv_nsec) * 1e-6;
+}
+
+ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const ScheduleOptions& o) {
+  ScheduleResult result;
+  const uint64_t ticks = tick_count(o);
+  const double dt = 1.0 / o.haptic_rate_hz;
+  const auto period_ns = static_cast<int64_t>(std::llround(1e9 / o.haptic_rate_hz));
+  TickRecorder recorder(ticks);
+  std::atomic<bool> haptic_done{false};
+  std::atomic<uint64_t> frames{0};
+  std::atomic<uint64_t> ticks_done{0};  // read by the render thread for progress reports
+  const auto run_start = SteadyClock::now();
+  haptic.publish(0.0);
+
+  // The render thread: draws the newest snapshot at the render rate until the haptic task ends.
+  std::thread render_thread([&] {
+    const auto frame_period = std::chrono::duration<double>(1.0 / o.render_rate_hz);
+    auto next = SteadyClock::now();
+    while (!haptic_done.load(std::memory_order_acquire)) {
+      render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
+      frames.fetch_add(1, std::memory_order_relaxed);
+      // Progress is printed from here, never from the haptic thread (stdout takes a lock).
+      if (o.on_progress)
+        o.on_progress(static_cast<double>(ticks_done.load(std::memory_order_relaxed)) /
+                      static_cast<double>(ticks));
+      next += std::chrono::duration_cast<SteadyClock::duration>(frame_period);
+      std::this_thread::sleep_until(next);
+    }
+    render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);  // the final state
+    frames.fetch_add(1, std::memory_order_relaxed);
+  });
+
+  // The haptic loop runs on this thread: tick k is due at start + k * period.
+  FrameClock frame_clock{1.0 / o.render_rate_hz};
+  timespec start{};
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  for (uint64_t k = 0; k < ticks; ++k) {
+    const timespec due = add_ns(start, static_cast<int64_t>(k) * period_ns);
+    sleep_until(due);
+    timespec begin{};
+    clock_gettime(CLOCK_MONOTONIC, &begin);
+    result.max_start_jitter_ms = std::max(result.max_start_jitter_ms, ms_after(due, begin));
+    const double time = static_cast<double>(k) * dt;
+    const bool keep_going = haptic.tick(k, time, dt);
+    const double end_time = static_cast<double>(k + 1) * dt;
+    if (frame_clock.due(end_time) || k + 1 == ticks || !keep_going) haptic.publish(end_time);
+    timespec end{};
+    clock_gettime(CLOCK_MONOTONIC, &end);
+    recorder.record(ms_after(begin, end));
+    if (ms_after(add_ns(due, period_ns), end) > 0) ++result.deadline_misses;
+    ++result.ticks;
+    ticks_done.store(k + 1, std::memory_order_relaxed);
+    if (!keep_going || stop_requested(o)) {
+      result.stopped_early = k + 1 < ticks;
+      break;
+    }
+  }
+  haptic_done.store(true, std::memory_order_release);
+  render_thread.join();
+  result.frames = frames.load();
+  result.wall_time_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
+  result.tick = recorder.summary();
+  return result;
+}
+
+}  // namespace
+
+ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render, const ScheduleOptions& options) {
+  return options.mode == ClockMode::Realtime ? run_realtime(haptic, render, options)
+                                             : run_lockstep(haptic, render, options);
+}
+
+}  // namespace tacta
