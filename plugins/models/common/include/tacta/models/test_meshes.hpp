@@ -1,0 +1,53 @@
+// Small meshes built in code, for model tests and benchmarks: a box of tetrahedra, a grid of
+// axis-aligned edges (3D) or quads (2D), and the paper's 4-node unit square. Each comes with
+// lumped masses and a fixed-node mask, and gives the plain views that create() receives.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tacta/model_api.h"
+
+namespace tacta::models {
+
+struct TestMesh {
+  std::vector<double> positions;    // 3 per node, m
+  std::vector<uint32_t> tets;       // 4 per tet, positively oriented
+  std::vector<uint32_t> triangles;  // 3 per boundary triangle, outward
+  std::vector<uint32_t> quads;      // 4 per quad, counter-clockwise
+  std::vector<uint32_t> edges;      // 2 per unique edge, i < j
+  std::vector<double> masses;       // 1 per node, kg
+  std::vector<uint8_t> fixed;       // 1 per node
+  uint32_t dimension = 3;
+
+  uint32_t node_count() const { return static_cast<uint32_t>(positions.size() / 3); }
+  tacta_mesh_view view() const;  // points into this object: keep it alive and unchanged
+  // Marks every node whose coordinate `axis` (0 x, 1 y, 2 z) is within tolerance of value.
+  void fix_plane(int axis, double value, double tolerance = 1e-9);
+};
+
+// Material in SI units from (E, nu, rho), with both Lamé and Young filled; no damping.
+tacta_material make_material(double youngs_modulus, double poisson_ratio, double density);
+// Material from the Lamé coefficients directly (the paper gives lambda and mu).
+tacta_material make_material_lame(double lambda, double mu, double density);
+
+// nx*ny*nz cubes of size (sx/nx, sy/ny, sz/nz), each split into 6 tets around its main
+// diagonal (Kuhn/Freudenthal; conforming across cubes). Origin at (0,0,0). Node index:
+// i + (nx+1) * (j + (ny+1) * k).
+TestMesh box_tet_mesh(std::array<uint32_t, 3> cells, std::array<double, 3> size, double density);
+
+// The same nodes joined only by the axis-aligned grid edges (no elements): the Cartesian edge
+// graph on which the finite-difference operators are exact. Masses: rho times the dual cell.
+TestMesh grid_edge_mesh(std::array<uint32_t, 3> cells, std::array<double, 3> size, double density);
+
+// Planar nx*ny quads of unit thickness (dimension 2), edges = the quad sides. Node index
+// i + (nx+1) * j, so the 1x1 grid is SW, SE, NW, NE. Masses: rho (kg/m^2) times the dual area.
+TestMesh quad_grid_mesh(uint32_t nx, uint32_t ny, double sx, double sy, double density);
+
+// Unique sorted edges of a tet list.
+std::vector<uint32_t> edges_of_tets(const std::vector<uint32_t>& tets);
+// Boundary triangles (faces used by one tet), oriented outward.
+std::vector<uint32_t> boundary_of_tets(const std::vector<uint32_t>& tets);
+
+}  // namespace tacta::models
