@@ -1,0 +1,64 @@
+// One run of a scene: builds the world from a validated scene (bodies, models, devices,
+// interactions), runs it on the chosen clock, and writes the outputs (report.json, trace.csv,
+// trajectory.csv, energy.csv, plots, frames). The public face of the engine for apps and tests.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tacta/plugin_registry.hpp"
+#include "tacta/scene.hpp"
+#include "tacta/sim/scheduler.hpp"
+
+namespace tacta {
+
+struct RunOptions {
+  std::string out_dir;                 // empty: write nothing
+  std::optional<double> duration_s;    // overrides the scene's clock.duration_s
+  std::optional<bool> realtime;        // overrides the scene's clock.mode
+  bool progress = false;               // a progress bar on stderr
+  std::string record_log;              // write the first device's session log here
+  bool frames = false;                 // force PNG frames on
+};
+
+struct BodyResult {
+  std::string name, model;
+  size_t nodes = 0, elements = 0;
+  double max_displacement_m = 0, kinetic_energy_J = 0, elastic_energy_J = 0;
+  double initial_energy_J = 0;  // kinetic + elastic at t = 0
+  bool frozen = false;
+  std::string fault;
+};
+
+struct RunResult {
+  std::string scene, mode;
+  ScheduleResult schedule;
+  double sim_time_s = 0;
+  std::string state_hash;  // FNV-1a 64 of every body's final node positions, hex
+  std::vector<BodyResult> bodies;
+  size_t faults = 0;
+  std::vector<std::string> outputs;  // files written
+  int exit_code = 0;                 // 0 ok, 1 runtime fault
+};
+
+class Simulation {
+ public:
+  // Builds everything the scene names; throws InputError, never leaves a half-built world.
+  Simulation(const SceneDesc& scene, const PluginRegistry& plugins);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  RunResult run(const RunOptions& options);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// FNV-1a 64 over the bytes of the given doubles, as 16 hex digits.
+std::string hash_positions(const std::vector<const std::vector<double>*>& arrays);
+
+}  // namespace tacta

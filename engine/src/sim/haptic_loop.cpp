@@ -1,0 +1,270 @@
+#include "haptic_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace tacta {
+
+namespace {
+
+// A contact's first 100 ms count as its "first contact" phase for the spike statistics (s).
+constexpr double kFirstContactWindow_s = 0.1;
+
+double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+bool all_finite(const std::vector<double>& x) noexcept {
+  for (double v : x)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks)
+    : world_(world), snapshots_(snapshots) {
+  const SceneDesc& scene = world.scene();
+  record_interval_s_ = scene.output.record_interval_s;
+  const size_t devices = world.device_count();
+  trace_.reserve(expected_ticks * std::max<size_t>(devices, 1) + 16);
+  size_t recorded_nodes = 0;
+  size_t largest = 0;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    recorded_nodes += world.body(i).recorded_nodes.size();
+    largest = std::max(largest, world.body(i).node_count());
+  }
+  const double interval_ticks =
+      record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
+  // Cap the trajectory at about 200 MB of rows; beyond it rows are dropped and counted.
+  const size_t trajectory_rows = std::min<size_t>(
+      static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) * recorded_nodes,
+      200'000'000 / sizeof(TrajectoryRow));
+  trajectory_.reserve(trajectory_rows);
+  const size_t frames = static_cast<size_t>(scene.clock.duration_s * scene.clock.render_rate_hz) + 4;
+  energy_.reserve(frames * world.body_count() + 16);
+  faults_.reserve(64 + world.body_count() + devices);
+  stress_scratch_.assign(largest, 0.0);
+}
+
+Snapshot HapticLoop::make_prototype(World& world) {
+  Snapshot s;
+  s.bodies.resize(world.body_count());
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    SoftBody& b = world.body(i);
+    s.bodies[i].positions = b.positions;
+    if (b.model->has_stress()) s.bodies[i].von_mises.assign(b.node_count(), 0.0);
+    s.bodies[i].model = b.model->name();
+    s.bodies[i].model.reserve(64);  // a swap copies the new name without reallocating
+  }
+  s.devices.resize(world.device_count());
+  return s;
+}
+
+bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
+  const auto start = std::chrono::steady_clock::now();
+  tick_index_ = index;
+  apply_swaps(time);
+  read_devices(time);
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    SoftBody& b = world_.body(i);
+    std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
+  }
+  for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
+  const bool healthy = step_bodies(time, dt);
+  if (healthy)
+    for (Interaction* interaction : interactions_) interaction->after_step(world_, time, dt);
+  // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
+  write_devices(time + dt, !healthy);
+  record(time + dt);
+  last_tick_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+void HapticLoop::apply_swaps(double time) noexcept {
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    SoftBody& b = world_.body(i);
+    while (b.next_swap < b.swaps.size() && b.swaps[b.next_swap].time_s <= time + 1e-12) {
+      // The scheduled instance was built at load time; the outgoing one is parked in its place
+      // and destroyed with the world, so nothing is freed on the haptic thread.
+      std::swap(b.model, b.swaps[b.next_swap].model);
+      ++b.next_swap;
+      const tacta_body_state state = b.state_view(time);
+      b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz);
+    }
+  }
+}
+
+void HapticLoop::read_devices(double time) noexcept {
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    DeviceSlot& slot = world_.device(d);
+    if (slot.state != TACTA_DEVICE_CONNECTED) continue;
+    const tacta_device_state state = slot.device->read(time, slot.sample);
+    bool finite = true;
+    for (double p : slot.sample.position) finite = finite && std::isfinite(p);
+    if (state != TACTA_DEVICE_CONNECTED || !finite) {
+      slot.state = state == TACTA_DEVICE_CONNECTED ? TACTA_DEVICE_FAULT : state;
+      slot.status_time_s = time;
+      if (!finite) std::snprintf(slot.status_reason.data(), slot.status_reason.size(), "device reported a non-finite position");
+      else slot.device->status(slot.status_reason.data(), slot.status_reason.size());
+      if (state != TACTA_DEVICE_FINISHED) {
+        FaultRecord f{time, -1, static_cast<int>(d), static_cast<uint32_t>(slot.state), {}};
+        std::snprintf(f.reason.data(), f.reason.size(), "device '%s': %s", slot.name.c_str(), slot.status_reason.data());
+        faults_.push(f);
+      }
+    }
+  }
+}
+
+bool HapticLoop::step_bodies(double time, double dt) noexcept {
+  const Vec3& g = world_.scene().gravity;
+  bool healthy = true;
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    SoftBody& b = world_.body(i);
+    if (b.fault.frozen) continue;
+    double step_dt = dt;
+    if (b.step_period_s > 0) {
+      // A slower body steps once its own clock falls due, by its own period.
+      if (time + 1e-12 < b.next_step_time_s) continue;
+      b.next_step_time_s += b.step_period_s;
+      step_dt = b.step_period_s;
+    }
+    const std::vector<double>& m = b.topology->masses;
+    for (size_t n = 0; n < m.size(); ++n)
+      for (int a = 0; a < 3; ++a) b.external_forces[3 * n + a] = m[n] * g[a] + b.contact_forces[3 * n + a];
+    std::copy(b.positions.begin(), b.positions.end(), b.saved_positions.begin());
+    tacta_body_state state = b.state_view(time);
+    const uint32_t bits = b.model->step(state, step_dt);
+    if (bits & TACTA_STEP_FAULT_MASK) {
+      freeze(b, i, time, bits, "the model reported a fault");
+      healthy = false;
+      continue;
+    }
+    if (!all_finite(b.positions) || !all_finite(b.velocities)) {
+      freeze(b, i, time, TACTA_STEP_NOT_FINITE, "NaN or infinity in the node state");
+      healthy = false;
+      continue;
+    }
+    const std::vector<double>& rest = b.rest();
+    double max_d2 = 0;
+    for (size_t n = 0; n < m.size(); ++n) {
+      const double dx = b.positions[3 * n] - rest[3 * n], dy = b.positions[3 * n + 1] - rest[3 * n + 1],
+                   dz = b.positions[3 * n + 2] - rest[3 * n + 2];
+      max_d2 = std::max(max_d2, dx * dx + dy * dy + dz * dz);
+    }
+    const double max_d = std::sqrt(max_d2);
+    if (max_d > b.divergence_limit_m) {
+      freeze(b, i, time, TACTA_STEP_DIVERGED, "displacement exceeded ten body sizes");
+      healthy = false;
+      continue;
+    }
+    b.max_displacement_m = std::max(b.max_displacement_m, max_d);
+  }
+  return healthy;
+}
+
+void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, const char* why) noexcept {
+  std::copy(b.saved_positions.begin(), b.saved_positions.end(), b.positions.begin());
+  std::fill(b.velocities.begin(), b.velocities.end(), 0.0);
+  b.fault.frozen = true;
+  b.fault.bits = bits;
+  b.fault.time_s = time;
+  std::snprintf(b.fault.reason.data(), b.fault.reason.size(), "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s",
+                why, b.model->name(), bits, time);
+  FaultRecord f{time, static_cast<int>(index), -1, bits, {}};
+  std::snprintf(f.reason.data(), f.reason.size(), "body '%s': %s", b.name.c_str(), b.fault.reason.data());
+  faults_.push(f);
+}
+
+void HapticLoop::write_devices(double time, bool zero_force) noexcept {
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    DeviceSlot& slot = world_.device(d);
+    DeviceStats& st = slot.stats;
+    const bool silent = zero_force || slot.state != TACTA_DEVICE_CONNECTED;
+    if (silent) {
+      slot.force = {0, 0, 0};
+      ++st.zero_force_ticks;
+    }
+    // The device's declared peak is never exceeded, whatever the coupling asked for.
+    const double peak = slot.device->capabilities().peak_force;
+    const double magnitude = norm3(slot.force.data());
+    if (peak > 0 && magnitude > peak) {
+      for (double& f : slot.force) f *= peak / magnitude;
+      ++st.clamped_ticks;
+    }
+    const double sent = std::min(magnitude, peak > 0 ? peak : magnitude);
+    st.max_force_N = std::max(st.max_force_N, sent);
+    if (slot.in_contact) {
+      if (st.first_contact_time_s < 0) st.first_contact_time_s = time;
+      ++st.contact_ticks;
+      if (time - st.first_contact_time_s <= kFirstContactWindow_s) {
+        st.first_contact_peak_N = std::max(st.first_contact_peak_N, sent);
+      } else {
+        ++st.steady_ticks;
+        st.steady_contact_N += (sent - st.steady_contact_N) / static_cast<double>(st.steady_ticks);
+      }
+    }
+    if (slot.state == TACTA_DEVICE_CONNECTED) {
+      tacta_device_command command{};
+      for (int a = 0; a < 3; ++a) command.force[a] = slot.force[static_cast<size_t>(a)];
+      slot.device->write(time, command);
+    }
+  }
+}
+
+void HapticLoop::record(double time) noexcept {
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    const DeviceSlot& s = world_.device(d);
+    TraceRow row{time, static_cast<uint32_t>(d), {}, {}, {}, s.in_contact ? 1u : 0u, last_tick_ms_};
+    for (int a = 0; a < 3; ++a) {
+      row.position[a] = s.sample.position[a];
+      row.proxy[a] = s.proxy[static_cast<size_t>(a)];
+      row.force[a] = s.force[static_cast<size_t>(a)];
+    }
+    trace_.push(row);
+  }
+  if (record_interval_s_ > 0 && time + 1e-12 < next_record_s_) return;
+  next_record_s_ += record_interval_s_;
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    const SoftBody& b = world_.body(i);
+    for (uint32_t n : b.recorded_nodes) {
+      TrajectoryRow row{time, static_cast<uint32_t>(i), n, {}, {}};
+      for (int a = 0; a < 3; ++a) {
+        row.x[a] = b.positions[3 * n + a];
+        row.v[a] = b.velocities[3 * n + a];
+      }
+      trajectory_.push(row);
+    }
+  }
+}
+
+void HapticLoop::publish(double time) noexcept {
+  Snapshot& s = snapshots_.write_slot();
+  s.time_s = time;
+  s.tick = tick_index_;
+  s.last_tick_ms = last_tick_ms_;
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    SoftBody& b = world_.body(i);
+    BodySnapshot& bs = s.bodies[i];
+    std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
+    if (!bs.von_mises.empty() && b.model->has_stress()) b.model->node_stress(b.positions.data(), bs.von_mises.data());
+    if (bs.model != b.model->name()) bs.model.assign(b.model->name());  // capacity reserved up front
+    bs.frozen = b.fault.frozen;
+    bs.kinetic_J = b.kinetic_energy();
+    bs.elastic_J = b.model->elastic_energy(b.positions.data());
+    bs.max_displacement_m = b.max_displacement_m;
+    energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, b.max_displacement_m});
+  }
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    const DeviceSlot& slot = world_.device(d);
+    DeviceSnapshot& ds = s.devices[d];
+    for (int a = 0; a < 3; ++a) ds.position[static_cast<size_t>(a)] = slot.sample.position[a];
+    ds.proxy = slot.proxy;
+    ds.force = slot.force;
+    ds.contact = slot.in_contact;
+  }
+  snapshots_.publish();
+}
+
+}  // namespace tacta

@@ -1,0 +1,72 @@
+// The 1 kHz task: device read, interaction (proxy, coupling, contact forces), model step for
+// every body, fault handling, device write, records. Runs on the haptic thread; allocates
+// nothing, takes no lock, throws nothing.
+#pragma once
+
+#include <array>
+
+#include "recorders.hpp"
+#include "tacta/sim/scheduler.hpp"
+#include "tacta/sim/snapshot.hpp"
+#include "tacta/sim/triple_buffer.hpp"
+#include "world.hpp"
+
+namespace tacta {
+
+// A fault as report.json lists it.
+struct FaultRecord {
+  double time_s;
+  int body;    // -1 when it is a device's
+  int device;  // -1 when it is a body's
+  uint32_t bits;
+  std::array<char, 200> reason;
+};
+
+// Something that acts between ticks' device read and body step: haptic rendering, collision.
+// update() runs before the bodies step (writes body.contact_forces and device forces);
+// after_step() runs after they step (e.g. contact projection).
+class Interaction {
+ public:
+  virtual ~Interaction() = default;
+  virtual void before_step(World& world, double time, double dt) noexcept = 0;
+  virtual void after_step(World& world, double time, double dt) noexcept = 0;
+};
+
+class HapticLoop final : public HapticTask {
+ public:
+  HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks);
+  void add_interaction(Interaction* interaction) { interactions_.push_back(interaction); }
+
+  bool tick(uint64_t index, double time, double dt) noexcept override;
+  void publish(double time) noexcept override;
+
+  const Recorder<TraceRow>& trace() const { return trace_; }
+  const Recorder<TrajectoryRow>& trajectory() const { return trajectory_; }
+  const Recorder<EnergyRow>& energy() const { return energy_; }
+  const Recorder<FaultRecord>& faults() const { return faults_; }
+  // A prototype snapshot with every buffer sized, for building the triple buffer.
+  static Snapshot make_prototype(World& world);
+
+ private:
+  void apply_swaps(double time) noexcept;
+  void read_devices(double time) noexcept;
+  bool step_bodies(double time, double dt) noexcept;  // false when a body faulted this tick
+  void write_devices(double time, bool zero_force) noexcept;
+  void record(double time) noexcept;
+  void freeze(SoftBody& body, size_t index, double time, uint32_t bits, const char* why) noexcept;
+
+  World& world_;
+  TripleBuffer<Snapshot>& snapshots_;
+  std::vector<Interaction*> interactions_;
+  Recorder<TraceRow> trace_;
+  Recorder<TrajectoryRow> trajectory_;
+  Recorder<EnergyRow> energy_;
+  Recorder<FaultRecord> faults_;
+  double record_interval_s_ = 0;
+  double next_record_s_ = 0;
+  double last_tick_ms_ = 0;
+  uint64_t tick_index_ = 0;
+  std::vector<double> stress_scratch_;  // largest body's node count
+};
+
+}  // namespace tacta

@@ -1,0 +1,65 @@
+#include "plugin_instance.hpp"
+
+#include <cstring>
+
+namespace tacta {
+
+namespace {
+constexpr size_t kMessageCapacity = 1024;
+
+std::string plugin_failure(const tacta_descriptor& d, const char* what, const char* message) {
+  std::string text = std::string(tacta_kind_name(d.kind)) + " plugin '" + d.name + "' " + what;
+  if (message[0] != '\0') text += ": " + std::string(message);
+  return text;
+}
+}  // namespace
+
+ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& setup,
+                             const SourceLocation& where)
+    : descriptor_(descriptor), api_(*static_cast<const tacta_model_api*>(descriptor.api)) {
+  char message[kMessageCapacity] = {0};
+  if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK || instance_ == nullptr)
+    throw InputError(where, plugin_failure(descriptor, "refused this body", message));
+}
+
+ModelInstance::~ModelInstance() {
+  if (instance_ != nullptr) api_.destroy(instance_);
+}
+
+std::string ModelInstance::set_param(uint32_t index, const tacta_param_value& value) {
+  if (api_.set_param == nullptr) return std::string("model '") + name() + "' cannot change parameters while running";
+  char message[kMessageCapacity] = {0};
+  if (api_.set_param(instance_, index, &value, message, sizeof message) != TACTA_OK)
+    return message[0] != '\0' ? std::string(message) : std::string("refused");
+  return {};
+}
+
+DeviceInstance::DeviceInstance(const tacta_descriptor& descriptor, const tacta_device_setup& setup,
+                               const SourceLocation& where)
+    : descriptor_(descriptor), api_(*static_cast<const tacta_device_api*>(descriptor.api)) {
+  char message[kMessageCapacity] = {0};
+  if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK || instance_ == nullptr)
+    throw InputError(where, plugin_failure(descriptor, "could not be created", message));
+  api_.capabilities(instance_, &capabilities_);
+}
+
+DeviceInstance::~DeviceInstance() {
+  if (instance_ == nullptr) return;
+  if (connected_) api_.disconnect(instance_);
+  api_.destroy(instance_);
+}
+
+void DeviceInstance::connect(const SourceLocation& where) {
+  char message[kMessageCapacity] = {0};
+  if (api_.connect(instance_, message, sizeof message) != TACTA_OK)
+    throw InputError(where, plugin_failure(descriptor_, "could not connect", message));
+  connected_ = true;
+}
+
+tacta_device_state DeviceInstance::status(char* reason, size_t capacity) noexcept {
+  if (capacity > 0) reason[0] = '\0';
+  if (api_.status != nullptr) return api_.status(instance_, reason, capacity);
+  return connected_ ? TACTA_DEVICE_CONNECTED : TACTA_DEVICE_DISCONNECTED;
+}
+
+}  // namespace tacta

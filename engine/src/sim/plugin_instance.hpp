@@ -1,0 +1,80 @@
+// RAII owners of plugin instances (a model for a body, a device for the haptic loop). create()
+// runs at load time and may throw InputError with the plugin's own message; the per-tick calls
+// are thin, noexcept forwards into the C function table.
+#pragma once
+
+#include <string>
+
+#include "tacta/device_api.h"
+#include "tacta/error.hpp"
+#include "tacta/model_api.h"
+#include "tacta/scene.hpp"
+
+namespace tacta {
+
+class ModelInstance {
+ public:
+  // Throws InputError (at `where`) when the plugin refuses the setup.
+  ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& setup,
+                const SourceLocation& where);
+  ~ModelInstance();
+  ModelInstance(const ModelInstance&) = delete;
+  ModelInstance& operator=(const ModelInstance&) = delete;
+
+  const char* name() const noexcept { return descriptor_.name; }
+  const tacta_descriptor& descriptor() const noexcept { return descriptor_; }
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return api_.step(instance_, &state, dt); }
+  void begin(const tacta_body_state& state, double dt) noexcept {
+    if (api_.begin) api_.begin(instance_, &state, dt);
+  }
+  bool has_elastic_energy() const noexcept { return api_.elastic_energy != nullptr; }
+  double elastic_energy(const double* positions) noexcept {
+    return api_.elastic_energy ? api_.elastic_energy(instance_, positions) : 0.0;
+  }
+  bool has_stress() const noexcept { return api_.node_stress != nullptr; }
+  void node_stress(const double* positions, double* von_mises) noexcept {
+    if (api_.node_stress) api_.node_stress(instance_, positions, von_mises);
+  }
+  bool has_internal_forces() const noexcept { return api_.internal_forces != nullptr; }
+  void internal_forces(const double* positions, double* forces) noexcept {
+    if (api_.internal_forces) api_.internal_forces(instance_, positions, forces);
+  }
+  // Not from the 1 kHz path. Returns an empty string on success, else the plugin's reason.
+  std::string set_param(uint32_t index, const tacta_param_value& value);
+
+ private:
+  const tacta_descriptor& descriptor_;
+  const tacta_model_api& api_;
+  void* instance_ = nullptr;
+};
+
+class DeviceInstance {
+ public:
+  DeviceInstance(const tacta_descriptor& descriptor, const tacta_device_setup& setup,
+                 const SourceLocation& where);
+  ~DeviceInstance();
+  DeviceInstance(const DeviceInstance&) = delete;
+  DeviceInstance& operator=(const DeviceInstance&) = delete;
+
+  const char* name() const noexcept { return descriptor_.name; }
+  // Connects; throws InputError with the device's reason when it cannot.
+  void connect(const SourceLocation& where);
+  tacta_device_state read(double time, tacta_device_sample& sample) noexcept {
+    return api_.read(instance_, time, &sample);
+  }
+  void write(double time, const tacta_device_command& command) noexcept {
+    api_.write(instance_, time, &command);
+  }
+  const tacta_device_capabilities& capabilities() const noexcept { return capabilities_; }
+  // The device's own account of its state; fills reason (NUL-terminated) when not connected.
+  tacta_device_state status(char* reason, size_t capacity) noexcept;
+
+ private:
+  const tacta_descriptor& descriptor_;
+  const tacta_device_api& api_;
+  void* instance_ = nullptr;
+  bool connected_ = false;
+  tacta_device_capabilities capabilities_{};
+};
+
+}  // namespace tacta

@@ -1,0 +1,83 @@
+// The SoftBody component: a deformable body's node state, rest state, masses, fixed nodes, the
+// forces acting on it this tick, and the model instance that advances it. The engine owns the
+// state arrays so that a body can change model mid-run; the model sees them as plain spans.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plugin_instance.hpp"
+#include "tacta/mesh.hpp"
+#include "tacta/model_api.h"
+#include "tacta/scene.hpp"
+
+namespace tacta {
+
+// What a model instance points into for its whole life; heap-held so it never moves even when
+// the component pool that holds the SoftBody grows.
+struct BodyTopology {
+  VolumeMesh mesh;
+  tacta_mesh_view view{};
+  tacta_material material{};
+  std::vector<double> masses;  // kg per node, lumped
+  std::vector<uint8_t> fixed;  // 1 per node
+};
+
+// A model change scheduled for a time, built at load time so the switch itself allocates nothing.
+struct ScheduledSwap {
+  double time_s = 0;
+  std::unique_ptr<ModelInstance> model;
+};
+
+struct BodyFault {
+  bool frozen = false;
+  uint32_t bits = 0;        // TACTA_STEP_* bits of the step that failed
+  double time_s = 0;        // simulated time of the failed step
+  std::array<char, 160> reason{};  // fixed buffer: written from the 1 kHz path
+};
+
+struct SoftBody {
+  std::string name;
+  std::unique_ptr<BodyTopology> topology;
+  std::vector<double> positions;        // 3 per node, m
+  std::vector<double> velocities;       // 3 per node, m/s
+  std::vector<double> external_forces;  // 3 per node, N: gravity + contact + tool, rebuilt each tick
+  std::vector<double> contact_forces;   // 3 per node, N: accumulated by collision/haptics this tick
+  std::vector<double> saved_positions;  // start of the tick, restored when the body is frozen
+  std::unique_ptr<ModelInstance> model;
+  std::vector<ScheduledSwap> swaps;     // sorted by time
+  size_t next_swap = 0;
+  std::vector<std::string> model_history;  // names of the models it has run, in order
+  BodyFault fault;
+  double divergence_limit_m = 1;  // displacement beyond which the body counts as diverged
+  double max_displacement_m = 0;  // over the whole run
+  std::optional<uint32_t> probe_node;
+  std::vector<uint32_t> recorded_nodes;  // nodes whose trajectory is recorded
+  double step_period_s = 0;     // s; 0: every haptic tick
+  double next_step_time_s = 0;  // s; when a slower body steps next
+
+  size_t node_count() const { return positions.size() / 3; }
+  const std::vector<double>& rest() const { return topology->mesh.positions; }
+  double kinetic_energy() const noexcept;
+  tacta_body_state state_view(double time) noexcept {
+    return {static_cast<uint32_t>(node_count()), positions.data(), velocities.data(),
+            external_forces.data(), time};
+  }
+};
+
+class PluginRegistry;
+
+// Resolves a model plugin by name and builds its instance for this body. Throws InputError.
+using ModelFactory = std::function<std::unique_ptr<ModelInstance>(
+    const std::string& model, const ParamSet& params, const BodyTopology& topology, double dt,
+    const SourceLocation& where)>;
+
+// Builds the body from its scene description (mesh, masses, fixed nodes, initial state, model,
+// scheduled swaps). Throws InputError; never returns a half-built body.
+SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const ModelFactory& make_model);
+
+}  // namespace tacta
