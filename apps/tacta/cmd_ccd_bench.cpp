@@ -1,0 +1,203 @@
+// `tacta ccd-bench PATH...`: runs the ccd plugin's vertex-face and edge-edge tests on query files
+// with exact ground truth (format: tests/data/ccd/README.md), files or folders searched
+// recursively, and prints one JSON object: our conservative test and, under "baseline", the plain
+// floating-point Moore-Wilhelms (cubic roots then inside test), counted and timed in the same run.
+// Exit code 1 when ours has a false negative (the one thing it must never have).
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "tacta/collision_api.h"
+#include "tacta/error.hpp"
+#include "tacta/plugin_registry.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Query {
+  double points[24];
+  bool truth = false;
+  bool vertex_face = false;
+};
+
+// Rows are x_num,x_den,y_num,y_den,z_num,z_den,truth; the denominators are powers of two and
+// each quotient is exactly a double, so strtod of both and one division are exact.
+void read_file(const fs::path& file, std::vector<Query>& out) {
+  std::ifstream in(file);
+  if (!in) throw tacta::InputError({file.string()}, "cannot open the file");
+  const bool vertex_face = file.parent_path().filename() == "vertex-face";
+  if (!vertex_face && file.parent_path().filename() != "edge-edge")
+    throw tacta::InputError({file.string()},
+                            "expected the file inside a 'vertex-face' or 'edge-edge' folder");
+  std::string line;
+  int line_number = 0, row = 0;
+  Query q;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty() || line == "\r") continue;
+    std::stringstream fields(line);
+    std::string f[7];
+    for (int k = 0; k < 7; ++k)
+      if (!std::getline(fields, f[k], ','))
+        throw tacta::InputError({file.string(), line_number},
+                                "expected 7 comma-separated integers, found " + std::to_string(k));
+    for (int k = 0; k < 3; ++k) {
+      char* end_num = nullptr;
+      char* end_den = nullptr;
+      const double num = std::strtod(f[2 * k].c_str(), &end_num);
+      const double den = std::strtod(f[2 * k + 1].c_str(), &end_den);
+      if (end_num == f[2 * k].c_str() || end_den == f[2 * k + 1].c_str() || den == 0.0)
+        throw tacta::InputError({file.string(), line_number, 2 * k + 1},
+                                "expected an integer numerator and a non-zero denominator");
+      q.points[3 * row + k] = num / den;
+    }
+    const bool truth = f[6].rfind('1', 0) == 0;
+    if (row == 0) q.truth = truth;
+    q.vertex_face = vertex_face;
+    if (++row == 8) {
+      out.push_back(q);
+      row = 0;
+    }
+  }
+  if (row != 0)
+    throw tacta::InputError({file.string(), line_number},
+                            "the row count is not a multiple of 8 (one query is 8 rows)");
+}
+
+std::vector<Query> read_paths(const std::vector<std::string>& paths) {
+  std::vector<fs::path> files;
+  for (const std::string& p : paths) {
+    if (fs::is_directory(p)) {
+      for (const auto& entry : fs::recursive_directory_iterator(p))
+        if (entry.is_regular_file() && entry.path().extension() == ".csv")
+          files.push_back(entry.path());
+    } else if (fs::is_regular_file(p)) {
+      files.emplace_back(p);
+    } else {
+      throw tacta::InputError({p}, "no such file or folder");
+    }
+  }
+  std::sort(files.begin(), files.end());
+  std::vector<Query> queries;
+  for (const fs::path& f : files) read_file(f, queries);
+  return queries;
+}
+
+struct Score {
+  long false_negatives = 0, false_positives = 0;
+  double median_ns = 0.0, mean_ns = 0.0;
+};
+
+// Answers every query once for the counts, then times `repeat` passes per query (ns each).
+Score score(const tacta_collision_api& api, void* instance, const std::vector<Query>& queries,
+            int repeat) {
+  Score s;
+  std::vector<double> ns(queries.size());
+  double total = 0.0;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const Query& q = queries[i];
+    auto run = [&] {
+      tacta_ccd_hit hit{};
+      return q.vertex_face ? api.vertex_face(instance, q.points, &hit)
+                           : api.edge_edge(instance, q.points, &hit);
+    };
+    const bool found = run() != 0;
+    if (q.truth && !found) ++s.false_negatives;
+    if (!q.truth && found) ++s.false_positives;
+    const auto start = std::chrono::steady_clock::now();
+    int sink = 0;
+    for (int r = 0; r < repeat; ++r) sink += run();
+    const auto stop = std::chrono::steady_clock::now();
+    if (sink < 0) std::cerr << "";  // keeps the loop from being optimised away
+    ns[i] = std::chrono::duration<double, std::nano>(stop - start).count() / repeat;
+    total += ns[i];
+  }
+  if (!ns.empty()) {
+    std::nth_element(ns.begin(), ns.begin() + static_cast<long>(ns.size() / 2), ns.end());
+    s.median_ns = ns[ns.size() / 2];
+    s.mean_ns = total / static_cast<double>(ns.size());
+  }
+  return s;
+}
+
+void* make_instance(const tacta::LoadedDescriptor& d, int method) {
+  std::vector<tacta_param_value> values(d.descriptor->param_count);
+  for (uint32_t i = 0; i < d.descriptor->param_count; ++i) {
+    values[i].number = d.descriptor->params[i].default_value;
+    values[i].text = d.descriptor->params[i].default_text;
+    if (std::string(d.descriptor->params[i].name) == "method") values[i].number = method;
+  }
+  const tacta_collision_setup setup{sizeof(tacta_collision_setup), values.data(),
+                                    static_cast<uint32_t>(values.size()), 0.001};
+  void* instance = nullptr;
+  char message[512] = {0};
+  const auto& api = *static_cast<const tacta_collision_api*>(d.descriptor->api);
+  if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK)
+    throw tacta::InputError({d.file}, std::string("ccd plugin refused to create: ") + message);
+  return instance;
+}
+
+int run_bench(const std::vector<std::string>& paths, int repeat) {
+  const std::vector<Query> queries = read_paths(paths);
+  tacta::PluginRegistry registry;
+  registry.load();
+  const tacta::LoadedDescriptor& d = registry.require(TACTA_KIND_COLLISION, "ccd");
+  const auto& api = *static_cast<const tacta_collision_api*>(d.descriptor->api);
+  if (api.vertex_face == nullptr || api.edge_edge == nullptr)
+    throw tacta::InputError({d.file}, "the 'ccd' plugin has no vertex_face/edge_edge entries");
+  void* ours = make_instance(d, 0);
+  void* plain = make_instance(d, 1);
+  const Score a = score(api, ours, queries, repeat);
+  const Score b = score(api, plain, queries, repeat);
+  api.destroy(ours);
+  api.destroy(plain);
+  long vertex_face = 0, positives = 0;
+  for (const Query& q : queries) {
+    vertex_face += q.vertex_face;
+    positives += q.truth;
+  }
+  std::cout << "{\"queries\": " << queries.size() << ", \"vertex_face\": " << vertex_face
+            << ", \"edge_edge\": " << static_cast<long>(queries.size()) - vertex_face
+            << ", \"positives\": " << positives << ", \"method\": \"inclusion\""
+            << ", \"false_negatives\": " << a.false_negatives
+            << ", \"false_positives\": " << a.false_positives
+            << ", \"ns_per_query_median\": " << a.median_ns
+            << ", \"ns_per_query_mean\": " << a.mean_ns
+            << ", \"baseline\": {\"method\": \"plain Moore-Wilhelms (cubic roots, inside test)\""
+            << ", \"false_negatives\": " << b.false_negatives
+            << ", \"false_positives\": " << b.false_positives
+            << ", \"ns_per_query_median\": " << b.median_ns
+            << ", \"ns_per_query_mean\": " << b.mean_ns << "}}" << std::endl;
+  return a.false_negatives == 0 ? tacta::cli::kExitOk : tacta::cli::kExitFault;
+}
+
+void add_ccd_bench_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("ccd-bench",
+                                 "Run the CCD plugin on query files with ground truth; print JSON");
+  static std::vector<std::string> paths;
+  static int repeat = 5;
+  cmd->add_option("paths", paths, "query files (.csv) or folders, searched recursively")
+      ->required();
+  cmd->add_option("--repeat", repeat, "timed passes per query (ns per query is their mean)")
+      ->check(CLI::Range(1, 100000));
+  cmd->callback([&exit_code] {
+    try {
+      exit_code = run_bench(paths, repeat);
+    } catch (const std::exception& e) {
+      std::cerr << "tacta ccd-bench: " << e.what() << "\n";
+      exit_code = tacta::cli::kExitBadInput;
+    }
+  });
+}
+
+const bool registered = tacta::cli::register_command(&add_ccd_bench_command);
+
+}  // namespace
