@@ -1,0 +1,123 @@
+// replay: plays a device session log (tacta/device_log.hpp) at its timestamps, interpolated to
+// the tick. A log's sample at time_s plays at engine time time_s + time_offset. Past the end the
+// device reports FINISHED (zero force from the engine) with the reason, unless `loop` is set.
+// A truncated or malformed log is refused at create with file:line and what was expected.
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "interpolation.hpp"
+#include "tacta/sdk/device.hpp"
+
+namespace tacta::replay {
+
+class ReplayDevice {
+ public:
+  static constexpr const char* kName = "replay";
+  static constexpr const char* kDescription = "Plays a recorded device log (CSV) at its timestamps";
+  static constexpr uint32_t kVersion = 10000;
+  static constexpr std::array<tacta_param_spec, 3> kParams{{
+      sdk::text_param("log", "", "device log (CSV) to play; relative to the scene's folder"),
+      sdk::real_param("time_offset", "s", 0.0, -1e6, 1e6, "engine time = log time + time_offset"),
+      sdk::bool_param("loop", false, "start again from the first sample after the last"),
+  }};
+
+  explicit ReplayDevice(const tacta_device_setup& setup) {
+    const sdk::Params params(kParams, setup.params, setup.param_count);
+    const std::string name(params.text("log"));
+    if (name.empty()) throw std::invalid_argument("replay: parameter 'log' expects a log file path, found nothing");
+    std::filesystem::path path(name);
+    if (path.is_relative() && setup.base_directory != nullptr && setup.base_directory[0] != '\0')
+      path = std::filesystem::path(setup.base_directory) / path;
+    path_ = path.string();
+    try {
+      samples_ = read_device_log(path_);
+    } catch (const InputError& e) {
+      throw std::invalid_argument(std::string("replay: ") + e.what());
+    }
+    if (samples_.empty())
+      throw std::invalid_argument("replay: " + path_ + ":2: expected at least one sample after the header");
+    offset_ = params.real("time_offset");
+    loop_ = params.flag("loop");
+  }
+
+  void connect() { connected_ = true; }
+  void disconnect() noexcept { connected_ = false; }
+
+  tacta_device_state read(double time, tacta_device_sample& sample) noexcept {
+    double log_time = time - offset_;
+    const double first = samples_.front().time;
+    const double last = samples_.back().time;
+    if (loop_ && log_time > last && last > first)
+      log_time = first + std::fmod(log_time - first, last - first);
+    const DeviceLogSample s = sample_at(samples_, log_time);
+    sample.time = time;
+    for (int i = 0; i < 3; ++i) {
+      sample.position[i] = s.position[i];
+      sample.velocity[i] = s.velocity[i];
+    }
+    for (int i = 0; i < 4; ++i) sample.orientation[i] = s.orientation[i];
+    sample.buttons = s.buttons;
+    if (!connected_) return TACTA_DEVICE_DISCONNECTED;
+    if (log_time > last) {
+      if (!finished_) std::snprintf(reason_, sizeof reason_, "log %s ended at t=%.6g s", path_.c_str(), last + offset_);
+      finished_ = true;
+      return TACTA_DEVICE_FINISHED;
+    }
+    return TACTA_DEVICE_CONNECTED;
+  }
+
+  void write(double, const tacta_device_command& command) noexcept {
+    for (int i = 0; i < 3; ++i) last_force_[i] = command.force[i];  // a replay renders nothing
+  }
+
+  tacta_device_capabilities capabilities() const noexcept {
+    // A replay has no hardware: it reports the box its samples span and the Omni-class force
+    // numbers (peak 3.3 N, /work/shared/data/README.md) so the engine limits forces the same way.
+    tacta_device_capabilities c{};
+    for (int i = 0; i < 3; ++i) {
+      c.workspace_min[i] = c.workspace_max[i] = samples_.front().position[i];
+      for (const DeviceLogSample& s : samples_) {
+        c.workspace_min[i] = std::min(c.workspace_min[i], s.position[i]);
+        c.workspace_max[i] = std::max(c.workspace_max[i], s.position[i]);
+      }
+    }
+    c.peak_force = 3.3;
+    c.continuous_force = 0.88;
+    c.usable_stiffness = 1000.0;
+    c.nominal_rate = 1000.0;
+    c.dof_in = 6;
+    c.dof_out = 3;
+    return c;
+  }
+
+  tacta_device_state status(char* reason, size_t capacity) const noexcept {
+    if (!connected_) {
+      sdk::write_message(reason, capacity, "not connected");
+      return TACTA_DEVICE_DISCONNECTED;
+    }
+    if (finished_) {
+      sdk::write_message(reason, capacity, reason_);
+      return TACTA_DEVICE_FINISHED;
+    }
+    sdk::write_message(reason, capacity, "playing");
+    return TACTA_DEVICE_CONNECTED;
+  }
+
+ private:
+  std::string path_;
+  std::vector<DeviceLogSample> samples_;
+  double offset_ = 0.0;
+  bool loop_ = false;
+  bool connected_ = false;
+  bool finished_ = false;
+  char reason_[512] = {0};
+  double last_force_[3] = {0.0, 0.0, 0.0};
+};
+
+}  // namespace tacta::replay
+
+TACTA_PLUGIN_EXPORT(tacta::sdk::device_descriptor<tacta::replay::ReplayDevice>())
