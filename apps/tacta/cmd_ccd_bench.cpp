@@ -22,6 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+tacta::SourceLocation at(const std::string& file, int line = 0, int column = 0) {
+  return tacta::SourceLocation{file, line, column, ""};
+}
+
 struct Query {
   double points[24];
   bool truth = false;
@@ -32,10 +36,10 @@ struct Query {
 // each quotient is exactly a double, so strtod of both and one division are exact.
 void read_file(const fs::path& file, std::vector<Query>& out) {
   std::ifstream in(file);
-  if (!in) throw tacta::InputError({file.string()}, "cannot open the file");
+  if (!in) throw tacta::InputError(at(file.string()), "cannot open the file");
   const bool vertex_face = file.parent_path().filename() == "vertex-face";
   if (!vertex_face && file.parent_path().filename() != "edge-edge")
-    throw tacta::InputError({file.string()},
+    throw tacta::InputError(at(file.string()),
                             "expected the file inside a 'vertex-face' or 'edge-edge' folder");
   std::string line;
   int line_number = 0, row = 0;
@@ -47,7 +51,7 @@ void read_file(const fs::path& file, std::vector<Query>& out) {
     std::string f[7];
     for (int k = 0; k < 7; ++k)
       if (!std::getline(fields, f[k], ','))
-        throw tacta::InputError({file.string(), line_number},
+        throw tacta::InputError(at(file.string(), line_number),
                                 "expected 7 comma-separated integers, found " + std::to_string(k));
     for (int k = 0; k < 3; ++k) {
       char* end_num = nullptr;
@@ -55,7 +59,7 @@ void read_file(const fs::path& file, std::vector<Query>& out) {
       const double num = std::strtod(f[2 * k].c_str(), &end_num);
       const double den = std::strtod(f[2 * k + 1].c_str(), &end_den);
       if (end_num == f[2 * k].c_str() || end_den == f[2 * k + 1].c_str() || den == 0.0)
-        throw tacta::InputError({file.string(), line_number, 2 * k + 1},
+        throw tacta::InputError(at(file.string(), line_number, 2 * k + 1),
                                 "expected an integer numerator and a non-zero denominator");
       q.points[3 * row + k] = num / den;
     }
@@ -68,7 +72,7 @@ void read_file(const fs::path& file, std::vector<Query>& out) {
     }
   }
   if (row != 0)
-    throw tacta::InputError({file.string(), line_number},
+    throw tacta::InputError(at(file.string(), line_number),
                             "the row count is not a multiple of 8 (one query is 8 rows)");
 }
 
@@ -82,7 +86,7 @@ std::vector<Query> read_paths(const std::vector<std::string>& paths) {
     } else if (fs::is_regular_file(p)) {
       files.emplace_back(p);
     } else {
-      throw tacta::InputError({p}, "no such file or folder");
+      throw tacta::InputError(at(p), "no such file or folder");
     }
   }
   std::sort(files.begin(), files.end());
@@ -141,7 +145,7 @@ void* make_instance(const tacta::LoadedDescriptor& d, int method) {
   char message[512] = {0};
   const auto& api = *static_cast<const tacta_collision_api*>(d.descriptor->api);
   if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK)
-    throw tacta::InputError({d.file}, std::string("ccd plugin refused to create: ") + message);
+    throw tacta::InputError(at(d.file), std::string("ccd plugin refused to create: ") + message);
   return instance;
 }
 
@@ -152,7 +156,7 @@ int run_bench(const std::vector<std::string>& paths, int repeat) {
   const tacta::LoadedDescriptor& d = registry.require(TACTA_KIND_COLLISION, "ccd");
   const auto& api = *static_cast<const tacta_collision_api*>(d.descriptor->api);
   if (api.vertex_face == nullptr || api.edge_edge == nullptr)
-    throw tacta::InputError({d.file}, "the 'ccd' plugin has no vertex_face/edge_edge entries");
+    throw tacta::InputError(at(d.file), "the 'ccd' plugin has no vertex_face/edge_edge entries");
   void* ours = make_instance(d, 0);
   void* plain = make_instance(d, 1);
   const Score a = score(api, ours, queries, repeat);
