@@ -1,0 +1,43 @@
+// Meshes built in code: the scene primitives and the voxeliser that turns a closed surface into a
+// tetrahedral body with the surface embedded in it. Every result is finalized (see mesh_io.hpp).
+// Units: metres.
+#pragma once
+
+#include <array>
+
+#include "tacta/mesh.hpp"
+#include "tacta/mesh_io.hpp"
+#include "tacta/scene.hpp"
+
+namespace tacta {
+
+// A box [origin, origin + size] cut into cells[0] x cells[1] x cells[2] hexahedra, each split into
+// 6 tets around its diagonal from the (min x, min y, min z) corner to the opposite one, so that
+// neighbouring cells share their face diagonals (a conforming mesh). Node index:
+// i + (nx+1) * (j + (ny+1) * k), with nx = cells[0], ny = cells[1].
+VolumeMesh make_box_grid(const Vec3& size, const std::array<int, 3>& cells, const Vec3& origin);
+
+// The same grid as make_box_grid, named "beam_grid" (a long box, usually clamped at one end).
+VolumeMesh make_beam_grid(const Vec3& size, const std::array<int, 3>& cells, const Vec3& origin);
+
+// A planar grid (dimension 2, z = origin z) of cells[0] x cells[1] quads over size[0] x size[1].
+// Node index: i + (nx+1) * j; the unit square (1 x 1 cells) is SW(0,0)=0, SE(1,0)=1, NW(0,1)=2,
+// NE(1,1)=3. Quads are counter-clockwise seen from +z: (SW, SE, NE, NW). Triangles (for drawing)
+// split each quad as (SW, SE, NE), (SW, NE, NW). Edges are the quad sides only (no diagonals).
+VolumeMesh make_quad_grid(const Vec3& size, const std::array<int, 3>& cells, const Vec3& origin);
+
+// A tetrahedral ball: a cube grid of 2^(subdivisions+1) cells a side whose nodes are pushed
+// radially onto spheres (each cube shell onto the sphere of the same relative radius), so the
+// boundary nodes lie on the sphere of the given radius (m) around centre.
+VolumeMesh make_sphere(double radius, const Vec3& centre, int subdivisions);
+
+// Fills a closed surface with a sparse grid of cubes of edge cell_size (m): every cube whose
+// centre is inside (generalized winding number > 1/2) or that overlaps a surface triangle, each
+// split into the same 6 conforming tets as make_box_grid. The result carries the Embedding: per
+// surface vertex, the tet that holds it and its 4 barycentric weights. A vertex that no tet holds
+// (it cannot happen with the overlap rule, but rounding can) gets the tet of its own cell, or the
+// nearest tet, with extrapolated weights (some negative; they still sum to 1 and reproduce it).
+// An open surface is voxelised all the same, with a warning in report.
+VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report = nullptr);
+
+}  // namespace tacta

@@ -1,0 +1,145 @@
+// Mesh measures: element quality, enclosed volume, closedness, lumped masses.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mesh/geometry.hpp"
+#include "tacta/mesh_io.hpp"
+
+namespace tacta {
+
+using mesh_detail::P3;
+using mesh_detail::point;
+
+namespace {
+
+double tet_volume(const VolumeMesh& mesh, size_t t) {
+  const uint32_t* v = &mesh.tets[4 * t];
+  P3 a = point(mesh.positions, v[0]);
+  return mesh_detail::triple(point(mesh.positions, v[1]) - a, point(mesh.positions, v[2]) - a,
+                             point(mesh.positions, v[3]) - a) / 6.0;
+}
+
+double polygon_area(const VolumeMesh& mesh, const uint32_t* v, size_t count) {
+  P3 sum{0, 0, 0};
+  P3 a = point(mesh.positions, v[0]);
+  for (size_t k = 1; k + 1 < count; ++k) sum = sum + cross(point(mesh.positions, v[k]) - a, point(mesh.positions, v[k + 1]) - a);
+  return 0.5 * norm(sum);
+}
+
+// Longest edge over shortest altitude, scaled so that the regular tet scores 1.
+double tet_aspect(const VolumeMesh& mesh, size_t t) {
+  const uint32_t* v = &mesh.tets[4 * t];
+  double longest = 0, largest_face = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, norm(point(mesh.positions, v[i]) - point(mesh.positions, v[j])));
+    uint32_t face[3];
+    for (int k = 0, n = 0; k < 4; ++k)
+      if (k != i) face[n++] = v[k];
+    largest_face = std::max(largest_face, polygon_area(mesh, face, 3));
+  }
+  double shortest_altitude = 3.0 * std::abs(tet_volume(mesh, t)) / largest_face;
+  return longest / shortest_altitude * std::sqrt(2.0 / 3.0);
+}
+
+}  // namespace
+
+MeshQuality mesh_quality(const VolumeMesh& mesh) {
+  MeshQuality q;
+  const size_t n = mesh.node_count();
+  for (int k = 0; k < 3; ++k) {
+    q.bounds_min[k] = n ? std::numeric_limits<double>::infinity() : 0;
+    q.bounds_max[k] = n ? -std::numeric_limits<double>::infinity() : 0;
+  }
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < 3; ++k) {
+      q.bounds_min[k] = std::min(q.bounds_min[k], mesh.positions[3 * i + k]);
+      q.bounds_max[k] = std::max(q.bounds_max[k], mesh.positions[3 * i + k]);
+    }
+  }
+  double min_v = std::numeric_limits<double>::infinity(), max_v = 0, worst = 0;
+  auto take = [&](double volume, double aspect) {
+    min_v = std::min(min_v, volume);
+    max_v = std::max(max_v, volume);
+    worst = std::max(worst, aspect);
+  };
+  if (mesh.dimension == 3) {
+    for (size_t t = 0; t < mesh.tet_count(); ++t) take(tet_volume(mesh, t), tet_aspect(mesh, t));
+  } else {
+    // Planar: area, and longest edge^2 / area (1 for a square; the right-angled half of one scores 2).
+    bool quads = !mesh.quads.empty();
+    const std::vector<uint32_t>& elements = quads ? mesh.quads : mesh.triangles;
+    size_t per = quads ? 4 : 3;
+    for (size_t e = 0; e < elements.size() / per; ++e) {
+      const uint32_t* v = &elements[per * e];
+      double area = polygon_area(mesh, v, per), longest = 0;
+      for (size_t k = 0; k < per; ++k) longest = std::max(longest, norm(point(mesh.positions, v[(k + 1) % per]) - point(mesh.positions, v[k])));
+      take(area, longest * longest / area * (quads ? 1.0 : 0.5));
+    }
+  }
+  q.min_volume = std::isfinite(min_v) ? min_v : 0;
+  q.max_volume = max_v;
+  q.worst_aspect_ratio = worst;
+  double min_e = std::numeric_limits<double>::infinity(), max_e = 0;
+  for (size_t e = 0; e + 1 < mesh.edges.size(); e += 2) {
+    double length = norm(point(mesh.positions, mesh.edges[e + 1]) - point(mesh.positions, mesh.edges[e]));
+    min_e = std::min(min_e, length);
+    max_e = std::max(max_e, length);
+  }
+  q.min_edge = std::isfinite(min_e) ? min_e : 0;
+  q.max_edge = max_e;
+  return q;
+}
+
+double enclosed_volume(const SurfaceMesh& surface) {
+  double six_volume = 0;
+  for (size_t t = 0; t < surface.triangle_count(); ++t) {
+    const uint32_t* v = &surface.triangles[3 * t];
+    six_volume += mesh_detail::triple(point(surface.positions, v[0]), point(surface.positions, v[1]), point(surface.positions, v[2]));
+  }
+  return six_volume / 6.0;
+}
+
+void check_closed(const SurfaceMesh& surface, LoadReport& report) {
+  std::vector<std::array<uint32_t, 2>> edges;
+  edges.reserve(surface.triangles.size());
+  for (size_t t = 0; t < surface.triangle_count(); ++t) {
+    for (size_t k = 0; k < 3; ++k) {
+      uint32_t a = surface.triangles[3 * t + k], b = surface.triangles[3 * t + (k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  report.boundary_edges = report.nonmanifold_edges = 0;
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) ++report.boundary_edges;
+    if (j - i > 2) ++report.nonmanifold_edges;
+    i = j;
+  }
+}
+
+std::vector<double> lumped_masses(const VolumeMesh& mesh, double density) {
+  std::vector<double> masses(mesh.node_count(), 0.0);
+  if (mesh.dimension == 3) {
+    for (size_t t = 0; t < mesh.tet_count(); ++t) {
+      double share = density * std::abs(tet_volume(mesh, t)) / 4.0;
+      for (int k = 0; k < 4; ++k) masses[mesh.tets[4 * t + static_cast<size_t>(k)]] += share;
+    }
+    return masses;
+  }
+  bool quads = !mesh.quads.empty();
+  const std::vector<uint32_t>& elements = quads ? mesh.quads : mesh.triangles;
+  size_t per = quads ? 4 : 3;
+  for (size_t e = 0; e < elements.size() / per; ++e) {
+    double share = density * polygon_area(mesh, &elements[per * e], per) / static_cast<double>(per);
+    for (size_t k = 0; k < per; ++k) masses[elements[per * e + k]] += share;
+  }
+  return masses;
+}
+
+}  // namespace tacta
