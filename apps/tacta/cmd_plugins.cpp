@@ -1,0 +1,191 @@
+// `tacta plugins [--json] [--path DIR]...`: what the loader found, each descriptor with its
+// parameter schema, and every refused file with the reason. Exit 0 even when files were refused
+// (they are listed), 2 when a --path is not a folder.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "tacta/error.hpp"
+#include "tacta/json.hpp"
+#include "tacta/plugin_registry.hpp"
+
+namespace {
+
+const char* type_name(tacta_param_type type) {
+  switch (type) {
+    case TACTA_PARAM_REAL: return "real";
+    case TACTA_PARAM_INT: return "int";
+    case TACTA_PARAM_BOOL: return "bool";
+    case TACTA_PARAM_CHOICE: return "choice";
+    case TACTA_PARAM_TEXT: return "text";
+    case TACTA_PARAM_VECTOR: return "vector";
+    default: return "unknown";
+  }
+}
+
+// major*10000 + minor*100 + patch -> "major.minor.patch"
+std::string version_text(uint32_t v) {
+  return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+}
+
+std::vector<std::string> split_choices(const char* choices) {
+  std::vector<std::string> out;
+  if (choices == nullptr) return out;
+  std::string current;
+  for (const char* c = choices; *c; ++c) {
+    if (*c == '|') {
+      out.push_back(current);
+      current.clear();
+    } else {
+      current += *c;
+    }
+  }
+  out.push_back(current);
+  return out;
+}
+
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+// One line per parameter: name, type, unit, default, range or choices, help.
+std::string describe_param(const tacta_param_spec& p) {
+  std::string line = std::string(p.name) + " (" + type_name(p.type);
+  if (p.unit && p.unit[0]) line += std::string(", ") + p.unit;
+  line += ")";
+  switch (p.type) {
+    case TACTA_PARAM_REAL:
+    case TACTA_PARAM_INT:
+      line += " default " + short_number(p.default_value) + ", range [" + short_number(p.min_value) +
+              ", " + short_number(p.max_value) + "]";
+      break;
+    case TACTA_PARAM_BOOL: line += p.default_value != 0 ? " default true" : " default false"; break;
+    case TACTA_PARAM_CHOICE: {
+      const auto choices = split_choices(p.choices);
+      const auto index = static_cast<size_t>(p.default_value);
+      line += " default " + (index < choices.size() ? choices[index] : std::string("?")) +
+              ", one of " + (p.choices ? p.choices : "");
+      break;
+    }
+    case TACTA_PARAM_TEXT: line += std::string(" default '") + (p.default_text ? p.default_text : "") + "'"; break;
+    case TACTA_PARAM_VECTOR:
+      line += " default [" + std::string(p.default_text ? p.default_text : "") + "], groups of " +
+              std::to_string(p.vector_stride) + ", each in [" + short_number(p.min_value) + ", " +
+              short_number(p.max_value) + "]";
+      break;
+    default: break;
+  }
+  if (p.help && p.help[0]) line += std::string(": ") + p.help;
+  return line;
+}
+
+void print_text(const tacta::PluginRegistry& registry) {
+  std::cout << "Search paths (in order):\n";
+  for (const auto& p : registry.search_paths()) std::cout << "  " << p << "\n";
+  const auto loaded = registry.list();
+  std::cout << "\n" << loaded.size() << " plugin descriptor(s):\n";
+  for (const auto& e : loaded) {
+    const tacta_descriptor& d = *e.descriptor;
+    std::cout << "\n" << tacta_kind_name(d.kind) << " " << d.name << " " << version_text(d.version)
+              << ": " << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
+    if (d.param_count == 0) std::cout << "  parameters: none\n";
+    for (uint32_t i = 0; i < d.param_count; ++i) std::cout << "  - " << describe_param(d.params[i]) << "\n";
+  }
+  const auto& refused = registry.refused();
+  if (!refused.empty()) {
+    std::cout << "\n" << refused.size() << " refused file(s):\n";
+    for (const auto& r : refused) std::cout << "  " << r.file << ": " << r.reason << "\n";
+  }
+}
+
+void write_param(tacta::JsonWriter& json, const tacta_param_spec& p) {
+  json.begin_object();
+  json.field("name", p.name).field("type", type_name(p.type)).field("unit", p.unit ? p.unit : "");
+  switch (p.type) {
+    case TACTA_PARAM_REAL:
+    case TACTA_PARAM_INT:
+      json.field("default", p.default_value).field("min", p.min_value).field("max", p.max_value);
+      break;
+    case TACTA_PARAM_BOOL: json.field("default", p.default_value != 0); break;
+    case TACTA_PARAM_CHOICE: {
+      const auto choices = split_choices(p.choices);
+      const auto index = static_cast<size_t>(p.default_value);
+      json.field("default", index < choices.size() ? choices[index] : std::string());
+      json.key("choices").begin_array();
+      for (const auto& c : choices) json.value(c);
+      json.end_array();
+      break;
+    }
+    case TACTA_PARAM_TEXT: json.field("default", p.default_text); break;
+    case TACTA_PARAM_VECTOR:
+      json.field("default", p.default_text).field("stride", p.vector_stride);
+      json.field("min", p.min_value).field("max", p.max_value);
+      break;
+    default: break;
+  }
+  json.field("help", p.help ? p.help : "");
+  json.end_object();
+}
+
+void print_json(const tacta::PluginRegistry& registry) {
+  tacta::JsonWriter json(std::cout);
+  json.begin_object();
+  json.key("search_paths").begin_array();
+  for (const auto& p : registry.search_paths()) json.value(p);
+  json.end_array();
+  json.key("plugins").begin_array();
+  for (const auto& e : registry.list()) {
+    const tacta_descriptor& d = *e.descriptor;
+    json.begin_object();
+    json.field("kind", tacta_kind_name(d.kind)).field("name", d.name);
+    json.field("version", version_text(d.version)).field("description", d.description);
+    json.field("file", e.file);
+    json.key("parameters").begin_array();
+    for (uint32_t i = 0; i < d.param_count; ++i) write_param(json, d.params[i]);
+    json.end_array();
+    json.end_object();
+  }
+  json.end_array();
+  json.key("refused").begin_array();
+  for (const auto& r : registry.refused())
+    json.begin_object().field("file", r.file).field("reason", r.reason).end_object();
+  json.end_array();
+  json.end_object();
+}
+
+void add_plugins_command(CLI::App& app, int& exit_code) {
+  struct Options {
+    bool json = false;
+    std::vector<std::string> paths;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "plugins", "List the plugins found (build tree, install prefix, TACTA_PLUGIN_PATH, --path) "
+                 "with their parameters, and every refused file with the reason");
+  cmd->add_flag("--json", options->json, "Print the same as JSON");
+  cmd->add_option("--path", options->paths, "Also search this folder (repeatable)");
+  cmd->callback([options, &exit_code] {
+    tacta::PluginRegistry registry;
+    try {
+      for (const auto& p : options->paths) registry.add_path(p);
+    } catch (const tacta::InputError& e) {
+      std::cerr << "tacta plugins: " << e.what() << "\n";
+      exit_code = tacta::cli::kExitBadInput;
+      return;
+    }
+    registry.load();
+    if (options->json)
+      print_json(registry);
+    else
+      print_text(registry);
+    exit_code = tacta::cli::kExitOk;
+  });
+}
+
+const bool registered = tacta::cli::register_command(&add_plugins_command);
+
+}  // namespace
