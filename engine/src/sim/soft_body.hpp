@@ -30,7 +30,8 @@ struct BodyTopology {
 // A model change scheduled for a time, built at load time so the switch itself allocates nothing.
 struct ScheduledSwap {
   double time_s = 0;
-  std::unique_ptr<ModelInstance> model;
+  std::string model_name;               // the incoming model, for the report
+  std::unique_ptr<ModelInstance> model;  // incoming until the swap; the outgoing one after it
 };
 
 struct BodyFault {

@@ -138,7 +138,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.model_history.push_back(desc.model);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
-    body.swaps.push_back({swap.time, make_model(swap.model, swap.params, topo, dt, desc.where)});
+    body.swaps.push_back({swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
   }
   std::stable_sort(body.swaps.begin(), body.swaps.end(),
                    [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });

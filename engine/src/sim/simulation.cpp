@@ -7,6 +7,8 @@
 #include <filesystem>
 
 #include "../report/run_outputs.hpp"
+#include "collision_context.hpp"
+#include "haptic_interaction.hpp"
 #include "haptic_loop.hpp"
 #include "world.hpp"
 
@@ -57,8 +59,18 @@ std::string hash_positions(const std::vector<const std::vector<double>*>& arrays
 }
 
 struct Simulation::Impl {
-  Impl(const SceneDesc& scene, const PluginRegistry& plugins) : world(scene, plugins) {}
+  Impl(const SceneDesc& scene, const PluginRegistry& plugins) : world(scene, plugins) {
+    // Collision is needed for contact response, and for the haptic proxy's surface queries.
+    if (scene.collision.enabled || world.device_count() > 0) {
+      collision = std::make_unique<CollisionContext>(world, plugins);
+      if (world.device_count() > 0) haptics = std::make_unique<HapticInteraction>(world, *collision);
+      if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
+    }
+  }
   World world;
+  std::unique_ptr<CollisionContext> collision;
+  std::unique_ptr<HapticInteraction> haptics;
+  std::unique_ptr<CollisionResponse> response;
 };
 
 Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
@@ -92,6 +104,8 @@ RunResult Simulation::run(const RunOptions& options) {
   const auto expected_ticks = static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);
   TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
   HapticLoop loop(world, snapshots, expected_ticks);
+  if (impl_->haptics) loop.add_interaction(impl_->haptics.get());
+  if (impl_->response) loop.add_interaction(impl_->response.get());
   OutputRenderTask render(snapshots);
   result.schedule = run_schedule(loop, render, schedule);
   if (options.progress) std::fprintf(stderr, "\n");

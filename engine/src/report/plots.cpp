@@ -1,0 +1,84 @@
+// Plots: the scene's output.plots, drawn by the scripts in scripts/plots with Debian's python3
+// and matplotlib. Run as child processes (no shell) after the run; a plot that fails is a warning.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "run_outputs.hpp"
+
+extern char** environ;
+
+namespace tacta {
+
+namespace {
+
+// Debian's interpreter first: a python3 earlier on PATH (pyenv, venv) may lack matplotlib.
+std::string python() {
+  if (const char* p = std::getenv("TACTA_PYTHON")) return p;
+  return access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+}
+
+std::string scripts_dir() {
+  if (const char* d = std::getenv("TACTA_PLOT_SCRIPTS")) return d;
+#ifdef TACTA_SOURCE_DIR
+  if (std::filesystem::exists(TACTA_SOURCE_DIR "/scripts/plots")) return TACTA_SOURCE_DIR "/scripts/plots";
+#endif
+  return TACTA_INSTALL_PLUGIN_DIR "/../../../share/tacta/plots";
+}
+
+// Runs argv, waits, returns the exit status (-1 when it could not start).
+int run_process(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const std::string& program = args.front();
+  const int rc = program.find('/') != std::string::npos
+                     ? posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ)
+                     : posix_spawnp(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ);
+  if (rc != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+void write_plots(const std::string& dir, const World& world, RunResult& result, std::vector<std::string>& warnings) {
+  const OutputDesc& out = world.scene().output;
+  const std::string scripts = scripts_dir();
+  for (const std::string& plot : out.plots) {
+    std::vector<std::string> args{python()};
+    std::string png = dir + "/" + plot + ".png";
+    if (plot == "phase_portrait") {
+      if (!std::filesystem::exists(dir + "/trajectory.csv")) {
+        warnings.push_back("phase_portrait: no trajectory was recorded (set output.plot_nodes or probe_node)");
+        continue;
+      }
+      args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png,
+                               "--title", world.scene().name});
+    } else if (plot == "force") {
+      if (!std::filesystem::exists(dir + "/trace.csv")) {
+        warnings.push_back("force: no trace.csv (the scene has no device, or output.trace is off)");
+        continue;
+      }
+      png = dir + "/force_vs_time.png";
+      args.insert(args.end(), {scripts + "/force_vs_time.py", dir + "/trace.csv", png});
+      if (world.device_count() > 0)
+        args.insert(args.end(), {"--peak", std::to_string(world.device(0).device->capabilities().peak_force)});
+    } else if (plot == "energy" || plot == "displacement") {
+      args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot});
+    } else {
+      warnings.push_back("unknown plot '" + plot + "'");
+      continue;
+    }
+    const int status = run_process(args);
+    if (status == 0 && std::filesystem::exists(png)) result.outputs.push_back(png);
+    else warnings.push_back("plot " + plot + " failed (" + args[1] + " exited with " + std::to_string(status) + ")");
+  }
+}
+
+}  // namespace tacta

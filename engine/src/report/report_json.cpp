@@ -1,0 +1,110 @@
+// report.json: what a run did, in one file a script can read (documented in docs/REPORT.md).
+#include <fstream>
+
+#include "run_outputs.hpp"
+#include "tacta/json.hpp"
+
+namespace tacta {
+
+namespace {
+
+void write_ticks(JsonWriter& j, const ScheduleResult& s) {
+  j.key("tick_ms").begin_object();
+  j.field("p50", s.tick.p50_ms).field("p99", s.tick.p99_ms).field("p999", s.tick.p999_ms);
+  j.field("max", s.tick.max_ms).field("mean", s.tick.mean_ms);
+  j.end_object();
+}
+
+void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
+  j.key("bodies").begin_array();
+  for (size_t i = 0; i < result.bodies.size(); ++i) {
+    const BodyResult& b = result.bodies[i];
+    const SoftBody& body = world.body(i);
+    j.begin_object();
+    j.field("name", b.name).field("model", b.model);
+    // Every model the body ran, with the simulated time it took over (s).
+    j.key("models_run").begin_array();
+    j.begin_object().field("time_s", 0.0).field("model", body.model_history.front()).end_object();
+    for (size_t s = 0; s < body.next_swap; ++s)
+      j.begin_object().field("time_s", body.swaps[s].time_s).field("model", body.swaps[s].model_name).end_object();
+    j.end_array();
+    j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
+    j.field("max_displacement_m", b.max_displacement_m);
+    j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
+    j.field("initial_energy_J", b.initial_energy_J);
+    j.key("faults").begin_array();
+    if (b.frozen) {
+      j.begin_object();
+      j.field("time_s", body.fault.time_s).field("bits", static_cast<uint64_t>(body.fault.bits));
+      j.field("reason", b.fault).field("frozen", true);
+      j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+  }
+  j.end_array();
+}
+
+void write_devices(JsonWriter& j, const World& world) {
+  j.key("devices").begin_array();
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& s = world.device(d);
+    const DeviceStats& st = s.stats;
+    j.begin_object();
+    j.field("name", s.name).field("plugin", s.desc.plugin);
+    j.field("max_force_N", st.max_force_N);
+    j.field("force_limit_N", s.device->capabilities().peak_force);
+    j.field("first_contact_peak_N", st.first_contact_peak_N);
+    j.field("steady_contact_N", st.steady_contact_N);
+    j.field("energy_injected_J", st.energy_injected_J);
+    j.field("contact_ticks", st.contact_ticks);
+    j.field("first_contact_time_s", st.first_contact_time_s);
+    j.field("zero_force_ticks", st.zero_force_ticks).field("clamped_ticks", st.clamped_ticks);
+    j.field("state", s.state == TACTA_DEVICE_CONNECTED      ? "connected"
+                     : s.state == TACTA_DEVICE_FINISHED     ? "finished"
+                     : s.state == TACTA_DEVICE_DISCONNECTED ? "disconnected"
+                                                            : "fault");
+    if (s.status_time_s >= 0) j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
+    j.end_object();
+  }
+  j.end_array();
+}
+
+}  // namespace
+
+void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result) {
+  const std::string path = dir + "/report.json";
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  JsonWriter j(out);
+  j.begin_object();
+  j.field("scene", result.scene).field("scene_name", world.scene().name).field("mode", result.mode);
+  j.field("ticks", result.schedule.ticks).field("frames", result.schedule.frames);
+  j.field("sim_time_s", result.sim_time_s).field("wall_time_s", result.schedule.wall_time_s);
+  j.field("haptic_rate_hz", world.scene().clock.haptic_rate_hz);
+  write_ticks(j, result.schedule);
+  j.field("deadline_misses", result.schedule.deadline_misses);
+  j.field("max_start_jitter_ms", result.schedule.max_start_jitter_ms);
+  j.field("stopped_early", result.schedule.stopped_early);
+  write_bodies(j, world, result);
+  write_devices(j, world);
+  j.key("faults").begin_array();
+  for (const FaultRecord& f : loop.faults().rows()) {
+    j.begin_object();
+    j.field("time_s", f.time_s).field("body", f.body).field("device", f.device);
+    j.field("bits", static_cast<uint64_t>(f.bits)).field("reason", f.reason.data());
+    j.end_object();
+  }
+  j.end_array();
+  j.field("dropped_records", loop.trace().dropped() + loop.trajectory().dropped() + loop.energy().dropped());
+  j.field("state_hash", result.state_hash);
+  j.key("outputs").begin_array();
+  for (const std::string& o : result.outputs) j.value(o);
+  j.value(path);
+  j.end_array();
+  j.end_object();
+  out << "\n";
+  result.outputs.push_back(path);
+}
+
+}  // namespace tacta

@@ -1,0 +1,259 @@
+#include "collision_context.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tacta/mesh_io.hpp"
+
+namespace tacta {
+
+namespace {
+constexpr size_t kMessageCapacity = 1024;
+constexpr tacta_pose kIdentityPose{{0, 0, 0}, {1, 0, 0, 0}};
+}  // namespace
+
+// RAII owner of one collision plugin instance.
+class CollisionInstance {
+ public:
+  CollisionInstance(const LoadedDescriptor& found, const ParamSet& params, double dt, const SourceLocation& where)
+      : descriptor(*found.descriptor), api(*static_cast<const tacta_collision_api*>(found.descriptor->api)) {
+    tacta_collision_setup setup{sizeof(tacta_collision_setup), params.data(), params.size(), dt};
+    char message[kMessageCapacity] = {0};
+    if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK || instance == nullptr)
+      throw InputError(where, std::string("collision plugin '") + descriptor.name + "' could not be created: " + message);
+  }
+  ~CollisionInstance() {
+    if (instance != nullptr) api.destroy(instance);
+  }
+  CollisionInstance(const CollisionInstance&) = delete;
+  CollisionInstance& operator=(const CollisionInstance&) = delete;
+  const tacta_descriptor& descriptor;
+  const tacta_collision_api& api;
+  void* instance = nullptr;
+};
+
+// The proxy's view of the surfaces: the first instance that answers sphere casts and closest
+// points, over one body's surface or all of them.
+class CollisionContext::Query final : public haptics::SurfaceQuery {
+ public:
+  Query(CollisionContext& context, const CollisionInstance* answerer) : context_(context), answerer_(answerer) {}
+  void restrict_to(int surface) { surface_ = surface; }
+
+  bool first_hit(const Vec3& from, const Vec3& to, double radius,
+                 haptics::SurfaceHit& hit) const noexcept override {
+    if (answerer_ == nullptr || answerer_->api.sphere_cast == nullptr) return false;
+    bool found = false;
+    for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
+      if (surface_ >= 0 && static_cast<uint32_t>(surface_) != s) continue;
+      tacta_surface_hit h{};
+      if (answerer_->api.sphere_cast(answerer_->instance, &context_.view_, s, from.data(), to.data(), radius, &h) &&
+          (!found || h.toi < hit.fraction)) {
+        fill(hit, h, s);
+        hit.fraction = h.toi;
+        found = true;
+      }
+    }
+    return found;
+  }
+
+  bool closest_point(const Vec3& point, double max_distance, haptics::SurfaceHit& hit,
+                     double& signed_distance) const noexcept override {
+    if (answerer_ == nullptr || answerer_->api.closest_point == nullptr) return false;
+    bool found = false;
+    for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
+      if (surface_ >= 0 && static_cast<uint32_t>(surface_) != s) continue;
+      tacta_surface_hit h{};
+      if (!answerer_->api.closest_point(answerer_->instance, &context_.view_, s, point.data(), max_distance, &h))
+        continue;
+      if (found && h.distance >= std::fabs(signed_distance)) continue;
+      fill(hit, h, s);
+      hit.fraction = 0;
+      const double side = (point[0] - h.point[0]) * h.normal[0] + (point[1] - h.point[1]) * h.normal[1] +
+                          (point[2] - h.point[2]) * h.normal[2];
+      signed_distance = side < 0 ? -h.distance : h.distance;
+      found = true;
+    }
+    return found;
+  }
+
+ private:
+  void fill(haptics::SurfaceHit& out, const tacta_surface_hit& h, uint32_t surface) const noexcept {
+    for (int a = 0; a < 3; ++a) {
+      out.point[static_cast<size_t>(a)] = h.point[a];
+      out.normal[static_cast<size_t>(a)] = h.normal[a];
+      out.barycentric[a] = h.barycentric[a];
+    }
+    out.body = context_.body_of(surface);
+    out.triangle = static_cast<int>(h.triangle);
+  }
+  CollisionContext& context_;
+  const CollisionInstance* answerer_;
+  int surface_ = -1;
+};
+
+namespace {
+
+tacta_collision_shape make_shape(const ShapeDesc& d, uint32_t id, std::vector<double>* hull_storage) {
+  tacta_collision_shape s{};
+  s.body_id = id;
+  s.radius = d.radius;
+  s.half_length = d.half_length;
+  for (int a = 0; a < 3; ++a) s.half_extents[a] = d.half_extents[static_cast<size_t>(a)];
+  s.pose_start = kIdentityPose;
+  for (int a = 0; a < 3; ++a) s.pose_start.position[a] = d.position[static_cast<size_t>(a)];
+  s.pose_end = s.pose_start;
+  switch (d.kind) {
+    case ShapeDesc::Kind::Sphere: s.type = TACTA_SHAPE_SPHERE; break;
+    case ShapeDesc::Kind::Capsule: s.type = TACTA_SHAPE_CAPSULE; break;
+    case ShapeDesc::Kind::Box: s.type = TACTA_SHAPE_BOX; break;
+    case ShapeDesc::Kind::Plane: {
+      s.type = TACTA_SHAPE_PLANE;
+      const double n = std::sqrt(d.normal[0] * d.normal[0] + d.normal[1] * d.normal[1] + d.normal[2] * d.normal[2]);
+      for (int a = 0; a < 3; ++a) s.plane_normal[a] = d.normal[static_cast<size_t>(a)] / (n > 0 ? n : 1);
+      s.plane_offset = d.offset;
+      break;
+    }
+    case ShapeDesc::Kind::Mesh: {
+      s.type = TACTA_SHAPE_HULL;
+      *hull_storage = load_surface(d.path).positions;
+      s.points = hull_storage->data();
+      s.point_count = static_cast<uint32_t>(hull_storage->size() / 3);
+      s.radius = 0;
+      break;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) : world_(world) {
+  const SceneDesc& scene = world.scene();
+  const CollisionDesc& c = scene.collision;
+  const double dt = 1.0 / scene.clock.haptic_rate_hz;
+  response_enabled_ = c.enabled;
+
+  surface_of_body_.assign(world.body_count(), -1);
+  inverse_masses_.resize(world.body_count());
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    SoftBody& b = world.body(i);
+    if (!scene.bodies[i].collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
+    std::vector<double>& inv = inverse_masses_[i];
+    inv.resize(b.node_count());
+    for (size_t n = 0; n < inv.size(); ++n)
+      inv[n] = b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
+    tacta_collision_surface s{};
+    s.body_id = static_cast<uint32_t>(i);
+    s.vertex_count = static_cast<uint32_t>(b.node_count());
+    s.positions_start = b.saved_positions.data();
+    s.positions_end = b.positions.data();
+    s.velocities = b.velocities.data();
+    s.inverse_masses = inv.data();
+    s.triangle_count = static_cast<uint32_t>(b.topology->mesh.triangles.size() / 3);
+    s.triangles = b.topology->mesh.triangles.data();
+    s.tet_count = static_cast<uint32_t>(b.topology->mesh.tets.size() / 4);
+    s.tets = s.tet_count ? b.topology->mesh.tets.data() : nullptr;
+    s.thickness = c.thickness;
+    surface_of_body_[i] = static_cast<int>(surfaces_.size());
+    body_of_surface_.push_back(static_cast<int>(i));
+    surfaces_.push_back(s);
+  }
+  // Shape ids follow the bodies: tools first, then obstacles, so contacts name them uniquely.
+  uint32_t next_id = static_cast<uint32_t>(world.body_count());
+  for (size_t d = 0; d < world.device_count(); ++d) tools_.push_back(make_shape(world.device(d).desc.tool, next_id++, nullptr));
+  std::vector<std::vector<double>> hulls(scene.obstacles.size());
+  for (size_t o = 0; o < scene.obstacles.size(); ++o)
+    obstacles_.push_back(make_shape(scene.obstacles[o].shape, next_id++, &hulls[o]));
+  hull_points_ = std::move(hulls);
+  for (size_t o = 0; o < obstacles_.size(); ++o)
+    if (obstacles_[o].type == TACTA_SHAPE_HULL) obstacles_[o].points = hull_points_[o].data();
+
+  view_.struct_size = sizeof view_;
+  view_.surface_count = static_cast<uint32_t>(surfaces_.size());
+  view_.surfaces = surfaces_.data();
+  view_.shape_count = static_cast<uint32_t>(tools_.size());
+  view_.shapes = tools_.data();
+  view_.obstacle_count = static_cast<uint32_t>(obstacles_.size());
+  view_.obstacles = obstacles_.data();
+  view_.dt = dt;
+
+  // The plugins: the broad phase is needed for the proxy's queries even without contact response.
+  const SourceLocation where{scene.path, 0, 0, "collision"};
+  auto add = [&](const std::string& name, const ParamSet& params) {
+    if (name.empty()) return;
+    const LoadedDescriptor* found = plugins.find(TACTA_KIND_COLLISION, name);
+    if (found == nullptr) throw InputError(where, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
+    instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, where));
+  };
+  const bool needed = c.enabled || world.device_count() > 0;
+  if (needed) {
+    add(c.broad_phase, c.broad_params);
+    if (c.enabled) {
+      add(c.narrow_phase, c.narrow_params);
+      if (!obstacles_.empty() || !tools_.empty()) add(c.convex, c.convex_params);
+    }
+  }
+  for (auto& inst : instances_) {
+    if (inst->api.prepare == nullptr) continue;
+    char message[kMessageCapacity] = {0};
+    if (inst->api.prepare(inst->instance, &view_, message, sizeof message) != TACTA_OK)
+      throw InputError(where, std::string("collision plugin '") + inst->descriptor.name + "': " + message);
+  }
+  size_t vertices = 0;
+  for (const auto& s : surfaces_) vertices += s.vertex_count;
+  pairs_.resize(16384 + 16 * vertices);
+  contacts_.resize(4096 + 4 * vertices);
+  const CollisionInstance* answerer = nullptr;
+  for (auto& inst : instances_)
+    if (answerer == nullptr && inst->api.sphere_cast != nullptr && inst->api.closest_point != nullptr) answerer = inst.get();
+  query_ = std::make_unique<Query>(*this, answerer);
+}
+
+CollisionContext::~CollisionContext() = default;
+
+bool CollisionContext::has_haptic_queries() const noexcept {
+  for (const auto& inst : instances_)
+    if (inst->api.sphere_cast != nullptr && inst->api.closest_point != nullptr) return true;
+  return false;
+}
+
+const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept {
+  query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size() ? surface_of_body_[static_cast<size_t>(body)] : -1);
+  return *query_;
+}
+
+void CollisionContext::refit(double time, double dt) noexcept {
+  view_.time = time;
+  view_.dt = dt;
+  for (auto& inst : instances_)
+    if (inst->api.update != nullptr) inst->api.update(inst->instance, &view_);
+}
+
+uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
+  contact_count_ = 0;
+  if (!response_enabled_) return TACTA_COLLIDE_OK;
+  refit(time, dt);
+  uint32_t bits = 0;
+  uint32_t pair_count = 0;
+  const CollisionInstance* broad = nullptr;
+  for (auto& inst : instances_)
+    if (broad == nullptr && inst->api.find_pairs != nullptr) broad = inst.get();
+  if (broad != nullptr)
+    bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
+  for (auto& inst : instances_) {
+    if (inst->api.detect == nullptr) continue;
+    uint32_t found = 0;
+    const bool pairwise = inst.get() != broad && broad != nullptr && inst->api.vertex_face != nullptr;
+    bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
+                             contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
+    contact_count_ += found;
+  }
+  for (auto& inst : instances_) {
+    if (inst->api.respond == nullptr) continue;
+    bits |= inst->api.respond(inst->instance, &view_, contacts_.data(), contact_count_);
+    break;
+  }
+  return bits;
+}
+
+}  // namespace tacta

@@ -1,0 +1,66 @@
+// The engine's side of collision: the per-tick world view handed to the collision plugins
+// (surfaces of the bodies, the tools, the obstacles), the plugin instances the scene names
+// (broad phase, narrow phase, convex), and the per-tick pipeline: refit, candidate pairs, exact
+// contacts, response. Buffers are sized at load time; the tick path allocates nothing.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tacta/collision_api.h"
+#include "tacta/haptics/surface_query.hpp"
+#include "tacta/plugin_registry.hpp"
+#include "world.hpp"
+
+namespace tacta {
+
+class CollisionInstance;
+
+class CollisionContext {
+ public:
+  // Builds the world view and the plugin instances; throws InputError (bad mesh, unknown plugin).
+  CollisionContext(World& world, const PluginRegistry& plugins);
+  ~CollisionContext();
+  CollisionContext(const CollisionContext&) = delete;
+  CollisionContext& operator=(const CollisionContext&) = delete;
+
+  // Tool shapes (one per device): the host moves them each tick (pose at start and end).
+  tacta_collision_shape& tool(size_t device) { return tools_[device]; }
+  // Body index -> surface index in the view (-1 when the body does not collide).
+  int surface_of(size_t body) const { return surface_of_body_[body]; }
+  int body_of(uint32_t surface) const { return body_of_surface_[surface]; }
+
+  // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
+  void refit(double time, double dt) noexcept;
+  // Contacts over the tick and the response (positions and velocities corrected in place).
+  // Returns TACTA_COLLIDE_* bits.
+  uint32_t detect_and_respond(double time, double dt) noexcept;
+  const tacta_contact* contacts() const noexcept { return contacts_.data(); }
+  uint32_t contact_count() const noexcept { return contact_count_; }
+
+  bool has_haptic_queries() const noexcept;
+  // Answers the god-object proxy's queries against one body's surface (or every surface, -1).
+  const haptics::SurfaceQuery& surface_query(int body) noexcept;
+  tacta_collision_world& view() noexcept { return view_; }
+
+ private:
+  class Query;
+  World& world_;
+  tacta_collision_world view_{};
+  std::vector<tacta_collision_surface> surfaces_;
+  std::vector<std::vector<double>> inverse_masses_;
+  std::vector<tacta_collision_shape> tools_;
+  std::vector<tacta_collision_shape> obstacles_;
+  std::vector<std::vector<double>> hull_points_;  // obstacle hulls, 3 per point, m
+  std::vector<int> surface_of_body_;
+  std::vector<int> body_of_surface_;
+  std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)
+  std::vector<tacta_collision_pair> pairs_;
+  std::vector<tacta_contact> contacts_;
+  uint32_t contact_count_ = 0;
+  bool response_enabled_ = false;
+  std::unique_ptr<Query> query_;
+};
+
+}  // namespace tacta
