@@ -60,7 +60,9 @@ const char* mesh_format_name(MeshFormat format) {
 }
 
 namespace mesh_detail {
-VolumeMesh read_volume_raw(const std::string& path, LoadReport& report) {
+
+namespace {
+VolumeMesh read_by_format(const std::string& path, LoadReport& report) {
   std::string text = read_file_bytes(path);
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError({path, 0, 0, ""}, "the file is empty");
   switch (detect_text_format(text)) {
@@ -75,19 +77,26 @@ VolumeMesh read_volume_raw(const std::string& path, LoadReport& report) {
                    "unknown volume mesh format: expected Gmsh .msh (v1 $NOD, v2.2 or v4.1 $MeshFormat), "
                    "VTK legacy ('# vtk DataFile') or VTK XML (<VTKFile>)");
 }
+}  // namespace
+
+VolumeMesh read_volume_raw(const std::string& path, LoadReport& report) {
+  VolumeMesh mesh = read_by_format(path, report);
+  if (report.skipped_elements > 0) {
+    report.warnings.push_back(std::to_string(report.skipped_elements) + " elements that are not tetrahedra were skipped");
+  }
+  if (mesh.tets.empty()) {
+    throw InputError({path, 0, 0, ""}, "the file holds no tetrahedra (" + std::to_string(report.skipped_elements) +
+                                           " other elements); a volume mesh needs tets");
+  }
+  return mesh;
+}
+
 }  // namespace mesh_detail
 
 VolumeMesh load_volume(const std::string& path, LoadReport* report) {
   LoadReport local;
   LoadReport& r = report ? *report : local;
   VolumeMesh mesh = mesh_detail::read_volume_raw(path, r);
-  if (r.skipped_elements > 0) {
-    r.warnings.push_back(std::to_string(r.skipped_elements) + " elements that are not tetrahedra were skipped");
-  }
-  if (mesh.tets.empty()) {
-    throw InputError({path, 0, 0, ""}, "the file holds no tetrahedra (" + std::to_string(r.skipped_elements) +
-                                           " other elements); a volume mesh needs tets");
-  }
   finalize(mesh, &r);
   return mesh;
 }

@@ -1,0 +1,34 @@
+// The split of one cube cell into 6 tets around its main diagonal (Kuhn / Freudenthal): every
+// face of the cube is cut along the diagonal from its lowest corner, the same in every cell, so
+// neighbouring cells match and the grid is conforming.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tacta::mesh_detail {
+
+// corner[dx + 2 dy + 4 dz] is the node at the cell corner offset (dx, dy, dz). Appends 6 positively
+// oriented tets (for cells aligned with +x, +y, +z).
+inline void append_cell_tets(const uint32_t corner[8], std::vector<uint32_t>& tets) {
+  // One tet per ordering of the axes: 0 -> e_a -> e_a + e_b -> 7. Odd orderings are listed with
+  // their last two nodes swapped so that all six come out positive.
+  static constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 7, 5}, {0, 2, 7, 3},
+                                      {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 7, 6}};
+  for (const auto& t : kTets) {
+    for (int k : t) tets.push_back(corner[k]);
+  }
+}
+
+// Which of the 6 tets of append_cell_tets holds a point with local cell coordinates u, v, w in
+// [0, 1]: the ordering of (u, v, w), largest first.
+inline int cell_tet_of(double u, double v, double w) {
+  if (u >= v && v >= w) return 0;  // x, y, z
+  if (u >= w && w >= v) return 1;  // x, z, y
+  if (v >= u && u >= w) return 2;  // y, x, z
+  if (v >= w && w >= u) return 3;  // y, z, x
+  if (w >= u && u >= v) return 4;  // z, x, y
+  return 5;                        // z, y, x
+}
+
+}  // namespace tacta::mesh_detail
