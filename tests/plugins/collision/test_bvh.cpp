@@ -1,0 +1,170 @@
+// BVH plugin: candidate pairs equal brute force on random deforming meshes (AABB and OBB
+// nodes, body-body and self), haptic queries against brute force, bad input reported.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <set>
+#include <tuple>
+
+#include "collision_world.hpp"
+#include "plugin_fixture.hpp"
+
+namespace {
+
+using tacta::testing::TestSurface;
+using Pair = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;
+
+std::array<double, 6> swept_box(const TestSurface& s, uint32_t t, double margin) {
+  std::array<double, 6> b{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t v = s.triangles[3 * t + i];
+    for (const auto* x : {&s.start, &s.end})
+      for (int k = 0; k < 3; ++k) {
+        b[k] = std::min(b[k], (*x)[3 * v + k] - margin);
+        b[3 + k] = std::max(b[3 + k], (*x)[3 * v + k] + margin);
+      }
+  }
+  return b;
+}
+
+bool share_vertex(const TestSurface& s, uint32_t a, uint32_t b) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (s.triangles[3 * a + i] == s.triangles[3 * b + j]) return true;
+  return false;
+}
+
+std::set<Pair> brute_force(const std::vector<TestSurface*>& surfaces, double margin) {
+  std::set<Pair> pairs;
+  for (uint32_t a = 0; a < surfaces.size(); ++a)
+    for (uint32_t b = a; b < surfaces.size(); ++b) {
+      const uint32_t na = static_cast<uint32_t>(surfaces[a]->triangles.size() / 3);
+      const uint32_t nb = static_cast<uint32_t>(surfaces[b]->triangles.size() / 3);
+      for (uint32_t i = 0; i < na; ++i)
+        for (uint32_t j = (a == b ? i + 1 : 0); j < nb; ++j) {
+          if (a == b && share_vertex(*surfaces[a], i, j)) continue;
+          const auto p = swept_box(*surfaces[a], i, margin), q = swept_box(*surfaces[b], j, margin);
+          bool overlap = true;
+          for (int k = 0; k < 3; ++k) overlap &= p[k] <= q[3 + k] && q[k] <= p[3 + k];
+          if (overlap) pairs.insert({a, i, b, j});
+        }
+    }
+  return pairs;
+}
+
+class BvhPlugin : public ::testing::TestWithParam<int> {
+ protected:
+  const tacta_collision_api& api() { return plugin_.api<tacta_collision_api>("bvh"); }
+  void* make(int volume) {
+    auto params = tacta::testing::default_params(plugin_.descriptor("bvh"));
+    params[0].number = volume;
+    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()), 1e-3};
+    void* instance = nullptr;
+    char message[256] = {0};
+    EXPECT_EQ(api().create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
+    return instance;
+  }
+  tacta::testing::LoadedPlugin plugin_{"tacta_bvh.so"};
+};
+
+TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
+  std::mt19937 rng(1234);
+  TestSurface a = tacta::testing::grid(12, 1.0, 0.0, 0.0, 0.0);
+  TestSurface b = tacta::testing::grid(9, 0.8, 0.2, 0.1, 0.05);
+  const double margin = 0.002;
+  std::vector<tacta_collision_surface> views{a.view(1, margin), b.view(2, margin)};
+  tacta_collision_world world{sizeof world, 2, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  void* bvh = make(GetParam());
+  char message[256] = {0};
+  ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK) << message;
+  std::vector<tacta_collision_pair> pairs(200000);
+  int rebuilds = 0;
+  for (int tick = 0; tick < 12; ++tick) {
+    tacta::testing::deform(a, rng, 0.05, 0.3 * tick);
+    tacta::testing::deform(b, rng, 0.05, -0.2 * tick);
+    const uint32_t bits = api().update(bvh, &world);
+    ASSERT_EQ(bits & ~TACTA_COLLIDE_REBUILT, 0u);
+    rebuilds += (bits & TACTA_COLLIDE_REBUILT) != 0;
+    uint32_t count = 0;
+    ASSERT_EQ(api().find_pairs(bvh, &world, pairs.data(), static_cast<uint32_t>(pairs.size()), &count), 0u);
+    std::set<Pair> found;
+    for (uint32_t i = 0; i < count; ++i)
+      found.insert({pairs[i].surface_a, pairs[i].element_a, pairs[i].surface_b, pairs[i].element_b});
+    EXPECT_EQ(found.size(), count) << "duplicate pairs at tick " << tick;
+    const auto expected = brute_force({&a, &b}, margin);
+    EXPECT_GT(expected.size(), 100u);
+    EXPECT_EQ(found, expected) << "tick " << tick;
+  }
+  EXPECT_GE(rebuilds, 1);  // the first update builds
+  api().destroy(bvh);
+}
+
+TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
+  TestSurface a = tacta::testing::grid(10, 1.0, 0.0, 0.0, 0.0);
+  std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
+  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  void* bvh = make(GetParam());
+  char message[256] = {0};
+  ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
+  api().update(bvh, &world);
+  const double p[3] = {0.123, -0.2, 0.3};
+  tacta_surface_hit hit{};
+  ASSERT_EQ(api().closest_point(bvh, &world, 0, p, 1.0, &hit), 1);
+  EXPECT_NEAR(hit.distance, 0.3, 1e-12);  // straight below onto the plane z = 0
+  EXPECT_NEAR(hit.point[0], 0.123, 1e-12);
+  EXPECT_NEAR(std::abs(hit.normal[2]), 1.0, 1e-12);
+  // A sphere of radius 0.05 falling from z = 0.5 to z = -0.5 touches at z = 0.05: s = 0.45.
+  const double from[3] = {0.1, 0.1, 0.5}, to[3] = {0.1, 0.1, -0.5};
+  ASSERT_EQ(api().sphere_cast(bvh, &world, 0, from, to, 0.05, &hit), 1);
+  EXPECT_NEAR(hit.toi, 0.45, 1e-9);
+  EXPECT_NEAR(hit.barycentric[0] + hit.barycentric[1] + hit.barycentric[2], 1.0, 1e-12);
+  // Beside the mesh: no hit.
+  const double far_from[3] = {2, 2, 0.5}, far_to[3] = {2, 2, -0.5};
+  EXPECT_EQ(api().sphere_cast(bvh, &world, 0, far_from, far_to, 0.05, &hit), 0);
+  // A tool sphere over the middle overlaps some triangles, all near it.
+  tacta_collision_shape tool{};
+  tool.type = TACTA_SHAPE_SPHERE;
+  tool.radius = 0.05;
+  tool.pose_start = {{0, 0, 0.02}, {1, 0, 0, 0}};
+  tool.pose_end = tool.pose_start;
+  std::vector<uint32_t> tris(256);
+  uint32_t count = 0;
+  EXPECT_EQ(api().overlap_shape(bvh, &world, &tool, 0, tris.data(), 256, &count), 0u);
+  EXPECT_GE(count, 2u);
+  EXPECT_LE(count, 24u);
+  api().destroy(bvh);
+}
+
+TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
+  void* bvh = make(GetParam());
+  char message[256] = {0};
+  TestSurface a = tacta::testing::grid(3, 1.0, 0.0, 0.0, 0.0);
+  a.triangles[4] = 999;  // out of range
+  std::vector<tacta_collision_surface> views{a.view(7, 0.0)};
+  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  EXPECT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(message).find("999"), std::string::npos) << message;
+  // NaN positions: flagged, those elements skipped.
+  a.triangles[4] = 1;
+  ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
+  a.end[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(api().update(bvh, &world) & TACTA_COLLIDE_NOT_FINITE, 0u);
+  // Empty mesh.
+  TestSurface empty;
+  std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
+  tacta_collision_world empty_world{sizeof world, 1, none.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
+  api().update(bvh, &empty_world);
+  uint32_t count = 5;
+  tacta_collision_pair pair{};
+  EXPECT_EQ(api().find_pairs(bvh, &empty_world, &pair, 1, &count), 0u);
+  EXPECT_EQ(count, 0u);
+  api().destroy(bvh);
+}
+
+INSTANTIATE_TEST_SUITE_P(Volumes, BvhPlugin, ::testing::Values(0, 1),
+                         [](const auto& param_info) { return param_info.param == 0 ? "Aabb" : "Obb"; });
+
+}  // namespace
