@@ -1,0 +1,55 @@
+// mass_spring plugin: descriptor, parameter schema and the SDK adapter around MassSpringModel.
+#include <array>
+
+#include "mass_spring_model.hpp"
+#include "tacta/sdk/model.hpp"
+
+namespace {
+
+using tacta::models::MassSpringModel;
+using tacta::models::MassSpringOptions;
+
+class MassSpringPlugin {
+ public:
+  static constexpr const char* kName = "mass_spring";
+  static constexpr const char* kDescription =
+      "Mass-spring on the mesh edges (Van Gelder stiffness): symplectic Euler, Baraff-Witkin "
+      "implicit Euler, Desbrun's precomputed linear part";
+  static constexpr uint32_t kVersion = 10000;
+  static constexpr std::array<tacta_param_spec, 5> kParams = {
+      tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
+                               "time integrator; implicit_euler is Baraff-Witkin (one Newton "
+                               "step, CG); desbrun factorises its matrix for the setup dt"),
+      tacta::sdk::real_param("damping", "N s/m", 0.0, 0.0, 1e6,
+                             "viscous damping per node, added to the material's alpha * m"),
+      tacta::sdk::int_param("cg_max_iterations", 200, 1, 10000,
+                            "Baraff-Witkin: conjugate-gradient iteration limit per step"),
+      tacta::sdk::real_param("cg_tolerance", "", 1e-8, 1e-14, 1e-1,
+                             "Baraff-Witkin: relative residual at which CG stops"),
+      tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
+                             "fault when an edge grows past this multiple of its rest length"),
+  };
+
+  explicit MassSpringPlugin(const tacta_model_setup& setup) : model_(setup, options(setup)) {}
+
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return model_.step(state, dt); }
+  double elastic_energy(const double* x) noexcept { return model_.elastic_energy(x); }
+  void internal_forces(const double* x, double* f) noexcept { model_.internal_forces(x, f); }
+
+ private:
+  static MassSpringOptions options(const tacta_model_setup& setup) {
+    const tacta::sdk::Params p(kParams, setup.params, setup.param_count);
+    MassSpringOptions o;
+    o.integrator = static_cast<MassSpringOptions::Integrator>(p.choice("integrator"));
+    o.damping = p.real("damping");
+    o.cg_max_iterations = p.integer("cg_max_iterations");
+    o.cg_tolerance = p.real("cg_tolerance");
+    o.divergence_stretch = p.real("divergence_stretch");
+    return o;
+  }
+  MassSpringModel model_;
+};
+
+}  // namespace
+
+TACTA_PLUGIN_EXPORT(tacta::sdk::model_descriptor<MassSpringPlugin>())
