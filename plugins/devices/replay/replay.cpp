@@ -16,6 +16,8 @@ namespace tacta::replay {
 
 class ReplayDevice {
  public:
+  // s: engine time minus offset may miss the last timestamp by rounding; this is not the end yet.
+  static constexpr double kEndTolerance = 1e-9;
   static constexpr const char* kName = "replay";
   static constexpr const char* kDescription = "Plays a recorded device log (CSV) at its timestamps";
   static constexpr uint32_t kVersion = 10000;
@@ -62,7 +64,7 @@ class ReplayDevice {
     for (int i = 0; i < 4; ++i) sample.orientation[i] = s.orientation[i];
     sample.buttons = s.buttons;
     if (!connected_) return TACTA_DEVICE_DISCONNECTED;
-    if (log_time > last) {
+    if (log_time > last + kEndTolerance) {
       if (!finished_) std::snprintf(reason_, sizeof reason_, "log %s ended at t=%.6g s", path_.c_str(), last + offset_);
       finished_ = true;
       return TACTA_DEVICE_FINISHED;
