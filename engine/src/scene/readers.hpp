@@ -1,0 +1,31 @@
+// The scene loader's section readers; each validates one part of the YAML tree completely.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "scene/yaml_field.hpp"
+#include "tacta/scene.hpp"
+
+namespace tacta::scene_detail {
+
+MaterialDesc read_material(const Field& field);
+MeshSourceDesc read_mesh_source(const Field& field);
+BodyDesc read_body(const Field& field);
+
+ShapeDesc read_shape(const Field& field);
+DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies);
+ObstacleDesc read_obstacle(const Field& field);
+CollisionDesc read_collision(const Field& field);
+SwapDesc read_swap(const Field& field, const std::vector<BodyDesc>& bodies);
+
+ClockDesc read_clock(const Field& field);
+OutputDesc read_output(const Field& field);
+
+// Node count of a grid primitive (known before the mesh is built), nullopt for files and spheres.
+std::optional<uint64_t> grid_node_count(const MeshSourceDesc& mesh);
+
+// The one key of `allowed` that `field` (a map) holds; fails when it holds none or several.
+std::string exactly_one_of(const Field& field, const std::vector<std::string>& allowed);
+
+}  // namespace tacta::scene_detail

@@ -1,0 +1,167 @@
+// The scene loader's entry points and top level: clock, outputs, and the sections in order.
+#include "tacta/scene_loader.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "scene/did_you_mean.hpp"
+#include "scene/overrides.hpp"
+#include "scene/readers.hpp"
+
+namespace tacta {
+
+namespace scene_detail {
+
+ClockDesc read_clock(const Field& field) {
+  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s}");
+  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s"});
+  ClockDesc clock;
+  if (auto f = field.get("mode"))
+    clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
+                                                                    : ClockDesc::Mode::Lockstep;
+  // Upper bounds: 100 kHz is beyond any haptic device; 1 kHz beyond any display.
+  if (auto f = field.get("haptic_rate_hz")) clock.haptic_rate_hz = f->real({0, 1e5, true, false});
+  if (auto f = field.get("render_rate_hz")) {
+    clock.render_rate_hz = f->real({0, 1e3, true, false});
+    if (clock.render_rate_hz > clock.haptic_rate_hz)
+      f->fail_expected("a render rate <= the haptic rate (" + std::to_string(clock.haptic_rate_hz) +
+                       " Hz): frames are taken between haptic ticks");
+  }
+  if (auto f = field.get("duration_s")) clock.duration_s = f->real(Range::positive());
+  return clock;
+}
+
+OutputDesc read_output(const Field& field) {
+  field.expect_map("a map {frames, frame_times, frame_size, vtk, trace, plots, ...}");
+  field.check_keys({"frames", "frame_times", "frame_size", "vtk", "vtk_interval_s", "trace",
+                    "trajectory", "record_interval_s", "plots", "plot_nodes"});
+  OutputDesc output;
+  if (auto f = field.get("frames")) output.frames = f->boolean();
+  if (auto f = field.get("frame_times")) output.frame_times = f->reals(0, Range::non_negative());
+  if (auto f = field.get("frame_size")) {
+    const std::vector<Field> items = f->items("a list [width, height] in pixels");
+    if (items.size() != 2) f->fail_expected("a list [width, height] in pixels");
+    output.frame_width = static_cast<int>(items[0].integer(1, 16384));
+    output.frame_height = static_cast<int>(items[1].integer(1, 16384));
+  }
+  if (auto f = field.get("vtk")) output.vtk = f->boolean();
+  if (auto f = field.get("vtk_interval_s")) output.vtk_interval_s = f->real(Range::positive());
+  if (auto f = field.get("trace")) output.trace = f->boolean();
+  if (auto f = field.get("trajectory")) output.trajectory = f->boolean();
+  if (auto f = field.get("record_interval_s"))
+    output.record_interval_s = f->real(Range::non_negative());
+  if (auto f = field.get("plots"))
+    for (const Field& item : f->items("a list of plot names"))
+      output.plots.push_back(item.choice({"phase_portrait", "force", "energy", "displacement"}));
+  if (auto f = field.get("plot_nodes")) output.plot_nodes = f->indices();
+  return output;
+}
+
+namespace {
+
+// Fails on the second of two items with one name (bodies, devices, obstacles).
+void check_unique(const std::vector<Field>& items, const std::vector<std::string>& names,
+                  const char* what) {
+  for (size_t i = 0; i < names.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (names[i] == names[j])
+        items[i].require("name").fail(std::string("duplicate ") + what + " name '" + names[i] +
+                                      "' (first used by " + items[j].path() + ")");
+}
+
+SceneDesc read_scene(const Field& root) {
+  root.expect_map("a scene: a map with keys name, gravity, clock, bodies, ...");
+  root.check_keys({"name", "gravity", "seed", "clock", "bodies", "devices", "obstacles",
+                   "collision", "swaps", "output"});
+  SceneDesc scene;
+  scene.name = std::filesystem::path(root.context().file).stem().string();
+  if (auto f = root.get("name")) scene.name = f->text();
+  if (auto f = root.get("gravity")) scene.gravity = f->vec3();
+  if (auto f = root.get("seed")) scene.seed = static_cast<uint64_t>(f->integer(0, INT64_MAX));
+  if (auto f = root.get("clock")) scene.clock = read_clock(*f);
+
+  const Field bodies = root.require("bodies");
+  const std::vector<Field> body_items = bodies.items("a list of bodies");
+  if (body_items.empty()) bodies.fail_expected("at least one body");
+  std::vector<std::string> names;
+  for (const Field& item : body_items) {
+    scene.bodies.push_back(read_body(item));
+    names.push_back(scene.bodies.back().name);
+  }
+  check_unique(body_items, names, "body");
+
+  if (auto f = root.get("devices")) {
+    const std::vector<Field> items = f->items("a list of devices");
+    names.clear();
+    for (const Field& item : items) {
+      scene.devices.push_back(read_device(item, scene.bodies));
+      names.push_back(scene.devices.back().name);
+    }
+    check_unique(items, names, "device");
+  }
+  if (auto f = root.get("obstacles")) {
+    const std::vector<Field> items = f->items("a list of obstacles");
+    names.clear();
+    for (const Field& item : items) {
+      scene.obstacles.push_back(read_obstacle(item));
+      names.push_back(scene.obstacles.back().name);
+    }
+    check_unique(items, names, "obstacle");
+  }
+  if (auto f = root.get("collision")) scene.collision = read_collision(*f);
+  if (auto f = root.get("swaps"))
+    for (const Field& item : f->items("a list of swaps {time, body, model}"))
+      scene.swaps.push_back(read_swap(item, scene.bodies));
+  if (auto f = root.get("output")) scene.output = read_output(*f);
+  return scene;
+}
+
+SourceLocation location_of(const std::string& file, const YAML::Mark& mark) {
+  SourceLocation where{file, 0, 0, ""};
+  if (!mark.is_null()) {
+    where.line = mark.line + 1;
+    where.column = mark.column + 1;
+  }
+  return where;
+}
+
+}  // namespace
+}  // namespace scene_detail
+
+SceneDesc load_scene_from_string(const std::string& text, const std::string& virtual_path,
+                                 const SchemaLookup& schemas,
+                                 const std::vector<std::string>& overrides) {
+  using namespace scene_detail;
+  LoadContext context;
+  context.file = virtual_path;
+  context.directory = std::filesystem::absolute(virtual_path).parent_path().lexically_normal();
+  context.schemas = &schemas;
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(location_of(virtual_path, e.mark), "YAML syntax error: " + e.msg);
+  }
+  try {
+    apply_overrides(root, overrides, context.overrides);
+    SceneDesc scene = read_scene(Field(context, root, "", YAML::Mark::null_mark()));
+    scene.path = virtual_path;
+    scene.directory = context.directory.string();
+    return scene;
+  } catch (const YAML::Exception& e) {
+    // yaml-cpp itself should not throw once parsed; report it at its mark rather than crash.
+    throw InputError(location_of(virtual_path, e.mark), "malformed YAML: " + e.msg);
+  }
+}
+
+SceneDesc load_scene(const std::string& path, const SchemaLookup& schemas,
+                     const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0, ""}, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(SourceLocation{path, 0, 0, ""}, "cannot read the scene file");
+  return load_scene_from_string(text.str(), path, schemas, overrides);
+}
+
+}  // namespace tacta

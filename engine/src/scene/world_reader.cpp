@@ -1,0 +1,153 @@
+// Everything around the bodies: tool and obstacle shapes, devices, obstacles, the collision
+// pipeline and timed model swaps.
+#include <cmath>
+#include <string>
+
+#include "scene/did_you_mean.hpp"
+#include "scene/plugin_params.hpp"
+#include "scene/readers.hpp"
+
+namespace tacta::scene_detail {
+
+namespace {
+
+std::vector<std::string> body_names(const std::vector<BodyDesc>& bodies) {
+  std::vector<std::string> names;
+  for (const BodyDesc& body : bodies) names.push_back(body.name);
+  return names;
+}
+
+// A body name that must exist; `wildcard_allowed` also accepts "*".
+std::string read_body_name(const Field& field, const std::vector<BodyDesc>& bodies,
+                           bool wildcard_allowed) {
+  const std::string name = field.text();
+  if (wildcard_allowed && name == "*") return name;
+  for (const BodyDesc& body : bodies)
+    if (body.name == name) return name;
+  std::vector<std::string> names = body_names(bodies);
+  if (wildcard_allowed) names.insert(names.begin(), "*");
+  field.fail(unknown_name_message("body", name, names));
+}
+
+void read_position(const Field& shape, ShapeDesc& out) {
+  if (auto f = shape.get("position")) out.position = f->vec3();
+}
+
+}  // namespace
+
+ShapeDesc read_shape(const Field& field) {
+  field.expect_map("a shape: a map with one of sphere, capsule, box, plane, mesh");
+  field.check_keys({"sphere", "capsule", "box", "plane", "mesh"});
+  const std::string kind = exactly_one_of(field, {"sphere", "capsule", "box", "plane", "mesh"});
+  const Field body = field.require(kind);
+  ShapeDesc shape;
+  if (kind == "sphere") {
+    shape.kind = ShapeDesc::Kind::Sphere;
+    body.expect_map("a map {radius, position}");
+    body.check_keys({"radius", "position"});
+    if (auto f = body.get("radius")) shape.radius = f->real(Range::positive());
+  } else if (kind == "capsule") {
+    shape.kind = ShapeDesc::Kind::Capsule;
+    body.expect_map("a map {radius, half_length, position}");
+    body.check_keys({"radius", "half_length", "position"});
+    if (auto f = body.get("radius")) shape.radius = f->real(Range::positive());
+    if (auto f = body.get("half_length")) shape.half_length = f->real(Range::positive());
+  } else if (kind == "box") {
+    shape.kind = ShapeDesc::Kind::Box;
+    body.expect_map("a map {half_extents, position}");
+    body.check_keys({"half_extents", "position"});
+    if (auto f = body.get("half_extents")) shape.half_extents = f->vec3(Range::positive());
+  } else if (kind == "plane") {
+    shape.kind = ShapeDesc::Kind::Plane;
+    body.expect_map("a map {normal, offset}");
+    body.check_keys({"normal", "offset"});
+    if (auto f = body.get("normal")) {
+      const Vec3 n = f->vec3();
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(length > 0)) f->fail_expected("a non-zero normal vector");
+      shape.normal = {n[0] / length, n[1] / length, n[2] / length};  // stored unit length
+    }
+    if (auto f = body.get("offset")) shape.offset = f->real();
+  } else {
+    shape.kind = ShapeDesc::Kind::Mesh;
+    body.expect_map("a map {file, position}");
+    body.check_keys({"file", "position"});
+    shape.path = body.require("file").file_path();
+  }
+  if (kind != "plane") read_position(body, shape);
+  return shape;
+}
+
+DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) {
+  field.expect_map("a device: a map {name, plugin, params, tool, coupling, touches}");
+  field.check_keys({"name", "plugin", "params", "tool", "coupling", "touches"});
+  DeviceDesc device;
+  device.where = field.where();
+  device.name = field.require("name").text();
+  std::optional<Field> params = field.get("params");
+  if (params) params->expect_map("a map of the device plugin's parameters");
+  PluginRef plugin = read_plugin(field.require("plugin"), TACTA_KIND_DEVICE, params);
+  device.plugin = std::move(plugin.name);
+  device.params = std::move(plugin.params);
+  if (auto f = field.get("tool")) device.tool = read_shape(*f);
+  if (auto f = field.get("coupling")) {
+    f->expect_map("a map {stiffness, damping}");
+    f->check_keys({"stiffness", "damping"});
+    if (auto k = f->get("stiffness")) device.coupling_stiffness = k->real(Range::positive());
+    if (auto b = f->get("damping")) device.coupling_damping = b->real(Range::non_negative());
+  }
+  if (auto f = field.get("touches")) device.touches = read_body_name(*f, bodies, false);
+  return device;
+}
+
+ObstacleDesc read_obstacle(const Field& field) {
+  field.expect_map("an obstacle: a map {name, shape, friction}");
+  field.check_keys({"name", "shape", "friction"});
+  ObstacleDesc obstacle;
+  obstacle.name = field.require("name").text();
+  obstacle.shape = read_shape(field.require("shape"));
+  if (auto f = field.get("friction")) obstacle.friction = f->real(Range::non_negative());
+  return obstacle;
+}
+
+CollisionDesc read_collision(const Field& field) {
+  field.expect_map("a map {enabled, broad_phase, narrow_phase, convex, friction, ...}");
+  field.check_keys({"enabled", "broad_phase", "narrow_phase", "convex", "friction",
+                    "self_collision", "thickness"});
+  CollisionDesc collision;
+  collision.enabled = true;  // writing the section turns collision on unless it says otherwise
+  if (auto f = field.get("enabled")) collision.enabled = f->boolean();
+  const auto stage = [&](const char* key, std::string& name, ParamSet& params) {
+    if (auto f = field.get(key)) {
+      PluginRef plugin = read_plugin(*f, TACTA_KIND_COLLISION, std::nullopt, collision.enabled);
+      name = std::move(plugin.name);
+      params = std::move(plugin.params);
+    } else if (collision.enabled) {
+      // The default plugin is still checked, with its defaults, when collision is on.
+      Field implicit(field.context(), YAML::Node(name), child_path(field.path(), key),
+                     field.yaml().Mark());
+      params = read_plugin(implicit, TACTA_KIND_COLLISION).params;
+    }
+  };
+  stage("broad_phase", collision.broad_phase, collision.broad_params);
+  stage("narrow_phase", collision.narrow_phase, collision.narrow_params);
+  stage("convex", collision.convex, collision.convex_params);
+  if (auto f = field.get("friction")) collision.friction = f->real(Range::non_negative());
+  if (auto f = field.get("self_collision")) collision.self_collision = f->boolean();
+  if (auto f = field.get("thickness")) collision.thickness = f->real(Range::non_negative());
+  return collision;
+}
+
+SwapDesc read_swap(const Field& field, const std::vector<BodyDesc>& bodies) {
+  field.expect_map("a swap: a map {time, body, model}");
+  field.check_keys({"time", "body", "model"});
+  SwapDesc swap;
+  swap.time = field.require("time").real(Range::non_negative());
+  swap.body = read_body_name(field.require("body"), bodies, true);
+  PluginRef model = read_plugin(field.require("model"), TACTA_KIND_MODEL);
+  swap.model = std::move(model.name);
+  swap.params = std::move(model.params);
+  return swap;
+}
+
+}  // namespace tacta::scene_detail
