@@ -85,3 +85,47 @@ inline double period_from_crossings(const std::vector<double>& signal, double dt
 }
 
 }  // namespace tacta::models::checks
+
+namespace tacta::models::checks {
+
+// Largest stable step by bisection: stable(dt) runs the model and says whether it stayed
+// bounded. Returns the midpoint of the final bracket [lo, hi] (s); relative width ~ 2^-iterations.
+template <class StableFn>
+double critical_dt(StableFn&& stable, double lo, double hi, int iterations = 12) {
+  for (int it = 0; it < iterations; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
+// Deterministic pseudo-random numbers in [-1, 1) (a 64-bit LCG), for perturbations in tests.
+class TestRandom {
+ public:
+  explicit TestRandom(uint64_t seed) : state_(seed) {}
+  double next() {
+    state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state_ >> 11) / static_cast<double>(1ull << 52) - 1.0;
+  }
+
+ private:
+  uint64_t state_;
+};
+
+}  // namespace tacta::models::checks
+
+namespace tacta::models::checks {
+
+// Steps the model and reports whether every velocity stayed finite and below limit (m/s).
+template <class Model>
+bool stays_bounded(Model& model, StateBuffers& s, double dt, int steps, double limit) {
+  for (int k = 0; k < steps; ++k) {
+    tacta_body_state st = s.state(k * dt);
+    model.step(st, dt);
+    for (double v : s.v)
+      if (!(std::abs(v) < limit)) return false;  // also catches NaN
+  }
+  return true;
+}
+
+}  // namespace tacta::models::checks
