@@ -1,0 +1,83 @@
+#include "block_sparse.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace tacta::models::corotational {
+
+BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets)
+    : node_count_(node_count) {
+  std::vector<std::vector<uint32_t>> neighbours(node_count);
+  for (uint32_t i = 0; i < node_count; ++i) neighbours[i].push_back(i);
+  for (size_t e = 0; e + 3 < tets.size(); e += 4)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        if (a != b) neighbours[tets[e + a]].push_back(tets[e + b]);
+  row_starts_.resize(node_count + 1, 0);
+  for (uint32_t i = 0; i < node_count; ++i) {
+    auto& list = neighbours[i];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    row_starts_[i + 1] = row_starts_[i] + static_cast<uint32_t>(list.size());
+  }
+  columns_.reserve(row_starts_.back());
+  for (const auto& list : neighbours) columns_.insert(columns_.end(), list.begin(), list.end());
+  diagonal_.resize(node_count);
+  for (uint32_t i = 0; i < node_count; ++i) diagonal_[i] = block_index(i, i);
+  const size_t element_count = tets.size() / 4;
+  element_slots_.resize(16 * element_count);
+  for (size_t e = 0; e < element_count; ++e)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        element_slots_[16 * e + 4 * a + b] = block_index(tets[4 * e + a], tets[4 * e + b]);
+  values_.assign(9 * static_cast<size_t>(columns_.size()), 0.0);
+}
+
+uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
+  const auto begin = columns_.begin() + row_starts_[row];
+  const auto end = columns_.begin() + row_starts_[row + 1];
+  const auto it = std::lower_bound(begin, end, col);
+  if (it == end || *it != col)
+    throw std::logic_error("block (" + std::to_string(row) + ", " + std::to_string(col) +
+                           ") is not in the sparsity pattern");
+  return static_cast<uint32_t>(it - columns_.begin());
+}
+
+void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
+
+void BlockSparseMatrix::multiply(const double* x, double* y) const {
+  const double* v = values_.data();
+  for (uint32_t i = 0; i < node_count_; ++i) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {
+      const double* b = v + 9 * static_cast<size_t>(k);
+      const double* xj = x + 3 * static_cast<size_t>(columns_[k]);
+      y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
+      y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
+      y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
+    }
+    y[3 * i] = y0;
+    y[3 * i + 1] = y1;
+    y[3 * i + 2] = y2;
+  }
+}
+
+void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {
+  if (fixed.empty()) return;
+  if (!fixed_built_) {  // first call (at creation): list the blocks to clear once
+    for (uint32_t i = 0; i < node_count_; ++i)
+      for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k)
+        if (columns_[k] != i && (fixed[i] || fixed[columns_[k]])) fixed_offdiagonal_.push_back(k);
+    fixed_built_ = true;
+  }
+  for (uint32_t k : fixed_offdiagonal_) std::fill_n(block(k), 9, 0.0);
+  for (uint32_t i = 0; i < node_count_; ++i) {
+    if (!fixed[i]) continue;
+    double* d = block(diagonal_[i]);
+    std::fill_n(d, 9, 0.0);
+    d[0] = d[4] = d[8] = 1.0;
+  }
+}
+
+}  // namespace tacta::models::corotational

@@ -1,0 +1,273 @@
+#include "corotational_fem.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "element_rotation.hpp"
+#include "tacta/models/tet_geometry.hpp"
+
+namespace tacta::models::corotational {
+
+namespace {
+using tacta::models::node_position;
+using tacta::models::Vec3;
+constexpr int kPolarMaxIterations = 30;  // warm-started: usually 1 to 3 are used
+constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
+constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+
+Vec3 node(const double* positions, uint32_t index) { return node_position(positions, index); }
+}  // namespace
+
+CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_material& material,
+                                 std::span<const double> masses, std::span<const uint8_t> fixed,
+                                 const Options& options)
+    : node_count_(mesh.node_count),
+      lambda_(material.lame_lambda),
+      mu_(material.lame_mu),
+      alpha_(material.rayleigh_mass),
+      beta_(material.rayleigh_stiffness),
+      rest_(mesh.rest_positions, mesh.rest_positions + 3 * static_cast<size_t>(mesh.node_count)),
+      masses_(masses.begin(), masses.end()),
+      fixed_(fixed.begin(), fixed.end()),
+      options_(options),
+      guard_(mesh),
+      matrix_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})) {
+  if (mesh.tet_count == 0)
+    throw std::invalid_argument("corotational_fem needs a tetrahedral mesh (the mesh has no tets)");
+  if (masses_.size() != node_count_)
+    throw std::invalid_argument("corotational_fem: expected one mass per node");
+  if (!(mu_ > 0.0) || !(lambda_ + 2.0 * mu_ / 3.0 > 0.0))
+    throw std::invalid_argument("corotational_fem: material needs lame_mu > 0 and a positive bulk "
+                                "modulus (got lambda " + std::to_string(lambda_) + " Pa, mu " +
+                                std::to_string(mu_) + " Pa)");
+  for (uint32_t i = 0; i < node_count_; ++i)
+    if (!(masses_[i] > 0.0) && (fixed_.empty() || !fixed_[i]))
+      throw std::invalid_argument("corotational_fem: node " + std::to_string(i) +
+                                  " is free but has mass " + std::to_string(masses_[i]) + " kg");
+  elements_.resize(mesh.tet_count);
+  for (uint32_t e = 0; e < mesh.tet_count; ++e) {
+    Element& element = elements_[e];
+    Vec3 x[4];
+    for (int a = 0; a < 4; ++a) {
+      element.nodes[a] = mesh.tets[4 * e + a];
+      if (element.nodes[a] >= node_count_)
+        throw std::invalid_argument("corotational_fem: tet " + std::to_string(e) + " names node " +
+                                    std::to_string(element.nodes[a]) + " but the mesh has " +
+                                    std::to_string(node_count_));
+      x[a] = node_position(rest_.data(), element.nodes[a]);
+    }
+    element.volume = tet_signed_volume(x[0], x[1], x[2], x[3]);
+    if (!(element.volume > 0.0))
+      throw std::invalid_argument("corotational_fem: tet " + std::to_string(e) +
+                                  " has non-positive rest volume " +
+                                  std::to_string(element.volume) + " m^3 (expected positive "
+                                  "orientation)");
+    const std::array<Vec3, 4> gradients = tet_shape_gradients(x[0], x[1], x[2], x[3]);
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 3; ++c) element.gradients[a][c] = gradients[a][c];
+    for (int p = 0; p < 10; ++p) {
+      const double* ga = element.gradients[kPairA[p]];
+      const double* gb = element.gradients[kPairB[p]];
+      element.gradient_dots[p] = ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2];
+    }
+  }
+  polar_guess_.assign(elements_.size(), Eigen::Quaterniond::Identity());
+  const size_t n = 3 * static_cast<size_t>(node_count_);
+  forces_.assign(n, 0.0);
+  stiffness_velocity_.assign(n, 0.0);
+  rhs_.assign(n, 0.0);
+  delta_v_.assign(n, 0.0);
+  weights_.assign(node_count_, 0.0);
+  if (options_.solver == LinearSolver::kCholesky)
+    cholesky_ = std::make_unique<CholeskySolver>(matrix_);
+  else
+    cg_ = std::make_unique<ConjugateGradientSolver>(node_count_, options_.preconditioner,
+                                                    options_.max_iterations, options_.tolerance);
+  matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
+}
+
+CorotationalFem::~CorotationalFem() = default;
+
+void CorotationalFem::set_solver_limits(int max_iterations, double tolerance) {
+  options_.max_iterations = max_iterations;
+  options_.tolerance = tolerance;
+  if (cg_) cg_->set_limits(max_iterations, tolerance);
+}
+
+CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e,
+                                                        const double* positions) noexcept {
+  const Element& element = elements_[e];
+  Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
+  for (int a = 0; a < 4; ++a) {
+    const Eigen::Vector3d x = node(positions, element.nodes[a]);
+    const Eigen::Map<const Eigen::Vector3d> g(element.gradients[a]);
+    deformation.noalias() += x * g.transpose();
+  }
+  ElementFrame frame;
+  if (options_.rotation == RotationMethod::kPolar) {
+    polar_rotation(deformation, polar_guess_[e], kPolarMaxIterations);
+    frame.rotation = polar_guess_[e].toRotationMatrix();
+  } else {
+    frame.rotation = svd_rotation(deformation);
+  }
+  frame.inverted = deformation.determinant() <= 0.0;
+  const Eigen::Matrix3d gradient = frame.rotation.transpose() * deformation -
+                                   Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d strain = 0.5 * (gradient + gradient.transpose());
+  frame.stress = 2.0 * mu_ * strain;
+  frame.stress.diagonal().array() += lambda_ * strain.trace();
+  for (int a = 0; a < 4; ++a)
+    frame.rotated_gradients[a] =
+        frame.rotation * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]);
+  return frame;
+}
+
+void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, const double* velocities,
+                                 double scale, double* forces,
+                                 double* stiffness_times_velocity) noexcept {
+  const Element& element = elements_[e];
+  const double volume = element.volume;
+  const Eigen::Matrix3d world_stress = frame.rotation * frame.stress;  // R sigma
+  for (int a = 0; a < 4; ++a) {
+    const Eigen::Vector3d f =
+        -volume * (world_stress * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]));
+    for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
+  }
+  const Eigen::Vector3d* c = frame.rotated_gradients;
+  if (stiffness_times_velocity != nullptr) {
+    // (K v)_a = V (lambda tr(H) + mu (H + H^T)) c_a with H = sum_b v_b c_b^T.
+    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+    for (int b = 0; b < 4; ++b) h.noalias() += node(velocities, element.nodes[b]) * c[b].transpose();
+    Eigen::Matrix3d response = mu_ * (h + h.transpose());
+    response.diagonal().array() += lambda_ * h.trace();
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector3d kv = volume * (response * c[a]);
+      for (int k = 0; k < 3; ++k) stiffness_times_velocity[3 * element.nodes[a] + k] += kv[k];
+    }
+  }
+  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I), and K_ba = K_ab^T.
+  const double lambda_v = scale * volume * lambda_;
+  const double mu_v = scale * volume * mu_;
+  const uint32_t* slots = matrix_.element_slots(e);
+  for (int p = 0; p < 10; ++p) {
+    const int a = kPairA[p], b = kPairB[p];
+    Eigen::Matrix3d block = lambda_v * c[a] * c[b].transpose() + mu_v * c[b] * c[a].transpose();
+    block.diagonal().array() += mu_v * element.gradient_dots[p];
+    double* ab = matrix_.block(slots[4 * a + b]);
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) ab[3 * r + k] += block(r, k);
+    if (a != b) {
+      double* ba = matrix_.block(slots[4 * b + a]);
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) ba[3 * r + k] += block(k, r);
+    }
+  }
+}
+
+uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
+  const size_t n = 3 * static_cast<size_t>(node_count_);
+  const double h = dt;
+  uint32_t result = TACTA_STEP_OK;
+  matrix_.set_zero();
+  std::fill(forces_.begin(), forces_.end(), 0.0);
+  std::fill(stiffness_velocity_.begin(), stiffness_velocity_.end(), 0.0);
+  const double stiffness_scale = h * beta_ + h * h;
+  for (uint32_t e = 0; e < elements_.size(); ++e) {
+    const ElementFrame frame = frame_of(e, state.positions);
+    if (frame.inverted) result |= TACTA_STEP_INVERTED_ELEMENT;
+    accumulate(e, frame, state.velocities, stiffness_scale, forces_.data(),
+               stiffness_velocity_.data());
+  }
+  const double mass_scale = 1.0 + h * alpha_;
+  for (uint32_t i = 0; i < node_count_; ++i) {
+    double* d = matrix_.block(matrix_.diagonal_block(i));
+    d[0] += mass_scale * masses_[i];
+    d[4] += mass_scale * masses_[i];
+    d[8] += mass_scale * masses_[i];
+  }
+  matrix_.apply_fixed(fixed_);
+  for (size_t k = 0; k < n; ++k) {
+    const double m = masses_[k / 3];
+    rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
+              h * (beta_ + h) * stiffness_velocity_[k];
+  }
+  if (!fixed_.empty())
+    for (uint32_t i = 0; i < node_count_; ++i)
+      if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
+  if (cg_) {
+    last_solve_ = cg_->solve(matrix_, rhs_.data(), delta_v_.data());
+  } else {
+    last_solve_ = SolveReport{};
+    last_solve_.converged = cholesky_->solve(matrix_, rhs_.data(), delta_v_.data());
+  }
+  if (!last_solve_.converged) result |= TACTA_STEP_SOLVER_NOT_CONVERGED;
+  for (uint32_t i = 0; i < node_count_; ++i) {
+    const bool held = !fixed_.empty() && fixed_[i];
+    for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
+      double& v = state.velocities[k];
+      v = held ? 0.0 : v + delta_v_[k];
+      state.positions[k] += h * v;
+    }
+  }
+  result |= guard_.check(state.positions, state.velocities);
+  return result;
+}
+
+void CorotationalFem::begin(const tacta_body_state& state, double /*dt*/) noexcept {
+  std::fill(delta_v_.begin(), delta_v_.end(), 0.0);
+  std::fill(polar_guess_.begin(), polar_guess_.end(), Eigen::Quaterniond::Identity());
+  // Converge the warm-start rotations now, so the first step is not slower than the others.
+  for (uint32_t e = 0; e < elements_.size(); ++e) (void)frame_of(e, state.positions);
+}
+
+double CorotationalFem::elastic_energy(const double* positions) noexcept {
+  double energy = 0.0;
+  for (uint32_t e = 0; e < elements_.size(); ++e) {
+    const ElementFrame frame = frame_of(e, positions);
+    // W = V (mu eps:eps + lambda/2 tr(eps)^2) = V/2 sigma:eps, eps recovered from sigma.
+    Eigen::Matrix3d strain = frame.stress;
+    const double trace = frame.stress.trace() / (3.0 * lambda_ + 2.0 * mu_);  // tr(eps)
+    strain.diagonal().array() -= lambda_ * trace;
+    strain /= 2.0 * mu_;
+    energy += 0.5 * elements_[e].volume * (frame.stress.cwiseProduct(strain)).sum();
+  }
+  return energy;
+}
+
+void CorotationalFem::internal_forces(const double* positions, double* forces) noexcept {
+  std::fill_n(forces, 3 * static_cast<size_t>(node_count_), 0.0);
+  matrix_.set_zero();
+  for (uint32_t e = 0; e < elements_.size(); ++e)
+    accumulate(e, frame_of(e, positions), nullptr, 0.0, forces, nullptr);
+}
+
+const BlockSparseMatrix& CorotationalFem::assemble_stiffness(const double* positions) noexcept {
+  matrix_.set_zero();
+  std::fill(forces_.begin(), forces_.end(), 0.0);
+  for (uint32_t e = 0; e < elements_.size(); ++e)
+    accumulate(e, frame_of(e, positions), nullptr, 1.0, forces_.data(), nullptr);
+  return matrix_;
+}
+
+void CorotationalFem::node_stress(const double* positions, double* von_mises) noexcept {
+  std::fill_n(von_mises, node_count_, 0.0);
+  std::fill(weights_.begin(), weights_.end(), 0.0);
+  for (uint32_t e = 0; e < elements_.size(); ++e) {
+    const Eigen::Matrix3d s = frame_of(e, positions).stress;
+    const double vm = std::sqrt(0.5 * ((s(0, 0) - s(1, 1)) * (s(0, 0) - s(1, 1)) +
+                                       (s(1, 1) - s(2, 2)) * (s(1, 1) - s(2, 2)) +
+                                       (s(2, 2) - s(0, 0)) * (s(2, 2) - s(0, 0))) +
+                                3.0 * (s(0, 1) * s(0, 1) + s(1, 2) * s(1, 2) + s(0, 2) * s(0, 2)));
+    for (uint32_t a : elements_[e].nodes) {  // volume-weighted average over adjacent elements
+      von_mises[a] += elements_[e].volume * vm;
+      weights_[a] += elements_[e].volume;
+    }
+  }
+  for (uint32_t i = 0; i < node_count_; ++i)
+    if (weights_[i] > 0.0) von_mises[i] /= weights_[i];
+}
+
+}  // namespace tacta::models::corotational

@@ -1,0 +1,94 @@
+// Corotational linear tetrahedral FEM (the physics of the corotational_fem plugin).
+//
+// Each linear tet measures strain in its own rotated frame: eps = sym(R^T F - I) with R the
+// element rotation (polar or SVD), stress sigma = lambda tr(eps) I + 2 mu eps, nodal force
+// f_a = -V R sigma grad_a. Time integration: backward Euler linearised once per step,
+//   ((1 + h alpha) M + (h beta + h^2) K) dv = h (f + f_ext - alpha M v) - h (beta + h) K v,
+// with K = R K0 R^T per element, Rayleigh damping C = alpha M + beta K. The sparsity pattern is
+// fixed at creation; step() refills values in place and allocates nothing.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "block_sparse.hpp"
+#include "linear_solvers.hpp"
+#include "tacta/models/divergence_guard.hpp"
+#include "tacta/model_api.h"
+
+namespace tacta::models::corotational {
+
+enum class RotationMethod { kPolar = 0, kSvd = 1 };
+enum class LinearSolver { kConjugateGradient = 0, kCholesky = 1 };
+
+struct Options {
+  RotationMethod rotation = RotationMethod::kPolar;
+  LinearSolver solver = LinearSolver::kConjugateGradient;
+  Preconditioner preconditioner = Preconditioner::kBlockJacobi;
+  int max_iterations = 25;  // CG iterations per step
+  double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
+};
+
+class CorotationalFem {
+ public:
+  // Throws std::invalid_argument naming the element or node at fault.
+  CorotationalFem(const tacta_mesh_view& mesh, const tacta_material& material,
+                  std::span<const double> masses, std::span<const uint8_t> fixed,
+                  const Options& options);
+  ~CorotationalFem();
+  CorotationalFem(const CorotationalFem&) = delete;
+  CorotationalFem& operator=(const CorotationalFem&) = delete;
+
+  uint32_t step(tacta_body_state& state, double dt) noexcept;
+  void begin(const tacta_body_state& state, double dt) noexcept;
+  double elastic_energy(const double* positions) noexcept;
+  void internal_forces(const double* positions, double* forces) noexcept;
+  void node_stress(const double* positions, double* von_mises) noexcept;
+
+  // K at these positions (no mass, no fixed-node projection), for tests; overwrites the matrix
+  // the next step refills.
+  const BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
+  SolveReport last_solve() const { return last_solve_; }
+  uint32_t node_count() const { return node_count_; }
+  uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
+  void set_solver_limits(int max_iterations, double tolerance);
+
+ private:
+  struct Element {
+    uint32_t nodes[4];
+    double gradients[4][3];  // grad N_a at rest, 1/m
+    double volume;           // m^3
+    double gradient_dots[10];  // grad N_a . grad N_b for a <= b, 1/m^2
+  };
+  struct ElementFrame {   // what one pass over an element computes
+    Eigen::Matrix3d rotation;
+    Eigen::Matrix3d stress;  // Pa, in the element's rotated frame
+    Eigen::Vector3d rotated_gradients[4];
+    bool inverted;
+  };
+  ElementFrame frame_of(uint32_t e, const double* positions) noexcept;
+  // Adds K_e scaled by `scale` into matrix_, and f_e and K_e v into the given arrays.
+  void accumulate(uint32_t e, const ElementFrame& frame, const double* velocities, double scale,
+                  double* forces, double* stiffness_times_velocity) noexcept;
+
+  uint32_t node_count_;
+  double lambda_, mu_;              // Pa
+  double alpha_, beta_;             // Rayleigh: 1/s, s
+  std::vector<Element> elements_;
+  std::vector<double> rest_, masses_;
+  std::vector<uint8_t> fixed_;
+  Options options_;
+  DivergenceGuard guard_;  // NaN and runaway edge stretch
+  std::vector<Eigen::Quaterniond> polar_guess_;  // warm start per element
+  BlockSparseMatrix matrix_;
+  std::unique_ptr<ConjugateGradientSolver> cg_;
+  std::unique_ptr<CholeskySolver> cholesky_;
+  std::vector<double> forces_, stiffness_velocity_, rhs_, delta_v_, weights_;
+  SolveReport last_solve_;
+};
+
+}  // namespace tacta::models::corotational

@@ -1,0 +1,176 @@
+#include "linear_solvers.hpp"
+
+#include <Eigen/LU>
+#include <Eigen/OrderingMethods>
+#include <cmath>
+
+namespace tacta::models::corotational {
+
+namespace {
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) sum += a[i] * b[i];
+  return sum;
+}
+}  // namespace
+
+ConjugateGradientSolver::ConjugateGradientSolver(uint32_t node_count,
+                                                 Preconditioner preconditioner,
+                                                 int max_iterations, double tolerance)
+    : preconditioner_(preconditioner),
+      max_iterations_(max_iterations),
+      tolerance_(tolerance),
+      inverse_diagonal_(9 * static_cast<size_t>(node_count)),
+      r_(3 * static_cast<size_t>(node_count)),
+      z_(r_.size()),
+      p_(r_.size()),
+      ap_(r_.size()) {}
+
+void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
+  for (uint32_t i = 0; i < a.node_count(); ++i) {
+    const double* d = a.block(a.diagonal_block(i));
+    double* inv = &inverse_diagonal_[9 * static_cast<size_t>(i)];
+    if (preconditioner_ == Preconditioner::kJacobi) {
+      inv[0] = 1.0 / d[0];
+      inv[1] = 1.0 / d[4];
+      inv[2] = 1.0 / d[8];
+    } else {
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> block(d);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse(inv);
+      inverse = block.inverse();
+    }
+  }
+}
+
+void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) const {
+  const size_t nodes = r_.size() / 3;
+  const double* inv = inverse_diagonal_.data();
+  if (preconditioner_ == Preconditioner::kJacobi) {
+    for (size_t i = 0; i < nodes; ++i)
+      for (size_t c = 0; c < 3; ++c) z[3 * i + c] = inv[9 * i + c] * r[3 * i + c];
+    return;
+  }
+  for (size_t i = 0; i < nodes; ++i) {
+    const double* m = inv + 9 * i;
+    const double* ri = r + 3 * i;
+    z[3 * i] = m[0] * ri[0] + m[1] * ri[1] + m[2] * ri[2];
+    z[3 * i + 1] = m[3] * ri[0] + m[4] * ri[1] + m[5] * ri[2];
+    z[3 * i + 2] = m[6] * ri[0] + m[7] * ri[1] + m[8] * ri[2];
+  }
+}
+
+SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
+                                           double* x) {
+  const size_t n = r_.size();
+  build_preconditioner(a);
+  double b_norm2 = 0.0;
+  for (size_t i = 0; i < n; ++i) b_norm2 += b[i] * b[i];
+  SolveReport report;
+  if (b_norm2 == 0.0) {
+    std::fill_n(x, n, 0.0);
+    return report;
+  }
+  const double threshold2 = tolerance_ * tolerance_ * b_norm2;
+  a.multiply(x, ap_.data());
+  for (size_t i = 0; i < n; ++i) r_[i] = b[i] - ap_[i];
+  double r_norm2 = dot(r_, r_);
+  if (r_norm2 <= threshold2) return report;
+  apply_preconditioner(r_.data(), z_.data());
+  p_ = z_;
+  double rz = dot(r_, z_);
+  for (int k = 0; k < max_iterations_; ++k) {
+    a.multiply(p_.data(), ap_.data());
+    const double p_ap = dot(p_, ap_);
+    if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
+    const double alpha = rz / p_ap;
+    r_norm2 = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      x[i] += alpha * p_[i];
+      r_[i] -= alpha * ap_[i];
+      r_norm2 += r_[i] * r_[i];
+    }
+    report.iterations = k + 1;
+    if (r_norm2 <= threshold2) return report;
+    apply_preconditioner(r_.data(), z_.data());
+    const double rz_next = dot(r_, z_);
+    const double beta = rz_next / rz;
+    rz = rz_next;
+    for (size_t i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
+  }
+  report.converged = false;
+  return report;
+}
+
+// Exposes Eigen's numeric factorisation of an already ordered upper-triangular matrix, which
+// skips the copy that SimplicialLDLT::factorize() makes on every call.
+struct CholeskySolver::Ldlt
+    : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>,
+                                   Eigen::Upper, Eigen::NaturalOrdering<int>> {
+  void factorize_preordered_upper(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& a) {
+    this->template factorize_preordered<true>(a);
+  }
+};
+
+CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::make_unique<Ldlt>()) {
+  const int n = 3 * static_cast<int>(pattern.node_count());
+  const auto starts = pattern.row_starts();
+  const auto columns = pattern.columns();
+  // Scalar pattern of the full symmetric matrix, for the fill-reducing ordering.
+  std::vector<Eigen::Triplet<double, int>> entries;
+  entries.reserve(9 * columns.size());
+  for (uint32_t i = 0; i < pattern.node_count(); ++i)
+    for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          entries.emplace_back(3 * static_cast<int>(i) + r, 3 * static_cast<int>(columns[k]) + c,
+                               1.0);
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
+  full.setFromTriplets(entries.begin(), entries.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+  Eigen::AMDOrdering<int>()(full, order);
+  new_index_.resize(n);
+  for (int p = 0; p < n; ++p) new_index_[order.indices()[p]] = p;
+  // Upper triangle in the new numbering; the stored value is a block index code for now.
+  std::vector<Eigen::Triplet<double, int>> upper;
+  upper.reserve(entries.size() / 2 + n);
+  for (uint32_t i = 0; i < pattern.node_count(); ++i)
+    for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const int row = new_index_[3 * i + r];
+          const int col = new_index_[3 * columns[k] + c];
+          if (row <= col) upper.emplace_back(row, col, static_cast<double>(9 * k + 3 * r + c));
+        }
+  permuted_upper_.resize(n, n);
+  permuted_upper_.setFromTriplets(upper.begin(), upper.end());
+  permuted_upper_.makeCompressed();
+  value_source_.resize(permuted_upper_.nonZeros());
+  for (Eigen::Index s = 0; s < permuted_upper_.nonZeros(); ++s)
+    value_source_[s] = static_cast<uint32_t>(permuted_upper_.valuePtr()[s]);
+  ldlt_->analyzePattern(permuted_upper_);
+  rhs_.resize(n);
+  solution_.resize(n);
+  // One factorisation of the identity now, so Eigen sizes its diagonal here and not in a step.
+  for (int col = 0; col < n; ++col)
+    for (Eigen::SparseMatrix<double, Eigen::ColMajor, int>::InnerIterator it(permuted_upper_, col);
+         it; ++it)
+      it.valueRef() = it.row() == col ? 1.0 : 0.0;
+  ldlt_->factorize_preordered_upper(permuted_upper_);
+}
+
+CholeskySolver::~CholeskySolver() = default;
+
+bool CholeskySolver::solve(const BlockSparseMatrix& a, const double* b, double* x) {
+  const auto values = a.values();
+  double* target = permuted_upper_.valuePtr();
+  for (size_t s = 0; s < value_source_.size(); ++s) target[s] = values[value_source_[s]];
+  ldlt_->factorize_preordered_upper(permuted_upper_);
+  if (ldlt_->info() != Eigen::Success) return false;
+  const size_t n = new_index_.size();
+  for (size_t i = 0; i < n; ++i) rhs_[new_index_[i]] = b[i];
+  solution_ = ldlt_->solve(rhs_);
+  for (size_t i = 0; i < n; ++i) x[i] = solution_[new_index_[i]];
+  return true;
+}
+
+}  // namespace tacta::models::corotational

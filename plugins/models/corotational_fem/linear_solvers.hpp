@@ -1,0 +1,65 @@
+// Linear solvers for the implicit step A dv = b on a BlockSparseMatrix: warm-started
+// preconditioned conjugate gradients, and sparse LDL^T (Eigen) whose symbolic analysis is done
+// once. Both keep every buffer from creation, so solve() allocates nothing (see the note on
+// CholeskySolver for the one exception).
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "block_sparse.hpp"
+
+namespace tacta::models::corotational {
+
+enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1 };
+
+struct SolveReport {
+  int iterations = 0;
+  bool converged = true;
+};
+
+class ConjugateGradientSolver {
+ public:
+  ConjugateGradientSolver(uint32_t node_count, Preconditioner preconditioner, int max_iterations,
+                          double tolerance);
+  // x holds the initial guess (the previous step's solution) and receives the solution.
+  // Convergence: ||b - A x|| <= tolerance ||b||.
+  SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x);
+  void set_limits(int max_iterations, double tolerance) {
+    max_iterations_ = max_iterations;
+    tolerance_ = tolerance;
+  }
+
+ private:
+  void build_preconditioner(const BlockSparseMatrix& a);
+  void apply_preconditioner(const double* r, double* z) const;
+  Preconditioner preconditioner_;
+  int max_iterations_;
+  double tolerance_;
+  std::vector<double> inverse_diagonal_;  // 9 per node (block) or 3 per node (scalar)
+  std::vector<double> r_, z_, p_, ap_;
+};
+
+// Eigen's LDL^T with an AMD ordering computed here once, so the matrix handed to the numeric
+// factorisation is already permuted and no per-step reordering copy is made. Eigen still keeps
+// its work arrays on the stack only below EIGEN_STACK_ALLOCATION_LIMIT (128 KiB: about 16k
+// unknowns); beyond that its factorisation allocates.
+class CholeskySolver {
+ public:
+  explicit CholeskySolver(const BlockSparseMatrix& pattern);
+  ~CholeskySolver();
+  // Factorises a (numeric only) and solves; false if the matrix is not positive definite.
+  bool solve(const BlockSparseMatrix& a, const double* b, double* x);
+
+ private:
+  struct Ldlt;
+  std::unique_ptr<Ldlt> ldlt_;
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> permuted_upper_;
+  std::vector<uint32_t> value_source_;  // per stored entry: index into the block values
+  std::vector<int> new_index_;          // unknown -> permuted unknown
+  Eigen::VectorXd rhs_, solution_;
+};
+
+}  // namespace tacta::models::corotational

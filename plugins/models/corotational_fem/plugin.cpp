@@ -1,0 +1,59 @@
+// corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
+#include <array>
+#include <memory>
+#include <span>
+
+#include "corotational_fem.hpp"
+#include "tacta/sdk/model.hpp"
+
+namespace tacta::models::corotational {
+namespace {
+
+class CorotationalFemPlugin {
+ public:
+  static constexpr const char* kName = "corotational_fem";
+  static constexpr const char* kDescription =
+      "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
+      "sparse Cholesky)";
+  static constexpr uint32_t kVersion = 10000;
+  static constexpr std::array<tacta_param_spec, 5> kParams = {
+      sdk::choice_param("rotation", "polar|svd", 0,
+                        "element rotation: polar (warm-started iteration) or svd (inversion-aware)"),
+      sdk::choice_param("solver", "pcg|cholesky", 0,
+                        "linear solver: warm-started preconditioned CG, or sparse LDL^T"),
+      sdk::choice_param("preconditioner", "jacobi|block_jacobi", 1,
+                        "CG preconditioner: diagonal, or inverse 3x3 diagonal blocks"),
+      sdk::int_param("max_iterations", 25, 1, 10000, "CG iterations per step at most"),
+      sdk::real_param("tolerance", "", 1e-5, 1e-14, 1.0,
+                      "CG stops when the residual norm falls below this fraction of the rhs norm"),
+  };
+
+  explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
+    const sdk::Params params(kParams, setup.params, setup.param_count);
+    Options options;
+    options.rotation = static_cast<RotationMethod>(params.choice("rotation"));
+    options.solver = static_cast<LinearSolver>(params.choice("solver"));
+    options.preconditioner = static_cast<Preconditioner>(params.choice("preconditioner"));
+    options.max_iterations = params.integer("max_iterations");
+    options.tolerance = params.real("tolerance");
+    const uint32_t n = setup.mesh->node_count;
+    model_ = std::make_unique<CorotationalFem>(
+        *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),
+        setup.fixed ? std::span<const uint8_t>(setup.fixed, n) : std::span<const uint8_t>(),
+        options);
+  }
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return model_->step(state, dt); }
+  void begin(const tacta_body_state& state, double dt) noexcept { model_->begin(state, dt); }
+  double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
+  void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
+  void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
+
+ private:
+  std::unique_ptr<CorotationalFem> model_;
+};
+
+}  // namespace
+}  // namespace tacta::models::corotational
+
+TACTA_PLUGIN_EXPORT(
+    tacta::sdk::model_descriptor<tacta::models::corotational::CorotationalFemPlugin>())
