@@ -1,5 +1,6 @@
 # cmake -P script: install, build an external plugin against the installed package, list it.
-# Inputs: TACTA_BUILD_DIR, EXTERNAL_SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER.
+# Inputs: TACTA_BUILD_DIR, EXTERNAL_SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, and the
+# parent build's CXX_FLAGS, EXE_LINKER_FLAGS, MODULE_LINKER_FLAGS (sanitizers).
 cmake_minimum_required(VERSION 3.25)
 
 function(run step)
@@ -30,7 +31,9 @@ file(COPY ${EXTERNAL_SOURCE_DIR}/ DESTINATION ${source})
 file(RENAME ${source}/CMakeLists.txt.in ${source}/CMakeLists.txt)
 run("configure external project" ${CMAKE_COMMAND} -S ${source} -B ${build}
     -G ${GENERATOR} -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX_COMPILER}
-    -DCMAKE_PREFIX_PATH=${prefix} -DEXTERNAL_PLUGIN_DIR=${plugin_dir})
+    -DCMAKE_PREFIX_PATH=${prefix} -DEXTERNAL_PLUGIN_DIR=${plugin_dir}
+    "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXE_LINKER_FLAGS}"
+    "-DCMAKE_MODULE_LINKER_FLAGS=${MODULE_LINKER_FLAGS}")
 run("build external project" ${CMAKE_COMMAND} --build ${build} -j2)
 
 run("tacta plugins" ${prefix}/bin/tacta plugins --json --path ${plugin_dir})
