@@ -10,7 +10,7 @@ Vec3 ForceLimiter::limit(const Vec3& force, ForceLimitResult* result) const noex
     if (result) *result = ForceLimitResult::non_finite_zeroed;
     return {0.0, 0.0, 0.0};
   }
-  const double magnitude = norm(force);
+  const double magnitude = std::hypot(force[0], force[1], force[2]);  // no overflow for huge forces
   if (magnitude <= peak_) {
     if (result) *result = ForceLimitResult::unchanged;
     return force;
