@@ -1,0 +1,97 @@
+// Broken volume files: each gives an InputError that names the file, the line when there is one,
+// and what was wrong.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "mesh_test_support.hpp"
+#include "tacta/mesh_build.hpp"
+#include "tacta/mesh_io.hpp"
+
+namespace tacta {
+namespace {
+
+using test::test_mesh;
+
+struct BrokenCase {
+  const char* file;
+  int line;              // expected line, 0 when the error has none
+  const char* fragment;  // a piece of the message
+};
+
+class BrokenVolume : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenVolume, GivesAClearInputError) {
+  const BrokenCase& c = GetParam();
+  const std::string path = test_mesh(c.file);
+  try {
+    load_volume(path);
+    FAIL() << c.file << " loaded without an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, path);
+    EXPECT_EQ(e.where().line, c.line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.fragment), std::string::npos) << e.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BrokenVolume,
+    ::testing::Values(BrokenCase{"broken_node_count.msh", 15, "only 9 nodes"},
+                      BrokenCase{"broken_element_count.msh", 24, "only 6 elements"},
+                      BrokenCase{"broken_index.msh", 20, "refers to node 42"},
+                      BrokenCase{"broken_nan.msh", 9, "finite"},
+                      BrokenCase{"broken_inf.vtk", 11, "finite"},
+                      BrokenCase{"broken_flat_tet.msh", 0, "tet 6"},
+                      BrokenCase{"broken_no_tets.msh", 0, "no tetrahedra"},
+                      BrokenCase{"broken_short_line.msh", 18, "fewer node numbers"},
+                      BrokenCase{"broken_unknown.dat", 1, "unknown volume mesh format"},
+                      BrokenCase{"broken_empty.msh", 0, "empty"},
+                      BrokenCase{"broken_cell_index.vtk", 15, "refers to point 60"},
+                      BrokenCase{"broken_cell_type.vtk", 15, "must have 8 points"},
+                      BrokenCase{"broken_types.vtu", 17, "must hold 7 values"},
+                      BrokenCase{"broken_base64.vtu", 6, "base64"},
+                      BrokenCase{"broken_header.vtu", 6, "header"},
+                      BrokenCase{"broken_mesh_format.msh", 2, "version 3.0"},
+                      BrokenCase{"does_not_exist.msh", 0, "cannot open"}),
+    [](const ::testing::TestParamInfo<BrokenCase>& param_info) {
+      std::string name = param_info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+TEST(VolumeErrors, FinalizeRejectsIndicesOutOfRange) {
+  VolumeMesh mesh;
+  mesh.source = "hand-made";
+  mesh.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  mesh.tets = {0, 1, 2, 4};
+  EXPECT_THROW(finalize(mesh), InputError);
+}
+
+TEST(VolumeErrors, FinalizeNamesTheFlatTet) {
+  VolumeMesh mesh;
+  mesh.source = "hand-made";
+  mesh.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  mesh.tets = {0, 1, 2, 3};
+  try {
+    finalize(mesh);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hand-made: tet 0"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VolumeErrors, SurfaceFileIsNotAVolume) {
+  EXPECT_THROW(load_volume(test::asset_mesh("liver.obj")), InputError);
+}
+
+TEST(VolumeErrors, BadPrimitivesAreInputErrors) {
+  EXPECT_THROW(make_box_grid({1, 0, 1}, {1, 1, 1}, {0, 0, 0}), InputError);
+  EXPECT_THROW(make_box_grid({1, 1, 1}, {1, 0, 1}, {0, 0, 0}), InputError);
+  EXPECT_THROW(make_box_grid({1, 1, 1}, {100000, 100000, 1}, {0, 0, 0}), InputError);
+  EXPECT_THROW(make_sphere(-1, {0, 0, 0}, 2), InputError);
+  EXPECT_THROW(make_sphere(1, {0, 0, 0}, 9), InputError);
+}
+
+}  // namespace
+}  // namespace tacta
