@@ -2,7 +2,11 @@
 // and 9 edge-edge tests each) and the primitive queries used by `tacta ccd-bench`.
 // Parameter `method` picks the conservative inclusion test (default) or the plain Moore-Wilhelms
 // baseline (cubic roots then inside test, which can miss contacts).
+// It also answers `respond` for the whole pipeline (contact_response.hpp documents the method):
+// the engine calls respond on the first collision instance that has it.
 #include <array>
+
+#include "contact_response.hpp"
 
 #include "plain_ccd.hpp"
 #include "tacta/sdk/collision.hpp"
@@ -14,9 +18,10 @@ class CcdNarrowPhase {
  public:
   static constexpr const char* kName = "ccd";
   static constexpr const char* kDescription =
-      "narrow phase: conservative Moore-Wilhelms CCD, vertex-face and edge-edge (inclusion test)";
+      "narrow phase: conservative Moore-Wilhelms CCD, vertex-face and edge-edge (inclusion test); "
+      "contact response: projection + inelastic impulses with Coulomb friction";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 3> kParams{
+  static constexpr std::array<tacta_param_spec, 6> kParams{
       sdk::choice_param("method", "inclusion|plain", 0,
                         "inclusion: conservative, never misses; plain: cubic roots (baseline)"),
       sdk::real_param("distance_tolerance", "m", 1e-6, 1e-12, 1e-2,
@@ -30,6 +35,13 @@ class CcdNarrowPhase {
     method_ = params.choice("method") == 1 ? CcdMethod::kPlain : CcdMethod::kInclusion;
     tolerance_.distance = params.real("distance_tolerance");
     tolerance_.max_iterations = static_cast<uint32_t>(params.integer("max_iterations"));
+    response_.friction = params.real("friction");
+    response_.iterations = static_cast<uint32_t>(params.integer("response_iterations"));
+    response_.tolerance = params.real("response_tolerance");
+  }
+
+  uint32_t respond(tacta_collision_world& world, tacta_contact* contacts, uint32_t count) noexcept {
+    return respond_to_contacts(world, contacts, count, response_);
   }
 
   bool vertex_face(const double* points, tacta_ccd_hit& hit) noexcept {
@@ -85,6 +97,7 @@ class CcdNarrowPhase {
 
   CcdMethod method_ = CcdMethod::kInclusion;
   CcdTolerance tolerance_;
+  ResponseSettings response_;
 };
 
 }  // namespace tacta::collision

@@ -2,12 +2,15 @@
 // Overlap: MPR penetration gives depth, direction and a contact point. Separated: libccd 2.0 has
 // no distance query, so the distance is found by bisection on a radius r added to a's support
 // (a grown by r touches b exactly when r = distance), each step one GJK intersection test.
+// detect (pairs == NULL): surface vertices against tools and obstacles (vertex_shape_contacts.hpp),
+// hulls through one GJK test and one MPR query per nearby vertex.
 #include <ccd/ccd.h>
 
 #include <array>
 #include <cmath>
 
 #include "tacta/sdk/collision.hpp"
+#include "vertex_shape_contacts.hpp"
 
 namespace tacta::collision {
 namespace {
@@ -155,7 +158,49 @@ class ConvexNarrowPhase {
     return TACTA_COLLIDE_OK;
   }
 
+  // Contacts of every surface vertex with the tools and obstacles; the candidate pairs (surface
+  // triangles) are for the other narrow phase and are ignored here.
+  uint32_t detect(const tacta_collision_world& world, const tacta_collision_pair*, uint32_t,
+                  tacta_contact* contacts, uint32_t capacity, uint32_t& count) noexcept {
+    count = 0;
+    return vertex_shape_contacts(world, &ConvexNarrowPhase::hull_distance, this, contacts, capacity, count);
+  }
+
  private:
+  // A ball of radius reach at x against the hull: overlap gives the signed distance reach - depth.
+  static bool hull_distance(void* context, const tacta_collision_shape& hull, const double* x,
+                            double reach, double& distance, double* normal, double* point) {
+    const auto& self = *static_cast<const ConvexNarrowPhase*>(context);
+    tacta_collision_shape ball{};
+    ball.type = TACTA_SHAPE_SPHERE;
+    ball.radius = reach;
+    ball.pose_end = {{x[0], x[1], x[2]}, {1, 0, 0, 0}};
+    ConvexObject oa, ob;
+    oa.shape = &ball;
+    ob.shape = &hull;
+    set_pose(oa);
+    set_pose(ob);
+    ccd_t ccd;
+    CCD_INIT(&ccd);
+    ccd.support1 = support;
+    ccd.support2 = support;
+    ccd.center1 = center;
+    ccd.center2 = center;
+    ccd.max_iterations = 200;
+    ccd.mpr_tolerance = self.tolerance_;
+    ccd.dist_tolerance = self.tolerance_;
+    if (!ccdGJKIntersect(&oa, &ob, &ccd)) return false;
+    ccd_real_t depth = 0;
+    ccd_vec3_t dir, pos;
+    if (ccdMPRPenetration(&oa, &ob, &ccd, &depth, &dir, &pos) != 0) return false;
+    distance = reach - depth;
+    for (int k = 0; k < 3; ++k) {
+      normal[k] = -dir.v[k];
+      point[k] = x[k] - distance * normal[k];
+    }
+    return true;
+  }
+
   double tolerance_ = 1e-9;
 };
 
