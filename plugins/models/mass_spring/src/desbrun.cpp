@@ -66,7 +66,7 @@ void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state, 
     solve_in_place(column_);
     for (uint32_t i = 0; i < n; ++i) dv_[3 * i + c] = column_[i];
   }
-  if (!any_fixed_) correct_angular_momentum(model, state, dt);
+  if (!any_fixed_ && model.options().desbrun_correction) correct_angular_momentum(model, state, dt);
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t k = 3 * i; k < 3 * i + 3; ++k) {
       if (fixed[i]) {

@@ -30,6 +30,7 @@ struct MassSpringOptions {
   double damping = 0.0;        // N s/m per node, added to the material's alpha * m
   int cg_max_iterations = 200;  // Baraff-Witkin CG
   double cg_tolerance = 1e-8;  // relative residual
+  bool desbrun_correction = true;  // Desbrun: remove the angular momentum the linear filter adds
   double divergence_stretch = DivergenceGuard::kDefaultStretchLimit;
 };
 

@@ -16,7 +16,7 @@ class MassSpringPlugin {
       "Mass-spring on the mesh edges (Van Gelder stiffness): symplectic Euler, Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 5> kParams = {
+  static constexpr std::array<tacta_param_spec, 6> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "
                                "step, CG); desbrun factorises its matrix for the setup dt"),
@@ -26,6 +26,9 @@ class MassSpringPlugin {
                             "Baraff-Witkin: conjugate-gradient iteration limit per step"),
       tacta::sdk::real_param("cg_tolerance", "", 1e-8, 1e-14, 1e-1,
                              "Baraff-Witkin: relative residual at which CG stops"),
+      tacta::sdk::bool_param("desbrun_correction", true,
+                             "desbrun: remove the spurious angular momentum of the linear filter "
+                             "(only when no node is fixed)"),
       tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
                              "fault when an edge grows past this multiple of its rest length"),
   };
@@ -44,6 +47,7 @@ class MassSpringPlugin {
     o.damping = p.real("damping");
     o.cg_max_iterations = p.integer("cg_max_iterations");
     o.cg_tolerance = p.real("cg_tolerance");
+    o.desbrun_correction = p.flag("desbrun_correction");
     o.divergence_stretch = p.real("divergence_stretch");
     return o;
   }
