@@ -12,14 +12,14 @@ void PassivityController::reset(const Vec3& device_position) noexcept {
 }
 
 Vec3 PassivityController::update(const Vec3& device_position, const Vec3& device_velocity,
-                                 double dt, const Vec3& desired_force) noexcept {
+                                 double dt, const Vec3& desired_force, bool control) noexcept {
   if (!started_) reset(device_position);
   // Observer: exact work of the force held during the last tick, taken out of the environment.
   energy_ -= dot(last_sent_, sub(device_position, last_position_));
   last_position_ = device_position;
   worst_deficit_ = std::max(worst_deficit_, -energy_);
   last_alpha_ = 0.0;
-  if (!params_.controller_enabled || !(dt > 0.0)) return desired_force;
+  if (!control || !params_.controller_enabled || !(dt > 0.0)) return desired_force;
 
   const double speed_squared = dot(device_velocity, device_velocity);
   const double predicted = energy_ - dot(desired_force, device_velocity) * dt;

@@ -45,6 +45,13 @@ int run_process(const std::vector<std::string>& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The paper's corner names for the nodes of a 4-node planar square, else "node N".
+std::string node_label(const SoftBody& body, uint32_t node) {
+  static const char* const corners[] = {"SW", "SE", "NW", "NE"};
+  if (body.topology->mesh.dimension == 2 && body.node_count() == 4) return std::string(corners[node]) + " (node " + std::to_string(node) + ")";
+  return "node " + std::to_string(node);
+}
+
 }  // namespace
 
 void write_plots(const std::string& dir, const World& world, RunResult& result, std::vector<std::string>& warnings) {
@@ -58,8 +65,16 @@ void write_plots(const std::string& dir, const World& world, RunResult& result, 
         warnings.push_back("phase_portrait: no trajectory was recorded (set output.plot_nodes or probe_node)");
         continue;
       }
-      args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png,
-                               "--title", world.scene().name});
+      args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png, "--title", world.scene().name});
+      const SoftBody* body = nullptr;
+      for (size_t i = 0; i < world.body_count() && body == nullptr; ++i)
+        if (!world.body(i).recorded_nodes.empty()) body = &world.body(i);
+      std::string nodes, labels;
+      for (uint32_t n : body->recorded_nodes) {
+        nodes += (nodes.empty() ? "" : ",") + std::to_string(n);
+        labels += (labels.empty() ? "" : ",") + node_label(*body, n);
+      }
+      args.insert(args.end(), {"--nodes", nodes, "--labels", labels});
     } else if (plot == "force") {
       if (!std::filesystem::exists(dir + "/trace.csv")) {
         warnings.push_back("force: no trace.csv (the scene has no device, or output.trace is off)");
@@ -68,9 +83,9 @@ void write_plots(const std::string& dir, const World& world, RunResult& result, 
       png = dir + "/force_vs_time.png";
       args.insert(args.end(), {scripts + "/force_vs_time.py", dir + "/trace.csv", png});
       if (world.device_count() > 0)
-        args.insert(args.end(), {"--peak", std::to_string(world.device(0).device->capabilities().peak_force)});
+        args.insert(args.end(), {"--peak-force", std::to_string(world.device(0).device->capabilities().peak_force)});
     } else if (plot == "energy" || plot == "displacement") {
-      args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot});
+      args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot, "--title", world.scene().name});
     } else {
       warnings.push_back("unknown plot '" + plot + "'");
       continue;

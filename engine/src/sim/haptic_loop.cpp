@@ -110,7 +110,7 @@ void HapticLoop::read_devices(double time) noexcept {
       else slot.device->status(slot.status_reason.data(), slot.status_reason.size());
       if (state != TACTA_DEVICE_FINISHED) {
         FaultRecord f{time, -1, static_cast<int>(d), static_cast<uint32_t>(slot.state), {}};
-        std::snprintf(f.reason.data(), f.reason.size(), "device '%s': %s", slot.name.c_str(), slot.status_reason.data());
+        std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(), slot.status_reason.data());
         faults_.push(f);
       }
     }
@@ -173,7 +173,7 @@ void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, c
   std::snprintf(b.fault.reason.data(), b.fault.reason.size(), "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s",
                 why, b.model->name(), bits, time);
   FaultRecord f{time, static_cast<int>(index), -1, bits, {}};
-  std::snprintf(f.reason.data(), f.reason.size(), "body '%s': %s", b.name.c_str(), b.fault.reason.data());
+  std::snprintf(f.reason.data(), f.reason.size(), "body '%.40s': %.150s", b.name.c_str(), b.fault.reason.data());
   faults_.push(f);
 }
 

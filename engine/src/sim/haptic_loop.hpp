@@ -19,7 +19,7 @@ struct FaultRecord {
   int body;    // -1 when it is a device's
   int device;  // -1 when it is a body's
   uint32_t bits;
-  std::array<char, 200> reason;
+  std::array<char, 256> reason;
 };
 
 // Something that acts between ticks' device read and body step: haptic rendering, collision.

@@ -32,8 +32,9 @@ class PassivityController {
 
   // One tick: measured device position (m) and velocity (m/s), tick dt (s), and the force the
   // environment wants to send (N). Returns the force to send (before peak limiting).
+  // control = false: observe only this tick (e.g. out of contact, where a damper would be drag).
   Vec3 update(const Vec3& device_position, const Vec3& device_velocity, double dt,
-              const Vec3& desired_force) noexcept;
+              const Vec3& desired_force, bool control = true) noexcept;
 
   // The force really sent this tick (after limiting), so the next observation uses it.
   void record_sent(const Vec3& force) noexcept { last_sent_ = force; }

@@ -1,0 +1,80 @@
+// One tool rendered against the world for one device, per haptic tick (1 kHz path: noexcept, no
+// allocation): god-object proxy -> first-contact stretch limit -> virtual coupling -> passivity
+// controller -> device force limit. Also keeps the per-device numbers report.json wants.
+//
+// Newton's third law: the reaction for the touched body is exactly minus the force sent to the
+// device (after limiting and the passivity damper), applied at the proxy's contact point, so the
+// force felt and the force that deforms the body agree. Out of contact the device force is zero
+// and the passivity controller is idle (no drag in free space).
+#pragma once
+
+#include "tacta/haptics/first_contact.hpp"
+#include "tacta/haptics/force_limiter.hpp"
+#include "tacta/haptics/god_object.hpp"
+#include "tacta/haptics/passivity.hpp"
+#include "tacta/haptics/virtual_coupling.hpp"
+
+namespace tacta::haptics {
+
+struct ContactStatsParams {
+  double onset_window = 0.25;  // s after the first contact begins: its peak is first_contact_peak
+  double settle_delay = 0.4;   // s after the first onset at which the steady window starts
+  double steady_window = 0.1;  // s over which the force is averaged for steady_contact
+};
+
+struct ContactRendererParams {
+  VirtualCouplingParams coupling{};
+  GodObjectParams proxy{};
+  bool first_contact_enabled = true;
+  FirstContactParams first_contact{};
+  PassivityParams passivity{};
+  double peak_force = 3.3;  // N, the device's declared peak (capabilities.peak_force)
+  ContactStatsParams stats{};
+};
+
+// The per-device report numbers (N, J).
+struct ContactStats {
+  double max_force = 0.0;           // N, largest force sent
+  double force_limit = 0.0;         // N, the peak it was limited to
+  double first_contact_peak = 0.0;  // N, largest force in the onset window of the first contact
+  double steady_contact = 0.0;      // N, mean force in the steady window of the first contact
+  double energy_injected = 0.0;     // J, worst energy the coupling returned beyond what it took
+  double first_contact_time = -1.0; // s, -1 before any contact
+  unsigned long non_finite_forces = 0;  // ticks where a NaN/inf force was zeroed
+  unsigned long limited_forces = 0;     // ticks where the force was scaled down to the peak
+};
+
+struct ContactRendering {
+  Vec3 device_force{0.0, 0.0, 0.0};   // N, to write to the device
+  Vec3 body_reaction{0.0, 0.0, 0.0};  // N, on the touched body at contact.point (= -device_force)
+  bool in_contact = false;
+  SurfaceHit contact{};               // valid when in_contact
+};
+
+class ContactRenderer {
+ public:
+  explicit ContactRenderer(const ContactRendererParams& params = {}) noexcept;
+
+  void reset(const Vec3& device_position) noexcept;
+  // time (s) of this tick, measured device position (m) and velocity (m/s), tick dt (s).
+  ContactRendering tick(const SurfaceQuery& world, double time, const Vec3& device_position,
+                        const Vec3& device_velocity, double dt) noexcept;
+
+  const ContactStats& stats() const noexcept { return stats_; }
+  const GodObjectProxy& proxy() const noexcept { return proxy_; }
+  const PassivityController& passivity() const noexcept { return passivity_; }
+
+ private:
+  void update_stats(double time, double force) noexcept;
+  ContactRendererParams params_;
+  GodObjectProxy proxy_;
+  FirstContactLimiter onset_;
+  VirtualCoupling coupling_;
+  PassivityController passivity_;
+  ForceLimiter limiter_;
+  ContactStats stats_{};
+  double steady_sum_ = 0.0;
+  unsigned long steady_count_ = 0;
+};
+
+}  // namespace tacta::haptics

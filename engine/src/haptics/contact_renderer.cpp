@@ -1,0 +1,76 @@
+#include "tacta/haptics/contact_renderer.hpp"
+
+#include <algorithm>
+
+namespace tacta::haptics {
+
+ContactRenderer::ContactRenderer(const ContactRendererParams& params) noexcept
+    : params_(params),
+      proxy_(params.proxy),
+      onset_(params.first_contact),
+      coupling_(params.coupling),
+      passivity_(params.passivity),
+      limiter_(params.peak_force) {
+  stats_.force_limit = limiter_.peak_force();
+}
+
+void ContactRenderer::reset(const Vec3& device_position) noexcept {
+  proxy_.reset(device_position);
+  onset_.reset();
+  passivity_.reset(device_position);
+  stats_ = {};
+  stats_.force_limit = limiter_.peak_force();
+  steady_sum_ = 0.0;
+  steady_count_ = 0;
+}
+
+ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
+                                       const Vec3& device_position, const Vec3& device_velocity,
+                                       double dt) noexcept {
+  ContactRendering out;
+  if (!is_finite(device_position) || !is_finite(device_velocity)) {
+    ++stats_.non_finite_forces;  // a bad sample: zero force this tick
+    passivity_.record_sent(out.device_force);
+    update_stats(time, 0.0);
+    return out;
+  }
+  proxy_.update(world, device_position, device_velocity);
+  out.in_contact = proxy_.in_contact();
+  Vec3 desired{0.0, 0.0, 0.0};
+  if (out.in_contact) {
+    out.contact = proxy_.contact();
+    Vec3 stretch = sub(proxy_.position(), device_position);
+    if (params_.first_contact_enabled) stretch = onset_.shape(stretch, true, dt);
+    desired = coupling_.force(stretch, sub(proxy_.velocity(), device_velocity));
+  } else {
+    onset_.shape({0.0, 0.0, 0.0}, false, dt);  // re-arm for the next contact
+  }
+  // The observer runs every tick (the device moves under the held force in free space too); the
+  // controller only adds damping in contact.
+  const Vec3 passive = passivity_.update(device_position, device_velocity, dt, desired, out.in_contact);
+  ForceLimitResult result = ForceLimitResult::unchanged;
+  out.device_force = limiter_.limit(passive, &result);
+  if (result == ForceLimitResult::scaled) ++stats_.limited_forces;
+  if (result == ForceLimitResult::non_finite_zeroed) ++stats_.non_finite_forces;
+  passivity_.record_sent(out.device_force);
+  out.body_reaction = scaled(out.device_force, -1.0);
+  if (out.in_contact && stats_.first_contact_time < 0.0) stats_.first_contact_time = time;
+  update_stats(time, norm(out.device_force));
+  return out;
+}
+
+void ContactRenderer::update_stats(double time, double force) noexcept {
+  stats_.max_force = std::max(stats_.max_force, force);
+  stats_.energy_injected = passivity_.worst_energy_deficit();
+  if (stats_.first_contact_time < 0.0) return;
+  const double since = time - stats_.first_contact_time;
+  const ContactStatsParams& p = params_.stats;
+  if (since <= p.onset_window) stats_.first_contact_peak = std::max(stats_.first_contact_peak, force);
+  if (since >= p.settle_delay && since < p.settle_delay + p.steady_window) {
+    steady_sum_ += force;
+    ++steady_count_;
+    stats_.steady_contact = steady_sum_ / static_cast<double>(steady_count_);
+  }
+}
+
+}  // namespace tacta::haptics
