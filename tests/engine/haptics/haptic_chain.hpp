@@ -1,15 +1,11 @@
-// The per-tick haptic chain as the engine runs it, for tests: proxy, first-contact limiter,
-// virtual coupling, passivity controller, force limiter, then the device (a SimulatedHand).
+// Runs the engine's ContactRenderer against a SimulatedHand, as the haptic task would: read the
+// device, render, hold the force for one tick.
 #pragma once
 
 #include <algorithm>
 
 #include "simulated_hand.hpp"
-#include "tacta/haptics/first_contact.hpp"
-#include "tacta/haptics/force_limiter.hpp"
-#include "tacta/haptics/god_object.hpp"
-#include "tacta/haptics/passivity.hpp"
-#include "tacta/haptics/virtual_coupling.hpp"
+#include "tacta/haptics/contact_renderer.hpp"
 
 namespace tacta::haptics::testing {
 
@@ -31,39 +27,36 @@ struct ChainStats {
   double peak_energy = 0.0;         // J, largest after settle_time
   double final_energy = 0.0;        // J
   double worst_deficit = 0.0;       // J, passivity observer's worst negative energy
-  double first_contact_time = -1.0; // s
+  ContactStats renderer{};          // the renderer's own report numbers
 };
+
+inline ContactRendererParams renderer_params(const ChainOptions& options) {
+  ContactRendererParams p;
+  p.coupling = options.coupling;
+  p.first_contact_enabled = options.first_contact;
+  p.first_contact = options.first_contact_params;
+  p.passivity.controller_enabled = options.passivity;
+  p.peak_force = options.peak_force;
+  return p;
+}
 
 inline ChainStats run_chain(SimulatedHand& hand, const SurfaceQuery& world, const ChainOptions& options,
                             double duration, double settle_time = 0.0) {
-  GodObjectProxy proxy;
-  FirstContactLimiter onset(options.first_contact_params);
-  VirtualCoupling coupling(options.coupling);
-  PassivityParams pp;
-  pp.controller_enabled = options.passivity;
-  PassivityController passivity(pp);
-  ForceLimiter limiter(options.peak_force);
-  proxy.reset(hand.position);
-  passivity.reset(hand.position);
+  ContactRenderer renderer(renderer_params(options));
+  renderer.reset(hand.position);
   ChainStats stats;
   const int ticks = static_cast<int>(duration / options.dt + 0.5);
   for (int n = 0; n < ticks; ++n) {
-    proxy.update(world, hand.position, hand.velocity);
-    if (proxy.in_contact() && stats.first_contact_time < 0.0) stats.first_contact_time = hand.time;
-    Vec3 stretch = sub(proxy.position(), hand.position);
-    if (options.first_contact) stretch = onset.shape(stretch, proxy.in_contact(), options.dt);
-    Vec3 force = coupling.force(stretch, sub(proxy.velocity(), hand.velocity));
-    force = passivity.update(hand.position, hand.velocity, options.dt, force);
-    force = limiter.limit(force);
-    passivity.record_sent(force);
-    stats.peak_force = std::max(stats.peak_force, norm(force));
-    stats.last_force = norm(force);
-    hand.step(options.dt, force);
+    const ContactRendering r = renderer.tick(world, hand.time, hand.position, hand.velocity, options.dt);
+    stats.peak_force = std::max(stats.peak_force, norm(r.device_force));
+    stats.last_force = norm(r.device_force);
+    hand.step(options.dt, r.device_force);
     const double energy = hand.energy();
     if (hand.time >= settle_time) stats.peak_energy = std::max(stats.peak_energy, energy);
     stats.final_energy = energy;
   }
-  stats.worst_deficit = passivity.worst_energy_deficit();
+  stats.worst_deficit = renderer.passivity().worst_energy_deficit();
+  stats.renderer = renderer.stats();
   return stats;
 }
 
