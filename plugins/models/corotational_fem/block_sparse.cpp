@@ -8,29 +8,30 @@ namespace tacta::models::corotational {
 
 BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets)
     : node_count_(node_count) {
-  std::vector<std::vector<uint32_t>> neighbours(node_count);
-  for (uint32_t i = 0; i < node_count; ++i) neighbours[i].push_back(i);
+  std::vector<std::vector<uint32_t>> upper(node_count);  // columns j >= i of row i
+  for (uint32_t i = 0; i < node_count; ++i) upper[i].push_back(i);
   for (size_t e = 0; e + 3 < tets.size(); e += 4)
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
-        if (a != b) neighbours[tets[e + a]].push_back(tets[e + b]);
+        if (tets[e + a] < tets[e + b]) upper[tets[e + a]].push_back(tets[e + b]);
   row_starts_.resize(node_count + 1, 0);
   for (uint32_t i = 0; i < node_count; ++i) {
-    auto& list = neighbours[i];
+    auto& list = upper[i];
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
     row_starts_[i + 1] = row_starts_[i] + static_cast<uint32_t>(list.size());
   }
   columns_.reserve(row_starts_.back());
-  for (const auto& list : neighbours) columns_.insert(columns_.end(), list.begin(), list.end());
-  diagonal_.resize(node_count);
-  for (uint32_t i = 0; i < node_count; ++i) diagonal_[i] = block_index(i, i);
+  for (const auto& list : upper) columns_.insert(columns_.end(), list.begin(), list.end());
+  static constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
+  static constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
   const size_t element_count = tets.size() / 4;
-  element_slots_.resize(16 * element_count);
+  element_slots_.resize(10 * element_count);
   for (size_t e = 0; e < element_count; ++e)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        element_slots_[16 * e + 4 * a + b] = block_index(tets[4 * e + a], tets[4 * e + b]);
+    for (int p = 0; p < 10; ++p) {
+      const uint32_t i = tets[4 * e + kPairA[p]], j = tets[4 * e + kPairB[p]];
+      element_slots_[10 * e + p] = block_index(std::min(i, j), std::max(i, j));
+    }
   values_.assign(9 * static_cast<size_t>(columns_.size()), 0.0);
 }
 
@@ -48,18 +49,30 @@ void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0
 
 void BlockSparseMatrix::multiply(const double* x, double* y) const {
   const double* v = values_.data();
+  std::fill_n(y, 3 * static_cast<size_t>(node_count_), 0.0);
   for (uint32_t i = 0; i < node_count_; ++i) {
-    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
-    for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {
+    const double* xi = x + 3 * static_cast<size_t>(i);
+    const double x0 = xi[0], x1 = xi[1], x2 = xi[2];
+    const uint32_t first = row_starts_[i];
+    const double* d = v + 9 * static_cast<size_t>(first);  // diagonal block
+    double y0 = d[0] * x0 + d[1] * x1 + d[2] * x2;
+    double y1 = d[3] * x0 + d[4] * x1 + d[5] * x2;
+    double y2 = d[6] * x0 + d[7] * x1 + d[8] * x2;
+    for (uint32_t k = first + 1; k < row_starts_[i + 1]; ++k) {
       const double* b = v + 9 * static_cast<size_t>(k);
-      const double* xj = x + 3 * static_cast<size_t>(columns_[k]);
+      const size_t j = 3 * static_cast<size_t>(columns_[k]);
+      const double* xj = x + j;
       y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
       y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
       y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
+      double* yj = y + j;  // the mirrored block (j, i) = B^T
+      yj[0] += b[0] * x0 + b[3] * x1 + b[6] * x2;
+      yj[1] += b[1] * x0 + b[4] * x1 + b[7] * x2;
+      yj[2] += b[2] * x0 + b[5] * x1 + b[8] * x2;
     }
-    y[3 * i] = y0;
-    y[3 * i + 1] = y1;
-    y[3 * i + 2] = y2;
+    y[3 * i] += y0;
+    y[3 * i + 1] += y1;
+    y[3 * i + 2] += y2;
   }
 }
 
@@ -74,7 +87,7 @@ void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {
   for (uint32_t k : fixed_offdiagonal_) std::fill_n(block(k), 9, 0.0);
   for (uint32_t i = 0; i < node_count_; ++i) {
     if (!fixed[i]) continue;
-    double* d = block(diagonal_[i]);
+    double* d = block(diagonal_block(i));
     std::fill_n(d, 9, 0.0);
     d[0] = d[4] = d[8] = 1.0;
   }

@@ -1,6 +1,8 @@
-// A symmetric matrix of 3x3 blocks in compressed rows (block CSR, both triangles stored), with a
-// pattern fixed at creation: every element's 4x4 block entries map to precomputed slots, so a
-// step refills values in place and never allocates.
+// A symmetric matrix of 3x3 blocks in compressed rows (block CSR), upper triangle only: row i
+// holds blocks (i, j) with j >= i, the diagonal first. Half the storage of a full matrix, so
+// the conjugate-gradient products read half the memory. The pattern is fixed at creation:
+// every element's 10 node pairs map to precomputed slots, so a step refills values in place
+// and never allocates.
 #pragma once
 
 #include <cstdint>
@@ -16,11 +18,12 @@ class BlockSparseMatrix {
 
   uint32_t node_count() const { return node_count_; }
   uint32_t block_count() const { return static_cast<uint32_t>(columns_.size()); }
-  // Index of block (row, col) in the block arrays; the pair must share an element.
+  // Index of block (row, col), row <= col, in the block arrays; the pair must share an element.
   uint32_t block_index(uint32_t row, uint32_t col) const;
-  uint32_t diagonal_block(uint32_t node) const { return diagonal_[node]; }
-  // Slot of block (a, b) of element e (a, b in 0..3): 16 per element, row-major in (a, b).
-  const uint32_t* element_slots(uint32_t element) const { return &element_slots_[16 * element]; }
+  uint32_t diagonal_block(uint32_t node) const { return row_starts_[node]; }
+  // Slots of element e's node pairs (a, b), a <= b in 0..3, in the order (0,0) (0,1) (0,2)
+  // (0,3) (1,1) (1,2) (1,3) (2,2) (2,3) (3,3): the stored block is (min node, max node).
+  const uint32_t* element_slots(uint32_t element) const { return &element_slots_[10 * element]; }
 
   double* block(uint32_t index) { return &values_[9 * static_cast<size_t>(index)]; }
   const double* block(uint32_t index) const { return &values_[9 * static_cast<size_t>(index)]; }
@@ -30,7 +33,7 @@ class BlockSparseMatrix {
   std::span<const uint32_t> columns() const { return columns_; }
 
   void set_zero();
-  // y = A x, both 3 per node.
+  // y = A x, both 3 per node (the lower triangle applied as the transpose of the upper).
   void multiply(const double* x, double* y) const;
   // Makes fixed nodes' rows and columns identity (zero off-diagonal, I on the diagonal).
   void apply_fixed(std::span<const uint8_t> fixed);
@@ -38,8 +41,7 @@ class BlockSparseMatrix {
  private:
   uint32_t node_count_;
   std::vector<uint32_t> row_starts_;  // node_count + 1
-  std::vector<uint32_t> columns_;     // block column per block, sorted within a row
-  std::vector<uint32_t> diagonal_;    // block index of (i, i)
+  std::vector<uint32_t> columns_;     // block column per block, sorted, diagonal first
   std::vector<uint32_t> element_slots_;
   std::vector<double> values_;        // 9 per block, row-major
   std::vector<uint32_t> fixed_offdiagonal_;  // blocks touching a fixed node, off the diagonal

@@ -108,7 +108,7 @@ CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e,
   }
   ElementFrame frame;
   if (options_.rotation == RotationMethod::kPolar) {
-    polar_rotation(deformation, polar_guess_[e], kPolarMaxIterations);
+    polar_iterations_ += polar_rotation(deformation, polar_guess_[e], kPolarMaxIterations);
     frame.rotation = polar_guess_[e].toRotationMatrix();
   } else {
     frame.rotation = svd_rotation(deformation);
@@ -148,22 +148,24 @@ void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, const do
       for (int k = 0; k < 3; ++k) stiffness_times_velocity[3 * element.nodes[a] + k] += kv[k];
     }
   }
-  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I), and K_ba = K_ab^T.
+  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I); K_ba = K_ab^T, so the
+  // stored block (lower node, higher node) is K_ab with a and b swapped when needed.
   const double lambda_v = scale * volume * lambda_;
   const double mu_v = scale * volume * mu_;
   const uint32_t* slots = matrix_.element_slots(e);
   for (int p = 0; p < 10; ++p) {
-    const int a = kPairA[p], b = kPairB[p];
-    Eigen::Matrix3d block = lambda_v * c[a] * c[b].transpose() + mu_v * c[b] * c[a].transpose();
-    block.diagonal().array() += mu_v * element.gradient_dots[p];
-    double* ab = matrix_.block(slots[4 * a + b]);
+    int a = kPairA[p], b = kPairB[p];
+    if (element.nodes[a] > element.nodes[b]) std::swap(a, b);
+    const double* ca = c[a].data();
+    const double* cb = c[b].data();
+    const double diagonal = mu_v * element.gradient_dots[p];
+    double* block = matrix_.block(slots[p]);
     for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) ab[3 * r + k] += block(r, k);
-    if (a != b) {
-      double* ba = matrix_.block(slots[4 * b + a]);
-      for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 3; ++k) ba[3 * r + k] += block(k, r);
-    }
+      for (int k = 0; k < 3; ++k)
+        block[3 * r + k] += lambda_v * ca[r] * cb[k] + mu_v * cb[r] * ca[k];
+    block[0] += diagonal;
+    block[4] += diagonal;
+    block[8] += diagonal;
   }
 }
 
@@ -171,6 +173,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   const size_t n = 3 * static_cast<size_t>(node_count_);
   const double h = dt;
   uint32_t result = TACTA_STEP_OK;
+  polar_iterations_ = 0;
   matrix_.set_zero();
   std::fill(forces_.begin(), forces_.end(), 0.0);
   std::fill(stiffness_velocity_.begin(), stiffness_velocity_.end(), 0.0);

@@ -53,6 +53,8 @@ class CorotationalFem {
   // the next step refills.
   const BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
   SolveReport last_solve() const { return last_solve_; }
+  // Polar iterations summed over elements in the last step (0 with the SVD).
+  long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
   void set_solver_limits(int max_iterations, double tolerance);
@@ -89,6 +91,7 @@ class CorotationalFem {
   std::unique_ptr<CholeskySolver> cholesky_;
   std::vector<double> forces_, stiffness_velocity_, rhs_, delta_v_, weights_;
   SolveReport last_solve_;
+  long polar_iterations_ = 0;
 };
 
 }  // namespace tacta::models::corotational

@@ -7,22 +7,34 @@ namespace tacta::models::corotational {
 
 int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotation,
                    int max_iterations) {
-  // Each iteration rotates R about omega, the torque that turns R's columns towards F's columns;
-  // the denominator is a Gauss-Newton scale; 1e-9 keeps it finite for degenerate F.
-  constexpr double kAngleTolerance = 1e-12;  // rad: below this the rotation is converged
+  // Maximise tr(R^T F) over R' = exp([w]) R. With B = F R^T, the gradient in w is the torque
+  // axial(B - B^T) = sum_i r_i x f_i and the Hessian is -(tr(B) I - sym(B)): a Newton step
+  // solves (tr(B) I - sym(B)) w = torque and converges quadratically near the answer. Far from
+  // it (that matrix not positive definite, e.g. inverted elements) the step falls back to
+  // Mueller et al.'s safe scale w = torque / |tr(B)|, which always turns towards F.
+  constexpr double kAngleTolerance2 = 1e-24;  // rad^2: a 1e-12 rad correction is converged
   int iteration = 0;
   for (; iteration < max_iterations; ++iteration) {
-    const Eigen::Matrix3d r = rotation.toRotationMatrix();
-    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
-    double alignment = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      torque += r.col(c).cross(deformation.col(c));
-      alignment += r.col(c).dot(deformation.col(c));
-    }
-    const Eigen::Vector3d omega = torque / (std::abs(alignment) + 1e-9);
-    const double angle = omega.norm();
-    if (angle < kAngleTolerance) break;
-    rotation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle)) * rotation;
+    const Eigen::Matrix3d b = deformation * rotation.toRotationMatrix().transpose();
+    const Eigen::Vector3d torque(b(2, 1) - b(1, 2), b(0, 2) - b(2, 0), b(1, 0) - b(0, 1));
+    const double trace = b.trace();
+    Eigen::Matrix3d hessian = -0.5 * (b + b.transpose());
+    hessian.diagonal().array() += trace;
+    // Positive definite by leading minors; otherwise take the safe gradient step.
+    const double m1 = hessian(0, 0);
+    const double m2 = hessian(0, 0) * hessian(1, 1) - hessian(0, 1) * hessian(1, 0);
+    const double m3 = hessian.determinant();
+    Eigen::Vector3d omega;
+    if (m1 > 0.0 && m2 > 0.0 && m3 > 1e-12 * m1 * m1 * m1)
+      omega = hessian.inverse() * torque;
+    else
+      omega = torque / (std::abs(trace) + 1e-9);
+    const double angle2 = omega.squaredNorm();
+    if (angle2 < kAngleTolerance2) break;
+    // Rotate by omega without trigonometry: q += (0, omega/2) q, then renormalise. That turns
+    // by 2 atan(|omega|/2) about the same axis: exact to second order, same fixed point.
+    const Eigen::Quaterniond turn(0.0, 0.5 * omega.x(), 0.5 * omega.y(), 0.5 * omega.z());
+    rotation.coeffs() += (turn * rotation).coeffs();
     rotation.normalize();
   }
   return iteration;

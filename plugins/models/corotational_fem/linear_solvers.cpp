@@ -117,29 +117,34 @@ CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::ma
   const auto columns = pattern.columns();
   // Scalar pattern of the full symmetric matrix, for the fill-reducing ordering.
   std::vector<Eigen::Triplet<double, int>> entries;
-  entries.reserve(9 * columns.size());
+  entries.reserve(18 * columns.size());
   for (uint32_t i = 0; i < pattern.node_count(); ++i)
     for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
       for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          entries.emplace_back(3 * static_cast<int>(i) + r, 3 * static_cast<int>(columns[k]) + c,
-                               1.0);
+        for (int c = 0; c < 3; ++c) {
+          const int row = 3 * static_cast<int>(i) + r, col = 3 * static_cast<int>(columns[k]) + c;
+          entries.emplace_back(row, col, 1.0);
+          if (row != col) entries.emplace_back(col, row, 1.0);
+        }
   Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
-  full.setFromTriplets(entries.begin(), entries.end());
+  full.setFromTriplets(entries.begin(), entries.end());  // duplicates on diagonal blocks: summed
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
   Eigen::AMDOrdering<int>()(full, order);
   new_index_.resize(n);
   for (int p = 0; p < n; ++p) new_index_[order.indices()[p]] = p;
-  // Upper triangle in the new numbering; the stored value is a block index code for now.
+  // Upper triangle in the new numbering; each stored value is, for now, the index of its source
+  // in the block values. A diagonal block holds both (r, c) and (c, r): take one of them.
   std::vector<Eigen::Triplet<double, int>> upper;
-  upper.reserve(entries.size() / 2 + n);
+  upper.reserve(9 * columns.size());
   for (uint32_t i = 0; i < pattern.node_count(); ++i)
     for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) {
           const int row = new_index_[3 * i + r];
           const int col = new_index_[3 * columns[k] + c];
-          if (row <= col) upper.emplace_back(row, col, static_cast<double>(9 * k + 3 * r + c));
+          if (columns[k] == i && row > col) continue;
+          upper.emplace_back(std::min(row, col), std::max(row, col),
+                             static_cast<double>(9 * k + 3 * r + c));
         }
   permuted_upper_.resize(n, n);
   permuted_upper_.setFromTriplets(upper.begin(), upper.end());

@@ -1,0 +1,72 @@
+// Step time of every elastic model plugin against mesh size (about 500, 2k, 10k and 50k tets),
+// all driven through the C ABI, on a clamped box under gravity at the haptic tick (dt = 1 ms).
+// The 1 kHz budget is 1 ms per tick for everything (collision, haptics, every body), so a
+// model's step should stay well below it. Models whose plugin is not built are skipped.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "bench_meshes.hpp"
+#include "plugin_body.hpp"
+
+namespace tacta::bench {
+namespace {
+
+struct ModelCase {
+  const char* label;
+  const char* file;
+  const char* model;
+  std::vector<ParamOverride> overrides;
+  uint32_t max_cells;  // skip sizes above this (cells per side), where a step takes too long
+};
+
+const std::vector<ModelCase>& model_cases() {
+  static const std::vector<ModelCase> cases = {
+      {"corotational_pcg", "tacta_corotational_fem.so", "corotational_fem", {}, 20},
+      {"corotational_cholesky", "tacta_corotational_fem.so", "corotational_fem",
+       {{"solver", 1, "cholesky"}}, 12},
+      {"bullet_softbody", "tacta_bullet_softbody.so", "bullet_softbody", {}, 20},
+      {"mass_spring", "tacta_mass_spring.so", "mass_spring", {}, 20},
+      {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
+      {"fd_debunne", "tacta_fd_debunne.so", "fd_debunne", {}, 20},
+  };
+  return cases;
+}
+
+void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells,
+                  uint32_t extra) {
+  const models::TestMesh mesh = clamped_box(cells, extra);
+  tacta_material material = models::make_material(1e5, 0.4, 1000.0);  // soft tissue-like
+  material.rayleigh_mass = 0.1;
+  material.rayleigh_stiffness = 0.01;
+  PluginBody body(model.file, model.model, mesh, material, {0.0, -9.81, 0.0}, 1e-3,
+                  model.overrides);
+  for (int i = 0; i < 20; ++i) body.step();  // warm-up: solver history, caches
+  uint32_t bits = 0;
+  for (auto _ : state) bits |= body.step();
+  state.counters["tets"] = static_cast<double>(mesh.tets.size() / 4);
+  state.counters["nodes"] = mesh.node_count();
+  state.counters["budget_ms"] = 1.0;
+  state.counters["fault"] = (bits & TACTA_STEP_FAULT_MASK) ? 1 : 0;
+}
+
+const bool registered = [] {
+  const std::pair<uint32_t, uint32_t> sizes[] = {{4, 1}, {7, 0}, {12, 0}, {20, 1}};
+  for (const ModelCase& model : model_cases()) {
+    if (!plugin_built(model.file)) continue;
+    for (auto [cells, extra] : sizes) {
+      if (cells > model.max_cells) continue;
+      const uint32_t tets = 6 * cells * cells * (cells + extra);
+      benchmark::RegisterBenchmark(
+          ("StepBySize/" + std::string(model.label) + "/tets:" + std::to_string(tets)).c_str(),
+          [&model, cells, extra](benchmark::State& s) { step_by_size(s, model, cells, extra); })
+          ->Unit(benchmark::kMillisecond)
+          ->MinWarmUpTime(0.2);
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace tacta::bench
