@@ -59,7 +59,7 @@ std::string unknown_name_message(std::string_view noun, std::string_view word,
   std::string message = "unknown " + std::string(noun) + " '" + std::string(word) + "'";
   if (auto hint = closest_match(word, candidates)) message += "; did you mean '" + *hint + "'?";
   if (candidates.empty())
-    message += " (none available)";
+    message += " (none is allowed here)";
   else
     message += " (expected one of: " + join(candidates) + ")";
   return message;

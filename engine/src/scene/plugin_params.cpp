@@ -106,8 +106,11 @@ ParamSet resolve_params(std::span<const tacta_param_spec> schema,
   for (const tacta_param_spec& spec : schema) known.emplace_back(spec.name);
   for (const auto& [key, value] : given) {
     const std::string name = key.yaml().Scalar();
-    if (std::find(known.begin(), known.end(), name) == known.end())
-      key.fail(unknown_name_message("parameter", name, known) + " of plugin '" + plugin_name + "'");
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string message = "unknown parameter '" + name + "' for plugin '" + plugin_name + "'";
+    if (auto hint = closest_match(name, known)) message += "; did you mean '" + *hint + "'?";
+    message += known.empty() ? " (it takes no parameters)" : " (its parameters: " + join(known) + ")";
+    key.fail(message);
   }
   ParamSet set;
   for (const tacta_param_spec& spec : schema) {

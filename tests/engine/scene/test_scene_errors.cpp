@@ -80,6 +80,11 @@ TEST(SceneErrors, OutOfRange) {
   // Node indices are checked against a grid's node count: 3 x 3 x 3 = 27 nodes.
   expect_error(load_error(yaml(kMinimalScene) + "    probe_node: 27\n"), 6, 17,
                "bodies[0].probe_node", {"expected an integer in [0, 26]", "found '27'"});
+  const InputError corner = load_error(yaml(kMinimalScene), {"bodies.0.mesh=unit_square",
+                                                             "bodies.0.fixed=[{nodes: [1, 4]}]"});
+  EXPECT_EQ(corner.where().key_path, "bodies[0].fixed[0].nodes[1]");
+  EXPECT_NE(std::string(corner.what()).find("expected an integer in [0, 3], found '4'"),
+            std::string::npos) << corner.what();
   expect_error(load_error(yaml(kMinimalScene) + "clock: {duration_s: -1}\n"), 6, 21,
                "clock.duration_s", {"expected a number > 0"});
 }
@@ -105,8 +110,8 @@ TEST(SceneErrors, BadPluginParameter) {
   std::string text = yaml(kMinimalScene);
   text.replace(text.find("model: tensor_mass"), 18, "model: {name: tensor_mass, time_stp: 1e-3}");
   expect_error(load_error(text), 5, 32, "bodies[0].model.time_stp",
-               {"unknown parameter 'time_stp'", "did you mean 'time_step'?",
-                "expected one of: time_step", "of plugin 'tensor_mass'"});
+               {"unknown parameter 'time_stp' for plugin 'tensor_mass'",
+                "did you mean 'time_step'?", "its parameters: time_step"});
   text = yaml(kMinimalScene);
   text.replace(text.find("model: tensor_mass"), 18, "model: {name: tensor_mass, time_step: 1}");
   expect_error(load_error(text), 5, 43, "bodies[0].model.time_step",
