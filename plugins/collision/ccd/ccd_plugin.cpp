@@ -28,6 +28,12 @@ class CcdNarrowPhase {
                       "refine until the residual box is this small (conservative either way)"),
       sdk::int_param("max_iterations", 100000, 100, 10000000,
                      "boxes examined per query before answering 'contact' conservatively"),
+      sdk::real_param("friction", "", 0.3, 0.0, 10.0,
+                      "Coulomb friction coefficient of every contact (response)"),
+      sdk::int_param("response_iterations", 8, 1, 1000,
+                     "Gauss-Seidel passes over the contacts, positions then velocities"),
+      sdk::real_param("response_tolerance", "m", 1e-7, 0.0, 1e-2,
+                      "penetration of the thickness layer accepted after the passes"),
   };
 
   explicit CcdNarrowPhase(const tacta_collision_setup& setup) {

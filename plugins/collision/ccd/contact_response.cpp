@@ -225,19 +225,26 @@ uint32_t respond_to_contacts(tacta_collision_world& world, tacta_contact* contac
   for (uint32_t pass = 0; pass < settings.iterations; ++pass)
     for (uint32_t i = 0; i < contact_count; ++i)
       if (bind(world, contacts[i], k) == 0) apply_impulses(k, contacts[i], settings.friction, world.dt);
+  // Friction displaced positions tangentially to its own contact, which can tilt into a
+  // neighbour's normal: project again.
+  for (uint32_t pass = 0; pass < settings.iterations; ++pass)
+    for (uint32_t i = 0; i < contact_count; ++i)
+      if (bind(world, contacts[i], k) == 0) project(k);
   const double dt = world.dt > 0 ? world.dt : 1.0;
   for (uint32_t i = 0; i < contact_count; ++i) {
     tacta_contact& c = contacts[i];
     for (double& f : c.force) f /= dt;
     if (bind(world, c, k) != 0) continue;
-    double residual = violation(k);
-    if (residual >= -settings.tolerance) continue;
-    if (k.b.surface != nullptr) {  // surface-surface: fall back to the contact-free start
-      restart_side(k.a);
-      restart_side(k.b);
-      residual = violation(k) + k.thickness;  // now only actual penetration counts
+    if (k.b.surface == nullptr) {  // rigid side: kept at the thickness
+      if (violation(k) < -settings.tolerance) bits |= TACTA_COLLIDE_UNRESOLVED;
+      continue;
     }
-    if (residual < -settings.tolerance) bits |= TACTA_COLLIDE_UNRESOLVED;
+    // Surface-surface: inside the layer is allowed (CCD sees crossings, not proximity); a point
+    // past the other side falls back to the contact-free start.
+    if (violation(k) + k.thickness >= -settings.tolerance) continue;
+    restart_side(k.a);
+    restart_side(k.b);
+    if (violation(k) + k.thickness < -settings.tolerance) bits |= TACTA_COLLIDE_UNRESOLVED;
   }
   return bits;
 }

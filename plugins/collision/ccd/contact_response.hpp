@@ -20,11 +20,18 @@
 //     is clamped >= 0), then the tangential relative velocity is reduced by Coulomb friction
 //     (accumulated tangential impulse clamped to mu times the normal one). The friction's
 //     velocity change also moves the end positions (dx = dv dt), so static friction holds.
-//  3. CCD-limited motion, the fallback: a surface-surface contact still violated after the
-//     passes (conflicting constraints) puts the free vertices of both sides back at their
-//     start-of-tick positions (time of impact 0: the start of the tick was contact-free, the
-//     previous tick ended so and CCD checked the motion since). A contact that still has
-//     a point inside the other side (C < -h - tolerance) sets TACTA_COLLIDE_UNRESOLVED.
+//  3. Positions again, `iterations` passes: friction moved vertices tangentially to their own
+//     contact, which may tilt into a neighbouring contact's normal.
+//  4. CCD-limited motion, the fallback: a surface-surface contact whose point is still past the
+//     other side (C < -h - tolerance) after the passes (conflicting constraints) puts the free
+//     vertices of both sides back at their start-of-tick positions (time of impact 0: the start
+//     of the tick was contact-free, the previous tick ended so and CCD checked the motion
+//     since). A contact still violated then, or a rigid-side contact with C < -tolerance,
+//     sets TACTA_COLLIDE_UNRESOLVED. Surface-surface contacts may end inside the thickness layer
+//     (0 < gap < h): CCD reports crossings, not proximity, so nothing pushes them out there.
+//  The positions changed here are checked again by the caller's next detection round (the
+//  engine runs detect + respond again while surface-surface contacts appear, see
+//  collision_context.cpp), which catches crossings the corrections themselves create.
 //
 // contact.force: the accumulated velocity impulse on a divided by dt (N); b receives the
 // opposite. The position projection is a geometric correction and does not count as force.

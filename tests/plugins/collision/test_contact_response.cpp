@@ -1,0 +1,200 @@
+// Contact response (plugin ccd, respond) with vertex-shape detection (plugin convex, detect):
+// a soft block driven into a plane obstacle, a moving tool sphere pressing a block, a thin
+// fast tool that would tunnel, Coulomb friction against mu g, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "contact_pipeline.hpp"
+#include "soft_block.hpp"
+
+namespace {
+
+using tacta::testing::ContactPipeline;
+using tacta::testing::SoftBlock;
+
+constexpr double kDt = 1e-3;          // s
+constexpr double kThickness = 1e-4;   // m
+constexpr double kGravity = 9.81;     // m/s^2
+constexpr double kTolerance = 1e-9;   // m: allowed penetration of the thickness layer
+
+tacta_collision_world make_world(tacta_collision_surface* surfaces, uint32_t surface_count,
+                                 const tacta_collision_shape* tools, uint32_t tool_count,
+                                 const tacta_collision_shape* obstacles, uint32_t obstacle_count) {
+  tacta_collision_world w{};
+  w.struct_size = sizeof w;
+  w.surface_count = surface_count;
+  w.surfaces = surfaces;
+  w.shape_count = tool_count;
+  w.shapes = tools;
+  w.obstacle_count = obstacle_count;
+  w.obstacles = obstacles;
+  w.dt = kDt;
+  return w;
+}
+
+TEST(ContactResponse, BlockDrivenIntoPlaneStaysAboveItAndCarriesItsWeight) {
+  SoftBlock block = SoftBlock::make(3, 0.05, {0.0, 0.0, 0.004}, 0.2);
+  for (uint32_t v = 0; v < block.vertex_count(); ++v) block.velocities[3 * v + 2] = -1.0;  // m/s
+  tacta_collision_surface surface = block.view(0, kThickness);
+  const tacta_collision_shape floor = tacta::testing::plane(0, 0, 1, 0.0);
+  tacta_collision_world world = make_world(&surface, 1, nullptr, 0, &floor, 1);
+  ContactPipeline pipeline(0.3);
+  pipeline.prepare(world);
+  double support = 0;  // N, sum over the last 100 ticks of the contact forces' z
+  for (int tick = 0; tick < 600; ++tick) {
+    block.integrate(kDt, {0, 0, -kGravity});
+    const auto r = pipeline.tick(world);
+    ASSERT_EQ(r.bits & (TACTA_COLLIDE_UNRESOLVED | TACTA_COLLIDE_NOT_FINITE), 0u) << "tick " << tick;
+    for (uint32_t v = 0; v < block.vertex_count(); ++v)
+      ASSERT_GE(block.end[3 * v + 2], kThickness - kTolerance) << "vertex " << v << " tick " << tick;
+    if (tick >= 500)
+      for (uint32_t c = 0; c < pipeline.contact_count(); ++c) support += pipeline.contacts()[c].force[2];
+  }
+  // At rest the plane carries the weight: mean contact force = m g (within 5 %).
+  EXPECT_NEAR(support / 100.0, 0.2 * kGravity, 0.05 * 0.2 * kGravity);
+}
+
+TEST(ContactResponse, MovingToolSpherePressesBlockWithoutEnteringIt) {
+  SoftBlock block = SoftBlock::make(4, 0.05, {-0.025, -0.025, 0.0}, 0.5);
+  block.damping = 0.1;
+  for (int j = 0; j <= 4; ++j)  // bottom layer fixed
+    for (int i = 0; i <= 4; ++i) block.inverse_masses[block.index(i, j, 0)] = 0.0;
+  const std::vector<double> rest = block.start;
+  tacta_collision_surface surface = block.view(0, kThickness);
+  const double radius = 0.02, speed = 0.1;  // m, m/s downwards
+  tacta_collision_shape tool = tacta::testing::sphere_tool(radius, 0.003, -0.002, 0.05 + radius + 0.002);
+  tacta_collision_world world = make_world(&surface, 1, &tool, 1, nullptr, 0);
+  ContactPipeline pipeline(0.3);
+  pipeline.prepare(world);
+  double push_z = 0;  // N, force of the block on the tool at the last tick
+  for (int tick = 0; tick < 200; ++tick) {
+    tool.pose_start = tool.pose_end;
+    tool.pose_end.position[2] -= speed * kDt;
+    block.integrate(kDt, {0, 0, 0});
+    const auto r = pipeline.tick(world);
+    ASSERT_EQ(r.bits & TACTA_COLLIDE_UNRESOLVED, 0u) << "tick " << tick;
+    push_z = 0;
+    for (uint32_t c = 0; c < pipeline.contact_count(); ++c) push_z -= pipeline.contacts()[c].force[2];
+    for (uint32_t v = 0; v < block.vertex_count(); ++v) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(block.end[3 * v + a] - tool.pose_end.position[a], 2);
+      ASSERT_GE(std::sqrt(d2), radius + kThickness - kTolerance) << "vertex " << v << " tick " << tick;
+      if (block.inverse_masses[v] == 0.0) {
+        for (int a = 0; a < 3; ++a) ASSERT_EQ(block.end[3 * v + a], rest[3 * v + a]);
+      }
+    }
+  }
+  // The tool went 18 mm into the block's rest shape: the block pushes it back up.
+  EXPECT_GT(push_z, 0.1);
+  EXPECT_LT(block.end[3 * block.index(2, 2, 4) + 2], 0.05 - 0.01);  // top centre pushed down
+}
+
+TEST(ContactResponse, FastThinToolCannotTunnelThroughAVertex) {
+  // A 2 mm sphere moves 12 mm in one tick straight through a still vertex: the swept test
+  // catches it and the vertex ends below the sphere, on the side the sphere came from.
+  std::vector<double> start{0, 0, 0}, end{0, 0, 0}, velocity{0, 0, 0}, inverse_mass{10.0};
+  tacta_collision_surface surface{};
+  surface.vertex_count = 1;
+  surface.positions_start = start.data();
+  surface.positions_end = end.data();
+  surface.velocities = velocity.data();
+  surface.inverse_masses = inverse_mass.data();
+  surface.thickness = kThickness;
+  tacta_collision_shape tool = tacta::testing::sphere_tool(0.002, 0, 0, 0.006);
+  tool.pose_end.position[2] = -0.006;
+  tacta_collision_world world = make_world(&surface, 1, &tool, 1, nullptr, 0);
+  tacta::testing::CollisionPlugin convex("tacta_convex.so", "convex");
+  tacta::testing::CollisionPlugin ccd("tacta_ccd.so", "ccd");
+  tacta_contact contacts[4];
+  uint32_t count = 0;
+  EXPECT_EQ(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts, 4, &count), 0u);
+  ASSERT_EQ(count, 1u);
+  EXPECT_EQ(contacts[0].type, TACTA_CONTACT_SHAPE_VERTEX);
+  // In the sphere's frame the vertex rises into its lower side: normal -z, not the exit side.
+  EXPECT_NEAR(contacts[0].normal[2], -1.0, 1e-12);
+  EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, contacts, count), 0u);
+  EXPECT_NEAR(end[2], -0.006 - 0.002 - kThickness, 1e-9);
+  EXPECT_NEAR(velocity[2], -12.0, 1e-9);  // carried along: normal velocity = the tool's, m/s
+}
+
+// Coulomb: a block sliding on the plane decelerates at mu g (measured on its centre of mass).
+double sliding_deceleration(double mu) {
+  SoftBlock block = SoftBlock::make(2, 0.04, {0.0, 0.0, kThickness}, 0.1);
+  block.stiffness = 300;
+  block.damping = 0.1;
+  for (uint32_t v = 0; v < block.vertex_count(); ++v) block.velocities[3 * v] = 1.0;  // m/s
+  tacta_collision_surface surface = block.view(0, kThickness);
+  const tacta_collision_shape floor = tacta::testing::plane(0, 0, 1, 0.0);
+  tacta_collision_world world = make_world(&surface, 1, nullptr, 0, &floor, 1);
+  ContactPipeline pipeline(mu);
+  pipeline.prepare(world);
+  // Least-squares slope of the mean x velocity over 50..200 ms (after the block settles).
+  double st = 0, sv = 0, stt = 0, stv = 0;
+  int n = 0;
+  for (int tick = 1; tick <= 200; ++tick) {
+    block.integrate(kDt, {0, 0, -kGravity});
+    pipeline.tick(world);
+    if (tick < 50) continue;
+    const double v = block.momentum()[0] / 0.1, t = tick * kDt;
+    st += t, sv += v, stt += t * t, stv += t * v, ++n;
+  }
+  return -(n * stv - st * sv) / (n * stt - st * st);
+}
+
+TEST(ContactResponse, FrictionDeceleratesSlidingBlockAtMuG) {
+  const double mu = 0.4;
+  EXPECT_NEAR(sliding_deceleration(mu), mu * kGravity, 0.05 * mu * kGravity);
+  EXPECT_NEAR(sliding_deceleration(0.0), 0.0, 0.05 * mu * kGravity);
+}
+
+TEST(ContactResponse, BadInputIsReportedNotFatal) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> start{0, 0, 0, 1, 0, 0}, end{0, 0, -0.01, nan, 0, 0}, velocity(6, 0.0);
+  std::vector<double> inverse_mass{0.0, 1.0};  // vertex 0 is fixed
+  tacta_collision_surface surface{};
+  surface.vertex_count = 2;
+  surface.positions_start = start.data();
+  surface.positions_end = end.data();
+  surface.velocities = velocity.data();
+  surface.inverse_masses = inverse_mass.data();
+  surface.thickness = kThickness;
+  const tacta_collision_shape floor = tacta::testing::plane(0, 0, 1, 0.0);
+  tacta_collision_world world = make_world(&surface, 1, nullptr, 0, &floor, 1);
+  tacta::testing::CollisionPlugin convex("tacta_convex.so", "convex");
+  tacta::testing::CollisionPlugin ccd("tacta_ccd.so", "ccd");
+  tacta_contact contacts[8];
+  uint32_t count = 0;
+  // NaN vertex skipped and flagged; the fixed vertex below the plane still found.
+  EXPECT_EQ(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts, 8, &count),
+            TACTA_COLLIDE_NOT_FINITE);
+  ASSERT_EQ(count, 1u);
+  EXPECT_NE(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts + 1, 0, &count) &
+                TACTA_COLLIDE_OVERFLOW, 0u);
+  // A fixed vertex cannot be moved out: reported unresolved, left where it is.
+  EXPECT_NE(ccd.api().respond(ccd.instance(), &world, contacts, 1) & TACTA_COLLIDE_UNRESOLVED, 0u);
+  EXPECT_EQ(end[2], -0.01);
+  // Malformed contacts: out-of-range indices, unknown type, NaN or zero normal, NaN position.
+  tacta_contact bad[5];
+  for (auto& c : bad) c = contacts[0];
+  bad[0].index_a = 7;
+  bad[1].type = 99;
+  bad[2].normal[0] = nan;
+  bad[3].normal[0] = bad[3].normal[1] = bad[3].normal[2] = 0;
+  bad[4].nodes_a[0] = 1;  // the NaN vertex
+  const uint32_t bits = ccd.api().respond(ccd.instance(), &world, bad, 5);
+  EXPECT_NE(bits & TACTA_COLLIDE_DEGENERATE, 0u);
+  EXPECT_NE(bits & TACTA_COLLIDE_NOT_FINITE, 0u);
+  EXPECT_EQ(end[2], -0.01);
+  EXPECT_TRUE(std::isnan(end[3]));
+  EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, nullptr, 0), 0u);
+  // Empty world, NaN tool pose.
+  tacta_collision_shape tool = tacta::testing::sphere_tool(0.01, nan, 0, 0);
+  tacta_collision_world empty = make_world(nullptr, 0, &tool, 1, nullptr, 0);
+  EXPECT_EQ(convex.api().detect(convex.instance(), &empty, nullptr, 0, contacts, 8, &count),
+            TACTA_COLLIDE_NOT_FINITE);
+  EXPECT_EQ(count, 0u);
+}
+
+}  // namespace
