@@ -18,6 +18,8 @@ int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotat
     const Eigen::Matrix3d b = deformation * rotation.toRotationMatrix().transpose();
     const Eigen::Vector3d torque(b(2, 1) - b(1, 2), b(0, 2) - b(2, 0), b(1, 0) - b(0, 1));
     const double trace = b.trace();
+    // Near the answer the Hessian is about 2 I (B close to I): stop before inverting it.
+    if (torque.squaredNorm() < 4.0 * kAngleTolerance2 * (trace * trace) / 9.0) break;
     Eigen::Matrix3d hessian = -0.5 * (b + b.transpose());
     hessian.diagonal().array() += trace;
     // Positive definite by leading minors; otherwise take the safe gradient step.
@@ -29,8 +31,6 @@ int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotat
       omega = hessian.inverse() * torque;
     else
       omega = torque / (std::abs(trace) + 1e-9);
-    const double angle2 = omega.squaredNorm();
-    if (angle2 < kAngleTolerance2) break;
     // Rotate by omega without trigonometry: q += (0, omega/2) q, then renormalise. That turns
     // by 2 atan(|omega|/2) about the same axis: exact to second order, same fixed point.
     const Eigen::Quaterniond turn(0.0, 0.5 * omega.x(), 0.5 * omega.y(), 0.5 * omega.z());

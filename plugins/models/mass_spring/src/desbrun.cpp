@@ -35,17 +35,21 @@ DesbrunSolver::DesbrunSolver(const MassSpringModel& model, double dt) {
   factor_.compute(matrix);
   if (factor_.info() != Eigen::Success)
     throw std::invalid_argument("mass_spring: Desbrun matrix M + dt^2 L_k is not positive definite");
+  inverse_d_ = factor_.vectorD().cwiseInverse();
   for (Eigen::VectorXd* v : {&column_, &permuted_, &velocity_column_, &laplacian_v_}) v->setZero(n);
   force_.setZero(3 * n);
   dv_.setZero(3 * n);
 }
 
 void DesbrunSolver::solve_in_place(Eigen::VectorXd& column) noexcept {
-  permuted_.noalias() = factor_.permutationP() * column;
+  // (P b)[P(i)] = b[i]: written as loops, Eigen's permutation products allocate here.
+  const auto& forward = factor_.permutationP().indices();
+  for (Eigen::Index i = 0; i < column.size(); ++i) permuted_[forward[i]] = column[i];
   factor_.matrixL().solveInPlace(permuted_);
-  permuted_.array() /= factor_.vectorD().array();
+  permuted_.array() *= inverse_d_.array();
   factor_.matrixU().solveInPlace(permuted_);
-  column.noalias() = factor_.permutationPinv() * permuted_;
+  const auto& backward = factor_.permutationPinv().indices();
+  for (Eigen::Index i = 0; i < column.size(); ++i) column[backward[i]] = permuted_[i];
 }
 
 void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state, double dt) noexcept {

@@ -31,6 +31,7 @@ class DesbrunSolver {
 
   Eigen::SparseMatrix<double> laplacian_;  // L_k, N/m
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
+  Eigen::VectorXd inverse_d_;  // 1 / D of the factor (vectorD() returns a copy)
   Eigen::VectorXd force_, column_, permuted_, velocity_column_, laplacian_v_;
   Eigen::VectorXd dv_;  // 3 per node
   bool any_fixed_ = false;

@@ -41,6 +41,7 @@ ImplicitEulerSolver::ImplicitEulerSolver(const TensorMassModel& model,
   factor_.compute(matrix);
   if (factor_.info() != Eigen::Success)
     throw std::invalid_argument("tensor_mass: implicit matrix M + dt C + dt^2 K is not positive definite");
+  inverse_d_ = factor_.vectorD().cwiseInverse();
   rhs_.setZero(n);
   permuted_.setZero(n);
   dv_.setZero(n);
@@ -61,11 +62,14 @@ uint32_t ImplicitEulerSolver::step(const TensorMassModel& model, tacta_body_stat
                                   (alpha_ * mass_[i] + damping_) * v[c] -
                                   (beta_ + dt) * stiffness_v_[c]);
   // A = P^T L D L^T P  ->  dv = P^T L^-T D^-1 L^-1 P rhs, without temporaries.
-  permuted_.noalias() = factor_.permutationP() * rhs_;
+  // (P b)[P(i)] = b[i]: written as loops, Eigen's permutation products allocate here.
+  const auto& forward = factor_.permutationP().indices();
+  for (Eigen::Index i = 0; i < rhs_.size(); ++i) permuted_[forward[i]] = rhs_[i];
   factor_.matrixL().solveInPlace(permuted_);
-  permuted_.array() /= factor_.vectorD().array();
+  permuted_.array() *= inverse_d_.array();
   factor_.matrixU().solveInPlace(permuted_);
-  dv_.noalias() = factor_.permutationPinv() * permuted_;
+  const auto& backward = factor_.permutationPinv().indices();
+  for (Eigen::Index i = 0; i < rhs_.size(); ++i) dv_[backward[i]] = permuted_[i];
   for (uint32_t i = 0; i < model.node_count(); ++i)
     for (uint32_t c = 3 * i; c < 3 * i + 3; ++c) {
       if (fixed_[i]) {

@@ -3,7 +3,7 @@
 // with C = alpha M + beta K + c I. The matrix is assembled from the model's K_ii / K_ij blocks
 // and factorised (Eigen SimplicialLDLT) once at create, for the setup's dt. Fixed nodes get
 // identity rows and columns (dv = 0). The solve is done with the factor's triangular parts on
-// preallocated vectors, because Eigen's solve() permutes in place through a temporary mask.
+// preallocated vectors, because Eigen's solve() and permutation products allocate.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -30,6 +30,7 @@ class ImplicitEulerSolver {
   const std::vector<uint8_t>& fixed_;
   double alpha_, beta_, damping_, dt_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
+  Eigen::VectorXd inverse_d_;  // 1 / D of the factor (vectorD() returns a copy)
   Eigen::VectorXd rhs_, permuted_, dv_, force_, stiffness_v_;
 };
 

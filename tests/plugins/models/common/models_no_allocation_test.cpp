@@ -1,0 +1,119 @@
+// The 1 kHz path allocates nothing: malloc and friends are interposed in this executable and
+// counted while the models step. (glibc only; skipped under AddressSanitizer, which owns malloc.)
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <memory>
+
+#include "fd_debunne_model.hpp"
+#include "mass_spring_model.hpp"
+#include "tacta/models/model_checks.hpp"
+#include "tacta/models/test_meshes.hpp"
+#include "tensor_mass_model.hpp"
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TACTA_COUNT_ALLOCATIONS 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TACTA_COUNT_ALLOCATIONS 0
+#endif
+#endif
+#ifndef TACTA_COUNT_ALLOCATIONS
+#define TACTA_COUNT_ALLOCATIONS 1
+#endif
+
+namespace {
+bool g_counting = false;
+long g_allocations = 0;
+}  // namespace
+
+#if TACTA_COUNT_ALLOCATIONS
+extern "C" {
+void* __libc_malloc(size_t);
+void* __libc_calloc(size_t, size_t);
+void* __libc_realloc(void*, size_t);
+void* __libc_memalign(size_t, size_t);
+void* malloc(size_t size) {
+  if (g_counting) ++g_allocations;
+  return __libc_malloc(size);
+}
+void* calloc(size_t count, size_t size) {
+  if (g_counting) ++g_allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, size_t size) {
+  if (g_counting) ++g_allocations;
+  return __libc_realloc(pointer, size);
+}
+int posix_memalign(void** out, size_t alignment, size_t size) {
+  if (g_counting) ++g_allocations;
+  *out = __libc_memalign(alignment, size);
+  return *out ? 0 : 12;  // ENOMEM
+}
+void* aligned_alloc(size_t alignment, size_t size) {
+  if (g_counting) ++g_allocations;
+  return __libc_memalign(alignment, size);
+}
+}
+#endif
+
+using namespace tacta::models;
+
+namespace {
+
+// Builds the model, steps once outside the count (first-touch paths), then counts 20 steps.
+template <class Model, class Options>
+long allocations_in_steps(const Options& options, bool with_begin) {
+  TestMesh mesh = box_tet_mesh({3, 2, 2}, {0.3, 0.2, 0.2}, 1000.0);
+  mesh.fix_plane(0, 0.0);
+  const tacta_mesh_view view = mesh.view();
+  const tacta_material material = make_material(1e5, 0.3, 1000.0);
+  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
+                          mesh.fixed.data(), nullptr, 0, 1e-4};
+  Model model(setup, options);
+  checks::StateBuffers s(mesh.positions);
+  for (size_t i = 2; i < s.f_ext.size(); i += 3) s.f_ext[i] = -9.81 * mesh.masses[i / 3];
+  tacta_body_state st = s.state();
+  if constexpr (requires { model.begin(st, 1e-4); }) {
+    if (with_begin) model.begin(st, 1e-4);
+  }
+  model.step(st, 1e-4);
+  std::vector<double> forces(s.x.size());
+  g_allocations = 0;
+  g_counting = true;
+  for (int k = 0; k < 20; ++k) {
+    st = s.state();
+    model.step(st, 1e-4);
+  }
+  model.internal_forces(s.x.data(), forces.data());
+  g_counting = false;
+  return g_allocations;
+}
+
+}  // namespace
+
+TEST(ModelsNoAllocation, EveryIntegratorStepsWithoutAllocating) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "malloc belongs to the sanitizer here";
+  // The counter itself works: a vector allocates.
+  g_counting = true;
+  auto probe = std::make_unique<std::vector<double>>(100);
+  g_counting = false;
+  ASSERT_GT(g_allocations, 0);
+
+  for (auto integrator : {FdDebunneOptions::Integrator::kSymplecticEuler, FdDebunneOptions::Integrator::kExplicitEuler}) {
+    FdDebunneOptions o;
+    o.integrator = integrator;
+    EXPECT_EQ((allocations_in_steps<FdDebunneModel>(o, false)), 0) << "fd_debunne " << static_cast<int>(integrator);
+  }
+  for (auto integrator : {TensorMassOptions::Integrator::kCentralDifference, TensorMassOptions::Integrator::kImplicitEuler}) {
+    TensorMassOptions o;
+    o.integrator = integrator;
+    EXPECT_EQ((allocations_in_steps<TensorMassModel>(o, true)), 0) << "tensor_mass " << static_cast<int>(integrator);
+  }
+  for (auto integrator : {MassSpringOptions::Integrator::kSymplecticEuler, MassSpringOptions::Integrator::kImplicitEuler,
+                          MassSpringOptions::Integrator::kDesbrun}) {
+    MassSpringOptions o;
+    o.integrator = integrator;
+    EXPECT_EQ((allocations_in_steps<MassSpringModel>(o, false)), 0) << "mass_spring " << static_cast<int>(integrator);
+  }
+}
