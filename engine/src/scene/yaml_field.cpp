@@ -222,9 +222,17 @@ std::vector<uint32_t> Field::indices() const {
   return out;
 }
 
+bool Field::from_override() const {
+  for (const OverrideOrigin& origin : context_->overrides)
+    if (is_path_prefix(origin.key_path, path_)) return true;
+  return false;
+}
+
 std::string Field::file_path() const {
   std::filesystem::path path(text());
-  if (path.is_relative()) path = context_->directory / path;
+  // A path typed on the command line (--set) is relative to where the command runs.
+  if (path.is_relative())
+    path = (from_override() ? std::filesystem::current_path() : context_->directory) / path;
   return path.lexically_normal().string();
 }
 

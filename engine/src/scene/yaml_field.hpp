@@ -96,8 +96,10 @@ class Field {
   Vec3 vec3(Range each = Range::any()) const;
   std::vector<double> reals(size_t count, Range each = Range::any()) const;  // count 0: any
   std::vector<uint32_t> indices() const;
-  // A path relative to the scene folder, made absolute.
+  // An absolute path: a relative one is taken from the scene's folder, or from the working
+  // directory when the value came from a --set override.
   std::string file_path() const;
+  bool from_override() const;  // this value, or a map holding it, was written by --set
 
  private:
   const LoadContext* context_;

@@ -1,6 +1,8 @@
 // --set overrides: wildcard, index, body name, created keys, and their errors.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "fake_schemas.hpp"
 
 namespace tacta::testing {
@@ -62,6 +64,14 @@ TEST(SceneOverrides, CreatesMissingKeysAndParsesValuesAsYaml) {
   EXPECT_EQ(s.bodies[0].uniform_velocity, (Vec3{1, 2, 3}));
   // Later overrides win.
   EXPECT_EQ(load(yaml(kTwoBodies), {"seed=3", "seed=4"}).seed, 4u);
+}
+
+TEST(SceneOverrides, RelativePathsFromTheCommandLineUseTheWorkingDirectory) {
+  const std::string scene = yaml(kTwoBodies) + "devices: [{name: d, plugin: replay, params: {file: a.csv}}]\n";
+  EXPECT_EQ(std::string(load(scene).devices[0].params.find("file")->text), "/scenes/a.csv");
+  const SceneDesc s = load(scene, {"devices.*.params={file: logs/b.csv}"});
+  EXPECT_EQ(std::string(s.devices[0].params.find("file")->text),
+            (std::filesystem::current_path() / "logs/b.csv").lexically_normal().string());
 }
 
 TEST(SceneOverrides, MalformedOverrides) {
