@@ -25,10 +25,11 @@ struct SquareRun {
   int fault_step = -1;
 };
 
-SquareRun run_square(FdDebunneOptions options, double corner, double dt, int steps) {
-  FdBody body(quad_grid_mesh(1, 1, 1.0, 1.0, 1.0), make_material_lame(1.0, 0.01, 1.0), options);
+SquareRun run_square(FdDebunneOptions options, double corner, double dt, int steps, uint32_t cells = 1) {
+  FdBody body(quad_grid_mesh(cells, cells, 1.0, 1.0, 1.0), make_material_lame(1.0, 0.01, 1.0), options);
   checks::StateBuffers s(body.mesh.positions);
-  s.x[9] += corner, s.x[10] += corner;  // NE
+  const size_t ne = 3 * (static_cast<size_t>(cells + 1) * (cells + 1) - 1);  // last node: (1, 1)
+  s.x[ne] += corner, s.x[ne + 1] += corner;
   auto energy = [&] {
     double e = body.model->elastic_energy(s.x.data());
     for (size_t i = 0; i < s.v.size(); ++i) e += 0.5 * body.mesh.masses[i / 3] * s.v[i] * s.v[i];
@@ -48,12 +49,18 @@ SquareRun run_square(FdDebunneOptions options, double corner, double dt, int ste
   for (size_t e = 0; e < body.mesh.edges.size(); e += 2) {
     const size_t a = 3 * body.mesh.edges[e], b = 3 * body.mesh.edges[e + 1];
     const double l = std::hypot(s.x[a] - s.x[b], s.x[a + 1] - s.x[b + 1]);
-    r.shape_error_end = std::max(r.shape_error_end, std::abs(l - 1.0));
+    const double rest = std::hypot(body.mesh.positions[a] - body.mesh.positions[b],
+                                   body.mesh.positions[a + 1] - body.mesh.positions[b + 1]);
+    r.shape_error_end = std::max(r.shape_error_end, std::abs(l - rest));
   }
-  for (uint32_t i = 0; i < 4; ++i) {
-    r.com_x += 0.25 * s.x[3 * i], r.com_y += 0.25 * s.x[3 * i + 1];
+  double total_mass = 0;
+  for (uint32_t i = 0; i < body.mesh.node_count(); ++i) {
+    const double m = body.mesh.masses[i];
+    total_mass += m;
+    r.com_x += m * s.x[3 * i], r.com_y += m * s.x[3 * i + 1];
     r.speed_end = std::max(r.speed_end, std::hypot(s.v[3 * i], s.v[3 * i + 1]));
   }
+  r.com_x /= total_mass, r.com_y /= total_mass;
   return r;
 }
 
@@ -104,4 +111,23 @@ TEST(UnitSquareExperiment, CaseBKeepsShapeAndSettlesShiftedByTheCentreOfMass) {
   // there, i.e. the whole square ends translated by (-0.0125, -0.0125) m.
   EXPECT_NEAR(b.com_x, 0.5 - 0.0125, 1e-9);
   EXPECT_NEAR(b.com_y, 0.5 - 0.0125, 1e-9);
+}
+
+TEST(UnitSquareExperiment, RefinedSquareAndStableIntegrator) {
+  // The paper's next step: refine the square (8x8 quads, the same NE corner displacement).
+  // Explicit Euler's per-step gain sqrt(1 + (omega dt)^2) grows with the highest frequency,
+  // which grows as the mesh is refined: case A diverges sooner. Symplectic Euler stays bounded.
+  const SquareRun a_fine = run_square(paper_options(0.0), -0.1, 0.01, 3710, 8);
+  print("case A on 8x8 quads, explicit Euler", a_fine);
+  FdDebunneOptions symplectic = paper_options(0.0);
+  symplectic.integrator = FdDebunneOptions::Integrator::kSymplecticEuler;
+  const SquareRun a_fine_sym = run_square(symplectic, -0.1, 0.01, 3710, 8);
+  print("case A on 8x8 quads, symplectic Euler", a_fine_sym);
+  EXPECT_GT(a_fine.energy_max / a_fine.energy_start, 2.0);
+  EXPECT_EQ(a_fine_sym.status, 0u);
+  EXPECT_LT(a_fine_sym.energy_max, 1.5 * a_fine_sym.energy_start);  // O(omega dt) oscillation
+  FdDebunneOptions damped = paper_options(0.2 / 64);  // the same damping per unit mass
+  const SquareRun b_fine = run_square(damped, -0.05, 0.04, 9472, 8);
+  print("case B on 8x8 quads, explicit Euler, damping 0.2/64 per node", b_fine);
+  EXPECT_NE(b_fine.status, 0u);  // dt = 0.04 s is beyond the refined mesh's explicit limit
 }
