@@ -60,8 +60,8 @@ int run_scene(const RunArgs& args) {
       std::printf(", %llu deadline misses", static_cast<unsigned long long>(result.schedule.deadline_misses));
     std::printf("\n");
     for (const BodyResult& b : result.bodies)
-      std::printf("  body %s (%s): %zu nodes, %zu elements, max displacement %.6g m%s%s\n", b.name.c_str(),
-                  b.model.c_str(), b.nodes, b.elements, b.max_displacement_m, b.frozen ? ", FROZEN: " : "",
+      std::printf("  body %s (%s): %zu nodes (%zu fixed), %zu elements, max displacement %.6g m%s%s\n", b.name.c_str(),
+                  b.model.c_str(), b.nodes, b.fixed_nodes, b.elements, b.max_displacement_m, b.frozen ? ", FROZEN: " : "",
                   b.fault.c_str());
     for (const std::string& f : result.outputs) std::printf("  wrote %s\n", f.c_str());
     std::printf("  state hash %s\n", result.state_hash.c_str());

@@ -229,29 +229,42 @@ void CollisionContext::refit(double time, double dt) noexcept {
     if (inst->api.update != nullptr) inst->api.update(inst->instance, &view_);
 }
 
+// Rounds of detect + respond: the response's corrections are motions too, and can cross a
+// face that the first round never tested; the next round's CCD (start -> corrected end) finds
+// those. Rounds stop when a round finds no surface-surface contact. Contacts of all rounds are
+// published (a resting contact found again has a force near zero: its velocity was corrected).
 uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
+  constexpr int kMaxRounds = 3;
   contact_count_ = 0;
   if (!response_enabled_) return TACTA_COLLIDE_OK;
-  refit(time, dt);
   uint32_t bits = 0;
-  uint32_t pair_count = 0;
   const CollisionInstance* broad = nullptr;
   for (auto& inst : instances_)
     if (broad == nullptr && inst->api.find_pairs != nullptr) broad = inst.get();
-  if (broad != nullptr)
-    bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
-  for (auto& inst : instances_) {
-    if (inst->api.detect == nullptr) continue;
-    uint32_t found = 0;
-    const bool pairwise = inst.get() != broad && broad != nullptr && inst->api.vertex_face != nullptr;
-    bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
-                             contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
-    contact_count_ += found;
-  }
-  for (auto& inst : instances_) {
-    if (inst->api.respond == nullptr) continue;
-    bits |= inst->api.respond(inst->instance, &view_, contacts_.data(), contact_count_);
-    break;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    refit(time, dt);
+    uint32_t pair_count = 0;
+    if (broad != nullptr)
+      bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
+    const uint32_t first = contact_count_;
+    for (auto& inst : instances_) {
+      if (inst->api.detect == nullptr) continue;
+      uint32_t found = 0;
+      const bool pairwise = inst.get() != broad && broad != nullptr && inst->api.vertex_face != nullptr;
+      bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
+                               contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
+      contact_count_ += found;
+    }
+    for (auto& inst : instances_) {
+      if (inst->api.respond == nullptr) continue;
+      bits |= inst->api.respond(inst->instance, &view_, contacts_.data() + first, contact_count_ - first);
+      break;
+    }
+    bool surface_contacts = false;
+    for (uint32_t c = first; c < contact_count_; ++c)
+      surface_contacts = surface_contacts || contacts_[c].type == TACTA_CONTACT_VERTEX_FACE ||
+                         contacts_[c].type == TACTA_CONTACT_EDGE_EDGE;
+    if (!surface_contacts) break;
   }
   return bits;
 }

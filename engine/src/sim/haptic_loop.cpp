@@ -65,6 +65,7 @@ Snapshot HapticLoop::make_prototype(World& world) {
 bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   const auto start = std::chrono::steady_clock::now();
   tick_index_ = index;
+  tick_time_ = time;
   apply_swaps(time);
   read_devices(time);
   for (size_t i = 0; i < world_.body_count(); ++i) {
@@ -204,6 +205,19 @@ void HapticLoop::write_devices(double time, bool zero_force) noexcept {
         ++st.steady_ticks;
         st.steady_contact_N += (sent - st.steady_contact_N) / static_cast<double>(st.steady_ticks);
       }
+    }
+    if (d == 0 && device_log_) {
+      // Logged at the time the sample was read, so a replay at the same ticks is exact.
+      DeviceLogSample logged;
+      logged.time = tick_time_;
+      for (int a = 0; a < 3; ++a) {
+        logged.position[a] = slot.sample.position[a];
+        logged.velocity[a] = slot.sample.velocity[a];
+        logged.force[a] = slot.force[static_cast<size_t>(a)];
+      }
+      for (int a = 0; a < 4; ++a) logged.orientation[a] = slot.sample.orientation[a];
+      logged.buttons = slot.sample.buttons;
+      device_log_->record(logged);
     }
     if (slot.state == TACTA_DEVICE_CONNECTED) {
       tacta_device_command command{};

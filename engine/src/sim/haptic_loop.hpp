@@ -4,8 +4,10 @@
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include "recorders.hpp"
+#include "tacta/device_log.hpp"
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
 #include "tacta/sim/triple_buffer.hpp"
@@ -36,6 +38,9 @@ class HapticLoop final : public HapticTask {
  public:
   HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks);
   void add_interaction(Interaction* interaction) { interactions_.push_back(interaction); }
+  // Keeps the first device's samples and sent forces (a replayable session log), `ticks` at most.
+  void enable_device_log(size_t ticks) { device_log_ = std::make_unique<DeviceLogRecorder>(ticks); }
+  const DeviceLogRecorder* device_log() const { return device_log_.get(); }
 
   bool tick(uint64_t index, double time, double dt) noexcept override;
   void publish(double time) noexcept override;
@@ -66,7 +71,9 @@ class HapticLoop final : public HapticTask {
   double next_record_s_ = 0;
   double last_tick_ms_ = 0;
   uint64_t tick_index_ = 0;
-  std::vector<double> stress_scratch_;  // largest body's node count
+  std::vector<double> stress_scratch_;
+  std::unique_ptr<DeviceLogRecorder> device_log_;
+  double tick_time_ = 0;  // s, start of the current tick (when devices were read)  // largest body's node count
 };
 
 }  // namespace tacta

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -104,6 +105,10 @@ RunResult Simulation::run(const RunOptions& options) {
   const auto expected_ticks = static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);
   TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
   HapticLoop loop(world, snapshots, expected_ticks);
+  if (!options.record_log.empty()) {
+    if (world.device_count() == 0) throw InputError({scene.path, 0, 0, "devices"}, "--record: the scene has no device to record");
+    loop.enable_device_log(expected_ticks);
+  }
   if (impl_->haptics) loop.add_interaction(impl_->haptics.get());
   if (impl_->response) loop.add_interaction(impl_->response.get());
   OutputRenderTask render(snapshots);
@@ -118,6 +123,7 @@ RunResult Simulation::run(const RunOptions& options) {
     br.name = b.name;
     br.model = b.model->name();
     br.nodes = b.node_count();
+    br.fixed_nodes = static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
     br.elements = element_count(b.topology->mesh);
     br.max_displacement_m = b.max_displacement_m;
     br.kinetic_energy_J = b.kinetic_energy();
@@ -130,6 +136,12 @@ RunResult Simulation::run(const RunOptions& options) {
   result.faults = loop.faults().rows().size();
   result.exit_code = result.faults > 0 ? 1 : 0;
 
+  if (loop.device_log() != nullptr) {
+    std::filesystem::path log(options.record_log);
+    if (log.has_parent_path()) std::filesystem::create_directories(log.parent_path());
+    loop.device_log()->write_csv(options.record_log);
+    result.outputs.push_back(options.record_log);
+  }
   if (!options.out_dir.empty()) {
     std::filesystem::create_directories(options.out_dir);
     write_csv_records(options.out_dir, loop, world, result);

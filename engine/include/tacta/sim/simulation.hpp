@@ -25,7 +25,7 @@ struct RunOptions {
 
 struct BodyResult {
   std::string name, model;
-  size_t nodes = 0, elements = 0;
+  size_t nodes = 0, elements = 0, fixed_nodes = 0;
   double max_displacement_m = 0, kinetic_energy_J = 0, elastic_energy_J = 0;
   double initial_energy_J = 0;  // kinetic + elastic at t = 0
   bool frozen = false;
