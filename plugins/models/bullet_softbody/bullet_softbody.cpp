@@ -1,0 +1,160 @@
+#include "bullet_softbody.hpp"
+
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include <BulletSoftBody/btSoftBody.h>
+#include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "tacta/models/tet_geometry.hpp"
+
+namespace tacta::models::bullet {
+
+struct BulletSoftBody::World {
+  btSoftBodyRigidBodyCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btSoftRigidDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
+  btSoftBodyWorldInfo info;
+  std::unique_ptr<btSoftBody> body;
+  ~World() {
+    if (body) world.removeSoftBody(body.get());
+  }
+};
+
+namespace {
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+}  // namespace
+
+double linear_stiffness_from_young(const tacta_mesh_view& mesh, std::span<const double> masses,
+                                   double youngs_modulus, double dt, int position_iterations) {
+  // Volume share per edge: each tet gives a sixth of its volume to each of its six edges.
+  std::vector<double> share(mesh.edge_count, 0.0);
+  std::vector<std::pair<uint64_t, uint32_t>> keys(mesh.edge_count);
+  for (uint32_t e = 0; e < mesh.edge_count; ++e)
+    keys[e] = {(uint64_t{mesh.edges[2 * e]} << 32) | mesh.edges[2 * e + 1], e};
+  std::sort(keys.begin(), keys.end());
+  for (uint32_t t = 0; t < mesh.tet_count; ++t) {
+    const uint32_t* n = mesh.tets + 4 * t;
+    const double volume = tet_signed_volume(
+        node_position(mesh.rest_positions, n[0]), node_position(mesh.rest_positions, n[1]),
+        node_position(mesh.rest_positions, n[2]), node_position(mesh.rest_positions, n[3]));
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        const uint64_t key = (uint64_t{std::min(n[a], n[b])} << 32) | std::max(n[a], n[b]);
+        const auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(key, 0u));
+        if (it != keys.end() && it->first == key) share[it->second] += volume / 6.0;
+      }
+  }
+  std::vector<double> stiffness, reduced_mass;
+  for (uint32_t e = 0; e < mesh.edge_count; ++e) {
+    const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
+    const double length2 = (node_position(mesh.rest_positions, i) -
+                            node_position(mesh.rest_positions, j)).squaredNorm();
+    stiffness.push_back(youngs_modulus * share[e] / length2);  // N/m
+    if (masses[i] > 0.0 && masses[j] > 0.0)
+      reduced_mass.push_back(masses[i] * masses[j] / (masses[i] + masses[j]));  // kg
+  }
+  const double k = median(stiffness), m = median(reduced_mass);
+  if (!(m > 0.0)) return 1.0;
+  const double closed_per_step = k * dt * dt / (m + k * dt * dt);
+  const double per_iteration = 1.0 - std::pow(1.0 - closed_per_step, 1.0 / position_iterations);
+  return std::clamp(per_iteration, 1e-6, 1.0);
+}
+
+BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material& material,
+                               std::span<const double> masses, std::span<const uint8_t> fixed,
+                               double dt, const Options& options)
+    : world_(std::make_unique<World>()),
+      fixed_(fixed.begin(), fixed.end()),
+      rest_(mesh.rest_positions, mesh.rest_positions + 3 * size_t{mesh.node_count}),
+      alpha_(material.rayleigh_mass),
+      guard_(mesh) {
+  if (mesh.node_count == 0 || mesh.edge_count == 0)
+    throw std::invalid_argument("bullet_softbody needs a mesh with nodes and edges");
+  if (masses.size() != mesh.node_count)
+    throw std::invalid_argument("bullet_softbody: expected one mass per node");
+  if (!(dt > 0.0)) throw std::invalid_argument("bullet_softbody: dt must be positive");
+  World& w = *world_;
+  w.info.m_gravity.setZero();  // the engine's external forces already hold m g
+  w.info.m_broadphase = &w.broadphase;
+  w.info.m_dispatcher = &w.dispatcher;
+  w.info.m_sparsesdf.Initialize();
+  w.world.setGravity(btVector3(0, 0, 0));
+  std::vector<btVector3> x(mesh.node_count);
+  std::vector<btScalar> m(mesh.node_count);
+  for (uint32_t i = 0; i < mesh.node_count; ++i) {
+    x[i] = btVector3(rest_[3 * i], rest_[3 * i + 1], rest_[3 * i + 2]);
+    const bool held = !fixed_.empty() && fixed_[i];
+    if (!held && !(masses[i] > 0.0))
+      throw std::invalid_argument("bullet_softbody: node " + std::to_string(i) +
+                                  " is free but has mass " + std::to_string(masses[i]) + " kg");
+    m[i] = held ? 0.0 : masses[i];
+  }
+  w.body = std::make_unique<btSoftBody>(&w.info, static_cast<int>(mesh.node_count), x.data(),
+                                        m.data());
+  body_ = w.body.get();
+  for (uint32_t e = 0; e < mesh.edge_count; ++e) {
+    const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
+    if (i >= mesh.node_count || j >= mesh.node_count)
+      throw std::invalid_argument("bullet_softbody: edge " + std::to_string(e) +
+                                  " names a node past " + std::to_string(mesh.node_count));
+    body_->appendLink(static_cast<int>(i), static_cast<int>(j));
+  }
+  for (uint32_t t = 0; t < mesh.tet_count; ++t) {
+    const uint32_t* n = mesh.tets + 4 * t;
+    body_->appendTetra(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]),
+                       static_cast<int>(n[3]));
+  }
+  linear_stiffness_ = options.stiffness_override > 0.0
+                          ? options.stiffness_override
+                          : linear_stiffness_from_young(mesh, masses, material.youngs_modulus, dt,
+                                                        options.position_iterations);
+  btSoftBody::Material* bullet_material = body_->m_materials[0];
+  bullet_material->m_kLST = linear_stiffness_;
+  bullet_material->m_kAST = linear_stiffness_;
+  bullet_material->m_kVST = linear_stiffness_;
+  if (options.bending) body_->generateBendingConstraints(2, bullet_material);
+  body_->m_cfg.piterations = options.position_iterations;
+  body_->m_cfg.kDP = std::clamp(1.0 - std::exp(-alpha_ * dt), 0.0, 1.0);
+  body_->m_cfg.collisions = 0;  // no colliders here: contact reaches us as external forces
+  w.world.addSoftBody(body_);
+}
+
+BulletSoftBody::~BulletSoftBody() = default;
+
+uint32_t BulletSoftBody::step(tacta_body_state& state, double dt) noexcept {
+  const int count = body_->m_nodes.size();
+  for (int i = 0; i < count; ++i) {
+    btSoftBody::Node& node = body_->m_nodes[i];
+    const double* x = state.positions + 3 * i;
+    const double* v = state.velocities + 3 * i;
+    const double* f = state.external_forces + 3 * i;
+    node.m_x = btVector3(x[0], x[1], x[2]);
+    node.m_q = node.m_x;
+    node.m_v = btVector3(v[0], v[1], v[2]);
+    node.m_f = node.m_im > 0.0 ? btVector3(f[0], f[1], f[2]) : btVector3(0, 0, 0);
+  }
+  world_->world.stepSimulation(dt, 0, dt);
+  for (int i = 0; i < count; ++i) {
+    const btSoftBody::Node& node = body_->m_nodes[i];
+    const bool held = !fixed_.empty() && fixed_[i];
+    for (int c = 0; c < 3; ++c) {
+      if (!held) state.positions[3 * i + c] = node.m_x[c];
+      state.velocities[3 * i + c] = held ? 0.0 : node.m_v[c];
+    }
+  }
+  return guard_.check(state.positions, state.velocities);
+}
+
+}  // namespace tacta::models::bullet

@@ -1,0 +1,63 @@
+// Bullet's btSoftBody on a Tacta tet mesh: a reference peer to compare the other models with,
+// not a haptic model (Bullet's step allocates and its stiffness is not a physical modulus).
+//
+// Mesh: one Bullet node per mesh node (mass from the engine's lumped masses; fixed nodes get
+// mass 0, which Bullet treats as immovable), one link per mesh edge, one tetra per tet.
+// Gravity and contact come from the engine's external forces (Bullet's own gravity is zero).
+//
+// Material rule (Bullet's kLST is a per-iteration position-correction fraction in [0, 1], not
+// a modulus): each edge gets a spring stiffness k_e = E V_e / L_e^2 (V_e: a sixth of the volume
+// of every tet around the edge, L_e: rest length). An implicit spring of stiffness k between
+// masses of reduced mass m closes the fraction s = k dt^2 / (m + k dt^2) of its error in one
+// step; n position iterations of fraction f close 1 - (1 - f)^n. With the medians of k_e and m
+// over the edges, kLST = 1 - (1 - s)^(1/n). Damping: kDP = 1 - exp(-alpha dt) with alpha the
+// Rayleigh mass coefficient (Bullet's kDP removes that fraction of velocity per step).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "tacta/model_api.h"
+#include "tacta/models/divergence_guard.hpp"
+
+class btSoftBody;
+
+namespace tacta::models::bullet {
+
+struct Options {
+  int position_iterations = 10;  // Bullet's m_cfg.piterations
+  double stiffness_override = 0.0;  // kLST in (0, 1]; 0: derive it from E by the rule above
+  bool bending = false;             // add Bullet's distance-2 bending links
+};
+
+// The kLST the rule above gives for this mesh and material at this dt.
+double linear_stiffness_from_young(const tacta_mesh_view& mesh, std::span<const double> masses,
+                                   double youngs_modulus, double dt, int position_iterations);
+
+class BulletSoftBody {
+ public:
+  BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material& material,
+                 std::span<const double> masses, std::span<const uint8_t> fixed, double dt,
+                 const Options& options);
+  ~BulletSoftBody();
+  BulletSoftBody(const BulletSoftBody&) = delete;
+  BulletSoftBody& operator=(const BulletSoftBody&) = delete;
+
+  // Copies positions and velocities into Bullet, applies external forces, steps, copies back.
+  uint32_t step(tacta_body_state& state, double dt) noexcept;
+  double linear_stiffness() const { return linear_stiffness_; }
+
+ private:
+  struct World;
+  std::unique_ptr<World> world_;
+  btSoftBody* body_ = nullptr;  // owned by world_
+  std::vector<uint8_t> fixed_;
+  std::vector<double> rest_;
+  double linear_stiffness_ = 0.0;
+  double alpha_ = 0.0;  // Rayleigh mass damping, 1/s
+  DivergenceGuard guard_;  // NaN and runaway edge stretch
+};
+
+}  // namespace tacta::models::bullet
