@@ -42,9 +42,12 @@ bool has_extension(const char* list, const char* name) {
   return false;
 }
 
-// EGL displays are shared per process: initialise once, terminate with the last renderer.
+// One EGL display a process, initialised on first use and never terminated: terminating
+// unloads Mesa's driver, which strands its internal allocations (LeakSanitizer reports them),
+// and a later renderer would pay the driver start-up again.
 std::mutex display_mutex;
-int display_users = 0;
+EGLDisplay shared_display = EGL_NO_DISPLAY;
+std::string shared_platform;
 
 EGLDisplay open_display(std::string& platform) {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
@@ -102,8 +105,9 @@ HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std:
   }
   {
     std::lock_guard lock(display_mutex);
-    s.display = open_display(s.platform);
-    ++display_users;
+    if (shared_display == EGL_NO_DISPLAY) shared_display = open_display(shared_platform);
+    s.display = shared_display;
+    s.platform = shared_platform;
   }
   try {
     if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) fail("eglBindAPI(OpenGL)");
@@ -157,11 +161,7 @@ void HeadlessRenderer::State::release() {
     eglDestroyContext(s.display, s.context);
     s.context = EGL_NO_CONTEXT;
   }
-  if (s.display != EGL_NO_DISPLAY) {
-    std::lock_guard lock(display_mutex);
-    if (--display_users == 0) eglTerminate(s.display);
-    s.display = EGL_NO_DISPLAY;
-  }
+  s.display = EGL_NO_DISPLAY;  // shared: stays initialised for the process
 }
 
 Image HeadlessRenderer::render(const RenderFrame& frame) {
