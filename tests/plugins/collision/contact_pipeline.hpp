@@ -46,6 +46,7 @@ struct TickResult {
   uint32_t bits = 0;
   uint32_t surface_contacts = 0;  // vertex-face and edge-edge
   uint32_t shape_contacts = 0;    // vertices against tools and obstacles
+  int rounds = 0;                 // detect + respond rounds run
 };
 
 class ContactPipeline {
@@ -60,22 +61,30 @@ class ContactPipeline {
       throw std::runtime_error(std::string("bvh prepare: ") + message);
   }
 
+  // Up to three rounds of detect + respond, the next round only while surface-surface contacts
+  // appear (the response's corrections are motions that the next round's CCD checks).
   TickResult tick(tacta_collision_world& world) {
     TickResult r;
-    r.bits |= bvh_.api().update(bvh_.instance(), &world);
-    uint32_t pair_count = 0, found = 0, count = 0;
-    r.bits |= bvh_.api().find_pairs(bvh_.instance(), &world, pairs_.data(),
-                                    static_cast<uint32_t>(pairs_.size()), &pair_count);
-    r.bits |= ccd_.api().detect(ccd_.instance(), &world, pairs_.data(), pair_count, contacts_.data(),
-                                static_cast<uint32_t>(contacts_.size()), &found);
-    r.surface_contacts = found;
-    count = found;
-    r.bits |= convex_.api().detect(convex_.instance(), &world, nullptr, 0, contacts_.data() + count,
-                                   static_cast<uint32_t>(contacts_.size()) - count, &found);
-    r.shape_contacts = found;
-    count += found;
-    contact_count_ = count;
-    r.bits |= ccd_.api().respond(ccd_.instance(), &world, contacts_.data(), count);
+    contact_count_ = 0;
+    for (int round = 0; round < 3; ++round) {
+      r.bits |= bvh_.api().update(bvh_.instance(), &world);
+      uint32_t pair_count = 0, surface = 0, shape = 0;
+      const uint32_t first = contact_count_;
+      r.bits |= bvh_.api().find_pairs(bvh_.instance(), &world, pairs_.data(),
+                                      static_cast<uint32_t>(pairs_.size()), &pair_count);
+      r.bits |= ccd_.api().detect(ccd_.instance(), &world, pairs_.data(), pair_count,
+                                  contacts_.data() + first,
+                                  static_cast<uint32_t>(contacts_.size()) - first, &surface);
+      r.bits |= convex_.api().detect(convex_.instance(), &world, nullptr, 0,
+                                     contacts_.data() + first + surface,
+                                     static_cast<uint32_t>(contacts_.size()) - first - surface, &shape);
+      contact_count_ = first + surface + shape;
+      r.surface_contacts += surface;
+      r.shape_contacts += shape;
+      r.bits |= ccd_.api().respond(ccd_.instance(), &world, contacts_.data() + first, surface + shape);
+      ++r.rounds;
+      if (surface == 0) break;
+    }
     return r;
   }
   const tacta_contact* contacts() const { return contacts_.data(); }

@@ -53,6 +53,7 @@ TEST(ContactResponse, BlockDrivenIntoPlaneStaysAboveItAndCarriesItsWeight) {
       for (uint32_t c = 0; c < pipeline.contact_count(); ++c) support += pipeline.contacts()[c].force[2];
   }
   // At rest the plane carries the weight: mean contact force = m g (within 5 %).
+  RecordProperty("mean_support_N", std::to_string(support / 100.0));
   EXPECT_NEAR(support / 100.0, 0.2 * kGravity, 0.05 * 0.2 * kGravity);
 }
 
@@ -87,6 +88,7 @@ TEST(ContactResponse, MovingToolSpherePressesBlockWithoutEnteringIt) {
     }
   }
   // The tool went 18 mm into the block's rest shape: the block pushes it back up.
+  RecordProperty("tool_push_N", std::to_string(push_z));
   EXPECT_GT(push_z, 0.1);
   EXPECT_LT(block.end[3 * block.index(2, 2, 4) + 2], 0.05 - 0.01);  // top centre pushed down
 }
@@ -145,8 +147,11 @@ double sliding_deceleration(double mu) {
 
 TEST(ContactResponse, FrictionDeceleratesSlidingBlockAtMuG) {
   const double mu = 0.4;
-  EXPECT_NEAR(sliding_deceleration(mu), mu * kGravity, 0.05 * mu * kGravity);
-  EXPECT_NEAR(sliding_deceleration(0.0), 0.0, 0.05 * mu * kGravity);
+  const double with_friction = sliding_deceleration(mu), without = sliding_deceleration(0.0);
+  RecordProperty("deceleration_mu_0_4", std::to_string(with_friction));
+  RecordProperty("deceleration_mu_0", std::to_string(without));
+  EXPECT_NEAR(with_friction, mu * kGravity, 0.05 * mu * kGravity);
+  EXPECT_NEAR(without, 0.0, 0.05 * mu * kGravity);
 }
 
 TEST(ContactResponse, BadInputIsReportedNotFatal) {
