@@ -2,6 +2,7 @@
 // the tick. A log's sample at time_s plays at engine time time_s + time_offset. Past the end the
 // device reports FINISHED (zero force from the engine) with the reason, unless `loop` is set.
 // A truncated or malformed log is refused at create with file:line and what was expected.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -44,6 +45,7 @@ class ReplayDevice {
       throw std::invalid_argument("replay: " + path_ + ":2: expected at least one sample after the header");
     offset_ = params.real("time_offset");
     loop_ = params.flag("loop");
+    capabilities_ = compute_capabilities();
   }
 
   void connect() { connected_ = true; }
@@ -76,7 +78,23 @@ class ReplayDevice {
     for (int i = 0; i < 3; ++i) last_force_[i] = command.force[i];  // a replay renders nothing
   }
 
-  tacta_device_capabilities capabilities() const noexcept {
+  tacta_device_capabilities capabilities() const noexcept { return capabilities_; }
+
+  tacta_device_state status(char* reason, size_t capacity) const noexcept {
+    if (!connected_) {
+      sdk::write_message(reason, capacity, "not connected");
+      return TACTA_DEVICE_DISCONNECTED;
+    }
+    if (finished_) {
+      sdk::write_message(reason, capacity, reason_);
+      return TACTA_DEVICE_FINISHED;
+    }
+    sdk::write_message(reason, capacity, "playing");
+    return TACTA_DEVICE_CONNECTED;
+  }
+
+ private:
+  tacta_device_capabilities compute_capabilities() const {
     // A replay has no hardware: it reports the box its samples span and the Omni-class force
     // numbers (peak 3.3 N, /work/shared/data/README.md) so the engine limits forces the same way.
     tacta_device_capabilities c{};
@@ -96,20 +114,6 @@ class ReplayDevice {
     return c;
   }
 
-  tacta_device_state status(char* reason, size_t capacity) const noexcept {
-    if (!connected_) {
-      sdk::write_message(reason, capacity, "not connected");
-      return TACTA_DEVICE_DISCONNECTED;
-    }
-    if (finished_) {
-      sdk::write_message(reason, capacity, reason_);
-      return TACTA_DEVICE_FINISHED;
-    }
-    sdk::write_message(reason, capacity, "playing");
-    return TACTA_DEVICE_CONNECTED;
-  }
-
- private:
   std::string path_;
   std::vector<DeviceLogSample> samples_;
   double offset_ = 0.0;
@@ -118,6 +122,7 @@ class ReplayDevice {
   bool finished_ = false;
   char reason_[512] = {0};
   double last_force_[3] = {0.0, 0.0, 0.0};
+  tacta_device_capabilities capabilities_{};
 };
 
 }  // namespace tacta::replay

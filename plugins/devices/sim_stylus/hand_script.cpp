@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -82,7 +83,7 @@ Point HandScript::target(double time) const noexcept {
     case Pattern::tap: {
       const double phase = std::fmod(std::max(time, 0.0), settings_.tap_period) / settings_.tap_period;
       // Raised cosine: down from approach height to depth and back once per period.
-      const double s = 0.5 * (1.0 - std::cos(2.0 * M_PI * phase));
+      const double s = 0.5 * (1.0 - std::cos(2.0 * std::numbers::pi * phase));
       return lerp(above(settings_.tap_point), below(settings_.tap_point), s);
     }
     case Pattern::stroke: return stroke_target(time);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 
 #include "hand_script.hpp"
@@ -36,9 +37,9 @@ class GaussianNoise {
     const double u1 = (static_cast<double>(bits() >> 11) + 1.0) * 0x1.0p-53;  // (0, 1]
     const double u2 = static_cast<double>(bits() >> 11) * 0x1.0p-53;          // [0, 1)
     const double radius = std::sqrt(-2.0 * std::log(u1));
-    spare_ = radius * std::sin(2.0 * M_PI * u2);
+    spare_ = radius * std::sin(2.0 * std::numbers::pi * u2);
     has_spare_ = true;
-    return radius * std::cos(2.0 * M_PI * u2);
+    return radius * std::cos(2.0 * std::numbers::pi * u2);
   }
  private:
   uint64_t bits() noexcept {

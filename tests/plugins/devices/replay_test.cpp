@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "device_harness.hpp"
 #include "tacta/device_log.hpp"
@@ -66,7 +68,7 @@ TEST_F(ReplayTest, ExactAtSamplesAndLinearBetween) {
     EXPECT_NEAR(s.velocity[2], 0.5 + 0.5 * u, 1e-14);
     EXPECT_EQ(s.buttons, 1u);  // from the earlier sample
     // slerp from 90 degrees about z back to identity: (1 - u) * 90 degrees.
-    const double half_angle = 0.5 * (1.0 - u) * M_PI / 2.0;
+    const double half_angle = 0.5 * (1.0 - u) * std::numbers::pi / 2.0;
     EXPECT_NEAR(s.orientation[0], std::cos(half_angle), 1e-12);
     EXPECT_NEAR(s.orientation[3], std::sin(half_angle), 1e-12);
   }
