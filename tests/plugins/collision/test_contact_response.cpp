@@ -4,12 +4,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 
 #include "contact_pipeline.hpp"
 #include "soft_block.hpp"
 
 namespace {
+
+// A measured value for the test's XML/JSON record, with its significant digits.
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
 
 using tacta::testing::ContactPipeline;
 using tacta::testing::SoftBlock;
@@ -53,7 +62,7 @@ TEST(ContactResponse, BlockDrivenIntoPlaneStaysAboveItAndCarriesItsWeight) {
       for (uint32_t c = 0; c < pipeline.contact_count(); ++c) support += pipeline.contacts()[c].force[2];
   }
   // At rest the plane carries the weight: mean contact force = m g (within 5 %).
-  RecordProperty("mean_support_N", std::to_string(support / 100.0));
+  RecordProperty("mean_support_N", number(support / 100.0));
   EXPECT_NEAR(support / 100.0, 0.2 * kGravity, 0.05 * 0.2 * kGravity);
 }
 
@@ -88,7 +97,7 @@ TEST(ContactResponse, MovingToolSpherePressesBlockWithoutEnteringIt) {
     }
   }
   // The tool went 18 mm into the block's rest shape: the block pushes it back up.
-  RecordProperty("tool_push_N", std::to_string(push_z));
+  RecordProperty("tool_push_N", number(push_z));
   EXPECT_GT(push_z, 0.1);
   EXPECT_LT(block.end[3 * block.index(2, 2, 4) + 2], 0.05 - 0.01);  // top centre pushed down
 }
@@ -148,8 +157,8 @@ double sliding_deceleration(double mu) {
 TEST(ContactResponse, FrictionDeceleratesSlidingBlockAtMuG) {
   const double mu = 0.4;
   const double with_friction = sliding_deceleration(mu), without = sliding_deceleration(0.0);
-  RecordProperty("deceleration_mu_0_4", std::to_string(with_friction));
-  RecordProperty("deceleration_mu_0", std::to_string(without));
+  RecordProperty("deceleration_mu_0_4", number(with_friction));
+  RecordProperty("deceleration_mu_0", number(without));
   EXPECT_NEAR(with_friction, mu * kGravity, 0.05 * mu * kGravity);
   EXPECT_NEAR(without, 0.0, 0.05 * mu * kGravity);
 }
