@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "tacta/error.hpp"
 #include "tacta/plugin_registry.hpp"
+#include "tacta/render/snapshot_frame.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/sim/simulation.hpp"
@@ -49,6 +50,12 @@ int run_scene(const RunArgs& args) {
   options.record_log = args.record;
   options.frames = args.frames;
   options.progress = !args.quiet && isatty(STDERR_FILENO);
+  std::unique_ptr<FrameObserver> frames;
+  if ((args.frames || scene.output.frames) && !args.out.empty()) {
+    frames = render::make_png_frame_writer(args.out + "/frames", scene.output.frame_times, scene.output.frame_width,
+                                           scene.output.frame_height);
+    options.observers.push_back(frames.get());
+  }
   const RunResult result = simulation.run(options);
 
   if (!args.quiet) {

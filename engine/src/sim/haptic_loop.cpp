@@ -54,6 +54,7 @@ Snapshot HapticLoop::make_prototype(World& world) {
   for (size_t i = 0; i < world.body_count(); ++i) {
     SoftBody& b = world.body(i);
     s.bodies[i].positions = b.positions;
+    s.bodies[i].velocities = b.velocities;
     if (b.model->has_stress()) s.bodies[i].von_mises.assign(b.node_count(), 0.0);
     s.bodies[i].model = b.model->name();
     s.bodies[i].model.reserve(64);  // a swap copies the new name without reallocating
@@ -262,6 +263,7 @@ void HapticLoop::publish(double time) noexcept {
     SoftBody& b = world_.body(i);
     BodySnapshot& bs = s.bodies[i];
     std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
+    std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
     if (!bs.von_mises.empty() && b.model->has_stress()) b.model->node_stress(b.positions.data(), bs.von_mises.data());
     if (bs.model != b.model->name()) bs.model.assign(b.model->name());  // capacity reserved up front
     bs.frozen = b.fault.frozen;

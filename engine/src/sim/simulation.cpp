@@ -11,25 +11,47 @@
 #include "collision_context.hpp"
 #include "haptic_interaction.hpp"
 #include "haptic_loop.hpp"
+#include "vtk_observer.hpp"
 #include "world.hpp"
 
 namespace tacta {
 
 namespace {
 
-// Takes the newest snapshot at each frame. Frames (PNG) and VTK output hook in here.
+// Takes the newest snapshot at each frame and hands it to the observers (frames, VTK, a window).
 class OutputRenderTask final : public RenderTask {
  public:
-  explicit OutputRenderTask(TripleBuffer<Snapshot>& snapshots) : snapshots_(snapshots) {}
+  OutputRenderTask(TripleBuffer<Snapshot>& snapshots, const SceneStatic& scene, std::vector<FrameObserver*> observers)
+      : snapshots_(snapshots), scene_(scene), observers_(std::move(observers)) {}
   void frame(double /*wall_time*/) override {
-    if (snapshots_.acquire()) ++frames_seen_;
+    if (!snapshots_.acquire()) return;
+    for (FrameObserver* o : observers_) o->on_frame(scene_, snapshots_.read_slot());
   }
-  uint64_t frames_seen() const { return frames_seen_; }
 
  private:
   TripleBuffer<Snapshot>& snapshots_;
-  uint64_t frames_seen_ = 0;
+  const SceneStatic& scene_;
+  std::vector<FrameObserver*> observers_;
 };
+
+SceneStatic describe(World& world) {
+  SceneStatic s;
+  s.name = world.scene().name;
+  s.haptic_rate_hz = world.scene().clock.haptic_rate_hz;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    const SoftBody& b = world.body(i);
+    const VolumeMesh& m = b.topology->mesh;
+    BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension};
+    for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
+      if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
+    s.bodies.push_back(std::move(bs));
+  }
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& slot = world.device(d);
+    s.devices.push_back({slot.name, slot.desc.tool.radius, slot.device->capabilities().peak_force});
+  }
+  return s;
+}
 
 void print_progress(double fraction) {
   const int width = 40;
@@ -111,7 +133,15 @@ RunResult Simulation::run(const RunOptions& options) {
   }
   if (impl_->haptics) loop.add_interaction(impl_->haptics.get());
   if (impl_->response) loop.add_interaction(impl_->response.get());
-  OutputRenderTask render(snapshots);
+  const SceneStatic scene_static = describe(world);
+  std::vector<FrameObserver*> observers = options.observers;
+  std::unique_ptr<FrameObserver> vtk;
+  if (scene.output.vtk && !options.out_dir.empty()) {
+    vtk = make_vtk_observer(options.out_dir + "/vtk", scene.output.vtk_interval_s);
+    observers.push_back(vtk.get());
+  }
+  for (FrameObserver* o : observers) o->on_start(scene_static);
+  OutputRenderTask render(snapshots, scene_static, observers);
   result.schedule = run_schedule(loop, render, schedule);
   if (options.progress) std::fprintf(stderr, "\n");
   result.sim_time_s = static_cast<double>(result.schedule.ticks) / schedule.haptic_rate_hz;
@@ -136,6 +166,8 @@ RunResult Simulation::run(const RunOptions& options) {
   result.faults = loop.faults().rows().size();
   result.exit_code = result.faults > 0 ? 1 : 0;
 
+  for (FrameObserver* o : observers)
+    for (std::string& file : o->finish()) result.outputs.push_back(std::move(file));
   if (loop.device_log() != nullptr) {
     std::filesystem::path log(options.record_log);
     if (log.has_parent_path()) std::filesystem::create_directories(log.parent_path());

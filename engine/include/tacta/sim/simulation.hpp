@@ -11,6 +11,7 @@
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
 #include "tacta/sim/scheduler.hpp"
+#include "tacta/sim/snapshot.hpp"
 
 namespace tacta {
 
@@ -21,6 +22,8 @@ struct RunOptions {
   bool progress = false;               // a progress bar on stderr
   std::string record_log;              // write the first device's session log here
   bool frames = false;                 // force PNG frames on
+  // Called with every snapshot the render task takes (frames, VTK, a window). Not owned.
+  std::vector<FrameObserver*> observers;
 };
 
 struct BodyResult {

@@ -11,6 +11,7 @@ namespace tacta {
 
 struct BodySnapshot {
   std::vector<double> positions;   // 3 per node, m
+  std::vector<double> velocities;  // 3 per node, m/s
   std::vector<double> von_mises;   // 1 per node, Pa (empty when the model gives no stress)
   std::string model;               // model name at the time of the snapshot (set at swaps only)
   bool frozen = false;
@@ -30,6 +31,40 @@ struct Snapshot {
   double last_tick_ms = 0;
   std::vector<BodySnapshot> bodies;
   std::vector<DeviceSnapshot> devices;
+};
+
+// What does not change during a run, for whoever draws or saves snapshots.
+struct BodyStatic {
+  std::string name;
+  std::vector<double> rest_positions;   // 3 per node, m
+  std::vector<uint32_t> triangles;      // 3 per triangle: the surface to draw (outward)
+  std::vector<uint32_t> tets;           // 4 per tet (VTK output)
+  std::vector<uint32_t> quads;          // 4 per quad (planar meshes)
+  std::vector<uint32_t> fixed_nodes;    // indices of the fixed nodes
+  uint32_t dimension = 3;
+};
+
+struct DeviceStatic {
+  std::string name;
+  double tool_radius_m = 0.002;
+  double peak_force_N = 0;
+};
+
+struct SceneStatic {
+  std::string name;
+  std::vector<BodyStatic> bodies;
+  std::vector<DeviceStatic> devices;
+  double haptic_rate_hz = 1000;
+};
+
+// Receives each new snapshot on the render task's thread (the haptic thread never waits for it).
+class FrameObserver {
+ public:
+  virtual ~FrameObserver() = default;
+  virtual void on_start(const SceneStatic& /*scene*/) {}
+  virtual void on_frame(const SceneStatic& scene, const Snapshot& snapshot) = 0;
+  // Called after the run on the calling thread: files written, for the report's output list.
+  virtual std::vector<std::string> finish() { return {}; }
 };
 
 }  // namespace tacta

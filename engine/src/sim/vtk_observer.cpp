@@ -1,0 +1,62 @@
+#include "vtk_observer.hpp"
+
+#include <filesystem>
+
+#include "tacta/output/vtk_writer.hpp"
+
+namespace tacta {
+
+namespace {
+
+class VtkObserver final : public FrameObserver {
+ public:
+  VtkObserver(std::string directory, double interval_s) : directory_(std::move(directory)), interval_s_(interval_s) {}
+
+  void on_start(const SceneStatic& scene) override {
+    std::filesystem::create_directories(directory_);
+    for (const BodyStatic& b : scene.bodies) {
+      series_.emplace_back(directory_, b.name);
+      displacement_.emplace_back(b.rest_positions.size(), 0.0);
+    }
+  }
+
+  void on_frame(const SceneStatic& scene, const Snapshot& snapshot) override {
+    if (snapshot.time_s + 1e-9 < next_time_s_) return;
+    next_time_s_ = snapshot.time_s + interval_s_;
+    for (size_t i = 0; i < scene.bodies.size(); ++i) {
+      const BodyStatic& b = scene.bodies[i];
+      const BodySnapshot& s = snapshot.bodies[i];
+      for (size_t k = 0; k < displacement_[i].size(); ++k) displacement_[i][k] = s.positions[k] - b.rest_positions[k];
+      output::VtkGrid grid;
+      grid.points = s.positions;
+      if (!b.tets.empty()) grid.tets = b.tets;
+      else if (!b.quads.empty()) grid.quads = b.quads;
+      else grid.triangles = b.triangles;
+      grid.point_data.push_back({"displacement", 3, displacement_[i]});
+      grid.point_data.push_back({"velocity", 3, s.velocities});
+      if (!s.von_mises.empty()) grid.point_data.push_back({"von_mises_stress", 1, s.von_mises});
+      series_[i].write(snapshot.time_s, grid);
+    }
+  }
+
+  std::vector<std::string> finish() override {
+    std::vector<std::string> files;
+    for (const output::VtkSeries& s : series_) files.push_back(s.pvd_file().string());
+    return files;
+  }
+
+ private:
+  std::string directory_;
+  double interval_s_;
+  double next_time_s_ = 0;
+  std::vector<output::VtkSeries> series_;
+  std::vector<std::vector<double>> displacement_;  // 3 per node, m, scratch per body
+};
+
+}  // namespace
+
+std::unique_ptr<FrameObserver> make_vtk_observer(const std::string& directory, double interval_s) {
+  return std::make_unique<VtkObserver>(directory, interval_s);
+}
+
+}  // namespace tacta
