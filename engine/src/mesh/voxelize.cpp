@@ -3,6 +3,7 @@
 // Inside test: generalized winding number (Jacobson et al. 2013), robust to small holes; solid
 // angles by the Van Oosterom-Strackee formula.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -116,9 +117,62 @@ void mark_inside_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& a
   }
 }
 
+// Majority rule for the cells the surface cuts: keep a cell when at least 5 of 9 samples (its
+// centre and its 8 corners, corners cached since neighbours share them) are inside.
+void keep_majority_cells(const SurfaceMesh& s, const Grid& g, const std::vector<char>& touched, std::vector<char>& active) {
+  const int64_t nodes_x = g.n[0] + 1, nodes_y = g.n[1] + 1;
+  std::vector<signed char> node_inside(static_cast<size_t>(nodes_x * nodes_y * (g.n[2] + 1)), -1);  // -1: not yet known
+  auto inside = [&](const P3& p) { return std::abs(winding_number(s, p)) > 0.5; };
+  for (int64_t k = 0; k < g.n[2]; ++k) {
+    for (int64_t j = 0; j < g.n[1]; ++j) {
+      for (int64_t i = 0; i < g.n[0]; ++i) {
+        const auto c = static_cast<size_t>(g.cell(i, j, k));
+        if (!touched[c]) continue;
+        P3 base = g.origin + P3{{static_cast<double>(i) * g.h, static_cast<double>(j) * g.h, static_cast<double>(k) * g.h}};
+        int votes = inside(base + P3{{0.5 * g.h, 0.5 * g.h, 0.5 * g.h}}) ? 1 : 0;
+        for (int64_t corner = 0; corner < 8; ++corner) {
+          int64_t di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
+          signed char& known = node_inside[static_cast<size_t>((i + di) + nodes_x * ((j + dj) + nodes_y * (k + dk)))];
+          if (known < 0) {
+            known = inside(base + P3{{static_cast<double>(di) * g.h, static_cast<double>(dj) * g.h, static_cast<double>(dk) * g.h}}) ? 1 : 0;
+          }
+          votes += known;
+        }
+        active[c] = votes >= 5 ? 1 : 0;
+      }
+    }
+  }
+}
+
+// The kept cell nearest to cell (i, j, k): rings of growing Chebyshev radius, nearest centre first;
+// one more ring is searched after the first hit, since a cell of it can still be nearer.
+int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet, const int64_t at[3]) {
+  int64_t best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  int64_t found_radius = -1;
+  const int64_t max_radius = std::max({g.n[0], g.n[1], g.n[2]});
+  for (int64_t r = 1; r <= max_radius && (found_radius < 0 || r <= found_radius + 1); ++r) {
+    for (int64_t k = std::max<int64_t>(0, at[2] - r); k <= std::min(g.n[2] - 1, at[2] + r); ++k) {
+      for (int64_t j = std::max<int64_t>(0, at[1] - r); j <= std::min(g.n[1] - 1, at[1] + r); ++j) {
+        for (int64_t i = std::max<int64_t>(0, at[0] - r); i <= std::min(g.n[0] - 1, at[0] + r); ++i) {
+          if (std::max({std::abs(i - at[0]), std::abs(j - at[1]), std::abs(k - at[2])}) != r) continue;  // ring only
+          if (first_tet[static_cast<size_t>(g.cell(i, j, k))] == UINT32_MAX) continue;
+          double d = std::hypot(static_cast<double>(i - at[0]), static_cast<double>(j - at[1]), static_cast<double>(k - at[2]));
+          if (d < best_distance) {
+            best_distance = d;
+            best = g.cell(i, j, k);
+            if (found_radius < 0) found_radius = r;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
-VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report) {
+VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report, VoxelFill fill) {
   LoadReport local;
   LoadReport& r = report ? *report : local;
   const std::string& source = closed.source;
@@ -150,9 +204,14 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
       throw InputError({source, 0, 0, ""}, "voxel size " + std::to_string(cell_size) + " m gives more than 2 million cells");
     }
   }
-  std::vector<char> active(static_cast<size_t>(cells), 0);
-  mark_touched_cells(closed, g, active);
+  std::vector<char> touched(static_cast<size_t>(cells), 0);
+  mark_touched_cells(closed, g, touched);
+  std::vector<char> active = touched;
   mark_inside_cells(closed, g, active);
+  if (fill == VoxelFill::Majority) keep_majority_cells(closed, g, touched, active);
+  if (std::find(active.begin(), active.end(), 1) == active.end()) {
+    throw InputError({source, 0, 0, ""}, "no voxel cell is mostly inside the surface; use a smaller voxel size");
+  }
 
   VolumeMesh mesh;
   mesh.source = source + " (voxelised)";
@@ -185,33 +244,47 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
   e.surface = closed;
   e.element.resize(closed.vertex_count());
   e.weights.resize(4 * closed.vertex_count());
+  size_t outside = 0;
   for (size_t v = 0; v < closed.vertex_count(); ++v) {
     P3 p = point(closed.positions, static_cast<uint32_t>(v));
     int64_t idx[3];
     for (int a = 0; a < 3; ++a) idx[a] = g.clamp_index(p[static_cast<size_t>(a)], a);
     int64_t cell = g.cell(idx[0], idx[1], idx[2]);
-    if (first_tet[static_cast<size_t>(cell)] == UINT32_MAX) {
-      // Rounding left the vertex's own cell empty: take the nearest active cell (extrapolating).
-      double best = std::numeric_limits<double>::infinity();
-      for (int64_t c = 0; c < cells; ++c) {
-        if (first_tet[static_cast<size_t>(c)] == UINT32_MAX) continue;
-        int64_t ci = c % g.n[0], cj = (c / g.n[0]) % g.n[1], ck = c / (g.n[0] * g.n[1]);
-        double d = std::hypot(static_cast<double>(ci - idx[0]), static_cast<double>(cj - idx[1]), static_cast<double>(ck - idx[2]));
-        if (d < best) {
-          best = d;
-          cell = c;
+    std::array<double, 4> weights{};
+    uint32_t tet = 0;
+    if (first_tet[static_cast<size_t>(cell)] != UINT32_MAX) {
+      // Inside its own cell: the Kuhn tet is read off the ordering of the local coordinates.
+      int64_t at[3] = {idx[0], idx[1], idx[2]};
+      double in_cell[3];
+      for (int a = 0; a < 3; ++a) {
+        in_cell[a] = (p[static_cast<size_t>(a)] - g.origin[static_cast<size_t>(a)]) / g.h - static_cast<double>(at[a]);
+      }
+      tet = first_tet[static_cast<size_t>(cell)] + static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2]));
+      const uint32_t* n = &mesh.tets[4 * size_t{tet}];
+      weights = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
+                                         point(mesh.positions, n[2]), point(mesh.positions, n[3]));
+    } else {
+      // Outside every kept cell: the tet of the nearest kept cell that needs the least extrapolation.
+      ++outside;
+      cell = nearest_kept_cell(g, first_tet, idx);
+      double best = -std::numeric_limits<double>::infinity();
+      for (uint32_t t = first_tet[static_cast<size_t>(cell)]; t < first_tet[static_cast<size_t>(cell)] + 6; ++t) {
+        const uint32_t* n = &mesh.tets[4 * size_t{t}];
+        auto w = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
+                                          point(mesh.positions, n[2]), point(mesh.positions, n[3]));
+        double lowest = std::min({w[0], w[1], w[2], w[3]});
+        if (lowest > best) {
+          best = lowest;
+          tet = t;
+          weights = w;
         }
       }
     }
-    int64_t ci = cell % g.n[0], cj = (cell / g.n[0]) % g.n[1], ck = cell / (g.n[0] * g.n[1]);
-    double u = (p[0] - g.origin[0]) / g.h - static_cast<double>(ci), w1 = (p[1] - g.origin[1]) / g.h - static_cast<double>(cj),
-           w2 = (p[2] - g.origin[2]) / g.h - static_cast<double>(ck);
-    uint32_t tet = first_tet[static_cast<size_t>(cell)] + static_cast<uint32_t>(mesh_detail::cell_tet_of(u, w1, w2));
-    const uint32_t* n = &mesh.tets[4 * size_t{tet}];
-    auto weights = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
-                                            point(mesh.positions, n[2]), point(mesh.positions, n[3]));
     e.element[v] = tet;
     std::copy(weights.begin(), weights.end(), e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
+  }
+  if (outside > 0) {
+    r.warnings.push_back(std::to_string(outside) + " surface vertices lie outside the voxel tets and follow them by extrapolation");
   }
   mesh.embedding = std::move(e);
   finalize(mesh, &r);
