@@ -1,4 +1,5 @@
 // report.json: what a run did, in one file a script can read (documented in docs/REPORT.md).
+#include <algorithm>
 #include <fstream>
 
 #include "run_outputs.hpp"
@@ -22,11 +23,14 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     const SoftBody& body = world.body(i);
     j.begin_object();
     j.field("name", b.name).field("model", b.model);
-    // Every model the body ran, with the simulated time it took over (s).
+    // Every model the body ran, with the simulated time it took over (s): the scene's scheduled
+    // swaps and the ones requested while running, in time order.
+    std::vector<std::pair<double, std::string>> runs{{0.0, body.model_history.front()}};
+    for (size_t s = 0; s < body.next_swap; ++s) runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
+    for (const RuntimeSwap& r : body.runtime_swaps) runs.emplace_back(r.time_s, r.model);
+    std::stable_sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     j.key("models_run").begin_array();
-    j.begin_object().field("time_s", 0.0).field("model", body.model_history.front()).end_object();
-    for (size_t s = 0; s < body.next_swap; ++s)
-      j.begin_object().field("time_s", body.swaps[s].time_s).field("model", body.swaps[s].model_name).end_object();
+    for (const auto& [time, model] : runs) j.begin_object().field("time_s", time).field("model", model).end_object();
     j.end_array();
     j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
     j.field("max_displacement_m", b.max_displacement_m);

@@ -95,6 +95,18 @@ void HapticLoop::apply_swaps(double time) noexcept {
       const tacta_body_state state = b.state_view(time);
       b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz);
     }
+    if (ModelInstance* incoming = b.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel)) {
+      ModelInstance* outgoing = b.model.release();
+      b.model.reset(incoming);
+      ModelInstance* head = b.mailbox->retired.load(std::memory_order_relaxed);
+      do {
+        outgoing->retired_next = head;
+      } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
+                                                         std::memory_order_relaxed));
+      if (b.runtime_swaps.size() < b.runtime_swaps.capacity()) b.runtime_swaps.push_back({time, incoming->name()});
+      const tacta_body_state state = b.state_view(time);
+      b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz);
+    }
   }
 }
 

@@ -42,6 +42,9 @@ class ModelInstance {
   // Not from the 1 kHz path. Returns an empty string on success, else the plugin's reason.
   std::string set_param(uint32_t index, const tacta_param_value& value);
 
+  // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
+  ModelInstance* retired_next = nullptr;
+
  private:
   const tacta_descriptor& descriptor_;
   const tacta_model_api& api_;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 
@@ -91,13 +92,40 @@ struct Simulation::Impl {
     }
   }
   World world;
+  std::atomic<bool> stop{false};
+  std::vector<std::string> requested_models;  // per body, for body_model()
   std::unique_ptr<CollisionContext> collision;
   std::unique_ptr<HapticInteraction> haptics;
   std::unique_ptr<CollisionResponse> response;
 };
 
 Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
-    : impl_(std::make_unique<Impl>(scene, plugins)) {}
+    : impl_(std::make_unique<Impl>(scene, plugins)) {
+  for (const BodyDesc& b : scene.bodies) impl_->requested_models.push_back(b.model);
+}
+
+void Simulation::request_model_swap(size_t body, const std::string& model, const ParamSet& params) {
+  World& world = impl_->world;
+  if (body >= world.body_count())
+    throw InputError({world.scene().path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
+  SoftBody& b = world.body(body);
+  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / world.scene().clock.haptic_rate_hz;
+  std::unique_ptr<ModelInstance> instance =
+      world.make_model(model, params, *b.topology, dt, {world.scene().path, 0, 0, "bodies." + b.name + ".model"});
+  // Free what the haptic thread retired, then post; an unconsumed earlier request is replaced.
+  for (ModelInstance* m = b.mailbox->retired.exchange(nullptr, std::memory_order_acquire); m != nullptr;) {
+    ModelInstance* next = m->retired_next;
+    delete m;
+    m = next;
+  }
+  delete b.mailbox->incoming.exchange(instance.release(), std::memory_order_acq_rel);
+  impl_->requested_models[body] = model;
+}
+
+void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
+size_t Simulation::body_count() const { return impl_->world.body_count(); }
+const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }
+const std::string& Simulation::body_model(size_t body) const { return impl_->requested_models.at(body); }
 
 Simulation::~Simulation() = default;
 
@@ -111,6 +139,7 @@ RunResult Simulation::run(const RunOptions& options) {
   schedule.render_rate_hz = scene.clock.render_rate_hz;
   schedule.duration_s = options.duration_s.value_or(scene.clock.duration_s);
   if (options.progress) schedule.on_progress = print_progress;
+  schedule.stop = &impl_->stop;
 
   RunResult result;
   result.scene = scene.path;

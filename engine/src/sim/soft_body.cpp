@@ -66,6 +66,15 @@ std::vector<uint32_t> recorded_nodes(const BodyDesc& desc, const SceneDesc& scen
 
 }  // namespace
 
+ModelMailbox::~ModelMailbox() {
+  delete incoming.exchange(nullptr);
+  for (ModelInstance* m = retired.exchange(nullptr); m != nullptr;) {
+    ModelInstance* next = m->retired_next;
+    delete m;
+    m = next;
+  }
+}
+
 double SoftBody::kinetic_energy() const noexcept {
   const std::vector<double>& m = topology->masses;
   double e = 0;
@@ -136,6 +145,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.step_period_s = desc.step_rate_hz > 0 ? dt : 0.0;
   body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
   body.model_history.push_back(desc.model);
+  body.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
     body.swaps.push_back({swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});

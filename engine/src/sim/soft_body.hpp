@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -34,6 +35,21 @@ struct ScheduledSwap {
   std::unique_ptr<ModelInstance> model;  // incoming until the swap; the outgoing one after it
 };
 
+// Runtime swaps requested from another thread (the viewer): the requester builds the instance
+// and posts it in `incoming`; the haptic thread takes it at the start of a tick and pushes the
+// outgoing instance on the `retired` stack (lock-free), which the requester empties and deletes.
+// The haptic thread never allocates or frees a model.
+struct ModelMailbox {
+  std::atomic<ModelInstance*> incoming{nullptr};
+  std::atomic<ModelInstance*> retired{nullptr};
+  ~ModelMailbox();
+};
+
+struct RuntimeSwap {
+  double time_s;
+  const char* model;  // the descriptor's name: lives as long as the plugin registry
+};
+
 struct BodyFault {
   bool frozen = false;
   uint32_t bits = 0;        // TACTA_STEP_* bits of the step that failed
@@ -53,6 +69,8 @@ struct SoftBody {
   std::vector<ScheduledSwap> swaps;     // sorted by time
   size_t next_swap = 0;
   std::vector<std::string> model_history;  // names of the models it has run, in order
+  std::unique_ptr<ModelMailbox> mailbox = std::make_unique<ModelMailbox>();
+  std::vector<RuntimeSwap> runtime_swaps;  // reserved at load; swaps past its capacity go unlisted
   BodyFault fault;
   double divergence_limit_m = 1;  // displacement beyond which the body counts as diverged
   double max_displacement_m = 0;  // over the whole run

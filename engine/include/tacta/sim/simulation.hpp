@@ -56,6 +56,18 @@ class Simulation {
 
   RunResult run(const RunOptions& options);
 
+  // From any thread but the haptic one, before or during run(): body `body` takes model `model`
+  // with `params` (validated against its schema; empty = the defaults) at the start of the next
+  // tick, positions and velocities carried over. The instance is built here, so this may
+  // allocate and throws InputError when the model refuses the body; the haptic thread only
+  // switches pointers. Also how the viewer changes a parameter (same model, new values).
+  void request_model_swap(size_t body, const std::string& model, const ParamSet& params);
+  // Ends run() after the current tick.
+  void request_stop() noexcept;
+  size_t body_count() const;
+  const std::string& body_name(size_t body) const;
+  const std::string& body_model(size_t body) const;  // the model asked for last
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
