@@ -90,3 +90,37 @@ TEST(FirstContact, LimiterLeavesASlowContactUnchanged) {
 
 }  // namespace
 }  // namespace tacta::haptics::testing
+
+namespace tacta::haptics::testing {
+namespace {
+
+// The default stretch rate across the couplings scenes use (600 and 1000 N/m, 0 to 5 N s/m), for
+// the liver scene's press (12 mm above to 8 mm deep) in 0.3 s and 0.5 s, and a 3 mm deep onset.
+TEST(FirstContact, DefaultRateHoldsAcrossCouplings) {
+  const PlaneSurface tissue({0.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
+  for (double stiffness : {600.0, 1000.0}) {
+    for (double damping : {0.0, 1.0, 5.0}) {
+      ChainOptions options;
+      options.coupling = {stiffness, damping};
+      for (double press_time : {0.3, 0.5}) {
+        SimulatedHand hand = default_hand();
+        hand.target = [press_time](double t) {
+          const double u = std::clamp(t / press_time, 0.0, 1.0);
+          return Vec3{0.0, 0.012 - 0.020 * u * u * (3.0 - 2.0 * u), 0.0};
+        };
+        hand.position = {0.0, 0.012, 0.0};
+        const ChainStats stats = run_chain(hand, tissue, options, 2.0);
+        EXPECT_LE(stats.peak_force, 1.2 * stats.last_force)
+            << "k " << stiffness << " b " << damping << " press " << press_time;
+      }
+      SimulatedHand deep = default_hand();
+      deep.target = [](double) { return Vec3{0.0, -0.005, 0.0}; };
+      deep.position = {0.0, -0.003, 0.0};
+      const ChainStats stats = run_chain(deep, tissue, options, 3.0);
+      EXPECT_LE(stats.peak_force, 1.2 * stats.last_force) << "deep, k " << stiffness << " b " << damping;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tacta::haptics::testing

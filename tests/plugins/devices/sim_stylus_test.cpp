@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "device_harness.hpp"
@@ -155,6 +156,45 @@ TEST_F(SimStylusTest, PalpationPressesEachPointToDepth) {
       EXPECT_NEAR(s.position[2], 0.01, 1e-4);
     }
   }
+}
+
+TEST_F(SimStylusTest, TapAndStrokePatternsReachTheirPoints) {
+  // Tap: top of the stroke at each period start, deepest at half period (raised cosine).
+  params.number("pattern", 1).vector("tap_point", {0.01, 0.0, 0.0}).number("tap_period", 0.5)
+      .number("depth", 0.004).number("approach_height", 0.01);
+  {
+    DeviceInstance device(api, params.setup());
+    ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
+    tacta_device_sample s{};
+    double lowest = 1.0;
+    for (int n = 0; n <= 1000; ++n) {
+      device.read(n * kTick, s);
+      if (n >= 500) lowest = std::min(lowest, s.position[1]);
+    }
+    // The hand filters the 2 Hz raised cosine (centre 3 mm, amplitude 7 mm) by
+    // |H| = |k + j c w| / |k - m w^2 + j c w| (k 300 N/m, c 11 N s/m, m 0.1 kg, w = 4 pi rad/s).
+    const double w = 4.0 * std::numbers::pi;
+    const double gain = std::hypot(300.0, 11.0 * w) / std::hypot(300.0 - 0.1 * w * w, 11.0 * w);
+    EXPECT_NEAR(lowest, 0.003 - 0.007 * gain, 5e-5);
+    EXPECT_NEAR(s.position[1], 0.003 + 0.007 * gain, 5e-5);
+    EXPECT_NEAR(s.position[0], 0.01, 1e-9);
+  }
+  // Stroke: down at the start, along to the end at 20 mm/s, up again.
+  params.number("pattern", 2).vector("stroke_start", {0.0, 0.0, 0.0}).vector("stroke_end", {0.02, 0.0, 0.0})
+      .number("stroke_speed", 0.02);
+  DeviceInstance device(api, params.setup());
+  ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
+  tacta_device_sample s{};
+  const double vertical = 0.014 / 0.02;  // s: approach height plus depth at the stroke speed
+  for (int n = 0; n <= 3000; ++n) {
+    device.read(n * kTick, s);
+    if (n == static_cast<int>((vertical + 0.5) * 1000)) {
+      EXPECT_NEAR(s.position[0], 0.01, 2e-4);   // half way along
+      EXPECT_NEAR(s.position[1], -0.004, 2e-4);  // at depth
+    }
+  }
+  EXPECT_NEAR(s.position[0], 0.02, 1e-5);
+  EXPECT_NEAR(s.position[1], 0.01, 1e-5);
 }
 
 TEST_F(SimStylusTest, BadScriptIsRefusedAtCreateWithAReason) {
