@@ -14,8 +14,10 @@ namespace tacta::render {
 
 namespace {
 
-std::mutex glfw_mutex;  // glfwInit/glfwTerminate are process-wide: count the windows
-int glfw_users = 0;
+// GLFW is initialised once a process and never terminated: glfwTerminate closes the X display,
+// which unloads Mesa's driver and strands its allocations (LeakSanitizer reports them).
+std::mutex glfw_mutex;
+bool glfw_ready = false;
 
 std::string glfw_reason() {
   const char* description = nullptr;
@@ -35,9 +37,9 @@ struct Window::State {
 Window::Window(const WindowOptions& options) : state_(std::make_unique<State>()) {
   {
     std::lock_guard lock(glfw_mutex);
-    if (glfw_users == 0 && glfwInit() != GLFW_TRUE)
+    if (!glfw_ready && glfwInit() != GLFW_TRUE)
       throw std::runtime_error("window: cannot start GLFW (" + glfw_reason() + "); is DISPLAY set?");
-    ++glfw_users;
+    glfw_ready = true;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -47,8 +49,6 @@ Window::Window(const WindowOptions& options) : state_(std::make_unique<State>())
   state_->window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
   if (state_->window == nullptr) {
     const std::string reason = glfw_reason();
-    std::lock_guard lock(glfw_mutex);
-    if (--glfw_users == 0) glfwTerminate();
     throw std::runtime_error("window: cannot open an OpenGL 3.3 core window (" + reason + ")");
   }
   glfwMakeContextCurrent(state_->window);
@@ -60,8 +60,6 @@ Window::~Window() {
   glfwMakeContextCurrent(state_->window);
   state_->renderer.reset();
   glfwDestroyWindow(state_->window);
-  std::lock_guard lock(glfw_mutex);
-  if (--glfw_users == 0) glfwTerminate();
 }
 
 bool Window::should_close() const { return glfwWindowShouldClose(state_->window) == GLFW_TRUE; }
