@@ -241,11 +241,18 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   const CollisionInstance* broad = nullptr;
   for (auto& inst : instances_)
     if (broad == nullptr && inst->api.find_pairs != nullptr) broad = inst.get();
+  const bool self_collision = world_.scene().collision.self_collision;
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
     if (broad != nullptr)
       bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
+    if (!self_collision) {  // the scene's collision.self_collision: drop pairs within one surface
+      uint32_t kept = 0;
+      for (uint32_t p = 0; p < pair_count; ++p)
+        if (pairs_[p].surface_a != pairs_[p].surface_b) pairs_[kept++] = pairs_[p];
+      pair_count = kept;
+    }
     const uint32_t first = contact_count_;
     for (auto& inst : instances_) {
       if (inst->api.detect == nullptr) continue;

@@ -235,6 +235,8 @@ uint32_t respond_to_contacts(tacta_collision_world& world, tacta_contact* contac
     tacta_contact& c = contacts[i];
     for (double& f : c.force) f /= dt;
     if (bind(world, c, k) != 0) continue;
+    // Nothing movable (fixed vertices against a rigid side or each other): not ours to resolve.
+    if (!(weighted_inverse_mass(k.a) + weighted_inverse_mass(k.b) > 0)) continue;
     if (k.b.surface == nullptr) {  // rigid side: kept at the thickness
       if (violation(k) < -settings.tolerance) bits |= TACTA_COLLIDE_UNRESOLVED;
       continue;

@@ -27,8 +27,9 @@
 //     vertices of both sides back at their start-of-tick positions (time of impact 0: the start
 //     of the tick was contact-free, the previous tick ended so and CCD checked the motion
 //     since). A contact still violated then, or a rigid-side contact with C < -tolerance,
-//     sets TACTA_COLLIDE_UNRESOLVED. Surface-surface contacts may end inside the thickness layer
-//     (0 < gap < h): CCD reports crossings, not proximity, so nothing pushes them out there.
+//     sets TACTA_COLLIDE_UNRESOLVED (not when all its vertices are fixed: nothing can move).
+//     Surface-surface contacts may end inside the thickness layer (0 < gap < h): CCD reports
+//     crossings, not proximity, so nothing pushes them out there.
 //  The positions changed here are checked again by the caller's next detection round (the
 //  engine runs detect + respond again while surface-surface contacts appear, see
 //  collision_context.cpp), which catches crossings the corrections themselves create.

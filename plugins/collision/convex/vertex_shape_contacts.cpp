@@ -188,6 +188,8 @@ uint32_t vertex_shape_contacts(const tacta_collision_world& world, HullDistance 
         const tacta_collision_surface& surface = world.surfaces[a];
         const double h = surface.thickness;
         for (uint32_t v = 0; v < surface.vertex_count; ++v) {
+          // A fixed vertex against a rigid shape: nothing can move, no contact to resolve.
+          if (surface.inverse_masses != nullptr && surface.inverse_masses[v] == 0.0) continue;
           const double* start = surface.positions_start + 3 * v;
           const double* end = surface.positions_end + 3 * v;
           if (!finite3(start) || !finite3(end)) {

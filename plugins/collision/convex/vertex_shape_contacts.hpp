@@ -12,6 +12,7 @@
 // Contact: type SHAPE_VERTEX (index_b into shapes) or OBSTACLE_VERTEX (into obstacles),
 // nodes_a = {vertex}, point on the shape at the end of the tick, normal from the shape towards
 // the vertex, depth = h - signed distance along the normal (> 0 when inside the layer).
+// Fixed vertices (inverse mass 0) are skipped: neither side can move.
 #pragma once
 
 #include <cstdint>

@@ -165,29 +165,41 @@ TEST(ContactResponse, FrictionDeceleratesSlidingBlockAtMuG) {
 
 TEST(ContactResponse, BadInputIsReportedNotFatal) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> start{0, 0, 0, 1, 0, 0}, end{0, 0, -0.01, nan, 0, 0}, velocity(6, 0.0);
-  std::vector<double> inverse_mass{0.0, 1.0};  // vertex 0 is fixed
+  // Vertex 0: fixed, below the floor. Vertex 1: NaN. Vertex 2: free, squeezed between the floor
+  // and a ceiling 1.5e-4 m above it, narrower than the two thickness layers (2e-4 m).
+  std::vector<double> start{0, 0, 0, 1, 0, 0, 2, 0, 7.5e-5}, end{0, 0, -0.01, nan, 0, 0, 2, 0, 7.5e-5};
+  std::vector<double> velocity(9, 0.0), inverse_mass{0.0, 1.0, 1.0};
   tacta_collision_surface surface{};
-  surface.vertex_count = 2;
+  surface.vertex_count = 3;
   surface.positions_start = start.data();
   surface.positions_end = end.data();
   surface.velocities = velocity.data();
   surface.inverse_masses = inverse_mass.data();
   surface.thickness = kThickness;
-  const tacta_collision_shape floor = tacta::testing::plane(0, 0, 1, 0.0);
-  tacta_collision_world world = make_world(&surface, 1, nullptr, 0, &floor, 1);
+  const tacta_collision_shape walls[2] = {tacta::testing::plane(0, 0, 1, 0.0),
+                                          tacta::testing::plane(0, 0, -1, -1.5e-4)};
+  tacta_collision_world world = make_world(&surface, 1, nullptr, 0, walls, 2);
   tacta::testing::CollisionPlugin convex("tacta_convex.so", "convex");
   tacta::testing::CollisionPlugin ccd("tacta_ccd.so", "ccd");
   tacta_contact contacts[8];
   uint32_t count = 0;
-  // NaN vertex skipped and flagged; the fixed vertex below the plane still found.
+  // NaN vertex skipped and flagged; the fixed vertex skipped (nothing can move); vertex 2
+  // touches both walls.
   EXPECT_EQ(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts, 8, &count),
             TACTA_COLLIDE_NOT_FINITE);
-  ASSERT_EQ(count, 1u);
-  EXPECT_NE(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts + 1, 0, &count) &
+  ASSERT_EQ(count, 2u);
+  EXPECT_EQ(contacts[0].nodes_a[0], 2u);
+  EXPECT_NE(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts + 2, 1, &count) &
                 TACTA_COLLIDE_OVERFLOW, 0u);
-  // A fixed vertex cannot be moved out: reported unresolved, left where it is.
-  EXPECT_NE(ccd.api().respond(ccd.instance(), &world, contacts, 1) & TACTA_COLLIDE_UNRESOLVED, 0u);
+  EXPECT_EQ(count, 1u);
+  // Conflicting walls: reported unresolved, the result stays finite and between the walls.
+  EXPECT_NE(ccd.api().respond(ccd.instance(), &world, contacts, 2) & TACTA_COLLIDE_UNRESOLVED, 0u);
+  EXPECT_GT(end[8], 0.0);
+  EXPECT_LT(end[8], 1.5e-4);
+  // A contact naming the fixed vertex: nothing to move, not an error, vertex left in place.
+  tacta_contact fixed = contacts[0];
+  fixed.nodes_a[0] = 0;
+  EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, &fixed, 1), 0u);
   EXPECT_EQ(end[2], -0.01);
   // Malformed contacts: out-of-range indices, unknown type, NaN or zero normal, NaN position.
   tacta_contact bad[5];
@@ -197,7 +209,9 @@ TEST(ContactResponse, BadInputIsReportedNotFatal) {
   bad[2].normal[0] = nan;
   bad[3].normal[0] = bad[3].normal[1] = bad[3].normal[2] = 0;
   bad[4].nodes_a[0] = 1;  // the NaN vertex
+  const double squeezed = end[8];
   const uint32_t bits = ccd.api().respond(ccd.instance(), &world, bad, 5);
+  EXPECT_EQ(end[8], squeezed);
   EXPECT_NE(bits & TACTA_COLLIDE_DEGENERATE, 0u);
   EXPECT_NE(bits & TACTA_COLLIDE_NOT_FINITE, 0u);
   EXPECT_EQ(end[2], -0.01);
