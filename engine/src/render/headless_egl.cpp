@@ -139,6 +139,8 @@ HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std:
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("headless render: the off-screen framebuffer is incomplete");
     s.renderer = std::make_unique<Renderer>();
+    // Released after every use so that any one thread at a time may render (a render task).
+    eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   } catch (...) {
     s.release();
     throw;
@@ -166,10 +168,14 @@ void HeadlessRenderer::State::release() {
 
 Image HeadlessRenderer::render(const RenderFrame& frame) {
   State& s = *state_;
-  // The caller's thread may differ from the one that made the context.
-  if (eglGetCurrentContext() != s.context &&
-      eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context) != EGL_TRUE)
+  // The caller's thread may differ from the one that made the context: bind it here, release
+  // it at the end (also when drawing throws on bad input).
+  if (eglMakeCurrent(s.display, EGL_NO_SURFACE, EGL_NO_SURFACE, s.context) != EGL_TRUE)
     fail("eglMakeCurrent");
+  struct Release {
+    EGLDisplay display;
+    ~Release() { eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+  } release{s.display};
   glBindFramebuffer(GL_FRAMEBUFFER, s.framebuffer);
   s.renderer->draw(frame, s.options.width, s.options.height);
   glFinish();
@@ -196,7 +202,9 @@ std::string HeadlessRenderer::description() const {
     const GLubyte* s = glGetString(name);
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
   };
-  return "OpenGL " + text(GL_VERSION) + " / " + text(GL_RENDERER) + " via " + state_->platform;
+  const std::string what = "OpenGL " + text(GL_VERSION) + " / " + text(GL_RENDERER) + " via " + state_->platform;
+  eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  return what;
 }
 
 }  // namespace tacta::render

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "headless_fixture.hpp"
 #include "tacta/error.hpp"
@@ -84,6 +85,15 @@ TEST_F(HeadlessRender, SameFrameTwiceGivesTheSameBytes) {
   const Image first = renderer().render(frames[2].frame);
   const Image second = renderer().render(frames[2].frame);
   EXPECT_EQ(first.rgba, second.rgba);
+}
+
+TEST_F(HeadlessRender, AnotherThreadCanRenderTheSamePicture) {
+  const RenderFrame frame = golden_frames()[0].frame;
+  const Image here = renderer().render(frame);
+  Image there;
+  std::thread render_task([&] { there = renderer().render(frame); });
+  render_task.join();
+  EXPECT_EQ(here.rgba, there.rgba);
 }
 
 TEST_F(HeadlessRender, OverlayTextDrawsInkInThePanel) {
