@@ -15,6 +15,11 @@ std::atomic<long> g_allocations{0};
 
 // Count every heap allocation: operator new here, and (outside AddressSanitizer, which owns
 // malloc itself) malloc, calloc and realloc too, so Eigen's own allocations are seen as well.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)  // clang's spelling
+#define __SANITIZE_ADDRESS__ 1
+#endif
+#endif
 #if !defined(__SANITIZE_ADDRESS__)
 extern "C" {
 void* __libc_malloc(std::size_t);
