@@ -53,7 +53,17 @@ void finish(tacta_contact& c, const double* q, double thickness) {
     n[0] = ea[1] * eb[2] - ea[2] * eb[1];
     n[1] = ea[2] * eb[0] - ea[0] * eb[2];
     n[2] = ea[0] * eb[1] - ea[1] * eb[0];
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double scale = std::sqrt((ea[0] * ea[0] + ea[1] * ea[1] + ea[2] * ea[2]) *
+                                   (eb[0] * eb[0] + eb[1] * eb[1] + eb[2] * eb[2]));
+    // Nearly parallel edges (under ~0.06 degrees): the cross product's direction is rounding
+    // noise; use the separation of the two contact points at the start of the tick instead.
+    if (!(length > 1e-3 * scale)) {
+      for (int k = 0; k < 3; ++k)
+        n[k] = c.weights_a[0] * q[k] + c.weights_a[1] * q[3 + k] + c.weights_a[2] * q[6 + k] -
+               (c.weights_b[0] * q[3 + k] + c.weights_b[1] * q[6 + k] + c.weights_b[2] * q[9 + k]);
+      length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
     for (int k = 0; k < 3; ++k) n[k] = length > 0.0 ? n[k] / length : 0.0;
   }
   // Orient the normal by the side a was on at the start of the tick.

@@ -163,6 +163,44 @@ TEST(ContactResponse, FrictionDeceleratesSlidingBlockAtMuG) {
   EXPECT_NEAR(without, 0.0, 0.05 * mu * kGravity);
 }
 
+TEST(ContactResponse, ParallelEdgesGetTheApproachNormal) {
+  // Two equal horizontal triangles, one falling through the other (shifted 0.2 m along x, so
+  // their edges are pairwise parallel). Every edge-edge contact, parallel pairs included, must
+  // separate along +z (from the lower triangle towards the falling one).
+  std::vector<double> a_start{0, 0, 1, 1, 0, 1, 0.5, 1, 1}, a_end{0, 0, -1, 1, 0, -1, 0.5, 1, -1};
+  std::vector<double> b_start{0.2, 0, 0, 1.2, 0, 0, 0.7, 1, 0};
+  std::vector<double> b_end = b_start;
+  const std::vector<uint32_t> triangle{0, 1, 2};
+  tacta_collision_surface surfaces[2]{};
+  for (int i = 0; i < 2; ++i) {
+    surfaces[i].body_id = static_cast<uint32_t>(i);
+    surfaces[i].vertex_count = 3;
+    surfaces[i].positions_start = i == 0 ? a_start.data() : b_start.data();
+    surfaces[i].positions_end = i == 0 ? a_end.data() : b_end.data();
+    surfaces[i].triangle_count = 1;
+    surfaces[i].triangles = triangle.data();
+    surfaces[i].thickness = kThickness;
+  }
+  tacta_collision_world world = make_world(surfaces, 2, nullptr, 0, nullptr, 0);
+  tacta::testing::CollisionPlugin ccd("tacta_ccd.so", "ccd");
+  tacta_contact contacts[64];
+  uint32_t count = 0;
+  EXPECT_EQ(ccd.api().detect(ccd.instance(), &world, nullptr, 0, contacts, 64, &count), 0u);
+  int edge_edge = 0;
+  for (uint32_t c = 0; c < count; ++c) {
+    if (contacts[c].type != TACTA_CONTACT_EDGE_EDGE) continue;
+    ++edge_edge;
+    EXPECT_NEAR(contacts[c].normal[2], 1.0, 1e-5) << "contact " << c;
+  }
+  EXPECT_GE(edge_edge, 3);
+  // After the response (rounds as the engine runs them) the corrected motion crosses nothing.
+  for (int round = 0; round < 3 && count > 0; ++round) {
+    EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, contacts, count) & TACTA_COLLIDE_UNRESOLVED, 0u);
+    EXPECT_EQ(ccd.api().detect(ccd.instance(), &world, nullptr, 0, contacts, 64, &count), 0u);
+  }
+  EXPECT_EQ(count, 0u);
+}
+
 TEST(ContactResponse, BadInputIsReportedNotFatal) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Vertex 0: fixed, below the floor. Vertex 1: NaN. Vertex 2: free, squeezed between the floor
