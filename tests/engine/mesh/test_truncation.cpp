@@ -76,5 +76,49 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+// Surface files have no end marker (a cut OBJ is a smaller valid OBJ), so a cut surface may load;
+// what it must never do is crash or throw anything but InputError.
+class TruncatedSurface : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TruncatedSurface, LoadsOrGivesAnInputError) {
+  const std::string source = GetParam();
+  const std::string bytes = read_all(source);
+  ASSERT_FALSE(bytes.empty()) << source;
+  constexpr size_t kCuts = 30;  // assimp is slower to start than the volume readers
+  const std::string cut_path = (std::filesystem::temp_directory_path() /
+                                ("tacta_truncated_" + std::to_string(::getpid()) + "_" +
+                                 std::filesystem::path(source).filename().string())).string();
+  size_t errors = 0;
+  for (size_t i = 0; i < kCuts; ++i) {
+    const size_t cut = bytes.size() * i / kCuts;
+    {
+      std::ofstream out(cut_path, std::ios::binary | std::ios::trunc);
+      out.write(bytes.data(), static_cast<std::streamsize>(cut));
+    }
+    try {
+      SurfaceMesh s = load_surface(cut_path);
+      EXPECT_GT(s.triangle_count(), 0u);
+      for (uint32_t index : s.triangles) ASSERT_LT(index, s.vertex_count());
+    } catch (const InputError&) {
+      ++errors;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << source << " cut at byte " << cut << ": not an InputError: " << e.what();
+    }
+  }
+  std::filesystem::remove(cut_path);
+  EXPECT_GT(errors, 0u);  // at least the empty file is refused
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, TruncatedSurface,
+    ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"), test::test_mesh("tetra.gltf"),
+                      test::test_mesh("tetra.glb")),
+    [](const ::testing::TestParamInfo<std::string>& param_info) {
+      std::string name = std::filesystem::path(param_info.param).filename().string();
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
 }  // namespace
 }  // namespace tacta
