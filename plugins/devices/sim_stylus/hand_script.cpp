@@ -39,8 +39,12 @@ HandScript::HandScript(const ScriptSettings& settings)
   for (double& c : settings_.approach_axis) c /= axis_length;
   switch (settings.pattern) {
     case Pattern::waypoints:
-      require(waypoints_.size() >= 4 && waypoints_.size() % 4 == 0,
-              "pattern 'waypoints' expects waypoints as groups of 4 numbers (t s, x y z m), at least one");
+      if (waypoints_.empty()) {  // no script: the hand holds the stylus at its rest position
+        const Point& r = settings.rest_position;
+        waypoints_ = {0.0, r[0], r[1], r[2]};
+      }
+      require(waypoints_.size() % 4 == 0,
+              "pattern 'waypoints' expects waypoints as groups of 4 numbers (t s, x y z m)");
       for (size_t i = 4; i < waypoints_.size(); i += 4)
         require(waypoints_[i] >= waypoints_[i - 4],
                 "waypoint " + std::to_string(i / 4) + ": expected a time not before the previous one");

@@ -15,7 +15,8 @@ enum class Pattern { waypoints = 0, tap = 1, stroke = 2, palpation = 3 };
 
 struct ScriptSettings {
   Pattern pattern = Pattern::waypoints;
-  std::span<const double> waypoints;         // t x y z, stride 4 (s, m)
+  std::span<const double> waypoints;         // t x y z, stride 4 (s, m); empty: hold at rest
+  Point rest_position{0.0, 0.0, 0.0};        // m, where the hand holds with no waypoints
   Point approach_axis{0.0, 1.0, 0.0};        // unit, pointing out of the surface toward the hand
   double approach_height = 0.01;             // m above a press point where the hand starts/returns
   double depth = 0.005;                      // m the target goes below a press point

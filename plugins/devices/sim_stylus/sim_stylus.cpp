@@ -69,7 +69,7 @@ class SimStylus {
   static constexpr std::array<tacta_param_spec, 21> kParams{{
       sdk::vector_param("workspace_origin", "m", 3, "0 0 0", -kBig, kBig, "centre of the device workspace in the world"),
       sdk::choice_param("pattern", "waypoints|tap|stroke|palpation", 0, "what the scripted hand does"),
-      sdk::vector_param("waypoints", "s, m", 4, "0 0 0 0", -kBig, kBig, "t x y z per waypoint, linear between, held after the last"),
+      sdk::vector_param("waypoints", "s, m", 4, "", -kBig, kBig, "t x y z per waypoint (world), linear between, held after the last; none: rest at workspace_origin"),
       sdk::vector_param("approach_axis", "", 3, "0 1 0", -1.0, 1.0, "direction out of the surface, toward the hand"),
       sdk::real_param("approach_height", "m", 0.01, 0.0, 0.2, "height above a press point where the hand hovers"),
       sdk::real_param("depth", "m", 0.005, 0.0, 0.1, "how far below a press point the hand aims"),
@@ -163,6 +163,7 @@ class SimStylus {
     ScriptSettings s;
     s.pattern = static_cast<Pattern>(params_.choice("pattern"));
     s.waypoints = params_.vector("waypoints");
+    s.rest_position = origin_;
     s.approach_axis = to_point(params_.vector("approach_axis"), {0, 1, 0});
     s.approach_height = params_.real("approach_height");
     s.depth = params_.real("depth");

@@ -35,6 +35,10 @@ TEST_F(SimStylusTest, DescriptorIsADeviceWithOmniCapabilities) {
   EXPECT_NEAR(c.workspace_max[2] - c.workspace_min[2], 0.070, 1e-12);
   EXPECT_NEAR(0.5 * (c.workspace_max[2] + c.workspace_min[2]), 0.3, 1e-12);
   EXPECT_EQ(c.dof_out, 3u);
+  const tacta_device_sample s = device.read(0.5);  // no waypoints: the hand rests at the origin
+  EXPECT_NEAR(s.position[0], 0.1, 1e-12);
+  EXPECT_NEAR(s.position[1], 0.2, 1e-12);
+  EXPECT_NEAR(s.position[2], 0.3, 1e-12);
 }
 
 // Tolerance: with the default critically damped hand (0.1 kg, 300 N/m, 11 N s/m) the tracking

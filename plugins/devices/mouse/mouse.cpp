@@ -1,0 +1,191 @@
+// mouse: the viewer's mouse as an Omni-class haptic device. The host feeds a target point
+// through the device API's input entry (x, y, z in m); the stylus is a point mass pulled toward
+// that target by a hand impedance (spring and damper, as sim_stylus's scripted hand), and the
+// force written to the device acts on the same mass, so the rendered force pushes back on the
+// motion (closed loop): pressing into a body, the stylus stops near its surface like a hand
+// that meets resistance. Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
+// about 1 N/mm usable stiffness at 1 kHz; numbers from /work/shared/data/README.md).
+//
+// There is one mouse per process: input() stores the target in a process-wide lock-free slot
+// that every instance follows, so the host may pass a NULL instance (the viewer does, since the
+// simulation owns the instances).
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+
+#include "tacta/sdk/device.hpp"
+
+namespace tacta::mouse_device {
+namespace {
+
+using Point = std::array<double, 3>;
+
+constexpr double kPeakForce = 3.3;           // N
+constexpr double kContinuousForce = 0.88;    // N
+constexpr double kUsableStiffness = 1000.0;  // N/m
+constexpr Point kWorkspaceHalf{0.080, 0.060, 0.035};  // m: the Omni's 160 x 120 x 70 mm
+constexpr double kTeleportGap = 1.0;         // s; a longer gap (or time going back) restarts at the target
+constexpr int kMaxSubsteps = 100000;
+
+// The target, written by one host thread, read by the haptic thread: a sequence lock over
+// atomics (the reader retries while a write is in progress; a write takes nanoseconds).
+class TargetSlot {
+ public:
+  void store(const Point& p) noexcept {
+    const uint64_t s = sequence_.load(std::memory_order_relaxed);
+    sequence_.store(s + 1, std::memory_order_relaxed);  // odd: writing
+    std::atomic_thread_fence(std::memory_order_release);
+    for (int i = 0; i < 3; ++i) value_[i].store(p[i], std::memory_order_relaxed);
+    sequence_.store(s + 2, std::memory_order_release);
+  }
+  // False while the host has never fed a target.
+  bool load(Point& out) const noexcept {
+    for (;;) {
+      const uint64_t before = sequence_.load(std::memory_order_acquire);
+      if (before == 0) return false;
+      if (before & 1) continue;
+      for (int i = 0; i < 3; ++i) out[i] = value_[i].load(std::memory_order_relaxed);
+      std::atomic_thread_fence(std::memory_order_acquire);
+      if (sequence_.load(std::memory_order_relaxed) == before) return true;
+    }
+  }
+
+ private:
+  std::atomic<uint64_t> sequence_{0};
+  std::array<std::atomic<double>, 3> value_{};
+};
+
+TargetSlot& shared_target() {
+  static TargetSlot slot;
+  return slot;
+}
+
+Point to_point(std::span<const double> v, Point fallback) {
+  return v.size() >= 3 ? Point{v[0], v[1], v[2]} : fallback;
+}
+
+}  // namespace
+
+class MouseDevice {
+ public:
+  static constexpr const char* kName = "mouse";
+  static constexpr const char* kDescription =
+      "The viewer's mouse as an Omni-class stylus: follows a host-fed target through a hand impedance";
+  static constexpr uint32_t kVersion = 10000;
+  static constexpr double kBig = 1e6;
+  static constexpr std::array<tacta_param_spec, 6> kParams{{
+      sdk::vector_param("start_position", "m", 3, "0 0.1 0", -kBig, kBig, "target until the host feeds one"),
+      sdk::vector_param("workspace_origin", "m", 3, "0 0.1 0", -kBig, kBig, "centre of the reported workspace"),
+      sdk::bool_param("limit_to_workspace", false, "the stylus stops at the workspace box"),
+      sdk::real_param("hand_mass", "kg", 0.1, 1e-3, 10.0, "stylus plus hand effective mass"),
+      sdk::real_param("hand_stiffness", "N/m", 300.0, 0.0, 1e5, "hand spring toward the target"),
+      sdk::real_param("hand_damping", "N s/m", 11.0, 0.0, 1e4, "hand damper on the velocity (critical for the defaults)"),
+  }};
+
+  explicit MouseDevice(const tacta_device_setup& setup) {
+    const sdk::Params params(kParams, setup.params, setup.param_count);
+    start_ = to_point(params.vector("start_position"), {0, 0.1, 0});
+    origin_ = to_point(params.vector("workspace_origin"), {0, 0.1, 0});
+    limit_to_workspace_ = params.flag("limit_to_workspace");
+    mass_ = params.real("hand_mass");
+    stiffness_ = params.real("hand_stiffness");
+    damping_ = params.real("hand_damping");
+    if (!(mass_ > 0.0)) throw std::invalid_argument("mouse: hand_mass must be > 0 kg");
+    // Sub-step: a fifth of the hand spring's 1/omega and half its damping time, at most 0.1 ms.
+    if (stiffness_ > 0.0) max_substep_ = std::min(max_substep_, 0.2 * std::sqrt(mass_ / stiffness_));
+    if (damping_ > 0.0) max_substep_ = std::min(max_substep_, 0.5 * mass_ / damping_);
+  }
+
+  static void input(MouseDevice*, const double* values, uint32_t count) noexcept {
+    if (values == nullptr || count < 3) return;
+    const Point p{values[0], values[1], values[2]};
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) shared_target().store(p);
+  }
+
+  void connect() { connected_ = true; }
+  void disconnect() noexcept { connected_ = false; }
+
+  tacta_device_state read(double time, tacta_device_sample& sample) noexcept {
+    const Point target = current_target();
+    if (!started_ || !(time - last_time_ <= kTeleportGap) || time < last_time_) {
+      position_ = target;  // first read, a long gap or a restarted clock: at rest on the target
+      velocity_ = {0, 0, 0};
+      started_ = true;
+    } else if (time > last_time_) {
+      integrate(target, time - last_time_);
+    }
+    last_time_ = time;
+    sample.time = time;
+    for (int i = 0; i < 3; ++i) {
+      sample.position[i] = position_[i];
+      sample.velocity[i] = velocity_[i];
+    }
+    sample.orientation[0] = 1.0;
+    sample.orientation[1] = sample.orientation[2] = sample.orientation[3] = 0.0;
+    sample.buttons = 0;
+    return connected_ ? TACTA_DEVICE_CONNECTED : TACTA_DEVICE_DISCONNECTED;
+  }
+
+  void write(double, const tacta_device_command& command) noexcept {
+    const Point f{command.force[0], command.force[1], command.force[2]};
+    const double magnitude = std::hypot(f[0], f[1], f[2]);
+    if (!std::isfinite(magnitude)) { force_ = {0, 0, 0}; return; }
+    const double scale = magnitude > kPeakForce ? kPeakForce / magnitude : 1.0;
+    force_ = {f[0] * scale, f[1] * scale, f[2] * scale};
+  }
+
+  tacta_device_capabilities capabilities() const noexcept {
+    tacta_device_capabilities c{};
+    for (int i = 0; i < 3; ++i) {
+      c.workspace_min[i] = origin_[i] - kWorkspaceHalf[i];
+      c.workspace_max[i] = origin_[i] + kWorkspaceHalf[i];
+    }
+    c.peak_force = kPeakForce;
+    c.continuous_force = kContinuousForce;
+    c.usable_stiffness = kUsableStiffness;
+    c.nominal_rate = 1000.0;
+    c.dof_in = 3;
+    c.dof_out = 3;
+    return c;
+  }
+
+ private:
+  Point current_target() const noexcept {
+    Point target = start_;
+    shared_target().load(target);  // keeps start_ until the host feeds a target
+    return target;
+  }
+
+  // Semi-implicit Euler of the hand-held stylus over `span` s, target held (it is a sample).
+  void integrate(const Point& target, double span) noexcept {
+    const int steps = std::clamp(static_cast<int>(std::ceil(span / max_substep_)), 1, kMaxSubsteps);
+    const double h = span / steps;
+    for (int step = 0; step < steps; ++step)
+      for (int i = 0; i < 3; ++i) {
+        const double hand = stiffness_ * (target[i] - position_[i]) - damping_ * velocity_[i];
+        velocity_[i] += (hand + force_[i]) / mass_ * h;
+        position_[i] += velocity_[i] * h;
+        if (limit_to_workspace_) stop_at_workspace(i);
+      }
+  }
+
+  void stop_at_workspace(int i) noexcept {
+    const double low = origin_[i] - kWorkspaceHalf[i], high = origin_[i] + kWorkspaceHalf[i];
+    if (position_[i] < low) { position_[i] = low; velocity_[i] = std::max(velocity_[i], 0.0); }
+    if (position_[i] > high) { position_[i] = high; velocity_[i] = std::min(velocity_[i], 0.0); }
+  }
+
+  Point start_{}, origin_{};
+  bool limit_to_workspace_ = false;
+  double mass_ = 0.1, stiffness_ = 300, damping_ = 11;
+  double max_substep_ = 1e-4;
+  bool connected_ = false;
+  bool started_ = false;
+  double last_time_ = 0.0;
+  Point position_{0, 0, 0}, velocity_{0, 0, 0}, force_{0, 0, 0};
+};
+
+}  // namespace tacta::mouse_device
+
+TACTA_PLUGIN_EXPORT(tacta::sdk::device_descriptor<tacta::mouse_device::MouseDevice>())
