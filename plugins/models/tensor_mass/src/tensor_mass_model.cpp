@@ -87,8 +87,7 @@ void TensorMassModel::apply_stiffness(const double* u, double* y) const noexcept
 }
 
 void TensorMassModel::internal_forces(const double* positions, double* forces) const noexcept {
-  // scratch_ is logically const here: a displacement buffer, fully rewritten on each call.
-  double* d = const_cast<double*>(scratch_.data());
+  double* d = scratch_.data();  // fully rewritten on each call
   for (size_t k = 0; k < rest_.size(); ++k) d[k] = positions[k] - rest_[k];
   apply_stiffness(d, forces);
   for (size_t k = 0; k < rest_.size(); ++k) forces[k] = -forces[k];

@@ -66,7 +66,8 @@ class TensorMassModel {
   std::vector<Eigen::Matrix3d> vertex_block_;  // K_ii, N/m
   std::vector<Eigen::Matrix3d> edge_block_;    // K_ab for edge (a, b); K_ba = K_ab^T
   std::vector<double> previous_;               // central differences: x(t - dt)
-  std::vector<double> scratch_, force_;        // 3 per node
+  mutable std::vector<double> scratch_;        // displacement buffer for internal_forces()
+  std::vector<double> force_;                  // 3 per node, N
   bool has_history_ = false;
   std::unique_ptr<ImplicitEulerSolver> implicit_;
   DivergenceGuard guard_;

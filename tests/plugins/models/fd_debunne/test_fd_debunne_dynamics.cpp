@@ -117,7 +117,7 @@ TEST(FdDebunneDynamics, StableStepScalesWithElementSize) {
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
   std::printf("fd_debunne stable dt (unit cube of tets, symplectic Euler)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
   double first_ratio = 0;
-  for (uint32_t cells : {2u, 4u, 8u}) {
+  for (uint32_t cells : {2u, 4u, 6u}) {
     FdDebunneOptions options;
     options.symmetric = true;
     FdBody body(box_tet_mesh({cells, cells, cells}, {1, 1, 1}, 1000.0), material, options);

@@ -79,7 +79,7 @@ TEST(MassSpringDynamics, SymplecticEnergyBoundedAndStableStepTable) {
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
   std::printf("mass_spring stable dt (unit cube, symplectic Euler)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
   double first = 0, dt_crit_3 = 0;
-  for (uint32_t cells : {2u, 3u, 4u, 8u}) {
+  for (uint32_t cells : {2u, 3u, 4u, 6u}) {
     MsBody body(box_tet_mesh({cells, cells, cells}, {1, 1, 1}, 1000.0), material,
                 with_integrator(Integrator::kSymplecticEuler));
     auto stable = [&](double dt) {

@@ -76,7 +76,7 @@ TEST(TensorMassWaves, SWaveSpeedFromFirstTorsionalMode) {
       body, twist, [&](const std::vector<double>& x) { return x[3 * corner + 1] - side; },
       0.4 * std::min(length / along, side / across) /
           p_wave_speed(body.material.lame_lambda, body.material.lame_mu, rho),
-      3.2 * 4 * length / c_torsion);
+      2.1 * 4 * length / c_torsion);  // two upward tip crossings (0.75 T and 1.75 T)
   const double speed = 4 * length / period / std::sqrt(6 * 0.1406);  // back to c_s
   std::printf("tensor_mass S: %ux%ux%u bar (side %.2f m) torsion: c_s %.4f m/s (exact %.4f, %+.2f%%)\n",
               along, across, across, side, speed, cs, 100 * (speed / cs - 1));
@@ -117,7 +117,7 @@ TEST(TensorMassDynamics, StableStepScalesWithElementSize) {
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
   std::printf("tensor_mass stable dt (unit cube, 6 tets per cell, central differences)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
   double first = 0;
-  for (uint32_t cells : {2u, 4u, 8u}) {
+  for (uint32_t cells : {2u, 4u, 6u}) {
     TmBody body(box_tet_mesh({cells, cells, cells}, {1, 1, 1}, 1000.0), material);
     auto stable = [&](double dt) {
       checks::StateBuffers s(body.mesh.positions);
