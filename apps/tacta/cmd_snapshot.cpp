@@ -1,0 +1,118 @@
+// `tacta snapshot SCENE --at T --out FILE.png`: runs the scene in lockstep up to simulated time T
+// and draws the final state with the headless (EGL) renderer into one PNG. Exit 0 ok, 1 the run
+// faulted (the picture is still written) or no picture could be made, 2 bad input.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "command.hpp"
+#include "compare_last_snapshot.hpp"
+#include "tacta/error.hpp"
+#include "tacta/plugin_registry.hpp"
+#include "tacta/render/headless.hpp"
+#include "tacta/render/image.hpp"
+#include "tacta/render/snapshot_frame.hpp"
+#include "tacta/scene_loader.hpp"
+#include "tacta/sim/registry_schemas.hpp"
+#include "tacta/sim/simulation.hpp"
+
+namespace tacta::cli {
+namespace {
+
+// Same bounds as the scene's output.frame_size, pixels.
+constexpr int kMaxPictureSide = 16384;
+
+struct SnapshotArgs {
+  std::string scene;
+  double at = -1;  // s of simulated time
+  std::string out;
+  std::optional<int> width, height;  // pixels; absent: the scene's output.frame_size
+  std::vector<std::string> overrides;
+  bool quiet = false;
+};
+
+void check_args(const SnapshotArgs& args) {
+  if (!std::isfinite(args.at) || args.at < 0)
+    throw InputError({"--at", 0, 0, ""}, "expected a simulated time >= 0 s, found " + std::to_string(args.at));
+  for (const auto& [name, side] : {std::pair{"--width", args.width}, std::pair{"--height", args.height}})
+    if (side && (*side < 1 || *side > kMaxPictureSide))
+      throw InputError({name, 0, 0, ""}, "expected pixels in [1, 16384], found " + std::to_string(*side));
+  if (args.out.empty()) throw InputError({"--out", 0, 0, ""}, "expected a PNG file name, found nothing");
+}
+
+// "model: a" or "models: a, b" for the overlay, from the models the bodies ended with.
+std::string model_label(const RunResult& result) {
+  std::string names;
+  for (const BodyResult& b : result.bodies)
+    if (names.find(b.model) == std::string::npos) names += (names.empty() ? "" : ", ") + b.model;
+  return (names.find(',') == std::string::npos ? "model: " : "models: ") + names;
+}
+
+int take_snapshot(const SnapshotArgs& args) {
+  check_args(args);
+  PluginRegistry plugins;
+  plugins.load();
+  RegistrySchemas schemas(plugins);
+  const SceneDesc scene = load_scene(args.scene, schemas, args.overrides);
+  Simulation simulation(scene, plugins);
+
+  render::HeadlessOptions view;
+  view.width = args.width.value_or(scene.output.frame_width);
+  view.height = args.height.value_or(scene.output.frame_height);
+  // Made before the run, so a machine without EGL fails at once rather than after the run.
+  render::HeadlessRenderer renderer(view);
+
+  LastSnapshotKeeper final_state;
+  RunOptions options;
+  options.realtime = false;
+  options.duration_s = args.at;
+  options.observers.push_back(&final_state);
+  const RunResult result = simulation.run(options);
+  if (!final_state.has_frame()) throw std::runtime_error("the run published no state to draw");
+
+  render::SnapshotStyle style;
+  style.model_label = model_label(result);
+  const render::Image image = renderer.render(render::make_render_frame(final_state.scene(), final_state.last(), style));
+  const std::filesystem::path file(args.out);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  render::write_png(file, image);
+
+  if (!args.quiet) {
+    std::printf("%s at t = %.6g s (%llu ticks): wrote %s (%dx%d)\n", result.scene.c_str(), final_state.last().time_s,
+                static_cast<unsigned long long>(result.schedule.ticks), args.out.c_str(), image.width, image.height);
+    for (const BodyResult& b : result.bodies)
+      if (b.frozen) std::printf("  body %s (%s) FROZEN: %s\n", b.name.c_str(), b.model.c_str(), b.fault.c_str());
+  }
+  return result.exit_code;
+}
+
+void add_snapshot_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<SnapshotArgs>();
+  CLI::App* cmd = app.add_subcommand("snapshot", "Run a scene in lockstep to time T and write one picture (PNG)");
+  cmd->add_option("scene", args->scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--at,-t", args->at, "Simulated time of the picture, s (>= 0)")->required();
+  cmd->add_option("--out,-o", args->out, "PNG file to write")->required();
+  cmd->add_option("--width", args->width, "Picture width, pixels (default: the scene's output.frame_size)");
+  cmd->add_option("--height", args->height, "Picture height, pixels (default: the scene's output.frame_size)");
+  cmd->add_option("--set", args->overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
+  cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+  cmd->callback([args, &exit_code] {
+    try {
+      exit_code = take_snapshot(*args);
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      exit_code = kExitBadInput;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      exit_code = kExitFault;
+    }
+  });
+}
+
+const bool registered = register_command(&add_snapshot_command);
+
+}  // namespace
+}  // namespace tacta::cli

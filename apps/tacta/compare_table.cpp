@@ -1,0 +1,166 @@
+// compare.json, compare.csv and the printed table of `tacta compare` (see docs/COMPARE.md).
+#include "compare_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "tacta/json.hpp"
+
+namespace tacta::cli {
+namespace {
+
+// |x - x_rest| of one node, m; nullopt when the final state does not hold the node.
+std::optional<double> node_displacement(const LastSnapshotKeeper& state, size_t body, uint32_t node) {
+  if (!state.has_frame() || body >= state.scene().bodies.size() || body >= state.last().bodies.size())
+    return std::nullopt;
+  const std::vector<double>& rest = state.scene().bodies[body].rest_positions;
+  const std::vector<double>& now = state.last().bodies[body].positions;
+  const size_t i = 3 * static_cast<size_t>(node);
+  if (i + 2 >= rest.size() || i + 2 >= now.size()) return std::nullopt;
+  const double dx = now[i] - rest[i], dy = now[i + 1] - rest[i + 1], dz = now[i + 2] - rest[i + 2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+std::string csv_number(double value) {
+  if (!std::isfinite(value)) return "";
+  char text[40];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+std::string csv_number(const std::optional<double>& value) { return value ? csv_number(*value) : ""; }
+
+// Model names come from the plugin registry; quote them anyway if they ever hold a comma.
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// Fixed decimals for times (ms), significant digits for everything else.
+enum class Style { Fixed4, Significant6 };
+
+std::string table_number(const std::optional<double>& value, Style style) {
+  if (!value || !std::isfinite(*value)) return "-";
+  char text[40];
+  if (style == Style::Fixed4) std::snprintf(text, sizeof text, "%.4f", *value);
+  else std::snprintf(text, sizeof text, "%.6g", *value);
+  return text;
+}
+
+}  // namespace
+
+CompareRow make_compare_row(const std::string& model, const SceneDesc& scene, const RunResult& result,
+                            const LastSnapshotKeeper& final_state) {
+  CompareRow row;
+  row.model = model;
+  row.tick_p50_ms = result.schedule.tick.p50_ms;
+  row.tick_p99_ms = result.schedule.tick.p99_ms;
+  for (const BodyResult& b : result.bodies) {
+    row.max_displacement_m = std::max(row.max_displacement_m, b.max_displacement_m);
+    row.energy_start_J += b.initial_energy_J;
+    row.energy_end_J += b.kinetic_energy_J + b.elastic_energy_J;
+    if (b.frozen && row.fault_reason.empty()) row.fault_reason = b.name + ": " + b.fault;
+  }
+  if (std::abs(row.energy_start_J) >= kNegligibleEnergyJ)
+    row.energy_drift = (row.energy_end_J - row.energy_start_J) / std::abs(row.energy_start_J);
+  // The first body that names a probe node; the scene format allows one per body.
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (!scene.bodies[i].probe_node) continue;
+    row.probe = scene.bodies[i].name + ":" + std::to_string(*scene.bodies[i].probe_node);
+    row.probe_displacement_m = node_displacement(final_state, i, *scene.bodies[i].probe_node);
+    break;
+  }
+  row.faults = result.faults;
+  row.state_hash = result.state_hash;
+  if (row.faults > 0 && row.fault_reason.empty()) row.fault_reason = "fault reported (see report.json)";
+  return row;
+}
+
+CompareRow make_failed_row(const std::string& model, const std::string& reason) {
+  CompareRow row;
+  row.model = model;
+  row.tick_p50_ms = row.tick_p99_ms = row.max_displacement_m = std::nan("");
+  row.energy_start_J = row.energy_end_J = std::nan("");
+  row.faults = 1;
+  row.fault_reason = reason;
+  return row;
+}
+
+void write_compare_json(const std::string& path, const CompareSummary& summary) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write " + path);
+  JsonWriter json(file);
+  json.begin_object();
+  json.field("scene", summary.scene).field("duration_s", summary.duration_s);
+  json.key("models").begin_array();
+  for (const CompareRow& r : summary.rows) {
+    json.begin_object();
+    json.field("model", r.model).field("tick_p50_ms", r.tick_p50_ms).field("tick_p99_ms", r.tick_p99_ms);
+    json.field("max_displacement_m", r.max_displacement_m);
+    json.key("energy_drift");
+    if (r.energy_drift) json.value(*r.energy_drift);
+    else json.null();
+    json.field("energy_start_J", r.energy_start_J).field("energy_end_J", r.energy_end_J);
+    json.key("probe_displacement_m");
+    if (r.probe_displacement_m) json.value(*r.probe_displacement_m);
+    else json.null();
+    json.key("probe");
+    if (r.probe.empty()) json.null();
+    else json.value(r.probe);
+    json.field("faults", static_cast<uint64_t>(r.faults)).field("state_hash", r.state_hash);
+    json.key("fault_reason");
+    if (r.fault_reason.empty()) json.null();
+    else json.value(r.fault_reason);
+    json.field("out_dir", r.out_dir);
+    json.end_object();
+  }
+  json.end_array();
+  json.end_object();
+  if (!file) throw std::runtime_error("cannot write " + path);
+}
+
+void write_compare_csv(const std::string& path, const CompareSummary& summary) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write " + path);
+  file << "model,tick_p50_ms,tick_p99_ms,max_displacement_m,energy_drift,probe_displacement_m,faults,state_hash,"
+          "energy_start_J,energy_end_J\n";
+  for (const CompareRow& r : summary.rows)
+    file << csv_text(r.model) << ',' << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
+         << csv_number(r.max_displacement_m) << ',' << csv_number(r.energy_drift) << ','
+         << csv_number(r.probe_displacement_m) << ',' << r.faults << ',' << r.state_hash << ','
+         << csv_number(r.energy_start_J) << ',' << csv_number(r.energy_end_J) << '\n';
+  if (!file) throw std::runtime_error("cannot write " + path);
+}
+
+void print_compare_table(std::FILE* out, const CompareSummary& summary) {
+  std::fprintf(out, "%s, %.6g s simulated per model (lockstep)\n", summary.scene.c_str(), summary.duration_s);
+  int width = 18;  // characters of the model column: the longest label
+  for (const CompareRow& r : summary.rows) width = std::max(width, static_cast<int>(r.model.size()));
+  std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6s  %s\n", width, "model", "p50 ms", "p99 ms", "max disp m",
+               "energy drift", "probe disp m", "faults", "state hash");
+  for (const CompareRow& r : summary.rows) {
+    std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6zu  %s\n", width, r.model.c_str(),
+                 table_number(r.tick_p50_ms, Style::Fixed4).c_str(), table_number(r.tick_p99_ms, Style::Fixed4).c_str(),
+                 table_number(r.max_displacement_m, Style::Significant6).c_str(), table_number(r.energy_drift, Style::Significant6).c_str(),
+                 table_number(r.probe_displacement_m, Style::Significant6).c_str(), r.faults,
+                 r.state_hash.empty() ? "-" : r.state_hash.c_str());
+    if (!r.fault_reason.empty()) std::fprintf(out, "  %s: %s\n", r.model.c_str(), r.fault_reason.c_str());
+  }
+}
+
+std::vector<std::string> plotted_metrics(const CompareSummary& summary) {
+  std::vector<std::string> metrics{"tick_p50_ms", "tick_p99_ms", "max_displacement_m"};
+  const bool any_drift = std::any_of(summary.rows.begin(), summary.rows.end(),
+                                     [](const CompareRow& r) { return r.energy_drift.has_value(); });
+  metrics.push_back(any_drift ? "energy_drift" : "energy_end_J");
+  if (std::any_of(summary.rows.begin(), summary.rows.end(),
+                  [](const CompareRow& r) { return r.probe_displacement_m.has_value(); }))
+    metrics.push_back("probe_displacement_m");
+  return metrics;
+}
+
+}  // namespace tacta::cli
