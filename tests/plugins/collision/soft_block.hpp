@@ -107,6 +107,12 @@ struct SoftBlock {
       for (int a = 0; a < 3; ++a) p[static_cast<size_t>(a)] += masses[v] * velocities[3 * v + a];
     return p;
   }
+  double kinetic_energy() const {  // J
+    double e = 0;
+    for (uint32_t v = 0; v < vertex_count(); ++v)
+      for (int a = 0; a < 3; ++a) e += 0.5 * masses[v] * velocities[3 * v + a] * velocities[3 * v + a];
+    return e;
+  }
   std::array<double, 3> first_moment() const {  // sum m x (kg m), over end positions
     std::array<double, 3> p{0, 0, 0};
     for (uint32_t v = 0; v < vertex_count(); ++v)

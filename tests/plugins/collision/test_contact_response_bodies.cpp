@@ -1,5 +1,6 @@
 // Contact response between deformable bodies (exact CCD contacts, plugin ccd): a soft block
-// dropped on another never has a vertex inside it, and the response conserves momentum.
+// dropped on another never has a vertex inside it, and the response conserves momentum and
+// never adds kinetic energy.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -106,8 +107,11 @@ TEST(ContactResponseBodies, DeformableResponseConservesMomentum) {
     right.integrate(kDt, {0, 0, 0});
     const auto p0 = left.momentum(), q0 = right.momentum();
     const auto x0 = left.first_moment(), y0 = right.first_moment();
+    const double energy_before = left.kinetic_energy() + right.kinetic_energy();
     const auto r = pipeline.tick(world);
     if (r.surface_contacts > 0) ++ticks_with_contacts;
+    // Inelastic impulses and friction only take kinetic energy away.
+    ASSERT_LE(left.kinetic_energy() + right.kinetic_energy(), energy_before * (1 + 1e-12)) << "tick " << tick;
     ASSERT_EQ(r.bits & TACTA_COLLIDE_UNRESOLVED, 0u);
     const auto p1 = left.momentum(), q1 = right.momentum();
     const auto x1 = left.first_moment(), y1 = right.first_moment();
