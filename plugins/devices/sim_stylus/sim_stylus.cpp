@@ -120,6 +120,8 @@ class SimStylus {
       // First read, or a gap too long to integrate: the stylus starts at rest on the target.
       position_ = script_.target(time);
       velocity_ = {0.0, 0.0, 0.0};
+      if (limit_to_workspace_)
+        for (int i = 0; i < 3; ++i) stop_at_workspace(i);
       started_ = true;
       last_time_ = time;
     } else if (time > last_time_) {
