@@ -123,13 +123,13 @@ void write_compare_json(const std::string& path, const CompareSummary& summary) 
   if (!file) throw std::runtime_error("cannot write " + path);
 }
 
-void write_compare_csv(const std::string& path, const CompareSummary& summary) {
+void write_compare_csv(const std::string& path, const CompareSummary& summary, bool label_faults) {
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
   file << "model,tick_p50_ms,tick_p99_ms,max_displacement_m,energy_drift,probe_displacement_m,faults,state_hash,"
           "energy_start_J,energy_end_J\n";
   for (const CompareRow& r : summary.rows)
-    file << csv_text(r.model) << ',' << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
+    file << csv_text(label_faults && r.faults > 0 ? r.model + " (fault)" : r.model) << ',' << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
          << csv_number(r.max_displacement_m) << ',' << csv_number(r.energy_drift) << ','
          << csv_number(r.probe_displacement_m) << ',' << r.faults << ',' << r.state_hash << ','
          << csv_number(r.energy_start_J) << ',' << csv_number(r.energy_end_J) << '\n';

@@ -47,7 +47,8 @@ struct CompareSummary {
 
 // Throw std::runtime_error naming the file when it cannot be written.
 void write_compare_json(const std::string& path, const CompareSummary& summary);
-void write_compare_csv(const std::string& path, const CompareSummary& summary);
+// `label_faults` appends " (fault)" to the model of a faulted row: for the chart's input only.
+void write_compare_csv(const std::string& path, const CompareSummary& summary, bool label_faults = false);
 void print_compare_table(std::FILE* out, const CompareSummary& summary);
 
 // Metric columns worth a bar chart: energy_end_J stands in for an all-empty energy_drift, and the

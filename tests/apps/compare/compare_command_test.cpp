@@ -105,6 +105,33 @@ TEST(CompareCommand, TwoModelsWriteOneRowEachAndTheChart) {
   EXPECT_EQ(json_string_field(read_text(dir / "run" / "report.json"), "state_hash"), rows[1].at("state_hash"));
 }
 
+TEST(CompareCommand, ProbeDisplacementIsTheProbeNodesFinalOffsetFromRest) {
+  // The beam names probe_node 35, its far top corner, at rest at (0.4, 0.05, 0.05) m; the run's
+  // own trajectory.csv follows that node, so its last row gives the final position.
+  const auto dir = fresh_dir("probe");
+  const CliResult r = run_tacta({"compare", "scenes/examples/beam_under_gravity.yaml", "--models", "corotational_fem",
+                                 "--out", (dir / "cmp").string(), "--duration", "0.2", "--set", "output.plots=[]"},
+                                dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::vector<CsvRow> rows = read_csv(dir / "cmp" / "compare.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  const std::vector<CsvRow> trajectory = read_csv(dir / "cmp" / "corotational_fem" / "trajectory.csv");
+  ASSERT_FALSE(trajectory.empty());
+  const CsvRow& last = trajectory.back();
+  ASSERT_EQ(last.at("node"), "35");
+  EXPECT_NEAR(std::stod(last.at("time_s")), 0.2, 1e-9);
+  const double dx = std::stod(last.at("x")) - 0.4, dy = std::stod(last.at("y")) - 0.05,
+               dz = std::stod(last.at("z")) - 0.05;
+  const double probe = std::stod(rows[0].at("probe_displacement_m"));
+  EXPECT_NEAR(probe, std::sqrt(dx * dx + dy * dy + dz * dz), 1e-8);
+  EXPECT_GT(probe, 0.01) << "the free end sags under gravity";
+  EXPECT_LE(probe, std::stod(rows[0].at("max_displacement_m")) + 1e-12);
+  // Starts at rest with no gravitational term in E: E_0 ~ 0, so no relative drift is given.
+  EXPECT_EQ(rows[0].at("energy_drift"), "");
+  EXPECT_GT(std::stod(rows[0].at("energy_end_J")), 0.0);
+  EXPECT_NE(read_text(dir / "cmp" / "compare.json").find("\"probe\": \"beam:35\""), std::string::npos);
+}
+
 TEST(CompareCommand, UnknownModelStopsBeforeAnythingRuns) {
   const auto dir = fresh_dir("unknown_model");
   const CliResult r = run_tacta(
