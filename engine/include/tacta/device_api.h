@@ -71,6 +71,11 @@ typedef struct tacta_device_api {
   void (*capabilities)(void* instance, tacta_device_capabilities* capabilities);
   /* optional: current state and, when not connected, why (NUL-terminated). */
   tacta_device_state (*status)(void* instance, char* reason, size_t reason_capacity);
+  /* optional: input fed by the host, such as the viewer's mouse; `values` are device-specific
+   * (mouse: target x, y, z in m). Called from a host thread (not the haptic one) while read()
+   * may run: the plugin makes it lock-free. A plugin may accept instance == NULL, meaning every
+   * live instance (a host that does not hold the instances); it documents whether it does. */
+  void (*input)(void* instance, const double* values, uint32_t count);
 } tacta_device_api;
 
 #define TACTA_DEVICE_API_FIELD(member, required) \
@@ -81,6 +86,7 @@ static const tacta_api_field tacta_device_api_fields[] = {
     TACTA_DEVICE_API_FIELD(connect, 1),      TACTA_DEVICE_API_FIELD(disconnect, 1),
     TACTA_DEVICE_API_FIELD(read, 1),         TACTA_DEVICE_API_FIELD(write, 1),
     TACTA_DEVICE_API_FIELD(capabilities, 1), TACTA_DEVICE_API_FIELD(status, 0),
+    TACTA_DEVICE_API_FIELD(input, 0),
 };
 
 #ifdef __cplusplus

@@ -172,6 +172,7 @@ RunResult Simulation::run(const RunOptions& options) {
   for (FrameObserver* o : observers) o->on_start(scene_static);
   OutputRenderTask render(snapshots, scene_static, observers);
   result.schedule = run_schedule(loop, render, schedule);
+  impl_->stop.store(false, std::memory_order_relaxed);  // a stop ends one run; a later run() runs again
   if (options.progress) std::fprintf(stderr, "\n");
   result.sim_time_s = static_cast<double>(result.schedule.ticks) / schedule.haptic_rate_hz;
 

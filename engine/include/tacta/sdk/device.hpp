@@ -11,6 +11,8 @@
 //   tacta_device_capabilities capabilities() const noexcept
 // optionally:
 //   tacta_device_state status(char* reason, size_t capacity) const noexcept
+//   static void input(T* instance_or_null, const double* values, uint32_t count) noexcept
+//       host-fed input (lock-free); a null instance means every live instance
 #pragma once
 
 #include "tacta/device_api.h"
@@ -41,6 +43,9 @@ struct DeviceAdapter {
   static tacta_device_state status(void* instance, char* reason, size_t capacity) noexcept {
     return static_cast<T*>(instance)->status(reason, capacity);
   }
+  static void input(void* instance, const double* values, uint32_t count) noexcept {
+    T::input(static_cast<T*>(instance), values, count);
+  }
 
   static tacta_device_api table() {
     tacta_device_api api{};
@@ -52,6 +57,7 @@ struct DeviceAdapter {
     api.write = &write;
     api.capabilities = &capabilities;
     if constexpr (requires(const T& t, char* r) { t.status(r, size_t{0}); }) api.status = &status;
+    if constexpr (requires(T* t, const double* v) { T::input(t, v, uint32_t{0}); }) api.input = &input;
     return api;
   }
 };

@@ -62,7 +62,8 @@ class Simulation {
   // allocate and throws InputError when the model refuses the body; the haptic thread only
   // switches pointers. Also how the viewer changes a parameter (same model, new values).
   void request_model_swap(size_t body, const std::string& model, const ParamSet& params);
-  // Ends run() after the current tick.
+  // Ends run() after the current tick. The request is consumed when that run() returns, so a
+  // later run() runs again (how the viewer pauses and plays on).
   void request_stop() noexcept;
   size_t body_count() const;
   const std::string& body_name(size_t body) const;

@@ -1,0 +1,55 @@
+#include "mouse_tool.hpp"
+
+namespace tacta::view {
+
+MouseTool::MouseTool(const PluginRegistry& plugins) {
+  const LoadedDescriptor* mouse = plugins.find(TACTA_KIND_DEVICE, "mouse");
+  if (mouse == nullptr) return;
+  const tacta_descriptor& d = *mouse->descriptor;
+  // Entries past the plugin's own table size are absent (an older plugin build).
+  if (d.api_size >= offsetof(tacta_device_api, input) + sizeof(InputFn))
+    input_ = static_cast<const tacta_device_api*>(d.api)->input;
+}
+
+void MouseTool::set_target(const Vec3d& target) {
+  target_ = target;
+  if (input_ != nullptr) input_(nullptr, target_.data(), 3);
+}
+
+void MouseTool::feed(const Vec3d& target) const {
+  if (input_ != nullptr) input_(nullptr, target.data(), 3);
+}
+
+void MouseTool::update(const PointerState& pointer, const Camera& camera, const Viewport& viewport) {
+  const bool pressed = pointer.left_down && !was_down_;
+  was_down_ = pointer.left_down;
+  if (!pointer.left_down) dragging_ = false;
+  const Vec3d forward = camera_forward(camera);
+  if (pressed && !pointer.over_gui) {
+    plane_anchor_ = target_;
+    plane_normal_ = forward;
+    const auto grabbed = intersect_facing_plane(pixel_ray(camera, viewport, pointer.x, pointer.y), plane_anchor_,
+                                                plane_normal_);
+    if (grabbed) {
+      dragging_ = true;
+      for (int i = 0; i < 3; ++i) grab_offset_[i] = target_[i] - (*grabbed)[i];
+    }
+  } else if (dragging_) {
+    const auto hit = intersect_facing_plane(pixel_ray(camera, viewport, pointer.x, pointer.y), plane_anchor_,
+                                            plane_normal_);
+    if (hit) set_target({(*hit)[0] + grab_offset_[0], (*hit)[1] + grab_offset_[1], (*hit)[2] + grab_offset_[2]});
+  }
+  if (pointer.wheel != 0 && !pointer.over_gui) {
+    const double d = pointer.wheel * depth_step_m_;
+    set_target({target_[0] + d * forward[0], target_[1] + d * forward[1], target_[2] + d * forward[2]});
+    plane_anchor_ = target_;  // a drag in progress continues at the new depth
+    grab_offset_ = {0, 0, 0};
+    if (dragging_) {
+      const auto hit = intersect_facing_plane(pixel_ray(camera, viewport, pointer.x, pointer.y), plane_anchor_,
+                                              plane_normal_);
+      if (hit) for (int i = 0; i < 3; ++i) grab_offset_[i] = target_[i] - (*hit)[i];
+    }
+  }
+}
+
+}  // namespace tacta::view

@@ -1,0 +1,49 @@
+// The mouse as a haptic device: pointer input (real, or scripted in tests) moves the target of
+// the `mouse` device plugin. A left drag moves the target on the plane facing the camera through
+// the point where the drag began (grab-relative, so it does not jump); the wheel moves it along
+// the view direction. The target reaches the plugin through the device API's optional `input`
+// entry with a NULL instance (the mouse plugin's one process-wide target; the simulation owns
+// the instances).
+#pragma once
+
+#include <cstddef>
+
+#include "camera_ray.hpp"
+#include "tacta/device_api.h"
+#include "tacta/plugin_registry.hpp"
+
+namespace tacta::view {
+
+struct PointerState {
+  double x = 0, y = 0;    // pixels in the window, top left origin
+  bool left_down = false;
+  double wheel = 0;       // notches this frame, + away from the viewer
+  bool over_gui = false;  // Dear ImGui wants the mouse: the scene ignores it
+};
+
+class MouseTool {
+ public:
+  explicit MouseTool(const PluginRegistry& plugins);
+  bool available() const { return input_ != nullptr; }
+
+  void set_target(const Vec3d& target);  // m, fed to the device at once
+  // Feeds a target without remembering it: safe from any thread (the plugin's slot is lock-free).
+  void feed(const Vec3d& target) const;
+  const Vec3d& target() const { return target_; }
+  void set_depth_step(double metres_per_notch) { depth_step_m_ = metres_per_notch; }
+  bool dragging() const { return dragging_; }
+
+  void update(const PointerState& pointer, const Camera& camera, const Viewport& viewport);
+
+ private:
+  using InputFn = void (*)(void*, const double*, uint32_t);
+  InputFn input_ = nullptr;
+  Vec3d target_{0, 0, 0};
+  double depth_step_m_ = 0.002;  // m per wheel notch
+  bool dragging_ = false;
+  bool was_down_ = false;
+  Vec3d plane_anchor_{0, 0, 0}, plane_normal_{0, 0, 1};
+  Vec3d grab_offset_{0, 0, 0};  // target minus the grabbed point on the plane, m
+};
+
+}  // namespace tacta::view

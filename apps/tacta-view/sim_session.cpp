@@ -1,0 +1,127 @@
+#include "sim_session.hpp"
+
+#include <exception>
+
+namespace tacta::view {
+
+SimSession::SimSession(Simulation& simulation, double frame_period_s,
+                       std::function<void(const SceneStatic&)> before_first_tick)
+    : simulation_(simulation),
+      frame_period_s_(frame_period_s),
+      before_first_tick_(std::move(before_first_tick)),
+      worker_([this] { work(); }) {}
+
+SimSession::~SimSession() {
+  {
+    std::lock_guard lock(command_mutex_);
+    mode_ = Mode::Quitting;
+  }
+  simulation_.request_stop();
+  wake_.notify_all();
+  worker_.join();
+}
+
+void SimSession::play() {
+  {
+    std::lock_guard lock(command_mutex_);
+    if (mode_ != Mode::Paused) return;
+    mode_ = Mode::Playing;
+    pending_steps_ = 0;
+  }
+  wake_.notify_all();
+}
+
+void SimSession::pause() {
+  {
+    std::lock_guard lock(command_mutex_);
+    if (mode_ != Mode::Playing) return;
+    mode_ = Mode::Paused;
+  }
+  // Consumed when the run returns; should the run have just ended, the next run stops after
+  // one tick and the worker simply waits again.
+  simulation_.request_stop();
+}
+
+void SimSession::step() {
+  {
+    std::lock_guard lock(command_mutex_);
+    if (mode_ != Mode::Paused) return;
+    ++pending_steps_;
+  }
+  wake_.notify_all();
+}
+
+bool SimSession::playing() const {
+  std::lock_guard lock(command_mutex_);
+  return mode_ == Mode::Playing;
+}
+
+std::string SimSession::error() const {
+  std::lock_guard lock(command_mutex_);
+  return error_;
+}
+
+void SimSession::work() {
+  for (;;) {
+    RunOptions options;
+    options.observers.push_back(this);
+    {
+      std::unique_lock lock(command_mutex_);
+      wake_.wait(lock, [this] { return mode_ != Mode::Paused || pending_steps_ > 0; });
+      if (mode_ == Mode::Quitting) return;
+      if (mode_ == Mode::Playing) {
+        options.realtime = true;
+        options.duration_s = kSessionSeconds;
+      } else {
+        --pending_steps_;
+        options.realtime = false;
+        options.duration_s = frame_period_s_;
+      }
+      running_.store(true, std::memory_order_release);
+    }
+    try {
+      const RunResult result = simulation_.run(options);
+      std::lock_guard lock(slot_mutex_);
+      time_offset_s_ += result.sim_time_s;
+    } catch (const std::exception& e) {
+      std::lock_guard lock(command_mutex_);
+      error_ = e.what();
+      if (mode_ == Mode::Playing) mode_ = Mode::Paused;
+    }
+    running_.store(false, std::memory_order_release);
+  }
+}
+
+void SimSession::on_start(const SceneStatic& scene) {
+  {
+    std::lock_guard lock(slot_mutex_);
+    if (have_scene_) return;
+    scene_ = scene;
+    have_scene_ = true;
+  }
+  if (before_first_tick_) before_first_tick_(scene);
+}
+
+void SimSession::on_frame(const SceneStatic&, const Snapshot& snapshot) {
+  std::lock_guard lock(slot_mutex_);
+  slot_ = snapshot;  // assignment reuses the slot's buffers after the first frame
+  slot_.time_s += time_offset_s_;
+  slot_new_ = true;
+}
+
+bool SimSession::take_latest(Snapshot& out) {
+  std::lock_guard lock(slot_mutex_);
+  if (!slot_new_) return false;
+  out = slot_;
+  slot_new_ = false;
+  return true;
+}
+
+bool SimSession::scene(SceneStatic& out) const {
+  std::lock_guard lock(slot_mutex_);
+  if (!have_scene_) return false;
+  out = scene_;
+  return true;
+}
+
+}  // namespace tacta::view

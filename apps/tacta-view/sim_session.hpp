@@ -1,0 +1,80 @@
+// Runs a Simulation for the window on a worker thread, and hands the newest snapshot to the GUI.
+//
+// Play: realtime runs (haptic thread at 1 kHz, render task at the scene's frame rate) of
+// kSessionSeconds each, one after another while playing. Pause: request_stop() ends the run
+// after its current tick; the world keeps its state, so the picture stays and Play goes on from
+// it. Step (while paused): one lockstep run of one frame period. Each run starts its clock at 0,
+// so the session adds the time already run, and the GUI sees a continuous time; a scripted
+// device (sim_stylus) restarts its script at every Play.
+//
+// The snapshot slot's mutex is shared by the render task's thread (or this worker, in lockstep)
+// and the GUI thread only: the haptic thread never sees it.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "tacta/sim/simulation.hpp"
+#include "tacta/sim/snapshot.hpp"
+
+namespace tacta::view {
+
+class SimSession final : public FrameObserver {
+ public:
+  static constexpr double kSessionSeconds = 60;  // s of one realtime run (bounds its records)
+
+  // `before_first_tick` runs on the worker once, with the scene, before the first tick (e.g. to
+  // place the mouse device's target).
+  SimSession(Simulation& simulation, double frame_period_s,
+             std::function<void(const SceneStatic&)> before_first_tick = {});
+  ~SimSession() override;  // stops the run and joins the worker
+  SimSession(const SimSession&) = delete;
+  SimSession& operator=(const SimSession&) = delete;
+
+  void play();
+  void pause();
+  void step();  // one frame period, only while paused
+  bool playing() const;
+  bool running() const { return running_.load(std::memory_order_acquire); }
+
+  // Copies the newest snapshot (time made continuous across runs) into `out`; false when none
+  // arrived since the last call.
+  bool take_latest(Snapshot& out);
+  // The scene description from the first run; false before it started.
+  bool scene(SceneStatic& out) const;
+  // The message of an exception a run threw (the session is then paused), else empty.
+  std::string error() const;
+
+  void on_start(const SceneStatic& scene) override;
+  void on_frame(const SceneStatic& scene, const Snapshot& snapshot) override;
+
+ private:
+  enum class Mode { Paused, Playing, Quitting };
+  void work();
+
+  Simulation& simulation_;
+  const double frame_period_s_;
+  std::function<void(const SceneStatic&)> before_first_tick_;
+  std::atomic<bool> running_{false};
+
+  mutable std::mutex command_mutex_;  // GUI thread and worker
+  std::condition_variable wake_;
+  Mode mode_ = Mode::Paused;
+  int pending_steps_ = 0;
+  std::string error_;
+
+  mutable std::mutex slot_mutex_;  // render task (or worker) and GUI thread
+  Snapshot slot_;
+  bool slot_new_ = false;
+  SceneStatic scene_;
+  bool have_scene_ = false;
+  double time_offset_s_ = 0;  // s run by the finished runs
+
+  std::thread worker_;  // last: started once everything above exists
+};
+
+}  // namespace tacta::view

@@ -1,0 +1,28 @@
+// The JSON summary tacta-view writes on exit (--status FILE): what a test checks after driving
+// the window (frames shown, swaps requested and seen in the last snapshot, force, mouse).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace tacta::view {
+
+struct ViewStatus {
+  int frames = 0;
+  double sim_time_s = 0;                 // s, of the last snapshot shown
+  int swaps_requested = 0;
+  std::vector<std::string> swap_history;  // "body -> model"
+  std::vector<std::string> body_models;   // per body, from the last snapshot (the haptic side)
+  double max_force_N = 0;                 // largest device force among the snapshots shown
+  bool mouse = false;                     // the mouse drove a device
+  std::array<double, 3> mouse_target{};   // m
+  std::array<double, 3> stylus{};         // m, the first device's last position
+  std::vector<std::string> script_failures;
+  std::string model_error, run_error;
+};
+
+// Throws std::runtime_error when the file cannot be written.
+void write_view_status(const std::string& path, const ViewStatus& status);
+
+}  // namespace tacta::view
