@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "mesh/geometry.hpp"
+#include "mesh/ply_check.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {
@@ -124,6 +125,7 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   r.format = "surface:" + (extension.empty() ? std::string("?") : extension.substr(1));
 
+  mesh_detail::check_ply_complete(path);  // assimp hangs or aborts on a PLY cut short
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
   try {

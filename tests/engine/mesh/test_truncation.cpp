@@ -111,8 +111,8 @@ TEST_P(TruncatedSurface, LoadsOrGivesAnInputError) {
 
 INSTANTIATE_TEST_SUITE_P(
     Files, TruncatedSurface,
-    ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"), test::test_mesh("tetra.gltf"),
-                      test::test_mesh("tetra.glb")),
+    ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"), test::test_mesh("tetra.ply"),
+                      test::test_mesh("tetra.gltf"), test::test_mesh("tetra.glb")),
     [](const ::testing::TestParamInfo<std::string>& param_info) {
       std::string name = std::filesystem::path(param_info.param).filename().string();
       for (char& ch : name)
