@@ -34,6 +34,8 @@ class ParamSet {
   uint32_t size() const { return static_cast<uint32_t>(values_.size()); }
   const std::vector<std::string>& names() const { return names_; }
   const tacta_param_value* find(const std::string& name) const;
+  // Sets an existing number value (REAL/INT/BOOL); false when there is no value of that name.
+  bool set_number(const std::string& name, double number);
 
  private:
   void relink();  // re-points the C views after a copy or a growth
@@ -117,8 +119,7 @@ struct DeviceDesc {
 
 struct ObstacleDesc {
   std::string name;
-  ShapeDesc shape;
-  double friction = 0.3;
+  ShapeDesc shape;  // contact friction: collision.friction
 };
 
 struct CollisionDesc {

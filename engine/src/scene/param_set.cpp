@@ -47,6 +47,15 @@ const tacta_param_value* ParamSet::find(const std::string& name) const {
   return nullptr;
 }
 
+bool ParamSet::set_number(const std::string& name, double number) {
+  for (size_t i = 0; i < names_.size(); ++i)
+    if (names_[i] == name && kinds_[i] == Kind::Number) {
+      values_[i].number = number;
+      return true;
+    }
+  return false;
+}
+
 void ParamSet::relink() {
   for (size_t i = 0; i < values_.size(); ++i) {
     values_[i].text = kinds_[i] == Kind::Text ? texts_[i].c_str() : nullptr;

@@ -101,12 +101,11 @@ DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) 
 }
 
 ObstacleDesc read_obstacle(const Field& field) {
-  field.expect_map("an obstacle: a map {name, shape, friction}");
-  field.check_keys({"name", "shape", "friction"});
+  field.expect_map("an obstacle: a map {name, shape}");
+  field.check_keys({"name", "shape"});
   ObstacleDesc obstacle;
   obstacle.name = field.require("name").text();
   obstacle.shape = read_shape(field.require("shape"));
-  if (auto f = field.get("friction")) obstacle.friction = f->real(Range::non_negative());
   return obstacle;
 }
 

@@ -179,8 +179,10 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
 
   // The plugins: the broad phase is needed for the proxy's queries even without contact response.
   const SourceLocation where{scene.path, 0, 0, "collision"};
-  auto add = [&](const std::string& name, const ParamSet& params) {
+  auto add = [&](const std::string& name, ParamSet params) {
     if (name.empty()) return;
+    // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
+    params.set_number("friction", c.friction);
     const LoadedDescriptor* found = plugins.find(TACTA_KIND_COLLISION, name);
     if (found == nullptr) throw InputError(where, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
     instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, where));

@@ -53,7 +53,6 @@ devices:
 obstacles:
   - name: floor
     shape: {plane: {normal: [0, 0, 2], offset: -0.1}}
-    friction: 0.5
   - name: block
     shape: {box: {half_extents: [0.1, 0.2, 0.3], position: [1, 2, 3]}}
 collision:
@@ -160,9 +159,7 @@ TEST(SceneLoader, FullSceneRoundTrip) {
   EXPECT_EQ(s.obstacles[0].shape.kind, ShapeDesc::Kind::Plane);
   EXPECT_EQ(s.obstacles[0].shape.normal, (Vec3{0, 0, 1}));  // normalised
   EXPECT_DOUBLE_EQ(s.obstacles[0].shape.offset, -0.1);
-  EXPECT_DOUBLE_EQ(s.obstacles[0].friction, 0.5);
   EXPECT_EQ(s.obstacles[1].shape.half_extents, (Vec3{0.1, 0.2, 0.3}));
-  EXPECT_DOUBLE_EQ(s.obstacles[1].friction, 0.3);
 
   EXPECT_TRUE(s.collision.enabled);
   EXPECT_EQ(s.collision.broad_phase, "bvh");
