@@ -47,7 +47,19 @@ ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
   }
   // The observer runs every tick (the device moves under the held force in free space too); the
   // controller only adds damping in contact.
-  const Vec3 passive = passivity_.update(device_position, device_velocity, dt, desired, out.in_contact);
+  Vec3 passive = passivity_.update(device_position, device_velocity, dt, desired, out.in_contact);
+  // A contact pushes; it never pulls or drags sideways. The passivity damper opposes the device's
+  // velocity, which is right while it only weakens the coupling force, but on release (device
+  // moving out) a full damper force would stick the stylus to the surface (seen as -0.9 N spikes
+  // in the liver demo). So in contact the controller may only scale the coupling force down
+  // along its own direction, to zero at most: the part of its damper along that force is kept,
+  // the rest is dropped.
+  if (out.in_contact) {
+    const double desired2 = dot(desired, desired);
+    double scale = 1.0;
+    if (desired2 > 0.0) scale = std::clamp(dot(passive, desired) / desired2, 0.0, 1.0);
+    passive = scaled(desired, desired2 > 0.0 ? scale : 0.0);
+  }
   ForceLimitResult result = ForceLimitResult::unchanged;
   out.device_force = limiter_.limit(passive, &result);
   if (result == ForceLimitResult::scaled) ++stats_.limited_forces;

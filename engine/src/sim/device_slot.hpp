@@ -13,12 +13,12 @@ namespace tacta {
 
 struct DeviceStats {
   double max_force_N = 0;            // largest force sent
-  double first_contact_peak_N = 0;   // largest force in the first 100 ms of the first contact
-  double steady_contact_N = 0;       // mean force over contact ticks after those 100 ms
-  double energy_injected_J = 0;      // energy the coupling put into the user (> 0 is active)
-  uint64_t contact_ticks = 0;
-  uint64_t steady_ticks = 0;
+  // From the contact renderer (tacta/haptics/contact_renderer.hpp, ContactStatsParams):
+  double first_contact_peak_N = 0;   // largest force in the onset window (0.25 s) of the first contact
+  double steady_contact_N = 0;       // mean force over 0.4-0.5 s after the first contact began
+  double energy_injected_J = 0;      // worst energy the coupling returned beyond what it took (J)
   double first_contact_time_s = -1;  // s, -1 before any contact
+  uint64_t contact_ticks = 0;
   uint64_t zero_force_ticks = 0;     // ticks forced to zero force by a fault or disconnection
   uint64_t clamped_ticks = 0;        // ticks whose force was clamped to the peak
 };

@@ -4,21 +4,16 @@
 
 namespace tacta {
 
-using haptics::scaled;
-using haptics::sub;
-
 HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) : collision_(collision) {
   channels_.reserve(world.device_count());
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot& slot = world.device(d);
-    haptics::GodObjectParams proxy;
-    proxy.radius = slot.desc.tool.radius;
-    haptics::VirtualCouplingParams coupling;
-    coupling.stiffness = slot.desc.coupling_stiffness;
-    coupling.damping = slot.desc.coupling_damping;
-    channels_.push_back(Channel{haptics::GodObjectProxy(proxy), haptics::VirtualCoupling(coupling),
-                                haptics::FirstContactLimiter(), haptics::PassivityController(),
-                                haptics::ForceLimiter(slot.device->capabilities().peak_force), false});
+    haptics::ContactRendererParams params;
+    params.proxy.radius = slot.desc.tool.radius;
+    params.coupling.stiffness = slot.desc.coupling_stiffness;
+    params.coupling.damping = slot.desc.coupling_damping;
+    params.peak_force = slot.device->capabilities().peak_force;
+    channels_.push_back(Channel{haptics::ContactRenderer(params), false});
   }
 }
 
@@ -29,34 +24,29 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     Channel& ch = channels_[d];
     const Vec3 device{slot.sample.position[0], slot.sample.position[1], slot.sample.position[2]};
     const Vec3 velocity{slot.sample.velocity[0], slot.sample.velocity[1], slot.sample.velocity[2]};
-    tacta_collision_shape& tool = collision_.tool(d);
     if (!ch.started) {
-      ch.proxy.reset(device);
-      ch.passivity.reset(device);
+      ch.renderer.reset(device);
       ch.started = true;
     }
-    // What the device actually rendered last tick (zero after a fault) feeds the observer.
-    ch.passivity.record_sent(slot.force);
     if (slot.state != TACTA_DEVICE_CONNECTED) {
       slot.force = {0, 0, 0};
       slot.in_contact = false;
       continue;
     }
-    for (int a = 0; a < 3; ++a) tool.pose_start.position[a] = ch.proxy.position()[static_cast<size_t>(a)];
-    ch.proxy.update(collision_.surface_query(slot.touched_body), device, velocity);
-    const Vec3& proxy = ch.proxy.position();
-    for (int a = 0; a < 3; ++a) tool.pose_end.position[a] = proxy[static_cast<size_t>(a)];
-    const bool contact = ch.proxy.in_contact();
-    const Vec3 stretch = ch.first_contact.shape(sub(proxy, device), contact, dt);
-    const Vec3 relative = sub(ch.proxy.velocity(), velocity);
-    const Vec3 desired = contact ? ch.coupling.force(stretch, relative) : Vec3{0, 0, 0};
-    const Vec3 passive = ch.passivity.update(device, velocity, dt, desired);
-    const Vec3 sent = ch.limiter.limit(passive);
-    slot.force = sent;
-    slot.proxy = proxy;
-    slot.in_contact = contact;
-    slot.stats.energy_injected_J = ch.passivity.worst_energy_deficit();
-    if (contact) apply_reaction(world, ch.proxy.contact(), scaled(sent, -1.0));
+    tacta_collision_shape& tool = collision_.tool(d);
+    for (int a = 0; a < 3; ++a) tool.pose_start.position[a] = slot.proxy[static_cast<size_t>(a)];
+    const haptics::ContactRendering out =
+        ch.renderer.tick(collision_.surface_query(slot.touched_body), time, device, velocity, dt);
+    slot.proxy = ch.renderer.proxy().position();
+    for (int a = 0; a < 3; ++a) tool.pose_end.position[a] = slot.proxy[static_cast<size_t>(a)];
+    slot.force = out.device_force;
+    slot.in_contact = out.in_contact;
+    const haptics::ContactStats& st = ch.renderer.stats();
+    slot.stats.first_contact_peak_N = st.first_contact_peak;
+    slot.stats.steady_contact_N = st.steady_contact;
+    slot.stats.energy_injected_J = st.energy_injected;
+    slot.stats.first_contact_time_s = st.first_contact_time;
+    if (out.in_contact) apply_reaction(world, out.contact, out.body_reaction);
   }
 }
 

@@ -9,11 +9,7 @@
 
 #include "collision_context.hpp"
 #include "haptic_loop.hpp"
-#include "tacta/haptics/first_contact.hpp"
-#include "tacta/haptics/force_limiter.hpp"
-#include "tacta/haptics/god_object.hpp"
-#include "tacta/haptics/passivity.hpp"
-#include "tacta/haptics/virtual_coupling.hpp"
+#include "tacta/haptics/contact_renderer.hpp"
 
 namespace tacta {
 
@@ -25,11 +21,7 @@ class HapticInteraction final : public Interaction {
 
  private:
   struct Channel {  // one per device
-    haptics::GodObjectProxy proxy;
-    haptics::VirtualCoupling coupling;
-    haptics::FirstContactLimiter first_contact;
-    haptics::PassivityController passivity;
-    haptics::ForceLimiter limiter;
+    haptics::ContactRenderer renderer;
     bool started = false;
   };
   void apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force_on_body) noexcept;

@@ -10,9 +10,6 @@ namespace tacta {
 
 namespace {
 
-// A contact's first 100 ms count as its "first contact" phase for the spike statistics (s).
-constexpr double kFirstContactWindow_s = 0.1;
-
 double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 bool all_finite(const std::vector<double>& x) noexcept {
@@ -209,16 +206,7 @@ void HapticLoop::write_devices(double time, bool zero_force) noexcept {
     }
     const double sent = std::min(magnitude, peak > 0 ? peak : magnitude);
     st.max_force_N = std::max(st.max_force_N, sent);
-    if (slot.in_contact) {
-      if (st.first_contact_time_s < 0) st.first_contact_time_s = time;
-      ++st.contact_ticks;
-      if (time - st.first_contact_time_s <= kFirstContactWindow_s) {
-        st.first_contact_peak_N = std::max(st.first_contact_peak_N, sent);
-      } else {
-        ++st.steady_ticks;
-        st.steady_contact_N += (sent - st.steady_contact_N) / static_cast<double>(st.steady_ticks);
-      }
-    }
+    if (slot.in_contact) ++st.contact_ticks;
     if (d == 0 && device_log_) {
       // Logged at the time the sample was read, so a replay at the same ticks is exact.
       DeviceLogSample logged;
