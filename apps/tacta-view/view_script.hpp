@@ -3,7 +3,7 @@
 //
 //   "20:swap liver tensor_mass; 40:press 0.01 20; 70:wheel -2; 80:release; 90:pause; 95:step"
 //
-// Verbs: swap BODY MODEL | set BODY PARAM VALUE | play | pause | step |
+// Verbs: swap BODY MODEL | set BODY PARAM VALUE | play | pause | step | quit |
 //        drag DX DY FRAMES (pixels from the mouse target's pixel, released at the end) |
 //        press DEPTH FRAMES (drags the target onto the line of sight of the bodies' highest rest
 //        point lowered by DEPTH m, and holds) | release | wheel NOTCHES
@@ -36,6 +36,7 @@ class ScriptHost {
   virtual void play() = 0;
   virtual void pause() = 0;
   virtual void step() = 0;
+  virtual void quit() = 0;  // closes the window after this frame
   virtual std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const = 0;
   virtual Vec3d mouse_target() const = 0;
   virtual Vec3d top_point() const = 0;  // m, the highest rest node of the bodies

@@ -43,9 +43,14 @@ void write_view_status(const std::string& path, const ViewStatus& s) {
   out << "{\n  \"frames\": " << s.frames << ",\n";
   std::snprintf(number, sizeof number, "%.9g", s.sim_time_s);
   out << "  \"sim_time_s\": " << number << ",\n";
+  std::snprintf(number, sizeof number, "%.9g", s.wall_time_s);
+  out << "  \"wall_time_s\": " << number << ",\n";
   out << "  \"swaps_requested\": " << s.swaps_requested << ",\n";
   out << "  \"swap_history\": " << list(s.swap_history) << ",\n";
   out << "  \"body_models\": " << list(s.body_models) << ",\n";
+  out << "  \"body_frozen\": [";
+  for (size_t i = 0; i < s.body_frozen.size(); ++i) out << (i ? ", " : "") << (s.body_frozen[i] ? "true" : "false");
+  out << "],\n";
   std::snprintf(number, sizeof number, "%.9g", s.max_force_N);
   out << "  \"max_force_N\": " << number << ",\n";
   out << "  \"mouse\": " << (s.mouse ? "true" : "false") << ",\n";

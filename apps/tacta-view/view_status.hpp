@@ -11,9 +11,11 @@ namespace tacta::view {
 struct ViewStatus {
   int frames = 0;
   double sim_time_s = 0;                 // s, of the last snapshot shown
+  double wall_time_s = 0;                // s from loading the scene (the first run) to the exit
   int swaps_requested = 0;
   std::vector<std::string> swap_history;  // "body -> model"
   std::vector<std::string> body_models;   // per body, from the last snapshot (the haptic side)
+  std::vector<bool> body_frozen;          // per body: diverged and frozen by the engine
   double max_force_N = 0;                 // largest device force among the snapshots shown
   bool mouse = false;                     // the mouse drove a device
   std::array<double, 3> mouse_target{};   // m

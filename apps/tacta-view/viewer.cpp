@@ -101,8 +101,9 @@ void Viewer::on_scene(const SceneStatic& scene) {
 void Viewer::draw_panel(double frame_ms) {
   const ImGuiIO& io = ImGui::GetIO();
   ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 10, 10), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Tacta");
+  ImGui::PushItemWidth(170);  // pixels, leaves room for the parameter names
   ImGui::Text("%s", scene_desc_.name.c_str());
   ImGui::Text("t = %.3f s   frame %.1f ms", have_snapshot_ ? snapshot_.time_s : 0.0, frame_ms);
   const bool playing = session_->playing();
@@ -135,6 +136,7 @@ void Viewer::draw_panel(double frame_ms) {
     ImGui::PlotLines("tick", tick_plot_.data(), tick_plot_.size(), tick_plot_.offset(), label, 0.0f,
                      std::max(1.0f, tick_plot_.max()), ImVec2(240, 60));
   }
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -196,7 +198,7 @@ int Viewer::run() {
     ++frames_;
 
     const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
-    if (options_.quit_after_s > 0 && elapsed_s >= options_.quit_after_s) window.request_close();
+    if (quit_requested_ || (options_.quit_after_s > 0 && elapsed_s >= options_.quit_after_s)) window.request_close();
     std::this_thread::sleep_until(now + std::chrono::duration_cast<Clock::duration>(
                                             std::chrono::duration<double>(kFramePeriod_s)));
   }
@@ -215,19 +217,24 @@ int Viewer::run() {
       std::printf("wrote %s\n", options_.screenshot.c_str());
     }
   }
-  if (!options_.status.empty()) write_status(options_.status);
+  if (!options_.status.empty())
+    write_status(options_.status, std::chrono::duration<double>(Clock::now() - created_).count());
   if (script_ && !script_->failures().empty()) code = 1;
   return code;
 }
 
-void Viewer::write_status(const std::string& path) const {
+void Viewer::write_status(const std::string& path, double wall_time_s) const {
   ViewStatus s;
   s.frames = frames_;
+  s.wall_time_s = wall_time_s;
   s.sim_time_s = have_snapshot_ ? snapshot_.time_s : 0;
   s.swaps_requested = models_->swaps();
   s.swap_history = models_->history();
   if (have_snapshot_)
-    for (const BodySnapshot& b : snapshot_.bodies) s.body_models.push_back(b.model);
+    for (const BodySnapshot& b : snapshot_.bodies) {
+      s.body_models.push_back(b.model);
+      s.body_frozen.push_back(b.frozen);
+    }
   s.max_force_N = max_force_N_;
   s.mouse = mouse_driven_ && mouse_.available();
   s.mouse_target = mouse_.target();

@@ -3,6 +3,7 @@
 // sliders, the mouse as a device, live plots of force and tick time).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,6 +46,7 @@ class Viewer final : public ScriptHost {
   void play() override { session_->play(); }
   void pause() override { session_->pause(); }
   void step() override { session_->step(); }
+  void quit() override { quit_requested_ = true; }
   std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const override;
   Vec3d mouse_target() const override { return mouse_.target(); }
   Vec3d top_point() const override { return top_point_; }
@@ -52,9 +54,10 @@ class Viewer final : public ScriptHost {
  private:
   void on_scene(const SceneStatic& scene);  // the first time the session hands it over
   void draw_panel(double frame_ms);
-  void write_status(const std::string& path) const;
+  void write_status(const std::string& path, double wall_time_s) const;
 
   ViewerOptions options_;
+  std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();  // the run starts here
   PluginRegistry plugins_;
   SceneDesc scene_desc_;
   std::unique_ptr<Simulation> simulation_;
@@ -76,6 +79,7 @@ class Viewer final : public ScriptHost {
   RingPlot<300> tick_plot_;     // ms
   double max_force_N_ = 0;
   int frames_ = 0;
+  bool quit_requested_ = false;
 };
 
 }  // namespace tacta::view

@@ -1,0 +1,119 @@
+// The mouse device plugin through the real C ABI, and the viewer's MouseTool feeding it through
+// the plugin registry (the optional `input` entry of tacta_device_api).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mouse_tool.hpp"
+#include "plugin_fixture.hpp"
+#include "tacta/device_api.h"
+
+namespace tacta::view {
+namespace {
+
+constexpr double kDt = 1e-3;  // s, the haptic period
+
+struct MouseInstance {
+  explicit MouseInstance(const testing::LoadedPlugin& plugin)
+      : api(plugin.api<tacta_device_api>("mouse")), params(testing::default_params(plugin.descriptor("mouse"))) {
+    tacta_device_setup setup{sizeof(tacta_device_setup), params.data(), static_cast<uint32_t>(params.size()), "", 1, kDt};
+    char message[256] = {0};
+    EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
+    EXPECT_EQ(api.connect(instance, message, sizeof message), TACTA_OK) << message;
+  }
+  ~MouseInstance() { api.destroy(instance); }
+  tacta_device_sample read(double t) {
+    tacta_device_sample s{};
+    EXPECT_EQ(api.read(instance, t, &s), TACTA_DEVICE_CONNECTED);
+    return s;
+  }
+  // Runs from t0 for `seconds` at the haptic period with a constant force; returns the end time.
+  double hold(double t0, double seconds, std::array<double, 3> force) {
+    const tacta_device_command command{{force[0], force[1], force[2]}, {0, 0, 0}};
+    double t = t0;
+    for (int k = 0; k < static_cast<int>(std::lround(seconds / kDt)); ++k) {
+      api.write(instance, t, &command);
+      t += kDt;
+      read(t);
+    }
+    return t;
+  }
+  const tacta_device_api& api;
+  std::vector<tacta_param_value> params;
+  void* instance = nullptr;
+};
+
+TEST(MouseDevice, DeclaresOmniCapabilitiesAndTheInputEntry) {
+  testing::LoadedPlugin plugin("tacta_mouse.so");
+  MouseInstance mouse(plugin);
+  ASSERT_NE(mouse.api.input, nullptr);
+  tacta_device_capabilities c{};
+  mouse.api.capabilities(mouse.instance, &c);
+  EXPECT_DOUBLE_EQ(c.peak_force, 3.3);
+  EXPECT_DOUBLE_EQ(c.workspace_max[0] - c.workspace_min[0], 0.16);
+  EXPECT_EQ(c.dof_out, 3u);
+}
+
+TEST(MouseDevice, FollowsTheFedTargetAndYieldsToTheRenderedForce) {
+  testing::LoadedPlugin plugin("tacta_mouse.so");
+  MouseInstance mouse(plugin);
+  const double start[3] = {0.01, 0.12, -0.02};
+  mouse.api.input(nullptr, start, 3);
+  tacta_device_sample s = mouse.read(0.0);  // first read: at rest on the target
+  EXPECT_DOUBLE_EQ(s.position[1], 0.12);
+
+  const double moved[3] = {0.02, 0.10, -0.02};
+  mouse.api.input(nullptr, moved, 3);
+  double t = mouse.hold(0.0, 0.5, {0, 0, 0});  // critically damped, omega = 55 rad/s: settled
+  s = mouse.read(t);
+  EXPECT_NEAR(s.position[0], 0.02, 1e-6);
+  EXPECT_NEAR(s.position[1], 0.10, 1e-6);
+
+  // A steady 1 N up is balanced by the 300 N/m hand spring 3.33 mm above the target.
+  t = mouse.hold(t, 1.0, {0, 1.0, 0});
+  EXPECT_NEAR(mouse.read(t).position[1] - 0.10, 1.0 / 300.0, 1e-6);
+  // 10 N is clamped to the 3.3 N peak: 11 mm.
+  t = mouse.hold(t, 1.0, {0, 10.0, 0});
+  EXPECT_NEAR(mouse.read(t).position[1] - 0.10, 3.3 / 300.0, 1e-6);
+  // Time going back (a new run of the simulation): at rest on the target again.
+  EXPECT_DOUBLE_EQ(mouse.read(0.0).position[1], 0.10);
+}
+
+TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
+  PluginRegistry plugins(PluginRegistry::DefaultPaths::Skip);
+  plugins.load_file(std::string(TACTA_PLUGIN_DIR) + "/tacta_mouse.so");
+  MouseTool tool(plugins);
+  ASSERT_TRUE(tool.available());
+  Camera camera;
+  camera.eye = {0, 0.1, 1};
+  camera.target = {0, 0.1, 0};
+  const Viewport view{800, 600};
+  tool.set_target({0, 0.1, 0});
+  tool.update({400, 300, true, 0, false}, camera, view);  // grab at the target's pixel
+  EXPECT_TRUE(tool.dragging());
+  tool.update({400, 200, true, 0, false}, camera, view);  // 100 px up: a sixth of the height
+  EXPECT_NEAR(tool.target()[1], 0.1 + std::tan(0.35) / 3, 1e-12);
+  EXPECT_NEAR(tool.target()[2], 0.0, 1e-12);
+  tool.update({400, 200, false, 2, false}, camera, view);  // released, two notches away
+  EXPECT_FALSE(tool.dragging());
+  EXPECT_NEAR(tool.target()[2], -2 * 0.002, 1e-12);
+  tool.update({100, 100, true, 0, true}, camera, view);  // over the panel: ignored
+  EXPECT_FALSE(tool.dragging());
+
+  // The device the registry loaded follows what the tool fed.
+  const auto& api = *static_cast<const tacta_device_api*>(plugins.require(TACTA_KIND_DEVICE, "mouse").descriptor->api);
+  const std::vector<tacta_param_value> defaults = testing::default_params(*plugins.require(TACTA_KIND_DEVICE, "mouse").descriptor);
+  tacta_device_setup setup{sizeof(tacta_device_setup), defaults.data(), static_cast<uint32_t>(defaults.size()), "", 1, kDt};
+  void* instance = nullptr;
+  char message[256] = {0};
+  ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
+  api.connect(instance, message, sizeof message);
+  tacta_device_sample s{};
+  api.read(instance, 0.0, &s);
+  EXPECT_NEAR(s.position[1], tool.target()[1], 1e-12);
+  EXPECT_NEAR(s.position[2], tool.target()[2], 1e-12);
+  api.destroy(instance);
+}
+
+}  // namespace
+}  // namespace tacta::view
