@@ -53,7 +53,8 @@ std::vector<ScriptAction> parse_script(const std::string& text) {
     if (a.args.size() != known->second)
       throw std::invalid_argument("--script: '" + entry + "': '" + a.verb + "' takes " +
                                   std::to_string(known->second) + " arguments");
-    for (size_t i = a.verb == "swap" ? 2 : a.verb == "set" ? 2 : 0; i < a.args.size(); ++i) number(a, i);
+    const size_t first_number = a.verb == "swap" || a.verb == "set" ? 2 : 0;  // after the names
+    for (size_t i = first_number; i < a.args.size(); ++i) number(a, i);
     actions.push_back(std::move(a));
   }
   std::stable_sort(actions.begin(), actions.end(), [](const auto& x, const auto& y) { return x.frame < y.frame; });

@@ -30,12 +30,11 @@ Placement placement(const SceneStatic& scene) {
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (const BodyStatic& b : scene.bodies)
     for (size_t n = 0; n + 2 < b.rest_positions.size(); n += 3) {
+      if (b.rest_positions[n + 1] > hi[1]) p.top = {b.rest_positions[n], b.rest_positions[n + 1], b.rest_positions[n + 2]};
       for (int a = 0; a < 3; ++a) {
         lo[a] = std::min(lo[a], b.rest_positions[n + a]);
         hi[a] = std::max(hi[a], b.rest_positions[n + a]);
       }
-      if (b.rest_positions[n + 1] >= p.top[1] || (n == 0 && &b == &scene.bodies.front()))
-        p.top = {b.rest_positions[n], b.rest_positions[n + 1], b.rest_positions[n + 2]};
     }
   if (lo[0] > hi[0]) return p;  // no bodies
   const double size = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
