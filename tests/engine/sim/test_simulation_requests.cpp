@@ -1,0 +1,121 @@
+// Requests from outside the haptic thread (Simulation::request_model_swap, request_stop): a swap
+// posted before run() is taken at the first tick and listed in report.json's models_run; a stop
+// ends the run after the current tick and is consumed, so the next run() runs in full.
+#include <chrono>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "sim_test_support.hpp"
+
+namespace tacta::simtest {
+namespace {
+
+const char* const kBeam = R"(
+name: beam_requests
+gravity: [0, -9.81, 0]
+clock: {duration_s: 0.05}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1]}}
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 1.0}
+    model: tensor_mass
+    fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+)";
+
+// A complete parameter set holding a plugin's schema defaults, as the viewer builds one.
+ParamSet schema_defaults(const tacta_descriptor& d) {
+  ParamSet params;
+  for (uint32_t i = 0; i < d.param_count; ++i) {
+    const tacta_param_spec& p = d.params[i];
+    const std::string text = p.default_text != nullptr ? p.default_text : "";
+    if (p.type == TACTA_PARAM_CHOICE) {
+      std::string choices = p.choices != nullptr ? p.choices : "";
+      for (int k = 0; k < static_cast<int>(p.default_value) && choices.find('|') != std::string::npos; ++k)
+        choices = choices.substr(choices.find('|') + 1);
+      params.add_text(p.name, choices.substr(0, choices.find('|')), p.default_value);
+    } else if (p.type == TACTA_PARAM_TEXT) {
+      params.add_text(p.name, text);
+    } else if (p.type == TACTA_PARAM_VECTOR) {
+      std::vector<double> values;
+      std::istringstream in(text);
+      for (double v; in >> v;) values.push_back(v);
+      params.add_vector(p.name, values);
+    } else {
+      params.add_number(p.name, p.default_value);
+    }
+  }
+  return params;
+}
+
+TEST(SimulationRequests, SwapWithDefaultParametersBeforeRun) {
+  Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
+  ASSERT_EQ(simulation.body_count(), 1u);
+  EXPECT_EQ(simulation.body_name(0), "beam");
+  // "empty = the defaults" (simulation.hpp).
+  ASSERT_NO_THROW(simulation.request_model_swap(0, "corotational_fem", ParamSet{}));
+  EXPECT_EQ(simulation.body_model(0), "corotational_fem");
+  const std::string out = fresh_dir("requests_swap");
+  RunOptions options;
+  options.out_dir = out;
+  const RunResult r = simulation.run(options);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.bodies[0].model, "corotational_fem");
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& models = report["bodies"][0]["models_run"];
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_EQ(models[0]["model"], "tensor_mass");
+  EXPECT_EQ(models[1]["model"], "corotational_fem");
+  EXPECT_EQ(models[1]["time_s"].get<double>(), 0.0) << "taken at the start of the first tick";
+}
+
+TEST(SimulationRequests, BadSwapRequestsAreInputErrors) {
+  Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
+  EXPECT_THROW(simulation.request_model_swap(3, "corotational_fem", ParamSet{}), InputError);
+  EXPECT_THROW(simulation.request_model_swap(0, "no_such_model", ParamSet{}), InputError);
+  EXPECT_EQ(simulation.body_model(0), "tensor_mass") << "a refused request changes nothing";
+}
+
+TEST(SimulationRequests, StopEndsOneRunAndIsConsumed) {
+  Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
+  simulation.request_stop();
+  const RunResult stopped = simulation.run({});
+  EXPECT_EQ(stopped.schedule.ticks, 1u);
+  EXPECT_TRUE(stopped.schedule.stopped_early);
+  const RunResult full = simulation.run({});
+  EXPECT_EQ(full.schedule.ticks, 50u);
+  EXPECT_FALSE(full.schedule.stopped_early);
+}
+
+// Realtime: the haptic thread runs on the wall clock while this thread posts a swap, as the viewer
+// does; the swap is taken mid-run and every tick's duration is measured.
+TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
+  Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
+  const std::string out = fresh_dir("requests_realtime");
+  RunOptions options;
+  options.out_dir = out;
+  options.realtime = true;
+  options.duration_s = 0.5;
+  RunResult result;
+  std::thread runner([&] { result = simulation.run(options); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const ParamSet params = schema_defaults(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
+  simulation.request_model_swap(0, "corotational_fem", params);
+  runner.join();
+  EXPECT_EQ(result.mode, "realtime");
+  EXPECT_EQ(result.schedule.ticks, 500u);
+  EXPECT_EQ(result.schedule.tick.ticks, 500u);
+  EXPECT_GT(result.schedule.tick.p50_ms, 0.0);
+  EXPECT_EQ(result.bodies[0].model, "corotational_fem");
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["mode"], "realtime");
+  const nlohmann::json& models = report["bodies"][0]["models_run"];
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_GT(models[1]["time_s"].get<double>(), 0.0);
+  EXPECT_LT(models[1]["time_s"].get<double>(), 0.5);
+}
+
+}  // namespace
+}  // namespace tacta::simtest
