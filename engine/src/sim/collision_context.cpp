@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "param_defaults.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {
@@ -181,10 +182,12 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const SourceLocation where{scene.path, 0, 0, "collision"};
   auto add = [&](const std::string& name, ParamSet params) {
     if (name.empty()) return;
-    // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
-    params.set_number("friction", c.friction);
     const LoadedDescriptor* found = plugins.find(TACTA_KIND_COLLISION, name);
     if (found == nullptr) throw InputError(where, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
+    // Collision off in the scene: the broad phase (the proxy's queries) gets its defaults.
+    params = complete_params(*found->descriptor, params);
+    // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
+    params.set_number("friction", c.friction);
     instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, where));
   };
   const bool needed = c.enabled || world.device_count() > 0;

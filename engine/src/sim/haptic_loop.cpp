@@ -188,11 +188,20 @@ void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, c
   faults_.push(f);
 }
 
+bool HapticLoop::touches_frozen_body(const DeviceSlot& slot) const noexcept {
+  if (slot.touched_body >= 0) return world_.body(static_cast<size_t>(slot.touched_body)).fault.frozen;
+  for (size_t i = 0; i < world_.body_count(); ++i)
+    if (world_.body(i).fault.frozen) return true;
+  return false;
+}
+
 void HapticLoop::write_devices(double time, bool zero_force) noexcept {
   for (size_t d = 0; d < world_.device_count(); ++d) {
     DeviceSlot& slot = world_.device(d);
     DeviceStats& st = slot.stats;
-    const bool silent = zero_force || slot.state != TACTA_DEVICE_CONNECTED;
+    // A frozen body is a state that could not be trusted: a device touching it renders nothing,
+    // from the faulting tick for as long as it stays frozen.
+    const bool silent = zero_force || slot.state != TACTA_DEVICE_CONNECTED || touches_frozen_body(slot);
     if (silent) {
       slot.force = {0, 0, 0};
       ++st.zero_force_ticks;

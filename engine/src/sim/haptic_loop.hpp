@@ -58,6 +58,7 @@ class HapticLoop final : public HapticTask {
   bool step_bodies(double time, double dt) noexcept;  // false when a body faulted this tick
   void write_devices(double time, bool zero_force) noexcept;
   void record(double time) noexcept;
+  bool touches_frozen_body(const DeviceSlot& slot) const noexcept;
   void freeze(SoftBody& body, size_t index, double time, uint32_t bits, const char* why) noexcept;
 
   World& world_;

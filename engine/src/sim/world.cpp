@@ -1,5 +1,7 @@
 #include "world.hpp"
 
+#include "param_defaults.hpp"
+
 namespace tacta {
 
 namespace {
@@ -52,14 +54,15 @@ std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const
                                                  const SourceLocation& where) const {
   const LoadedDescriptor* found = plugins_.find(TACTA_KIND_MODEL, model);
   if (found == nullptr) throw InputError(where, plugins_.unknown_name_message(TACTA_KIND_MODEL, model));
+  const ParamSet values = complete_params(*found->descriptor, params);
   tacta_model_setup setup{};
   setup.struct_size = sizeof setup;
   setup.mesh = &topology.view;
   setup.material = &topology.material;
   setup.masses = topology.masses.data();
   setup.fixed = topology.fixed.data();
-  setup.params = params.data();
-  setup.param_count = params.size();
+  setup.params = values.data();
+  setup.param_count = values.size();
   setup.dt = dt > 0 ? dt : kSetupDt;
   return std::make_unique<ModelInstance>(*found->descriptor, setup, where);
 }

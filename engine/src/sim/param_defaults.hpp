@@ -1,0 +1,13 @@
+// Parameter values for a plugin when a caller gives none: the schema's defaults, in schema order.
+#pragma once
+
+#include "tacta/plugin.h"
+#include "tacta/scene.hpp"
+
+namespace tacta {
+
+// `given` when it already holds every schema value, else the defaults (a partial set is a
+// programming error upstream: the scene loader always fills every value).
+ParamSet complete_params(const tacta_descriptor& descriptor, const ParamSet& given);
+
+}  // namespace tacta
