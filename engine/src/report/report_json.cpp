@@ -87,6 +87,16 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   j.field("sim_time_s", result.sim_time_s).field("wall_time_s", result.schedule.wall_time_s);
   j.field("haptic_rate_hz", world.scene().clock.haptic_rate_hz);
   write_ticks(j, result.schedule);
+  // Where the tick's time goes: device read (and swaps), haptics (proxy, coupling, refit for its
+  // queries), model steps, collision response, device write and records.
+  j.key("tick_breakdown_ms").begin_object();
+  for (int s = 0; s < HapticLoop::kStageCount; ++s) {
+    const TickSummary t = loop.stage(s).summary();
+    j.key(HapticLoop::stage_name(s)).begin_object();
+    j.field("mean", t.mean_ms).field("p50", t.p50_ms).field("p99", t.p99_ms).field("max", t.max_ms);
+    j.end_object();
+  }
+  j.end_object();
   j.field("deadline_misses", result.schedule.deadline_misses);
   j.field("max_start_jitter_ms", result.schedule.max_start_jitter_ms);
   j.field("stopped_early", result.schedule.stopped_early);

@@ -43,6 +43,12 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
   energy_.reserve(frames * world.body_count() + 16);
   faults_.reserve(64 + world.body_count() + devices);
   stress_scratch_.assign(largest, 0.0);
+  for (TickRecorder& r : stages_) r.reserve(expected_ticks);
+}
+
+const char* HapticLoop::stage_name(int stage) noexcept {
+  static const char* const names[kStageCount] = {"device_read", "haptics", "models", "collision_response", "device_write"};
+  return stage >= 0 && stage < kStageCount ? names[stage] : "?";
 }
 
 Snapshot HapticLoop::make_prototype(World& world) {
@@ -61,23 +67,37 @@ Snapshot HapticLoop::make_prototype(World& world) {
 }
 
 bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
-  const auto start = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const auto start = Clock::now();
   tick_index_ = index;
   tick_time_ = time;
   apply_swaps(time);
   read_devices(time);
+  const auto read_done = Clock::now();
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
     std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
   }
   for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
+  const auto haptics_done = Clock::now();
   const bool healthy = step_bodies(time, dt);
+  const auto models_done = Clock::now();
   if (healthy)
     for (Interaction* interaction : interactions_) interaction->after_step(world_, time, dt);
+  const auto response_done = Clock::now();
   // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
   write_devices(time + dt, !healthy);
   record(time + dt);
-  last_tick_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const auto end = Clock::now();
+  stages_[kDeviceRead].record(ms(start, read_done));
+  stages_[kHaptics].record(ms(read_done, haptics_done));
+  stages_[kModels].record(ms(haptics_done, models_done));
+  stages_[kResponse].record(ms(models_done, response_done));
+  stages_[kDeviceWrite].record(ms(response_done, end));
+  last_tick_ms_ = ms(start, end);
   return true;
 }
 

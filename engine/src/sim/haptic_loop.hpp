@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "recorders.hpp"
+#include "tacta/sim/tick_stats.hpp"
 #include "tacta/device_log.hpp"
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
@@ -52,6 +53,11 @@ class HapticLoop final : public HapticTask {
   // A prototype snapshot with every buffer sized, for building the triple buffer.
   static Snapshot make_prototype(World& world);
 
+  // Where a tick's time goes (ms per tick, every tick), for report.json's tick_breakdown_ms.
+  enum Stage { kDeviceRead, kHaptics, kModels, kResponse, kDeviceWrite, kStageCount };
+  static const char* stage_name(int stage) noexcept;
+  const TickRecorder& stage(int s) const { return stages_[s]; }
+
  private:
   void apply_swaps(double time) noexcept;
   void read_devices(double time) noexcept;
@@ -74,6 +80,7 @@ class HapticLoop final : public HapticTask {
   uint64_t tick_index_ = 0;
   std::vector<double> stress_scratch_;
   std::unique_ptr<DeviceLogRecorder> device_log_;
+  TickRecorder stages_[kStageCount];
   double tick_time_ = 0;  // s, start of the current tick (when devices were read)  // largest body's node count
 };
 
