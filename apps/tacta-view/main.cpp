@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("--status", options.status, "Write a JSON summary (frames, swaps, force, mouse) on exit");
   app.add_option("--script", options.script,
                  "Scripted actions 'FRAME:VERB ARGS; ...' (swap BODY MODEL, set BODY PARAM VALUE, play, pause, "
-                 "step, quit, drag DX DY FRAMES, press DEPTH FRAMES, release, wheel NOTCHES)");
+                 "step, quit, mark, drag DX DY FRAMES, press DEPTH FRAMES, release, wheel NOTCHES)");
   app.add_option("--size", size, "Window size in pixels, WIDTHxHEIGHT");
   CLI11_PARSE(app, argc, argv);
   if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||

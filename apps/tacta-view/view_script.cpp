@@ -26,7 +26,7 @@ double number(const ScriptAction& a, size_t i) {
 
 std::vector<ScriptAction> parse_script(const std::string& text) {
   const std::vector<std::pair<std::string, size_t>> arity{{"swap", 2}, {"set", 3},  {"play", 0},    {"pause", 0},
-                                                          {"step", 0}, {"quit", 0}, {"drag", 3}, {"press", 2},   {"release", 0},
+                                                          {"step", 0}, {"quit", 0}, {"mark", 0}, {"drag", 3}, {"press", 2},   {"release", 0},
                                                           {"wheel", 1}};
   std::vector<ScriptAction> actions;
   std::istringstream entries(text);
@@ -49,7 +49,7 @@ std::vector<ScriptAction> parse_script(const std::string& text) {
     const auto known = std::find_if(arity.begin(), arity.end(), [&](const auto& p) { return p.first == a.verb; });
     if (known == arity.end())
       throw std::invalid_argument("--script: '" + entry + "': unknown verb '" + a.verb +
-                                  "' (swap, set, play, pause, step, quit, drag, press, release, wheel)");
+                                  "' (swap, set, play, pause, step, quit, mark, drag, press, release, wheel)");
     if (a.args.size() != known->second)
       throw std::invalid_argument("--script: '" + entry + "': '" + a.verb + "' takes " +
                                   std::to_string(known->second) + " arguments");
@@ -91,6 +91,7 @@ std::optional<PointerState> ScriptPlayer::advance(int frame, ScriptHost& host) {
     else if (a.verb == "pause") host.pause();
     else if (a.verb == "step") host.step();
     else if (a.verb == "quit") host.quit();
+    else if (a.verb == "mark") host.mark();
     else if (a.verb == "release") {
       track_.clear();
       if (pointer_) pointer_->left_down = false;

@@ -4,6 +4,7 @@
 //   "20:swap liver tensor_mass; 40:press 0.01 20; 70:wheel -2; 80:release; 90:pause; 95:step"
 //
 // Verbs: swap BODY MODEL | set BODY PARAM VALUE | play | pause | step | quit |
+//        mark (records the simulated time shown, for the status file) |
 //        drag DX DY FRAMES (pixels from the mouse target's pixel, released at the end) |
 //        press DEPTH FRAMES (drags the target onto the line of sight of the bodies' highest rest
 //        point lowered by DEPTH m, and holds) | release | wheel NOTCHES
@@ -37,6 +38,7 @@ class ScriptHost {
   virtual void pause() = 0;
   virtual void step() = 0;
   virtual void quit() = 0;  // closes the window after this frame
+  virtual void mark() = 0;  // records the frame and the simulated time shown
   virtual std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const = 0;
   virtual Vec3d mouse_target() const = 0;
   virtual Vec3d top_point() const = 0;  // m, the highest rest node of the bodies

@@ -45,6 +45,12 @@ void write_view_status(const std::string& path, const ViewStatus& s) {
   out << "  \"sim_time_s\": " << number << ",\n";
   std::snprintf(number, sizeof number, "%.9g", s.wall_time_s);
   out << "  \"wall_time_s\": " << number << ",\n";
+  out << "  \"marks\": [";
+  for (size_t i = 0; i < s.marks.size(); ++i) {
+    std::snprintf(number, sizeof number, "%s[%.0f, %.9g]", i ? ", " : "", s.marks[i][0], s.marks[i][1]);
+    out << number;
+  }
+  out << "],\n";
   out << "  \"swaps_requested\": " << s.swaps_requested << ",\n";
   out << "  \"swap_history\": " << list(s.swap_history) << ",\n";
   out << "  \"body_models\": " << list(s.body_models) << ",\n";

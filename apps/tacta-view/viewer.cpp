@@ -226,6 +226,7 @@ void Viewer::write_status(const std::string& path, double wall_time_s) const {
   ViewStatus s;
   s.frames = frames_;
   s.wall_time_s = wall_time_s;
+  s.marks = marks_;
   s.sim_time_s = have_snapshot_ ? snapshot_.time_s : 0;
   s.swaps_requested = models_->swaps();
   s.swap_history = models_->history();

@@ -47,6 +47,7 @@ class Viewer final : public ScriptHost {
   void pause() override { session_->pause(); }
   void step() override { session_->step(); }
   void quit() override { quit_requested_ = true; }
+  void mark() override { marks_.push_back({static_cast<double>(frames_), have_snapshot_ ? snapshot_.time_s : 0.0}); }
   std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const override;
   Vec3d mouse_target() const override { return mouse_.target(); }
   Vec3d top_point() const override { return top_point_; }
@@ -80,6 +81,7 @@ class Viewer final : public ScriptHost {
   double max_force_N_ = 0;
   int frames_ = 0;
   bool quit_requested_ = false;
+  std::vector<std::array<double, 2>> marks_;  // (frame, simulated time shown in s) per script mark
 };
 
 }  // namespace tacta::view

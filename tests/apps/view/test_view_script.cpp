@@ -22,6 +22,7 @@ class FakeHost final : public ScriptHost {
   void pause() override { calls.push_back("pause"); }
   void step() override { calls.push_back("step"); }
   void quit() override { calls.push_back("quit"); }
+  void mark() override { calls.push_back("mark"); }
   // A fake projection: x, y in pixels = 1000 * world x, -1000 * world y, offset to the centre.
   std::optional<std::array<double, 2>> pixel_of(const Vec3d& p) const override {
     return std::array<double, 2>{400 + 1000 * p[0], 300 - 1000 * p[1]};
@@ -96,10 +97,10 @@ TEST(ViewScript, PressAimsBelowTheTopPointAndHolds) {
 TEST(ViewScript, ActionsReachTheHostAndRefusalsAreKept) {
   FakeHost host;
   ScriptPlayer player(parse_script("1:swap liver refused; 1:swap liver mass_spring; 2:set liver damping 3; "
-                                   "3:pause; 3:step; 4:play; 9:quit"));
+                                   "3:pause; 3:step; 4:play; 5:mark; 9:quit"));
   for (int frame = 0; frame < 10; ++frame) player.advance(frame, host);
   EXPECT_EQ(host.calls, (std::vector<std::string>{"swap liver refused", "swap liver mass_spring",
-                                                   "set liver damping 3.000000", "pause", "step", "play", "quit"}));
+                                                   "set liver damping 3.000000", "pause", "step", "play", "mark", "quit"}));
   EXPECT_EQ(player.failures(), (std::vector<std::string>{"1:swap"}));
 }
 
