@@ -175,17 +175,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--set", args->overrides, "Override a scene key for every run: key.path=value");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  cmd->callback([args, &exit_code] {
-    try {
-      exit_code = compare_models(*args);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitBadInput;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitFault;
-    }
-  });
+  cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return compare_models(*args); }); });
 }
 
 const bool registered = register_command(&add_compare_command);

@@ -91,17 +91,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_flag("--frames", args->frames, "Write PNG frames from the render task");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  cmd->callback([args, &exit_code] {
-    try {
-      exit_code = run_scene(*args);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitBadInput;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitFault;
-    }
-  });
+  cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return run_scene(*args); }); });
 }
 
 const bool registered = register_command(&add_run_command);

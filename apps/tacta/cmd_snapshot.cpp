@@ -99,17 +99,7 @@ void add_snapshot_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--height", args->height, "Picture height, pixels (default: the scene's output.frame_size)");
   cmd->add_option("--set", args->overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  cmd->callback([args, &exit_code] {
-    try {
-      exit_code = take_snapshot(*args);
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitBadInput;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      exit_code = kExitFault;
-    }
-  });
+  cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return take_snapshot(*args); }); });
 }
 
 const bool registered = register_command(&add_snapshot_command);

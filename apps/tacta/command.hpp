@@ -4,8 +4,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <exception>
 #include <functional>
 #include <vector>
+
+#include "tacta/error.hpp"
 
 namespace tacta::cli {
 
@@ -26,6 +30,21 @@ inline std::vector<CommandFactory>& command_factories() {
 inline bool register_command(CommandFactory factory) {
   command_factories().push_back(std::move(factory));
   return true;
+}
+
+// Runs a command body and turns what it throws into the exit code: bad input (InputError: scene,
+// mesh, plugin) is 2, anything else at run time is 1; the message goes to stderr.
+template <class Fn>
+int run_guarded(Fn&& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitFault;
+  }
 }
 
 }  // namespace tacta::cli

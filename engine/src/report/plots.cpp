@@ -1,49 +1,13 @@
 // Plots: the scene's output.plots, drawn by the scripts in scripts/plots with Debian's python3
 // and matplotlib. Run as child processes (no shell) after the run; a plot that fails is a warning.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
 
 #include "run_outputs.hpp"
-
-extern char** environ;
+#include "tacta/output/plot_script.hpp"
 
 namespace tacta {
 
 namespace {
-
-// Debian's interpreter first: a python3 earlier on PATH (pyenv, venv) may lack matplotlib.
-std::string python() {
-  if (const char* p = std::getenv("TACTA_PYTHON")) return p;
-  return access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
-}
-
-std::string scripts_dir() {
-  if (const char* d = std::getenv("TACTA_PLOT_SCRIPTS")) return d;
-#ifdef TACTA_SOURCE_DIR
-  if (std::filesystem::exists(TACTA_SOURCE_DIR "/scripts/plots")) return TACTA_SOURCE_DIR "/scripts/plots";
-#endif
-  return TACTA_INSTALL_PLUGIN_DIR "/../../../share/tacta/plots";
-}
-
-// Runs argv, waits, returns the exit status (-1 when it could not start).
-int run_process(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const std::string& program = args.front();
-  const int rc = program.find('/') != std::string::npos
-                     ? posix_spawn(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ)
-                     : posix_spawnp(&pid, program.c_str(), nullptr, nullptr, argv.data(), environ);
-  if (rc != 0) return -1;
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // The paper's corner names for the nodes of a 4-node planar square, else "node N".
 std::string node_label(const SoftBody& body, uint32_t node) {
@@ -56,9 +20,9 @@ std::string node_label(const SoftBody& body, uint32_t node) {
 
 void write_plots(const std::string& dir, const World& world, RunResult& result, std::vector<std::string>& warnings) {
   const OutputDesc& out = world.scene().output;
-  const std::string scripts = scripts_dir();
+  const std::string scripts = plot_scripts_dir();
   for (const std::string& plot : out.plots) {
-    std::vector<std::string> args{python()};
+    std::vector<std::string> args{plot_python()};
     std::string png = dir + "/" + plot + ".png";
     if (plot == "phase_portrait") {
       if (!std::filesystem::exists(dir + "/trajectory.csv")) {
@@ -90,7 +54,7 @@ void write_plots(const std::string& dir, const World& world, RunResult& result, 
       warnings.push_back("unknown plot '" + plot + "'");
       continue;
     }
-    const int status = run_process(args);
+    const int status = run_plot_process(args);
     if (status == 0 && std::filesystem::exists(png)) result.outputs.push_back(png);
     else warnings.push_back("plot " + plot + " failed (" + args[1] + " exited with " + std::to_string(status) + ")");
   }
