@@ -133,17 +133,7 @@ struct CollisionAdapter {
 template <class T>
 const tacta_descriptor* collision_descriptor() {
   static const tacta_collision_api api = CollisionAdapter<T>::table();
-  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
-                                           TACTA_ABI_ID,
-                                           TACTA_KIND_COLLISION,
-                                           T::kName,
-                                           T::kVersion,
-                                           T::kDescription,
-                                           T::kParams.data(),
-                                           static_cast<uint32_t>(T::kParams.size()),
-                                           &api,
-                                           sizeof(api)};
-  return &descriptor;
+  return class_descriptor<T>(TACTA_KIND_COLLISION, api);
 }
 
 }  // namespace tacta::sdk

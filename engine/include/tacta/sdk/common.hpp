@@ -102,6 +102,24 @@ constexpr tacta_param_spec vector_param(const char* name, const char* unit, unsi
   return {name, TACTA_PARAM_VECTOR, unit, 0.0, lo, hi, nullptr, def, stride, help};
 }
 
+// The descriptor of plugin class T (its kName, kVersion, kDescription, kParams) of `kind`, over
+// its function table `api`, which must have static storage. One per (T, Api): lives as long as
+// the library, as the host requires.
+template <class T, class Api>
+const tacta_descriptor* class_descriptor(tacta_kind kind, const Api& api) {
+  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
+                                           TACTA_ABI_ID,
+                                           kind,
+                                           T::kName,
+                                           T::kVersion,
+                                           T::kDescription,
+                                           T::kParams.data(),
+                                           static_cast<uint32_t>(T::kParams.size()),
+                                           &api,
+                                           sizeof(Api)};
+  return &descriptor;
+}
+
 // Registers descriptors with the host after checking the ABI; the body of tacta_plugin_entry.
 inline tacta_status register_descriptors(uint64_t host_abi, const tacta_host* host, char* message,
                                          size_t capacity,

@@ -65,17 +65,7 @@ struct DeviceAdapter {
 template <class T>
 const tacta_descriptor* device_descriptor() {
   static const tacta_device_api api = DeviceAdapter<T>::table();
-  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
-                                           TACTA_ABI_ID,
-                                           TACTA_KIND_DEVICE,
-                                           T::kName,
-                                           T::kVersion,
-                                           T::kDescription,
-                                           T::kParams.data(),
-                                           static_cast<uint32_t>(T::kParams.size()),
-                                           &api,
-                                           sizeof(api)};
-  return &descriptor;
+  return class_descriptor<T>(TACTA_KIND_DEVICE, api);
 }
 
 }  // namespace tacta::sdk

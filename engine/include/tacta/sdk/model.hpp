@@ -66,17 +66,7 @@ struct ModelAdapter {
 template <class T>
 const tacta_descriptor* model_descriptor() {
   static const tacta_model_api api = ModelAdapter<T>::table();
-  static const tacta_descriptor descriptor{sizeof(tacta_descriptor),
-                                           TACTA_ABI_ID,
-                                           TACTA_KIND_MODEL,
-                                           T::kName,
-                                           T::kVersion,
-                                           T::kDescription,
-                                           T::kParams.data(),
-                                           static_cast<uint32_t>(T::kParams.size()),
-                                           &api,
-                                           sizeof(api)};
-  return &descriptor;
+  return class_descriptor<T>(TACTA_KIND_MODEL, api);
 }
 
 }  // namespace tacta::sdk
