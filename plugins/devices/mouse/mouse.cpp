@@ -15,16 +15,14 @@
 #include <cmath>
 
 #include "tacta/sdk/device.hpp"
+#include "tacta_devices/omni_profile.hpp"
 
 namespace tacta::mouse_device {
 namespace {
 
 using Point = std::array<double, 3>;
 
-constexpr double kPeakForce = 3.3;           // N
-constexpr double kContinuousForce = 0.88;    // N
-constexpr double kUsableStiffness = 1000.0;  // N/m
-constexpr Point kWorkspaceHalf{0.080, 0.060, 0.035};  // m: the Omni's 160 x 120 x 70 mm
+constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
 constexpr double kTeleportGap = 1.0;         // s; a longer gap (or time going back) restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
@@ -128,26 +126,11 @@ class MouseDevice {
   }
 
   void write(double, const tacta_device_command& command) noexcept {
-    const Point f{command.force[0], command.force[1], command.force[2]};
-    const double magnitude = std::hypot(f[0], f[1], f[2]);
-    if (!std::isfinite(magnitude)) { force_ = {0, 0, 0}; return; }
-    const double scale = magnitude > kPeakForce ? kPeakForce / magnitude : 1.0;
-    force_ = {f[0] * scale, f[1] * scale, f[2] * scale};
+    force_ = devices::saturate_force(command.force);
   }
 
   tacta_device_capabilities capabilities() const noexcept {
-    tacta_device_capabilities c{};
-    for (int i = 0; i < 3; ++i) {
-      c.workspace_min[i] = origin_[i] - kWorkspaceHalf[i];
-      c.workspace_max[i] = origin_[i] + kWorkspaceHalf[i];
-    }
-    c.peak_force = kPeakForce;
-    c.continuous_force = kContinuousForce;
-    c.usable_stiffness = kUsableStiffness;
-    c.nominal_rate = 1000.0;
-    c.dof_in = 3;
-    c.dof_out = 3;
-    return c;
+    return devices::omni_capabilities(origin_, 3);
   }
 
  private:

@@ -17,14 +17,12 @@
 
 #include "hand_script.hpp"
 #include "tacta/sdk/device.hpp"
+#include "tacta_devices/omni_profile.hpp"
 
 namespace tacta::sim_stylus {
 namespace {
 
-constexpr double kPeakForce = 3.3;            // N
-constexpr double kContinuousForce = 0.88;     // N
-constexpr double kUsableStiffness = 1000.0;   // N/m (1 N/mm at 1 kHz)
-constexpr Point kWorkspaceHalf{0.080, 0.060, 0.035};  // m: 160 wide (x), 120 high (y), 70 deep (z)
+constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
 constexpr double kTeleportGap = 1.0;          // s; a longer gap between reads restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
@@ -133,26 +131,12 @@ class SimStylus {
   }
 
   void write(double, const tacta_device_command& command) noexcept {
-    const Point f{command.force[0], command.force[1], command.force[2]};
-    const double magnitude = std::hypot(f[0], f[1], f[2]);
-    if (!std::isfinite(magnitude)) { force_ = {0.0, 0.0, 0.0}; return; }
-    const double scale = magnitude > kPeakForce ? kPeakForce / magnitude : 1.0;
-    force_ = {f[0] * scale, f[1] * scale, f[2] * scale};
+    force_ = devices::saturate_force(command.force);
   }
 
   tacta_device_capabilities capabilities() const noexcept {
-    tacta_device_capabilities c{};
-    for (int i = 0; i < 3; ++i) {
-      c.workspace_min[i] = origin_[i] - kWorkspaceHalf[i];
-      c.workspace_max[i] = origin_[i] + kWorkspaceHalf[i];
-    }
-    c.peak_force = kPeakForce;
-    c.continuous_force = kContinuousForce;
-    c.usable_stiffness = kUsableStiffness;
-    c.nominal_rate = 1000.0;
-    c.dof_in = 6;   // the Omni senses the gimbal; here the orientation stays the identity
-    c.dof_out = 3;  // forces only
-    return c;
+    // sim_stylus: 6 sensed (the Omni senses its gimbal; here the orientation stays the identity).
+    return devices::omni_capabilities(origin_, 6);
   }
 
   tacta_device_state status(char* reason, size_t capacity) const noexcept {
