@@ -25,7 +25,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     j.field("name", b.name).field("model", b.model);
     // Every model the body ran, with the simulated time it took over (s): the scene's scheduled
     // swaps and the ones requested while running, in time order.
-    std::vector<std::pair<double, std::string>> runs{{0.0, body.model_history.front()}};
+    std::vector<std::pair<double, std::string>> runs{{0.0, body.initial_model}};
     for (size_t s = 0; s < body.next_swap; ++s) runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
     for (const RuntimeSwap& r : body.runtime_swaps) runs.emplace_back(r.time_s, r.model);
     std::stable_sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });

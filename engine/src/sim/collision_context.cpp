@@ -216,12 +216,6 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
 
 CollisionContext::~CollisionContext() = default;
 
-bool CollisionContext::has_haptic_queries() const noexcept {
-  for (const auto& inst : instances_)
-    if (inst->api.sphere_cast != nullptr && inst->api.closest_point != nullptr) return true;
-  return false;
-}
-
 const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept {
   query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size() ? surface_of_body_[static_cast<size_t>(body)] : -1);
   return *query_;

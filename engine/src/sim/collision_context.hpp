@@ -39,7 +39,6 @@ class CollisionContext {
   const tacta_contact* contacts() const noexcept { return contacts_.data(); }
   uint32_t contact_count() const noexcept { return contact_count_; }
 
-  bool has_haptic_queries() const noexcept;
   // Answers the god-object proxy's queries against one body's surface (or every surface, -1).
   const haptics::SurfaceQuery& surface_query(int body) noexcept;
   tacta_collision_world& view() noexcept { return view_; }

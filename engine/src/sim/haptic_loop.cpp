@@ -27,10 +27,8 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
   const size_t devices = world.device_count();
   trace_.reserve(expected_ticks * std::max<size_t>(devices, 1) + 16);
   size_t recorded_nodes = 0;
-  size_t largest = 0;
   for (size_t i = 0; i < world.body_count(); ++i) {
     recorded_nodes += world.body(i).recorded_nodes.size();
-    largest = std::max(largest, world.body(i).node_count());
   }
   const double interval_ticks =
       record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
@@ -42,7 +40,6 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
   const size_t frames = static_cast<size_t>(scene.clock.duration_s * scene.clock.render_rate_hz) + 4;
   energy_.reserve(frames * world.body_count() + 16);
   faults_.reserve(64 + world.body_count() + devices);
-  stress_scratch_.assign(largest, 0.0);
   for (TickRecorder& r : stages_) r.reserve(expected_ticks);
 }
 

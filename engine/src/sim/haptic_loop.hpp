@@ -78,7 +78,6 @@ class HapticLoop final : public HapticTask {
   double next_record_s_ = 0;
   double last_tick_ms_ = 0;
   uint64_t tick_index_ = 0;
-  std::vector<double> stress_scratch_;
   std::unique_ptr<DeviceLogRecorder> device_log_;
   TickRecorder stages_[kStageCount];
   double tick_time_ = 0;  // s, start of the current tick (when devices were read)  // largest body's node count

@@ -26,14 +26,6 @@ ModelInstance::~ModelInstance() {
   if (instance_ != nullptr) api_.destroy(instance_);
 }
 
-std::string ModelInstance::set_param(uint32_t index, const tacta_param_value& value) {
-  if (api_.set_param == nullptr) return std::string("model '") + name() + "' cannot change parameters while running";
-  char message[kMessageCapacity] = {0};
-  if (api_.set_param(instance_, index, &value, message, sizeof message) != TACTA_OK)
-    return message[0] != '\0' ? std::string(message) : std::string("refused");
-  return {};
-}
-
 DeviceInstance::DeviceInstance(const tacta_descriptor& descriptor, const tacta_device_setup& setup,
                                const SourceLocation& where)
     : descriptor_(descriptor), api_(*static_cast<const tacta_device_api*>(descriptor.api)) {

@@ -27,7 +27,6 @@ class ModelInstance {
   void begin(const tacta_body_state& state, double dt) noexcept {
     if (api_.begin) api_.begin(instance_, &state, dt);
   }
-  bool has_elastic_energy() const noexcept { return api_.elastic_energy != nullptr; }
   double elastic_energy(const double* positions) noexcept {
     return api_.elastic_energy ? api_.elastic_energy(instance_, positions) : 0.0;
   }
@@ -35,12 +34,6 @@ class ModelInstance {
   void node_stress(const double* positions, double* von_mises) noexcept {
     if (api_.node_stress) api_.node_stress(instance_, positions, von_mises);
   }
-  bool has_internal_forces() const noexcept { return api_.internal_forces != nullptr; }
-  void internal_forces(const double* positions, double* forces) noexcept {
-    if (api_.internal_forces) api_.internal_forces(instance_, positions, forces);
-  }
-  // Not from the 1 kHz path. Returns an empty string on success, else the plugin's reason.
-  std::string set_param(uint32_t index, const tacta_param_value& value);
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;

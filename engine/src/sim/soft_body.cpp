@@ -144,7 +144,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   const double dt = desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
   body.step_period_s = desc.step_rate_hz > 0 ? dt : 0.0;
   body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
-  body.model_history.push_back(desc.model);
+  body.initial_model = desc.model;
   body.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;

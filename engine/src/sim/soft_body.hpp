@@ -68,7 +68,7 @@ struct SoftBody {
   std::unique_ptr<ModelInstance> model;
   std::vector<ScheduledSwap> swaps;     // sorted by time
   size_t next_swap = 0;
-  std::vector<std::string> model_history;  // names of the models it has run, in order
+  std::string initial_model;             // the scene's model; later ones are in swaps/runtime_swaps
   std::unique_ptr<ModelMailbox> mailbox = std::make_unique<ModelMailbox>();
   std::vector<RuntimeSwap> runtime_swaps;  // reserved at load; swaps past its capacity go unlisted
   BodyFault fault;
