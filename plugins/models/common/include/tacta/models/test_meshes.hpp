@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "tacta/model_api.h"
@@ -49,5 +50,27 @@ TestMesh quad_grid_mesh(uint32_t nx, uint32_t ny, double sx, double sy, double d
 std::vector<uint32_t> edges_of_tets(const std::vector<uint32_t>& tets);
 // Boundary triangles (faces used by one tet), oriented outward.
 std::vector<uint32_t> boundary_of_tets(const std::vector<uint32_t>& tets);
+
+// A test mesh with its material and a model of class Model built on it, as the engine would
+// (the mesh view, material, masses and fixed mask outlive the model). dt in s.
+template <class Model, class Options>
+struct ModelOnMesh {
+  TestMesh mesh;
+  tacta_mesh_view view;
+  tacta_material material;
+  std::unique_ptr<Model> model;
+
+  ModelOnMesh(TestMesh m, const tacta_material& mat, const Options& options = {}, double dt = 1e-3)
+      : mesh(std::move(m)), view(mesh.view()), material(mat) {
+    tacta_model_setup setup{};
+    setup.struct_size = sizeof setup;
+    setup.mesh = &view;
+    setup.material = &material;
+    setup.masses = mesh.masses.data();
+    setup.fixed = mesh.fixed.data();
+    setup.dt = dt;
+    model = std::make_unique<Model>(setup, options);
+  }
+};
 
 }  // namespace tacta::models
