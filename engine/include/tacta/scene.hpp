@@ -113,6 +113,7 @@ struct DeviceDesc {
   ShapeDesc tool;                    // what the device holds (its collision shape)
   double coupling_stiffness = 500;   // N/m, virtual coupling device <-> proxy
   double coupling_damping = 1.0;     // N s/m
+  bool coupling_passivity = true;    // passivity controller acts; false: observe only (Z-width runs)
   std::string touches;               // body name, empty = all bodies
   SourceLocation where;
 };

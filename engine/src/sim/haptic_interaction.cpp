@@ -12,6 +12,7 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) 
     params.proxy.radius = slot.desc.tool.radius;
     params.coupling.stiffness = slot.desc.coupling_stiffness;
     params.coupling.damping = slot.desc.coupling_damping;
+    params.passivity.controller_enabled = slot.desc.coupling_passivity;
     params.peak_force = slot.device->capabilities().peak_force;
     channels_.push_back(Channel{haptics::ContactRenderer(params), false});
   }
