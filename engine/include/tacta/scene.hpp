@@ -114,6 +114,7 @@ struct DeviceDesc {
   double coupling_stiffness = 500;   // N/m, virtual coupling device <-> proxy
   double coupling_damping = 1.0;     // N s/m
   bool coupling_passivity = true;    // passivity controller acts; false: observe only (Z-width runs)
+  bool coupling_first_contact = true;  // first-contact stretch limit; false: the coupling alone (Z-width)
   std::string touches;               // body name, empty = all bodies
   SourceLocation where;
 };

@@ -91,11 +91,12 @@ DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) 
   device.params = std::move(plugin.params);
   if (auto f = field.get("tool")) device.tool = read_shape(*f);
   if (auto f = field.get("coupling")) {
-    f->expect_map("a map {stiffness, damping, passivity}");
-    f->check_keys({"stiffness", "damping", "passivity"});
+    f->expect_map("a map {stiffness, damping, passivity, first_contact}");
+    f->check_keys({"stiffness", "damping", "passivity", "first_contact"});
     if (auto k = f->get("stiffness")) device.coupling_stiffness = k->real(Range::positive());
     if (auto b = f->get("damping")) device.coupling_damping = b->real(Range::non_negative());
     if (auto p = f->get("passivity")) device.coupling_passivity = p->boolean();
+    if (auto o = f->get("first_contact")) device.coupling_first_contact = o->boolean();
   }
   if (auto f = field.get("touches")) device.touches = read_body_name(*f, bodies, false);
   return device;

@@ -13,6 +13,7 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) 
     params.coupling.stiffness = slot.desc.coupling_stiffness;
     params.coupling.damping = slot.desc.coupling_damping;
     params.passivity.controller_enabled = slot.desc.coupling_passivity;
+    params.first_contact_enabled = slot.desc.coupling_first_contact;
     params.peak_force = slot.device->capabilities().peak_force;
     channels_.push_back(Channel{haptics::ContactRenderer(params), false});
   }
