@@ -47,8 +47,9 @@ uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
 
 void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
 
-void BlockSparseMatrix::multiply(const double* x, double* y) const {
+double BlockSparseMatrix::multiply(const double* x, double* y) const {
   const double* v = values_.data();
+  double x_dot_y = 0.0;
   std::fill_n(y, 3 * static_cast<size_t>(node_count_), 0.0);
   for (uint32_t i = 0; i < node_count_; ++i) {
     const double* xi = x + 3 * static_cast<size_t>(i);
@@ -70,10 +71,16 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
       yj[1] += b[1] * x0 + b[4] * x1 + b[7] * x2;
       yj[2] += b[2] * x0 + b[5] * x1 + b[8] * x2;
     }
-    y[3 * i] += y0;
-    y[3 * i + 1] += y1;
-    y[3 * i + 2] += y2;
+    // Rows above i have scattered into y_i already: with this row's part it is complete.
+    y0 += y[3 * i];
+    y1 += y[3 * i + 1];
+    y2 += y[3 * i + 2];
+    y[3 * i] = y0;
+    y[3 * i + 1] = y1;
+    y[3 * i + 2] = y2;
+    x_dot_y += x0 * y0 + x1 * y1 + x2 * y2;
   }
+  return x_dot_y;
 }
 
 void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {

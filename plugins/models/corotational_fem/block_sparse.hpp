@@ -34,7 +34,8 @@ class BlockSparseMatrix {
 
   void set_zero();
   // y = A x, both 3 per node (the lower triangle applied as the transpose of the upper).
-  void multiply(const double* x, double* y) const;
+  // Returns x . y, summed as each row completes (CG's p . Ap without another pass).
+  double multiply(const double* x, double* y) const;
   // Makes fixed nodes' rows and columns identity (zero off-diagonal, I on the diagonal).
   void apply_fixed(std::span<const uint8_t> fixed);
 

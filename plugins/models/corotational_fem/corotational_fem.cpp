@@ -75,6 +75,8 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
     }
   }
   polar_guess_.assign(elements_.size(), Eigen::Quaterniond::Identity());
+  step_rotation_ = polar_guess_;
+  step_turn_ = polar_guess_;
   const size_t n = 3 * static_cast<size_t>(node_count_);
   forces_.assign(n, 0.0);
   stiffness_velocity_.assign(n, 0.0);
@@ -84,8 +86,9 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   if (options_.solver == LinearSolver::kCholesky)
     cholesky_ = std::make_unique<CholeskySolver>(matrix_);
   else
-    cg_ = std::make_unique<ConjugateGradientSolver>(node_count_, options_.preconditioner,
-                                                    options_.max_iterations, options_.tolerance);
+    cg_ = std::make_unique<ConjugateGradientSolver>(matrix_, options_.preconditioner,
+                                                    options_.max_iterations, options_.tolerance,
+                                                    options_.refactor_interval);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 
@@ -97,8 +100,8 @@ void CorotationalFem::set_solver_limits(int max_iterations, double tolerance) {
   if (cg_) cg_->set_limits(max_iterations, tolerance);
 }
 
-CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e,
-                                                        const double* positions) noexcept {
+CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e, const double* positions,
+                                                        Eigen::Quaterniond& guess) noexcept {
   const Element& element = elements_[e];
   Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
   for (int a = 0; a < 4; ++a) {
@@ -108,8 +111,8 @@ CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e,
   }
   ElementFrame frame;
   if (options_.rotation == RotationMethod::kPolar) {
-    polar_iterations_ += polar_rotation(deformation, polar_guess_[e], kPolarMaxIterations);
-    frame.rotation = polar_guess_[e].toRotationMatrix();
+    polar_iterations_ += polar_rotation(deformation, guess, kPolarMaxIterations);
+    frame.rotation = guess.toRotationMatrix();
   } else {
     frame.rotation = svd_rotation(deformation);
   }
@@ -125,9 +128,8 @@ CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e,
   return frame;
 }
 
-void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, const double* velocities,
-                                 double scale, double* forces,
-                                 double* stiffness_times_velocity) noexcept {
+void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, double scale,
+                                 double* forces) noexcept {
   const Element& element = elements_[e];
   const double volume = element.volume;
   const Eigen::Matrix3d world_stress = frame.rotation * frame.stress;  // R sigma
@@ -137,17 +139,6 @@ void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, const do
     for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
   }
   const Eigen::Vector3d* c = frame.rotated_gradients;
-  if (stiffness_times_velocity != nullptr) {
-    // (K v)_a = V (lambda tr(H) + mu (H + H^T)) c_a with H = sum_b v_b c_b^T.
-    Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-    for (int b = 0; b < 4; ++b) h.noalias() += node(velocities, element.nodes[b]) * c[b].transpose();
-    Eigen::Matrix3d response = mu_ * (h + h.transpose());
-    response.diagonal().array() += lambda_ * h.trace();
-    for (int a = 0; a < 4; ++a) {
-      const Eigen::Vector3d kv = volume * (response * c[a]);
-      for (int k = 0; k < 3; ++k) stiffness_times_velocity[3 * element.nodes[a] + k] += kv[k];
-    }
-  }
   // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I); K_ba = K_ab^T, so the
   // stored block (lower node, higher node) is K_ab with a and b swapped when needed.
   const double lambda_v = scale * volume * lambda_;
@@ -176,14 +167,20 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   polar_iterations_ = 0;
   matrix_.set_zero();
   std::fill(forces_.begin(), forces_.end(), 0.0);
-  std::fill(stiffness_velocity_.begin(), stiffness_velocity_.end(), 0.0);
   const double stiffness_scale = h * beta_ + h * h;
   for (uint32_t e = 0; e < elements_.size(); ++e) {
-    const ElementFrame frame = frame_of(e, state.positions);
+    // Warm start extrapolated at constant angular velocity, R_n (R_n-1^T R_n): one Newton
+    // step then usually suffices where the last rotation alone needed two.
+    Eigen::Quaterniond rotation = step_turn_[e] * step_rotation_[e];
+    const ElementFrame frame = frame_of(e, state.positions, rotation);
+    step_turn_[e] = rotation * step_rotation_[e].conjugate();
+    step_rotation_[e] = rotation;
     if (frame.inverted) result |= TACTA_STEP_INVERTED_ELEMENT;
-    accumulate(e, frame, state.velocities, stiffness_scale, forces_.data(),
-               stiffness_velocity_.data());
+    accumulate(e, frame, stiffness_scale, forces_.data());
   }
+  // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
+  // damping term, one pass over the blocks instead of a K_e v per element.
+  matrix_.multiply(state.velocities, stiffness_velocity_.data());
   const double mass_scale = 1.0 + h * alpha_;
   for (uint32_t i = 0; i < node_count_; ++i) {
     double* d = matrix_.block(matrix_.diagonal_block(i));
@@ -195,7 +192,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   for (size_t k = 0; k < n; ++k) {
     const double m = masses_[k / 3];
     rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
-              h * (beta_ + h) * stiffness_velocity_[k];
+              stiffness_velocity_[k];
   }
   if (!fixed_.empty())
     for (uint32_t i = 0; i < node_count_; ++i)
@@ -223,13 +220,15 @@ void CorotationalFem::begin(const tacta_body_state& state, double /*dt*/) noexce
   std::fill(delta_v_.begin(), delta_v_.end(), 0.0);
   std::fill(polar_guess_.begin(), polar_guess_.end(), Eigen::Quaterniond::Identity());
   // Converge the warm-start rotations now, so the first step is not slower than the others.
-  for (uint32_t e = 0; e < elements_.size(); ++e) (void)frame_of(e, state.positions);
+  for (uint32_t e = 0; e < elements_.size(); ++e) (void)frame_of(e, state.positions, polar_guess_[e]);
+  step_rotation_ = polar_guess_;
+  std::fill(step_turn_.begin(), step_turn_.end(), Eigen::Quaterniond::Identity());
 }
 
 double CorotationalFem::elastic_energy(const double* positions) noexcept {
   double energy = 0.0;
   for (uint32_t e = 0; e < elements_.size(); ++e) {
-    const ElementFrame frame = frame_of(e, positions);
+    const ElementFrame frame = frame_of(e, positions, polar_guess_[e]);
     // W = V (mu eps:eps + lambda/2 tr(eps)^2) = V/2 sigma:eps, eps recovered from sigma.
     Eigen::Matrix3d strain = frame.stress;
     const double trace = frame.stress.trace() / (3.0 * lambda_ + 2.0 * mu_);  // tr(eps)
@@ -244,14 +243,14 @@ void CorotationalFem::internal_forces(const double* positions, double* forces) n
   std::fill_n(forces, 3 * static_cast<size_t>(node_count_), 0.0);
   matrix_.set_zero();
   for (uint32_t e = 0; e < elements_.size(); ++e)
-    accumulate(e, frame_of(e, positions), nullptr, 0.0, forces, nullptr);
+    accumulate(e, frame_of(e, positions, polar_guess_[e]), 0.0, forces);
 }
 
 const BlockSparseMatrix& CorotationalFem::assemble_stiffness(const double* positions) noexcept {
   matrix_.set_zero();
   std::fill(forces_.begin(), forces_.end(), 0.0);
   for (uint32_t e = 0; e < elements_.size(); ++e)
-    accumulate(e, frame_of(e, positions), nullptr, 1.0, forces_.data(), nullptr);
+    accumulate(e, frame_of(e, positions, polar_guess_[e]), 1.0, forces_.data());
   return matrix_;
 }
 
@@ -259,7 +258,7 @@ void CorotationalFem::node_stress(const double* positions, double* von_mises) no
   std::fill_n(von_mises, node_count_, 0.0);
   std::fill(weights_.begin(), weights_.end(), 0.0);
   for (uint32_t e = 0; e < elements_.size(); ++e) {
-    const Eigen::Matrix3d s = frame_of(e, positions).stress;
+    const Eigen::Matrix3d s = frame_of(e, positions, polar_guess_[e]).stress;
     const double vm = std::sqrt(0.5 * ((s(0, 0) - s(1, 1)) * (s(0, 0) - s(1, 1)) +
                                        (s(1, 1) - s(2, 2)) * (s(1, 1) - s(2, 2)) +
                                        (s(2, 2) - s(0, 0)) * (s(2, 2) - s(0, 0))) +

@@ -31,6 +31,7 @@ struct Options {
   Preconditioner preconditioner = Preconditioner::kBlockJacobi;
   int max_iterations = 25;  // CG iterations per step
   double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
+  int refactor_interval = 1;  // incomplete Cholesky: steps between refactorisations
 };
 
 class CorotationalFem {
@@ -72,10 +73,10 @@ class CorotationalFem {
     Eigen::Vector3d rotated_gradients[4];
     bool inverted;
   };
-  ElementFrame frame_of(uint32_t e, const double* positions) noexcept;
-  // Adds K_e scaled by `scale` into matrix_, and f_e and K_e v into the given arrays.
-  void accumulate(uint32_t e, const ElementFrame& frame, const double* velocities, double scale,
-                  double* forces, double* stiffness_times_velocity) noexcept;
+  // guess: the polar iteration's warm start on entry, the element's rotation on exit.
+  ElementFrame frame_of(uint32_t e, const double* positions, Eigen::Quaterniond& guess) noexcept;
+  // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
+  void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
   uint32_t node_count_;
   double lambda_, mu_;              // Pa
@@ -85,11 +86,15 @@ class CorotationalFem {
   std::vector<uint8_t> fixed_;
   Options options_;
   DivergenceGuard guard_;  // NaN and runaway edge stretch
-  std::vector<Eigen::Quaterniond> polar_guess_;  // warm start per element
+  std::vector<Eigen::Quaterniond> polar_guess_;  // warm start per element (queries)
+  // step()'s own history, untouched by queries between steps: each element's last rotation
+  // and the turn it made in the last step.
+  std::vector<Eigen::Quaterniond> step_rotation_, step_turn_;
   BlockSparseMatrix matrix_;
   std::unique_ptr<ConjugateGradientSolver> cg_;
   std::unique_ptr<CholeskySolver> cholesky_;
-  std::vector<double> forces_, stiffness_velocity_, rhs_, delta_v_, weights_;
+  std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
+      rhs_, delta_v_, weights_;
   SolveReport last_solve_;
   long polar_iterations_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <Eigen/OrderingMethods>
+#include <algorithm>
 #include <cmath>
 
 namespace tacta::models::corotational {
@@ -14,19 +15,29 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 }
 }  // namespace
 
-ConjugateGradientSolver::ConjugateGradientSolver(uint32_t node_count,
+ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& pattern,
                                                  Preconditioner preconditioner,
-                                                 int max_iterations, double tolerance)
+                                                 int max_iterations, double tolerance,
+                                                 int refactor_interval)
     : preconditioner_(preconditioner),
       max_iterations_(max_iterations),
       tolerance_(tolerance),
-      inverse_diagonal_(9 * static_cast<size_t>(node_count)),
-      r_(3 * static_cast<size_t>(node_count)),
+      refactor_interval_(std::max(1, refactor_interval)),
+      inverse_diagonal_(9 * static_cast<size_t>(pattern.node_count())),
+      r_(3 * static_cast<size_t>(pattern.node_count())),
       z_(r_.size()),
       p_(r_.size()),
-      ap_(r_.size()) {}
+      ap_(r_.size()) {
+  if (preconditioner_ == Preconditioner::kIncompleteCholesky)
+    incomplete_cholesky_ = std::make_unique<BlockIncompleteCholesky>(pattern);
+}
 
 void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
+  if (incomplete_cholesky_) {
+    if (solves_since_factor_ == 0) replaced_pivots_ = incomplete_cholesky_->factorize(a);
+    solves_since_factor_ = (solves_since_factor_ + 1) % refactor_interval_;
+    return;
+  }
   for (uint32_t i = 0; i < a.node_count(); ++i) {
     const double* d = a.block(a.diagonal_block(i));
     double* inv = &inverse_diagonal_[9 * static_cast<size_t>(i)];
@@ -45,6 +56,10 @@ void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
 void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) const {
   const size_t nodes = r_.size() / 3;
   const double* inv = inverse_diagonal_.data();
+  if (incomplete_cholesky_) {
+    incomplete_cholesky_->apply(r, z);
+    return;
+  }
   if (preconditioner_ == Preconditioner::kJacobi) {
     for (size_t i = 0; i < nodes; ++i)
       for (size_t c = 0; c < 3; ++c) z[3 * i + c] = inv[9 * i + c] * r[3 * i + c];
@@ -59,6 +74,39 @@ void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) c
   }
 }
 
+std::pair<double, double> ConjugateGradientSolver::update(double alpha, double converged_norm2,
+                                                          double* x) {
+  const size_t nodes = r_.size() / 3;
+  double r_norm2 = 0.0, rz = 0.0;
+  if (preconditioner_ == Preconditioner::kBlockJacobi) {  // one pass: the block is local
+    const double* inv = inverse_diagonal_.data();
+    for (size_t i = 0; i < nodes; ++i) {
+      double ri[3];
+      for (size_t c = 0; c < 3; ++c) {
+        x[3 * i + c] += alpha * p_[3 * i + c];
+        ri[c] = r_[3 * i + c] - alpha * ap_[3 * i + c];
+        r_[3 * i + c] = ri[c];
+      }
+      const double* m = inv + 9 * i;
+      for (size_t c = 0; c < 3; ++c) {
+        const double zc = m[3 * c] * ri[0] + m[3 * c + 1] * ri[1] + m[3 * c + 2] * ri[2];
+        z_[3 * i + c] = zc;
+        r_norm2 += ri[c] * ri[c];
+        rz += ri[c] * zc;
+      }
+    }
+    return {r_norm2, rz};
+  }
+  for (size_t i = 0; i < r_.size(); ++i) {
+    x[i] += alpha * p_[i];
+    r_[i] -= alpha * ap_[i];
+    r_norm2 += r_[i] * r_[i];
+  }
+  if (r_norm2 <= converged_norm2) return {r_norm2, 0.0};  // z is not needed any more
+  apply_preconditioner(r_.data(), z_.data());
+  return {r_norm2, dot(r_, z_)};
+}
+
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
                                            double* x) {
   const size_t n = r_.size();
@@ -66,6 +114,7 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
   double b_norm2 = 0.0;
   for (size_t i = 0; i < n; ++i) b_norm2 += b[i] * b[i];
   SolveReport report;
+  report.replaced_pivots = replaced_pivots_;
   if (b_norm2 == 0.0) {
     std::fill_n(x, n, 0.0);
     return report;
@@ -74,25 +123,19 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
   a.multiply(x, ap_.data());
   for (size_t i = 0; i < n; ++i) r_[i] = b[i] - ap_[i];
   double r_norm2 = dot(r_, r_);
+  report.relative_residual = std::sqrt(r_norm2 / b_norm2);
   if (r_norm2 <= threshold2) return report;
   apply_preconditioner(r_.data(), z_.data());
   p_ = z_;
   double rz = dot(r_, z_);
   for (int k = 0; k < max_iterations_; ++k) {
-    a.multiply(p_.data(), ap_.data());
-    const double p_ap = dot(p_, ap_);
+    const double p_ap = a.multiply(p_.data(), ap_.data());
     if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
-    const double alpha = rz / p_ap;
-    r_norm2 = 0.0;
-    for (size_t i = 0; i < n; ++i) {
-      x[i] += alpha * p_[i];
-      r_[i] -= alpha * ap_[i];
-      r_norm2 += r_[i] * r_[i];
-    }
+    const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2, x);
+    r_norm2 = r_norm2_next;
     report.iterations = k + 1;
+    report.relative_residual = std::sqrt(r_norm2 / b_norm2);
     if (r_norm2 <= threshold2) return report;
-    apply_preconditioner(r_.data(), z_.data());
-    const double rz_next = dot(r_, z_);
     const double beta = rz_next / rz;
     rz = rz_next;
     for (size_t i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];

@@ -7,23 +7,29 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "block_sparse.hpp"
+#include "incomplete_cholesky.hpp"
 
 namespace tacta::models::corotational {
 
-enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1 };
+enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1, kIncompleteCholesky = 2 };
 
 struct SolveReport {
   int iterations = 0;
   bool converged = true;
+  double relative_residual = 0.0;  // ||b - A x|| / ||b|| at exit (CG's recurrence residual)
+  int replaced_pivots = 0;         // IC(0) pivots replaced by A's diagonal block
 };
 
 class ConjugateGradientSolver {
  public:
-  ConjugateGradientSolver(uint32_t node_count, Preconditioner preconditioner, int max_iterations,
-                          double tolerance);
+  // refactor_interval: with incomplete Cholesky, solves between refactorisations (1: every
+  // solve); the first solve always factorises.
+  ConjugateGradientSolver(const BlockSparseMatrix& pattern, Preconditioner preconditioner,
+                          int max_iterations, double tolerance, int refactor_interval = 1);
   // x holds the initial guess (the previous step's solution) and receives the solution.
   // Convergence: ||b - A x|| <= tolerance ||b||.
   SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x);
@@ -35,9 +41,15 @@ class ConjugateGradientSolver {
  private:
   void build_preconditioner(const BlockSparseMatrix& a);
   void apply_preconditioner(const double* r, double* z) const;
+  // x += alpha p, r -= alpha Ap, z = M^-1 r; returns (r.r, r.z) in one pass where M allows.
+  // z is skipped (r.z returned as 0) when r.r <= converged_norm2 and M is not fused.
+  std::pair<double, double> update(double alpha, double converged_norm2, double* x);
   Preconditioner preconditioner_;
   int max_iterations_;
   double tolerance_;
+  int refactor_interval_, solves_since_factor_ = 0;
+  int replaced_pivots_ = 0;
+  std::unique_ptr<BlockIncompleteCholesky> incomplete_cholesky_;
   std::vector<double> inverse_diagonal_;  // 9 per node (block) or 3 per node (scalar)
   std::vector<double> r_, z_, p_, ap_;
 };

@@ -16,16 +16,19 @@ class CorotationalFemPlugin {
       "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 5> kParams = {
+  static constexpr std::array<tacta_param_spec, 6> kParams = {
       sdk::choice_param("rotation", "polar|svd", 0,
                         "element rotation: polar (warm-started iteration) or svd (inversion-aware)"),
       sdk::choice_param("solver", "pcg|cholesky", 0,
                         "linear solver: warm-started preconditioned CG, or sparse LDL^T"),
-      sdk::choice_param("preconditioner", "jacobi|block_jacobi", 1,
-                        "CG preconditioner: diagonal, or inverse 3x3 diagonal blocks"),
+      sdk::choice_param("preconditioner", "jacobi|block_jacobi|incomplete_cholesky", 1,
+                        "CG preconditioner: diagonal, inverse 3x3 diagonal blocks, or block "
+                        "incomplete Cholesky IC(0)"),
       sdk::int_param("max_iterations", 25, 1, 10000, "CG iterations per step at most"),
       sdk::real_param("tolerance", "", 1e-5, 1e-14, 1.0,
                       "CG stops when the residual norm falls below this fraction of the rhs norm"),
+      sdk::int_param("refactor_interval", 1, 1, 1000,
+                     "incomplete_cholesky: steps between refactorisations (1: every step)"),
   };
 
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
@@ -36,6 +39,7 @@ class CorotationalFemPlugin {
     options.preconditioner = static_cast<Preconditioner>(params.choice("preconditioner"));
     options.max_iterations = params.integer("max_iterations");
     options.tolerance = params.real("tolerance");
+    options.refactor_interval = params.integer("refactor_interval");
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),

@@ -75,6 +75,7 @@ double min_volume(const TestMesh& mesh, const std::vector<double>& x) {
 struct Setting {
   RotationMethod rotation;
   LinearSolver solver;
+  Preconditioner preconditioner = Preconditioner::kBlockJacobi;
 };
 
 class CorotationalDynamics : public ::testing::TestWithParam<Setting> {
@@ -83,6 +84,7 @@ class CorotationalDynamics : public ::testing::TestWithParam<Setting> {
     Options o;
     o.rotation = GetParam().rotation;
     o.solver = GetParam().solver;
+    o.preconditioner = GetParam().preconditioner;
     o.max_iterations = 200;
     o.tolerance = 1e-8;
     return o;
@@ -173,10 +175,14 @@ INSTANTIATE_TEST_SUITE_P(
     Methods, CorotationalDynamics,
     ::testing::Values(Setting{RotationMethod::kPolar, LinearSolver::kConjugateGradient},
                       Setting{RotationMethod::kSvd, LinearSolver::kConjugateGradient},
-                      Setting{RotationMethod::kPolar, LinearSolver::kCholesky}),
+                      Setting{RotationMethod::kPolar, LinearSolver::kCholesky},
+                      Setting{RotationMethod::kPolar, LinearSolver::kConjugateGradient,
+                              Preconditioner::kIncompleteCholesky}),
     [](const auto& param_info) {
       return std::string(param_info.param.rotation == RotationMethod::kPolar ? "polar" : "svd") +
-             (param_info.param.solver == LinearSolver::kCholesky ? "_cholesky" : "_pcg");
+             (param_info.param.solver == LinearSolver::kCholesky ? "_cholesky" : "_pcg") +
+             (param_info.param.preconditioner == Preconditioner::kIncompleteCholesky ? "_ic"
+                                                                                      : "");
     });
 
 TEST(CorotationalInput, RejectsInvertedRestElement) {

@@ -19,7 +19,8 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   std::vector<std::string> names;
   for (uint32_t i = 0; i < d.param_count; ++i) names.emplace_back(d.params[i].name);
   EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
-                                             "max_iterations", "tolerance"}));
+                                             "max_iterations", "tolerance",
+                                             "refactor_interval"}));
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
   ASSERT_NE(api.internal_forces, nullptr);
