@@ -1,4 +1,5 @@
 #include "block_sparse.hpp"
+#include "hot_path.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -47,7 +48,7 @@ uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
 
 void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
 
-double BlockSparseMatrix::multiply(const double* x, double* y) const {
+TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y) const {
   const double* v = values_.data();
   double x_dot_y = 0.0;
   std::fill_n(y, 3 * static_cast<size_t>(node_count_), 0.0);

@@ -1,4 +1,5 @@
 #include "corotational_fem.hpp"
+#include "hot_path.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -100,8 +101,8 @@ void CorotationalFem::set_solver_limits(int max_iterations, double tolerance) {
   if (cg_) cg_->set_limits(max_iterations, tolerance);
 }
 
-CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e, const double* positions,
-                                                        Eigen::Quaterniond& guess) noexcept {
+TACTA_HOT_PATH CorotationalFem::ElementFrame CorotationalFem::frame_of(
+    uint32_t e, const double* positions, Eigen::Quaterniond& guess) noexcept {
   const Element& element = elements_[e];
   Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
   for (int a = 0; a < 4; ++a) {
@@ -128,8 +129,8 @@ CorotationalFem::ElementFrame CorotationalFem::frame_of(uint32_t e, const double
   return frame;
 }
 
-void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, double scale,
-                                 double* forces) noexcept {
+TACTA_HOT_PATH void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame,
+                                                double scale, double* forces) noexcept {
   const Element& element = elements_[e];
   const double volume = element.volume;
   const Eigen::Matrix3d world_stress = frame.rotation * frame.stress;  // R sigma
@@ -220,7 +221,8 @@ void CorotationalFem::begin(const tacta_body_state& state, double /*dt*/) noexce
   std::fill(delta_v_.begin(), delta_v_.end(), 0.0);
   std::fill(polar_guess_.begin(), polar_guess_.end(), Eigen::Quaterniond::Identity());
   // Converge the warm-start rotations now, so the first step is not slower than the others.
-  for (uint32_t e = 0; e < elements_.size(); ++e) (void)frame_of(e, state.positions, polar_guess_[e]);
+  for (uint32_t e = 0; e < elements_.size(); ++e)
+    (void)frame_of(e, state.positions, polar_guess_[e]);
   step_rotation_ = polar_guess_;
   std::fill(step_turn_.begin(), step_turn_.end(), Eigen::Quaterniond::Identity());
 }

@@ -1,11 +1,12 @@
 #include "element_rotation.hpp"
+#include "hot_path.hpp"
 
 #include <Eigen/SVD>
 #include <cmath>
 
 namespace tacta::models::corotational {
 
-int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotation,
+TACTA_HOT_PATH int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotation,
                    int max_iterations) {
   // Maximise tr(R^T F) over R' = exp([w]) R. With B = F R^T, the gradient in w is the torque
   // axial(B - B^T) = sum_i r_i x f_i and the Hessian is -(tr(B) I - sym(B)): a Newton step

@@ -1,4 +1,5 @@
 #include "incomplete_cholesky.hpp"
+#include "hot_path.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -53,7 +54,7 @@ BlockIncompleteCholesky::BlockIncompleteCholesky(const BlockSparseMatrix& patter
   scaled_row_.resize(9 * widest_row);
 }
 
-int BlockIncompleteCholesky::factorize(const BlockSparseMatrix& a) {
+TACTA_HOT_PATH int BlockIncompleteCholesky::factorize(const BlockSparseMatrix& a) {
   const auto values = a.values();
   std::copy(values.begin(), values.end(), factor_.begin());
   int replaced = 0;
@@ -81,7 +82,7 @@ int BlockIncompleteCholesky::factorize(const BlockSparseMatrix& a) {
   return replaced;
 }
 
-void BlockIncompleteCholesky::apply(const double* r, double* z) const {
+TACTA_HOT_PATH void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   const size_t n = 3 * static_cast<size_t>(node_count_);
   std::copy_n(r, n, z);
   const double* f = factor_.data();

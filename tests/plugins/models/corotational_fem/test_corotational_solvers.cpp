@@ -69,7 +69,8 @@ struct BeamSystem {
     // Bend the beam (u_y = 0.5 z^2, up to 4.5 cm at the tip) and take the implicit-Euler
     // matrix there: (1 + h alpha) M + (h beta + h^2) K, h = 1 ms, fixed nodes identity.
     std::vector<double> x = mesh.positions;
-    for (uint32_t i = 0; i < mesh.node_count(); ++i) x[3 * i + 1] += 0.5 * x[3 * i + 2] * x[3 * i + 2];
+    for (uint32_t i = 0; i < mesh.node_count(); ++i)
+      x[3 * i + 1] += 0.5 * x[3 * i + 2] * x[3 * i + 2];
     auto model = make_model(mesh, make_material(1e5, 0.45, 1000.0));
     const BlockSparseMatrix& k = model->assemble_stiffness(x.data());
     const double h = 1e-3, scale = h * 0.01 + h * h;
