@@ -1,6 +1,8 @@
 #include "tacta/haptics/contact_renderer.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tacta::haptics {
 
@@ -22,6 +24,23 @@ void ContactRenderer::reset(const Vec3& device_position) noexcept {
   stats_.force_limit = limiter_.peak_force();
   steady_sum_ = 0.0;
   steady_count_ = 0;
+  last_stretch_ = last_sent_ = {0.0, 0.0, 0.0};
+  coupling_energy_ = 0.0;
+  was_in_contact_ = false;
+}
+
+double ContactRenderer::onset_budget(const Vec3& stretch) noexcept {
+  // The coupling's two-port ledger: the force held over the last tick times the change of the
+  // stretch proxy - device over it is exactly the energy the coupling took from the device
+  // (device moving in) and from the body (surface moving out, pushing the proxy).
+  if (!was_in_contact_)
+    coupling_energy_ = coupling_.spring_energy(stretch);  // the penetration the contact began with
+  else
+    coupling_energy_ += dot(last_sent_, sub(stretch, last_stretch_));
+  last_stretch_ = stretch;
+  const double k = coupling_.params().stiffness;
+  if (!(k > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::sqrt(2.0 * std::max(coupling_energy_, 0.0) / k);
 }
 
 ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
@@ -31,6 +50,7 @@ ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
   if (!is_finite(device_position) || !is_finite(device_velocity)) {
     ++stats_.non_finite_forces;  // a bad sample: zero force this tick
     passivity_.record_sent(out.device_force);
+    last_sent_ = out.device_force;
     update_stats(time, 0.0);
     return out;
   }
@@ -40,7 +60,9 @@ ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
   if (out.in_contact) {
     out.contact = proxy_.contact();
     Vec3 stretch = sub(proxy_.position(), device_position);
-    if (params_.first_contact_enabled) stretch = onset_.shape(stretch, true, dt);
+    stretch = yield_stretch(stretch, out.contact.normal, coupling_.params().stiffness, local_);
+    const double budget = onset_budget(stretch);
+    if (params_.first_contact_enabled) stretch = onset_.shape(stretch, true, dt, budget);
     desired = coupling_.force(stretch, sub(proxy_.velocity(), device_velocity));
   } else {
     onset_.shape({0.0, 0.0, 0.0}, false, dt);  // re-arm for the next contact
@@ -65,6 +87,8 @@ ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
   if (result == ForceLimitResult::scaled) ++stats_.limited_forces;
   if (result == ForceLimitResult::non_finite_zeroed) ++stats_.non_finite_forces;
   passivity_.record_sent(out.device_force);
+  last_sent_ = out.device_force;
+  was_in_contact_ = out.in_contact;
   out.body_reaction = scaled(out.device_force, -1.0);
   if (out.in_contact && stats_.first_contact_time < 0.0) stats_.first_contact_time = time;
   update_stats(time, norm(out.device_force));

@@ -9,7 +9,19 @@ void GodObjectProxy::reset(const Vec3& device_position) noexcept {
   contact_ = {};
 }
 
-Vec3 GodObjectProxy::on_surface(const SurfaceHit& hit) const noexcept {
+Vec3 GodObjectProxy::on_surface(SurfaceHit& hit, const Vec3& centre) const noexcept {
+  // The sphere touches the surface at hit.point with its centre along the line from that point to
+  // `centre` (the sweep's centre at contact, or the point that was projected). On a face that line
+  // is the face normal; at an edge or a vertex of a triangle mesh it is not, and placing the
+  // centre along the touched face's normal instead moved the 4 mm tool tip sideways by up to
+  // r sin(angle between faces) each time the closest point crossed an edge: in the liver demo the
+  // proxy flipped by ~1 mm between two positions every tick at release (lateral force steps of
+  // ~0.3 N, and pulls of 0.2 N along -y). Along that line the distance to the surface is
+  // continuous across edges, so the proxy is too. That line is also the contact normal.
+  const Vec3 direction = sub(centre, hit.point);
+  const double length = norm(direction);
+  if (length > 1e-3 * params_.radius && dot(direction, hit.normal) > 0.0)
+    hit.normal = scaled(direction, 1.0 / length);
   return add_scaled(hit.point, hit.normal, params_.radius + params_.skin);
 }
 
@@ -20,14 +32,14 @@ void GodObjectProxy::update(const SurfaceQuery& world, const Vec3& device_positi
     SurfaceHit hit;
     double signed_distance = 0.0;
     if (world.first_hit(position_, device_position, params_.radius, hit)) {
+      position_ = on_surface(hit, add_scaled(position_, sub(device_position, position_), hit.fraction));
       contact_ = hit;
-      position_ = on_surface(hit);
       in_contact_ = true;
     } else if (world.closest_point(device_position, params_.inside_search, hit, signed_distance) &&
                signed_distance < params_.radius) {
       // Overlapping without a sweep hit: a surface came onto the device, or it started inside.
+      position_ = on_surface(hit, device_position);
       contact_ = hit;
-      position_ = on_surface(hit);
       in_contact_ = true;
     } else {
       position_ = device_position;
@@ -56,24 +68,24 @@ bool GodObjectProxy::move_in_contact(const SurfaceQuery& world, const Vec3& devi
         in_contact_ = false;
         return false;
       }
+      position_ = on_surface(hit, add_scaled(position_, sub(device, position_), hit.fraction));
       contact_ = hit;
-      position_ = on_surface(hit);
       continue;
     }
     // Slide on the tangent plane toward the device's projection on it.
     const Vec3 goal = add_scaled(device, n, -normal_part);  // at the proxy's height
     const Vec3 start = position_;
     if (world.first_hit(position_, goal, params_.radius, hit)) {
+      position_ = on_surface(hit, add_scaled(position_, sub(goal, position_), hit.fraction));
       contact_ = hit;
-      position_ = on_surface(hit);
       continue;
     }
     position_ = goal;
     // A curved surface falls away from the tangent plane: put the proxy back on it.
     double signed_distance = 0.0;
     if (world.closest_point(position_, params_.inside_search + params_.radius, hit, signed_distance)) {
+      position_ = on_surface(hit, position_);
       contact_ = hit;
-      position_ = on_surface(hit);
     }
     const Vec3 moved = sub(position_, start);
     if (dot(moved, moved) < 1e-24) break;  // converged (1e-12 m)

@@ -11,6 +11,7 @@
 #include "tacta/haptics/first_contact.hpp"
 #include "tacta/haptics/force_limiter.hpp"
 #include "tacta/haptics/god_object.hpp"
+#include "tacta/haptics/local_compliance.hpp"
 #include "tacta/haptics/passivity.hpp"
 #include "tacta/haptics/virtual_coupling.hpp"
 
@@ -60,12 +61,21 @@ class ContactRenderer {
   ContactRendering tick(const SurfaceQuery& world, double time, const Vec3& device_position,
                         const Vec3& device_velocity, double dt) noexcept;
 
+  // The touched body's local contact model for the next ticks (a body on its own thread); the
+  // default, inactive, renders the surface as the proxy finds it.
+  void set_local_compliance(const LocalCompliance& local) noexcept { local_ = local; }
   const ContactStats& stats() const noexcept { return stats_; }
   const GodObjectProxy& proxy() const noexcept { return proxy_; }
   const PassivityController& passivity() const noexcept { return passivity_; }
+  // J: energy the coupling (spring, damper, limits) has taken from the device and the body in
+  // the current contact; the first-contact limit never lets its spring hold more.
+  double coupling_energy() const noexcept { return coupling_energy_; }
 
  private:
   void update_stats(double time, double force) noexcept;
+  // Updates the coupling's energy ledger for this contact tick; returns the largest stretch (m)
+  // whose spring energy it covers (the first-contact limit's budget).
+  double onset_budget(const Vec3& stretch) noexcept;
   ContactRendererParams params_;
   GodObjectProxy proxy_;
   FirstContactLimiter onset_;
@@ -73,8 +83,13 @@ class ContactRenderer {
   PassivityController passivity_;
   ForceLimiter limiter_;
   ContactStats stats_{};
+  LocalCompliance local_{};
   double steady_sum_ = 0.0;
   unsigned long steady_count_ = 0;
+  Vec3 last_stretch_{0.0, 0.0, 0.0};  // m, proxy - device at the last contact tick
+  Vec3 last_sent_{0.0, 0.0, 0.0};     // N, the force sent last tick (held over this one)
+  double coupling_energy_ = 0.0;      // J, energy the coupling has taken in this contact
+  bool was_in_contact_ = false;
 };
 
 }  // namespace tacta::haptics

@@ -38,7 +38,9 @@ class GodObjectProxy {
   const SurfaceHit& contact() const noexcept { return contact_; }  // valid when in_contact()
 
  private:
-  Vec3 on_surface(const SurfaceHit& hit) const noexcept;
+  // Proxy centre touching the surface at hit.point, on the side of `centre` (m); sets hit.normal
+  // to the contact normal there.
+  Vec3 on_surface(SurfaceHit& hit, const Vec3& centre) const noexcept;
   bool move_in_contact(const SurfaceQuery& world, const Vec3& device) noexcept;
   GodObjectParams params_;
   Vec3 position_{0.0, 0.0, 0.0};
