@@ -89,7 +89,11 @@ struct BodyDesc {
   std::vector<NodeVector> initial_velocity;      // m/s
   Vec3 uniform_velocity{0, 0, 0};                // m/s, added to every free node
   std::optional<uint32_t> probe_node;            // node whose displacement compare/plots follow
-  double step_rate_hz = 0;  // 0: step at the haptic rate; else on its own thread at this rate
+  double step_rate_hz = 0;  // 0: step at the haptic rate; else at this rate
+  bool own_thread = false;  // step_thread: own: step on a worker thread (needs step_rate_hz)
+  // own_thread: the haptic loop renders its surface through the local spring model
+  // (local_contact: yielding) or as the last refreshed state (local_contact: rigid).
+  bool local_contact_yielding = true;
   bool collide = true;
   SourceLocation where;
 };

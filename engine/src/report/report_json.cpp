@@ -36,6 +36,16 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     j.field("max_displacement_m", b.max_displacement_m);
     j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
     j.field("initial_energy_J", b.initial_energy_J);
+    j.field("step_thread", b.own_thread ? "own" : "haptic").field("step_rate_hz", b.step_rate_hz);
+    if (b.own_thread) {
+      j.key("worker").begin_object();
+      j.field("steps", b.worker_steps);
+      j.key("step_ms").begin_object();
+      j.field("p50", b.worker_step_ms.p50_ms).field("p99", b.worker_step_ms.p99_ms).field("max", b.worker_step_ms.max_ms);
+      j.end_object();
+      j.field("late_boundaries", b.late_boundaries).field("max_lateness_s", b.max_lateness_s);
+      j.end_object();
+    }
     j.key("faults").begin_array();
     if (b.frozen) {
       j.begin_object();

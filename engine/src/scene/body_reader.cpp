@@ -180,7 +180,7 @@ MeshSourceDesc read_mesh_source(const Field& field) {
 BodyDesc read_body(const Field& field) {
   field.expect_map("a body: a map {name, mesh, material, model, ...}");
   field.check_keys({"name", "mesh", "material", "model", "fixed", "initial", "probe_node",
-                    "step_rate_hz", "collide"});
+                    "step_rate_hz", "step_thread", "local_contact", "collide"});
   BodyDesc body;
   body.where = field.where();
   body.name = field.require("name").text();
@@ -196,6 +196,12 @@ BodyDesc read_body(const Field& field) {
   if (auto f = field.get("initial")) read_initial(*f, body, node_count);
   if (auto f = field.get("probe_node")) body.probe_node = read_node(*f, node_count);
   if (auto f = field.get("step_rate_hz")) body.step_rate_hz = f->real(Range::non_negative());
+  if (auto f = field.get("step_thread")) {
+    body.own_thread = f->choice({"haptic", "own"}) == "own";
+    if (body.own_thread && body.step_rate_hz <= 0)
+      f->fail("step_rate_hz > 0 with step_thread: own (the rate the worker thread steps the body at)");
+  }
+  if (auto f = field.get("local_contact")) body.local_contact_yielding = f->choice({"yielding", "rigid"}) == "yielding";
   if (auto f = field.get("collide")) body.collide = f->boolean();
   return body;
 }

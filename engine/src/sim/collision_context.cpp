@@ -141,8 +141,10 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
     if (!scene.bodies[i].collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
     std::vector<double>& inv = inverse_masses_[i];
     inv.resize(b.node_count());
+    // A body stepping on its own thread has its state replaced at each refresh, so a correction
+    // made here would be lost: for the response it is a moving obstacle (infinite mass).
     for (size_t n = 0; n < inv.size(); ++n)
-      inv[n] = b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
+      inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
     tacta_collision_surface s{};
     s.body_id = static_cast<uint32_t>(i);
     s.vertex_count = static_cast<uint32_t>(b.node_count());

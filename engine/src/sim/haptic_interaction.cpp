@@ -15,7 +15,7 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) 
     params.passivity.controller_enabled = slot.desc.coupling_passivity;
     params.first_contact_enabled = slot.desc.coupling_first_contact;
     params.peak_force = slot.device->capabilities().peak_force;
-    channels_.push_back(Channel{haptics::ContactRenderer(params), false});
+    channels_.push_back(Channel{haptics::ContactRenderer(params), false, LocalModel{}});
   }
 }
 
@@ -37,8 +37,10 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     }
     tacta_collision_shape& tool = collision_.tool(d);
     for (int a = 0; a < 3; ++a) tool.pose_start.position[a] = slot.proxy[static_cast<size_t>(a)];
+    prepare_local_model(world, ch, slot);
     const haptics::ContactRendering out =
         ch.renderer.tick(collision_.surface_query(slot.touched_body), time, device, velocity, dt);
+    follow_local_model(world, ch, out, dt);
     slot.proxy = ch.renderer.proxy().position();
     for (int a = 0; a < 3; ++a) tool.pose_end.position[a] = slot.proxy[static_cast<size_t>(a)];
     slot.force = out.device_force;
@@ -64,6 +66,80 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
     const uint32_t node = triangles[3 * t + static_cast<size_t>(k)];
     const double w = sum > 0 ? hit.barycentric[k] / sum : 1.0 / 3.0;
     for (int a = 0; a < 3; ++a) body.contact_forces[3 * node + static_cast<size_t>(a)] += w * force[static_cast<size_t>(a)];
+  }
+}
+
+namespace {
+
+Vec3 point_on_triangle(const SoftBody& body, int triangle, const double* barycentric) noexcept {
+  const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
+  Vec3 p{0, 0, 0};
+  const double sum = barycentric[0] + barycentric[1] + barycentric[2];
+  for (size_t k = 0; k < 3; ++k) {
+    const uint32_t n = tris[3 * static_cast<size_t>(triangle) + k];
+    const double w = sum > 0 ? barycentric[k] / sum : 1.0 / 3.0;
+    for (size_t a = 0; a < 3; ++a) p[a] += w * body.positions[3 * n + a];
+  }
+  return p;
+}
+
+}  // namespace
+
+void HapticInteraction::prepare_local_model(World& world, Channel& ch, const DeviceSlot& slot) noexcept {
+  LocalModel& m = ch.local;
+  const int touched = m.body >= 0 ? m.body : slot.touched_body;
+  if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() || !world.body(static_cast<size_t>(touched)).own_thread) {
+    ch.renderer.set_local_compliance({});
+    return;
+  }
+  const SoftBody& body = world.body(static_cast<size_t>(touched));
+  if (m.body != touched) {
+    m = LocalModel{};
+    m.body = touched;
+    m.refreshes_seen = body.refreshes;
+    const tacta_material& mat = body.topology->material;
+    m.stiffness = haptics::punch_stiffness(slot.desc.tool.radius, mat.youngs_modulus, mat.poisson_ratio);
+  }
+  if (body.refreshes != m.refreshes_seen) {
+    // The worker finished a step and took the next: the state now shown felt `posted`, the step
+    // now running is driven by the mean of the ticks since (BodyWorker::post does the same sums).
+    m.refreshes_seen = body.refreshes;
+    m.felt = m.posted;
+    m.posted = m.impulse_time > 0 ? haptics::scaled(m.impulse, 1.0 / m.impulse_time) : Vec3{0, 0, 0};
+    m.impulse = {0, 0, 0};
+    m.impulse_time = 0;
+    if (m.pressing) {
+      // Secant point stiffness: the normal force the state felt over how far the pressed material
+      // point has gone in since the contact began; smoothed, since one step is not a static state.
+      const Vec3 now = point_on_triangle(body, m.onset_triangle, m.onset_barycentric);
+      const double depth = haptics::dot(haptics::sub(m.onset_point, now), m.onset_normal);  // m
+      const double force = haptics::dot(m.felt, m.onset_normal);                          // N
+      if (depth > 1e-4 && force > 0.02) m.stiffness = 0.5 * m.stiffness + 0.5 * force / depth;
+    }
+  }
+  haptics::LocalCompliance c;
+  c.active = body.local_contact_yielding;
+  c.stiffness = m.stiffness;
+  c.reference_force = std::max(0.0, haptics::dot(m.felt, m.normal));
+  ch.renderer.set_local_compliance(c);
+}
+
+void HapticInteraction::follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out, double dt) noexcept {
+  LocalModel& m = ch.local;
+  if (m.body < 0) return;
+  m.impulse = haptics::add_scaled(m.impulse, out.device_force, dt);
+  m.impulse_time += dt;
+  if (!out.in_contact || out.contact.body != m.body || out.contact.triangle < 0) {
+    m.pressing = false;
+    return;
+  }
+  m.normal = out.contact.normal;
+  if (!m.pressing) {
+    m.pressing = true;
+    m.onset_triangle = out.contact.triangle;
+    for (int k = 0; k < 3; ++k) m.onset_barycentric[k] = out.contact.barycentric[k];
+    m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)), m.onset_triangle, m.onset_barycentric);
+    m.onset_normal = out.contact.normal;
   }
 }
 

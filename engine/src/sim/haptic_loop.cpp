@@ -12,12 +12,6 @@ namespace {
 
 double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
-bool all_finite(const std::vector<double>& x) noexcept {
-  for (double v : x)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
 }  // namespace
 
 HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks)
@@ -99,28 +93,31 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
 }
 
 void HapticLoop::apply_swaps(double time) noexcept {
-  for (size_t i = 0; i < world_.body_count(); ++i) {
-    SoftBody& b = world_.body(i);
-    while (b.next_swap < b.swaps.size() && b.swaps[b.next_swap].time_s <= time + 1e-12) {
-      // The scheduled instance was built at load time; the outgoing one is parked in its place
-      // and destroyed with the world, so nothing is freed on the haptic thread.
-      std::swap(b.model, b.swaps[b.next_swap].model);
-      ++b.next_swap;
-      const tacta_body_state state = b.state_view(time);
-      b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz);
-    }
-    if (ModelInstance* incoming = b.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel)) {
-      ModelInstance* outgoing = b.model.release();
-      b.model.reset(incoming);
-      ModelInstance* head = b.mailbox->retired.load(std::memory_order_relaxed);
-      do {
-        outgoing->retired_next = head;
-      } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
-                                                         std::memory_order_relaxed));
-      if (b.runtime_swaps.size() < b.runtime_swaps.capacity()) b.runtime_swaps.push_back({time, incoming->name()});
-      const tacta_body_state state = b.state_view(time);
-      b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz);
-    }
+  // A body on a worker thread takes its swaps between two of its steps (step_on_worker), when
+  // the worker is not using the model.
+  for (size_t i = 0; i < world_.body_count(); ++i)
+    if (!world_.body(i).own_thread) apply_swaps_to(world_.body(i), time);
+}
+
+void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
+  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz;
+  while (b.next_swap < b.swaps.size() && b.swaps[b.next_swap].time_s <= time + 1e-12) {
+    // The scheduled instance was built at load time; the outgoing one is parked in its place
+    // and destroyed with the world, so nothing is freed on the haptic thread.
+    std::swap(b.model, b.swaps[b.next_swap].model);
+    ++b.next_swap;
+    b.model->begin(b.state_view(time), dt);
+  }
+  if (ModelInstance* incoming = b.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel)) {
+    ModelInstance* outgoing = b.model.release();
+    b.model.reset(incoming);
+    ModelInstance* head = b.mailbox->retired.load(std::memory_order_relaxed);
+    do {
+      outgoing->retired_next = head;
+    } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
+                                                       std::memory_order_relaxed));
+    if (b.runtime_swaps.size() < b.runtime_swaps.capacity()) b.runtime_swaps.push_back({time, incoming->name()});
+    b.model->begin(b.state_view(time), dt);
   }
 }
 
@@ -151,6 +148,10 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
     if (b.fault.frozen) continue;
+    if (BodyWorker* w = i < workers_.size() ? workers_[i].get() : nullptr) {
+      healthy = step_on_worker(b, i, *w, time, dt) && healthy;
+      continue;
+    }
     double step_dt = dt;
     if (b.step_period_s > 0) {
       // A slower body steps once its own clock falls due, by its own period.
@@ -158,43 +159,54 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
       b.next_step_time_s += b.step_period_s;
       step_dt = b.step_period_s;
     }
-    const std::vector<double>& m = b.topology->masses;
-    for (size_t n = 0; n < m.size(); ++n)
-      for (int a = 0; a < 3; ++a) b.external_forces[3 * n + a] = m[n] * g[a] + b.contact_forces[3 * n + a];
-    std::copy(b.positions.begin(), b.positions.end(), b.saved_positions.begin());
-    tacta_body_state state = b.state_view(time);
-    const uint32_t bits = b.model->step(state, step_dt);
-    if (bits & TACTA_STEP_FAULT_MASK) {
-      freeze(b, i, time, bits, "the model reported a fault");
+    const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions, b.contact_forces};
+    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays, time, step_dt);
+    if (out.why != nullptr) {
+      freeze(b, i, time, out.bits, out.why);
       healthy = false;
       continue;
     }
-    if (!all_finite(b.positions) || !all_finite(b.velocities)) {
-      freeze(b, i, time, TACTA_STEP_NOT_FINITE, "NaN or infinity in the node state");
-      healthy = false;
-      continue;
-    }
-    const std::vector<double>& rest = b.rest();
-    double max_d2 = 0;
-    for (size_t n = 0; n < m.size(); ++n) {
-      const double dx = b.positions[3 * n] - rest[3 * n], dy = b.positions[3 * n + 1] - rest[3 * n + 1],
-                   dz = b.positions[3 * n + 2] - rest[3 * n + 2];
-      max_d2 = std::max(max_d2, dx * dx + dy * dy + dz * dz);
-    }
-    const double max_d = std::sqrt(max_d2);
-    if (max_d > b.divergence_limit_m) {
-      freeze(b, i, time, TACTA_STEP_DIVERGED, "displacement exceeded ten body sizes");
-      healthy = false;
-      continue;
-    }
-    b.max_displacement_m = std::max(b.max_displacement_m, max_d);
+    b.max_displacement_m = std::max(b.max_displacement_m, out.max_displacement);
   }
   return healthy;
 }
 
+bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double time, double dt) noexcept {
+  w.accumulate(b.contact_forces, dt);
+  if (time + 1e-12 < b.next_step_time_s) return true;
+  if (!w.finish_step(time)) return true;  // realtime: still stepping, render on against the old state
+  const StepOutcome& out = w.last_outcome();
+  if (out.why != nullptr) {
+    // Detected on the tick the step is collected: the device force drops in this same tick.
+    freeze(b, index, time, out.bits, out.why);
+    return false;
+  }
+  apply_swaps_to(b, time);
+  w.post(time, b.step_period_s);
+  // The next boundary counts from this post: a late step shifts the body's clock, it never
+  // makes the worker run two steps back to back.
+  b.next_step_time_s = std::max(b.next_step_time_s + b.step_period_s, time + b.step_period_s - 1e-12);
+  return true;
+}
+
+void HapticLoop::start_workers(bool lockstep, size_t expected_ticks) {
+  workers_.resize(world_.body_count());
+  const double haptic_rate = world_.scene().clock.haptic_rate_hz;
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    SoftBody& b = world_.body(i);
+    if (!b.own_thread) continue;
+    const auto steps = static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate / b.step_period_s) + 2;
+    if (!workers_[i]) workers_[i] = std::make_unique<BodyWorker>(b, world_.scene().gravity, lockstep, steps);
+    workers_[i]->start();
+  }
+}
+
+void HapticLoop::stop_workers() noexcept {
+  for (std::unique_ptr<BodyWorker>& w : workers_)
+    if (w) w->stop();
+}
+
 void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, const char* why) noexcept {
-  std::copy(b.saved_positions.begin(), b.saved_positions.end(), b.positions.begin());
-  std::fill(b.velocities.begin(), b.velocities.end(), 0.0);
   b.fault.frozen = true;
   b.fault.bits = bits;
   b.fault.time_s = time;
@@ -290,11 +302,17 @@ void HapticLoop::publish(double time) noexcept {
     BodySnapshot& bs = s.bodies[i];
     std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
     std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
-    if (!bs.von_mises.empty() && b.model->has_stress()) b.model->node_stress(b.positions.data(), bs.von_mises.data());
+    const BodyWorker* w = worker(i);
+    // A worker body's model may be mid-step on its thread: use what the worker computed.
+    if (w != nullptr) {
+      if (!bs.von_mises.empty() && w->has_stress()) std::copy(w->von_mises().begin(), w->von_mises().end(), bs.von_mises.begin());
+    } else if (!bs.von_mises.empty() && b.model->has_stress()) {
+      b.model->node_stress(b.positions.data(), bs.von_mises.data());
+    }
     if (bs.model != b.model->name()) bs.model.assign(b.model->name());  // capacity reserved up front
     bs.frozen = b.fault.frozen;
     bs.kinetic_J = b.kinetic_energy();
-    bs.elastic_J = b.model->elastic_energy(b.positions.data());
+    bs.elastic_J = w != nullptr ? w->elastic_energy() : b.model->elastic_energy(b.positions.data());
     bs.max_displacement_m = b.max_displacement_m;
     energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, b.max_displacement_m});
   }

@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 
+#include "body_worker.hpp"
 #include "recorders.hpp"
 #include "tacta/sim/tick_stats.hpp"
 #include "tacta/device_log.hpp"
@@ -43,6 +44,13 @@ class HapticLoop final : public HapticTask {
   void enable_device_log(size_t ticks) { device_log_ = std::make_unique<DeviceLogRecorder>(ticks); }
   const DeviceLogRecorder* device_log() const { return device_log_.get(); }
 
+  // Bodies with step_thread: own get their worker threads here (start of run(); allocates) and
+  // lose them in stop_workers (end of run(): a step in flight is finished and kept). Lockstep
+  // waits for each step at its boundary; realtime never waits.
+  void start_workers(bool lockstep, size_t expected_ticks);
+  void stop_workers() noexcept;
+  const BodyWorker* worker(size_t body) const { return body < workers_.size() ? workers_[body].get() : nullptr; }
+
   bool tick(uint64_t index, double time, double dt) noexcept override;
   void publish(double time) noexcept override;
 
@@ -60,16 +68,21 @@ class HapticLoop final : public HapticTask {
 
  private:
   void apply_swaps(double time) noexcept;
+  void apply_swaps_to(SoftBody& body, double time) noexcept;
+  bool step_on_worker(SoftBody& body, size_t index, BodyWorker& worker, double time, double dt) noexcept;
   void read_devices(double time) noexcept;
   bool step_bodies(double time, double dt) noexcept;  // false when a body faulted this tick
   void write_devices(double time, bool zero_force) noexcept;
   void record(double time) noexcept;
   bool touches_frozen_body(const DeviceSlot& slot) const noexcept;
+  // Marks the body frozen and records the fault; its state is already back at the last trusted
+  // one (step_body_arrays puts it there).
   void freeze(SoftBody& body, size_t index, double time, uint32_t bits, const char* why) noexcept;
 
   World& world_;
   TripleBuffer<Snapshot>& snapshots_;
   std::vector<Interaction*> interactions_;
+  std::vector<std::unique_ptr<BodyWorker>> workers_;  // per body; null for haptic-thread bodies
   Recorder<TraceRow> trace_;
   Recorder<TrajectoryRow> trajectory_;
   Recorder<EnergyRow> energy_;
@@ -80,7 +93,7 @@ class HapticLoop final : public HapticTask {
   uint64_t tick_index_ = 0;
   std::unique_ptr<DeviceLogRecorder> device_log_;
   TickRecorder stages_[kStageCount];
-  double tick_time_ = 0;  // s, start of the current tick (when devices were read)  // largest body's node count
+  double tick_time_ = 0;  // s, start of the current tick (when devices were read)
 };
 
 }  // namespace tacta

@@ -171,7 +171,9 @@ RunResult Simulation::run(const RunOptions& options) {
   }
   for (FrameObserver* o : observers) o->on_start(scene_static);
   OutputRenderTask render(snapshots, scene_static, observers);
+  loop.start_workers(schedule.mode == ClockMode::Lockstep, expected_ticks);
   result.schedule = run_schedule(loop, render, schedule);
+  loop.stop_workers();
   impl_->stop.store(false, std::memory_order_relaxed);  // a stop ends one run; a later run() runs again
   if (options.progress) std::fprintf(stderr, "\n");
   result.sim_time_s = static_cast<double>(result.schedule.ticks) / schedule.haptic_rate_hz;
@@ -189,6 +191,14 @@ RunResult Simulation::run(const RunOptions& options) {
     br.kinetic_energy_J = b.kinetic_energy();
     br.elastic_energy_J = b.model->elastic_energy(b.positions.data());
     br.frozen = b.fault.frozen;
+    br.own_thread = b.own_thread;
+    br.step_rate_hz = b.step_period_s > 0 ? 1.0 / b.step_period_s : 0.0;
+    if (const BodyWorker* w = loop.worker(i)) {
+      br.worker_steps = w->stats().steps;
+      br.worker_step_ms = w->step_ms().summary();
+      br.late_boundaries = w->stats().late_boundaries;
+      br.max_lateness_s = w->stats().max_lateness_s;
+    }
     if (b.fault.frozen) br.fault = b.fault.reason.data();
     arrays.push_back(&b.positions);
   }

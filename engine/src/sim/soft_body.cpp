@@ -143,6 +143,8 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
 
   const double dt = desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
   body.step_period_s = desc.step_rate_hz > 0 ? dt : 0.0;
+  body.own_thread = desc.own_thread;
+  body.local_contact_yielding = desc.local_contact_yielding;
   body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
   body.initial_model = desc.model;
   body.runtime_swaps.reserve(256);

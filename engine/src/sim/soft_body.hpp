@@ -78,6 +78,9 @@ struct SoftBody {
   std::vector<uint32_t> recorded_nodes;  // nodes whose trajectory is recorded
   double step_period_s = 0;     // s; 0: every haptic tick
   double next_step_time_s = 0;  // s; when a slower body steps next
+  bool own_thread = false;      // steps on a BodyWorker thread, not the haptic one
+  uint64_t refreshes = 0;       // own_thread: finished steps taken into the arrays above so far
+  bool local_contact_yielding = true;  // own_thread: render through haptics::LocalCompliance
 
   size_t node_count() const { return positions.size() / 3; }
   const std::vector<double>& rest() const { return topology->mesh.positions; }

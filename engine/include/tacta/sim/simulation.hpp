@@ -33,6 +33,13 @@ struct BodyResult {
   double initial_energy_J = 0;  // kinetic + elastic at t = 0
   bool frozen = false;
   std::string fault;
+  // A body with step_thread: own (its steps ran on a worker thread at step_rate_hz).
+  bool own_thread = false;
+  double step_rate_hz = 0;           // 0: stepped every haptic tick
+  uint64_t worker_steps = 0;
+  TickSummary worker_step_ms;        // wall time of each step on the worker
+  uint64_t late_boundaries = 0;      // realtime: boundaries where the step was not finished
+  double max_lateness_s = 0;         // realtime: longest time a step was collected past its boundary
 };
 
 struct RunResult {

@@ -1,0 +1,45 @@
+// The local contact model the haptic loop renders against when the touched body steps slower,
+// on its own thread (scene: step_thread: own). Between two refreshes of the body's state the
+// haptic loop sees a frozen surface; left like that the tool would feel a rigid wall that jumps
+// at every refresh. Instead, around the contact the surface is a spring of the body's local
+// point stiffness k_l (N/m) in series with the virtual coupling k_c: the refreshed surface already
+// carries the normal force f_ref (N) the body felt in its last step, and only the force beyond
+// it pushes the surface further in.
+//
+// With d (m) the device's depth below the refreshed surface along the outward normal, the
+// surface sits at depth u = (k_c d - f_ref) / (k_l + k_c) and the coupling stretch along the
+// normal becomes s = d - u = (f_ref + k_l d) / (k_l + k_c). Checks: k_l -> infinity gives the
+// rigid snapshot (s = d); a device that has not moved since the refresh of a body at rest
+// under f_ref (d = f_ref / k_c) gets exactly f_ref back. This is the multirate "local linear
+// model" idea (a low-rate simulation hands the high-rate loop a local stiffness around the
+// contact; e.g. Cavusoglu and Tendick, ICRA 2000), here reduced to the normal direction.
+#pragma once
+
+#include "tacta/haptics/vector_math.hpp"
+
+namespace tacta::haptics {
+
+struct LocalCompliance {
+  bool active = false;
+  double stiffness = 0.0;        // N/m, k_l: the body's point stiffness at the contact
+  double reference_force = 0.0;  // N, f_ref: the normal force the refreshed surface has felt
+};
+
+// The coupling stretch (proxy - device, m) seen through the local model; `normal` is the unit
+// outward normal at the contact, coupling_stiffness k_c in N/m. Tangential parts are unchanged.
+inline Vec3 yield_stretch(const Vec3& stretch, const Vec3& normal, double coupling_stiffness,
+                          const LocalCompliance& local) noexcept {
+  if (!local.active || !(local.stiffness > 0.0) || !(coupling_stiffness > 0.0)) return stretch;
+  const double d = dot(stretch, normal);
+  if (d <= 0.0) return stretch;  // not pressing: nothing to yield
+  const double s = (local.reference_force + local.stiffness * d) / (local.stiffness + coupling_stiffness);
+  return add_scaled(stretch, normal, s - d);
+}
+
+// Sneddon's flat circular punch of radius a (m) on an elastic half-space (E in Pa, nu):
+// k = 2 a E / (1 - nu^2), N/m. The first guess of k_l before the body has shown its own.
+inline double punch_stiffness(double radius, double youngs_modulus, double poisson_ratio) noexcept {
+  return 2.0 * radius * youngs_modulus / (1.0 - poisson_ratio * poisson_ratio);
+}
+
+}  // namespace tacta::haptics
