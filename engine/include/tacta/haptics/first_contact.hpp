@@ -23,6 +23,9 @@
 // 1/2 k L^2 the coupling has actually received, counting the initial penetration as received
 // (1/2 k s0^2: the device or the body made it); the spring never sees more, and follows the
 // budget down when the device takes energy back (ContactRenderer keeps that ledger).
+// Measured (test_haptics): deep onset 3.00 N without, 1.154 N with (steady 1.154 N); palpation
+// presses of 0.3 / 0.5 / 1.0 s peak at 1.117 / 1.045 / 1.012 x steady; a press and release on
+// elastic tissue or a rigid wall returns less energy than it took (DeformablePress.*).
 #pragma once
 
 #include <limits>
