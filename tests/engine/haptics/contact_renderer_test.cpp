@@ -2,6 +2,7 @@
 // samples, and the per-device report numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -77,6 +78,35 @@ TEST(ContactRenderer, ReportsFirstContactPeakSteadyForceAndInjectedEnergy) {
   EXPECT_LE(r.first_contact_peak, 1.2 * r.steady_contact);
   EXPECT_GE(r.energy_injected, 0.0);
   EXPECT_LT(r.energy_injected, 1e-5);  // J: the controller keeps it near zero
+}
+
+}  // namespace
+}  // namespace tacta::haptics::testing
+
+namespace tacta::haptics::testing {
+namespace {
+
+// Pressed 2 mm into a wall, then pulled out at 0.2 m/s: the coupling damper (5 N s/m) on the
+// relative velocity would pull with up to 1 N as the spring relaxes. A contact only pushes.
+TEST(ContactRenderer, NeverPullsTheDeviceIntoTheSurfaceOnRelease) {
+  const PlaneSurface wall({0.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
+  ContactRendererParams params;
+  params.coupling = {600.0, 5.0};
+  params.first_contact_enabled = false;
+  ContactRenderer renderer(params);
+  Vec3 device{0.0, 0.001, 0.0};
+  renderer.reset(device);
+  double least_normal_force = 0.0;
+  int contact_ticks = 0;
+  for (int n = 0; n < 60; ++n) {
+    const double speed = n < 15 ? -0.2 : 0.2;  // m/s along y: 3 mm in, then out
+    device[1] += speed * 1e-3;
+    const ContactRendering r = renderer.tick(wall, n * 1e-3, device, {0.0, speed, 0.0}, 1e-3);
+    if (r.in_contact) ++contact_ticks;
+    least_normal_force = std::min(least_normal_force, r.device_force[1]);
+  }
+  EXPECT_GT(contact_ticks, 10);
+  EXPECT_GE(least_normal_force, 0.0);
 }
 
 }  // namespace
