@@ -111,3 +111,26 @@ TEST(ContactRenderer, NeverPullsTheDeviceIntoTheSurfaceOnRelease) {
 
 }  // namespace
 }  // namespace tacta::haptics::testing
+
+namespace tacta::haptics::testing {
+namespace {
+
+// A host that zeroes the force after tick() (a fault) reports it; the observer then integrates
+// zero work for the device's motion over that tick instead of the force it never got.
+TEST(ContactRenderer, ObserverIntegratesTheForceTheHostReallySent) {
+  const PlaneSurface wall({0.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
+  ContactRendererParams params;
+  params.first_contact_enabled = false;
+  ContactRenderer renderer(params);
+  renderer.reset({0.0, 0.001, 0.0});
+  renderer.tick(wall, 0.0, {0.0, -0.001, 0.0}, {0.0, 0.0, 0.0}, 1e-3);
+  const ContactRendering r = renderer.tick(wall, 1e-3, {0.0, -0.002, 0.0}, {0.0, 0.0, 0.0}, 1e-3);
+  ASSERT_GT(r.device_force[1], 0.0);
+  renderer.override_sent({0.0, 0.0, 0.0});
+  const double before = renderer.passivity().observed_energy();
+  renderer.tick(wall, 2e-3, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1e-3);  // moved out 2 mm under no force
+  EXPECT_EQ(renderer.passivity().observed_energy(), before);
+}
+
+}  // namespace
+}  // namespace tacta::haptics::testing

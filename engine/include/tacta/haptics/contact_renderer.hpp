@@ -70,6 +70,12 @@ class ContactRenderer {
   // J: energy the coupling (spring, damper, limits) has taken from the device and the body in
   // the current contact; the first-contact limit never lets its spring hold more.
   double coupling_energy() const noexcept { return coupling_energy_; }
+  // When the host sends something else than tick()'s device_force (a fault zeroes it), it says
+  // so here, so that the energy observers integrate the force the device really held (N).
+  void override_sent(const Vec3& force) noexcept {
+    passivity_.record_sent(force);
+    last_sent_ = force;
+  }
 
  private:
   void update_stats(double time, double force) noexcept;
