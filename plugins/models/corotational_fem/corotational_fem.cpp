@@ -95,10 +95,12 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
 
 CorotationalFem::~CorotationalFem() = default;
 
-void CorotationalFem::set_solver_limits(int max_iterations, double tolerance) {
+void CorotationalFem::set_solver_limits(int max_iterations, double tolerance,
+                                        int refactor_interval) {
   options_.max_iterations = max_iterations;
   options_.tolerance = tolerance;
-  if (cg_) cg_->set_limits(max_iterations, tolerance);
+  options_.refactor_interval = refactor_interval;
+  if (cg_) cg_->set_limits(max_iterations, tolerance, refactor_interval);
 }
 
 TACTA_HOT_PATH CorotationalFem::ElementFrame CorotationalFem::frame_of(

@@ -58,7 +58,9 @@ class CorotationalFem {
   long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
-  void set_solver_limits(int max_iterations, double tolerance);
+  // CG limits, and the incomplete Cholesky's steps between refactorisations.
+  void set_solver_limits(int max_iterations, double tolerance, int refactor_interval);
+  const Options& options() const { return options_; }
 
  private:
   struct Element {

@@ -6,6 +6,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -33,9 +34,11 @@ class ConjugateGradientSolver {
   // x holds the initial guess (the previous step's solution) and receives the solution.
   // Convergence: ||b - A x|| <= tolerance ||b||.
   SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x);
-  void set_limits(int max_iterations, double tolerance) {
+  void set_limits(int max_iterations, double tolerance, int refactor_interval) {
     max_iterations_ = max_iterations;
     tolerance_ = tolerance;
+    refactor_interval_ = std::max(1, refactor_interval);
+    solves_since_factor_ %= refactor_interval_;
   }
 
  private:

@@ -1,7 +1,11 @@
 // corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
 #include <array>
+#include <cmath>
 #include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "corotational_fem.hpp"
 #include "tacta/sdk/model.hpp"
@@ -51,6 +55,33 @@ class CorotationalFemPlugin {
   double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
+  // Live changes reach the solver's limits only (max_iterations, tolerance, refactor_interval):
+  // rotation, solver and preconditioner decide the buffers built at creation.
+  void set_param(uint32_t index, const tacta_param_value& value) {
+    if (index >= kParams.size())
+      throw std::invalid_argument("corotational_fem: no parameter with index " +
+                                  std::to_string(index));
+    const tacta_param_spec& spec = kParams[index];
+    const std::string_view name = spec.name;
+    if (name != "max_iterations" && name != "tolerance" && name != "refactor_interval")
+      throw std::invalid_argument("corotational_fem: '" + std::string(name) +
+                                  "' cannot change while running (only max_iterations, "
+                                  "tolerance and refactor_interval can)");
+    const double v = value.number;
+    if (!(v >= spec.min_value && v <= spec.max_value) ||
+        (spec.type == TACTA_PARAM_INT && v != std::floor(v)))
+      throw std::invalid_argument("corotational_fem: " + std::string(name) + " = " +
+                                  std::to_string(v) + " is outside [" +
+                                  std::to_string(spec.min_value) + ", " +
+                                  std::to_string(spec.max_value) + "]" +
+                                  (spec.type == TACTA_PARAM_INT ? " or not an integer" : ""));
+    Options options = model_->options();
+    if (name == "max_iterations") options.max_iterations = static_cast<int>(v);
+    if (name == "tolerance") options.tolerance = v;
+    if (name == "refactor_interval") options.refactor_interval = static_cast<int>(v);
+    model_->set_solver_limits(options.max_iterations, options.tolerance,
+                              options.refactor_interval);
+  }
 
  private:
   std::unique_ptr<CorotationalFem> model_;

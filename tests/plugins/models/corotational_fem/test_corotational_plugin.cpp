@@ -58,4 +58,54 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   EXPECT_EQ(instance, nullptr);
 }
 
+// set_param changes the solver's limits while running (seen in the step's not-converged bit)
+// and refuses what would need new buffers, out-of-range values and unknown indices.
+TEST(CorotationalPlugin, SetParamChangesSolverLimitsOnly) {
+  LoadedPlugin plugin("tacta_corotational_fem.so");
+  const tacta_descriptor& d = plugin.descriptor("corotational_fem");
+  const auto& api = plugin.api<tacta_model_api>("corotational_fem");
+  ASSERT_NE(api.set_param, nullptr);
+  tacta::models::TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 6}, {0.02, 0.02, 0.2}, 1100);
+  mesh.fix_plane(2, 0.0);
+  const tacta_mesh_view view = mesh.view();
+  const tacta_material material = tacta::models::make_material(2e6, 0.45, 1100);
+  std::vector<tacta_param_value> params = tacta::testing::default_params(d);
+  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
+                          mesh.fixed.data(), params.data(), d.param_count, 1e-3};
+  void* instance = nullptr;
+  char message[256] = {0};
+  ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
+  std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0);
+  for (uint32_t i = 0; i < mesh.node_count(); ++i) f[3 * i + 1] = -9.81 * mesh.masses[i];
+  tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
+  api.begin(instance, &state, 1e-3);
+  auto index_of = [&](const std::string& name) {
+    for (uint32_t i = 0; i < d.param_count; ++i)
+      if (name == d.params[i].name) return i;
+    ADD_FAILURE() << name;
+    return 0u;
+  };
+  auto set = [&](const std::string& name, double number) {
+    tacta_param_value value{number, nullptr, nullptr, 0};
+    return api.set_param(instance, index_of(name), &value, message, sizeof message);
+  };
+  // One CG iteration to 1e-14 cannot converge; 500 to 1e-6 do.
+  ASSERT_EQ(set("max_iterations", 1), TACTA_OK) << message;
+  ASSERT_EQ(set("tolerance", 1e-14), TACTA_OK) << message;
+  EXPECT_NE(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  ASSERT_EQ(set("max_iterations", 500), TACTA_OK) << message;
+  ASSERT_EQ(set("tolerance", 1e-6), TACTA_OK) << message;
+  EXPECT_EQ(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  EXPECT_EQ(set("refactor_interval", 4), TACTA_OK) << message;
+
+  EXPECT_NE(set("rotation", 1), TACTA_OK);
+  EXPECT_NE(std::string(message).find("'rotation' cannot change"), std::string::npos) << message;
+  EXPECT_NE(set("tolerance", 2.0), TACTA_OK);
+  EXPECT_NE(std::string(message).find("tolerance"), std::string::npos) << message;
+  EXPECT_NE(set("max_iterations", 2.5), TACTA_OK);
+  tacta_param_value value{1.0, nullptr, nullptr, 0};
+  EXPECT_NE(api.set_param(instance, d.param_count, &value, message, sizeof message), TACTA_OK);
+  api.destroy(instance);
+}
+
 }  // namespace
