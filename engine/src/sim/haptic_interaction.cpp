@@ -97,8 +97,6 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
     m = LocalModel{};
     m.body = touched;
     m.refreshes_seen = body.refreshes;
-    const tacta_material& mat = body.topology->material;
-    m.stiffness = haptics::punch_stiffness(slot.desc.tool.radius, mat.youngs_modulus, mat.poisson_ratio);
   }
   if (body.refreshes != m.refreshes_seen) {
     // The worker finished a step and took the next: the state now shown felt `posted`, the step
@@ -114,11 +112,17 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
       const Vec3 now = point_on_triangle(body, m.onset_triangle, m.onset_barycentric);
       const double depth = haptics::dot(haptics::sub(m.onset_point, now), m.onset_normal);  // m
       const double force = haptics::dot(m.felt, m.onset_normal);                          // N
-      if (depth > 1e-4 && force > 0.02) m.stiffness = 0.5 * m.stiffness + 0.5 * force / depth;
+      if (depth > 1e-4 && force > 0.02) {
+        const double measured = force / depth;  // N/m
+        m.stiffness = m.stiffness > 0 ? 0.5 * m.stiffness + 0.5 * measured : measured;
+      }
     }
   }
   haptics::LocalCompliance c;
-  c.active = body.local_contact_yielding;
+  // Until the body has shown its stiffness (the first refresh of a press) the surface is rendered
+  // as the last step left it: an analytic guess (a flat punch on a half-space) came out 3 to 4
+  // times softer than the meshes' own response and made the force jump when the measurement came.
+  c.active = body.local_contact_yielding && m.stiffness > 0;
   c.stiffness = m.stiffness;
   c.reference_force = std::max(0.0, haptics::dot(m.felt, m.normal));
   ch.renderer.set_local_compliance(c);
@@ -144,6 +148,13 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch, const hapt
 }
 
 void HapticInteraction::after_step(World&, double, double) noexcept {}
+
+void HapticInteraction::after_write(World& world) noexcept {
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& slot = world.device(d);
+    channels_[d].renderer.override_sent({slot.force[0], slot.force[1], slot.force[2]});
+  }
+}
 
 void CollisionResponse::after_step(World&, double time, double dt) noexcept {
   bits_ |= collision_.detect_and_respond(time, dt);

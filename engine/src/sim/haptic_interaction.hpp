@@ -18,6 +18,8 @@ class HapticInteraction final : public Interaction {
   HapticInteraction(World& world, CollisionContext& collision);
   void before_step(World& world, double time, double dt) noexcept override;
   void after_step(World& world, double time, double dt) noexcept override;
+  // The renderer's energy observers integrate the force each device really held.
+  void after_write(World& world) noexcept override;
 
  private:
   // What a channel keeps to render a body on its own thread through its local contact model

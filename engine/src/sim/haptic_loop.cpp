@@ -81,6 +81,7 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   const auto response_done = Clock::now();
   // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
   write_devices(time + dt, !healthy);
+  for (Interaction* interaction : interactions_) interaction->after_write(world_);
   record(time + dt);
   const auto end = Clock::now();
   stages_[kDeviceRead].record(ms(start, read_done));

@@ -34,6 +34,9 @@ class Interaction {
   virtual ~Interaction() = default;
   virtual void before_step(World& world, double time, double dt) noexcept = 0;
   virtual void after_step(World& world, double time, double dt) noexcept = 0;
+  // After the devices were written: DeviceSlot::force is what each device really got (zeroed on
+  // a fault, clamped to its peak), which may differ from what before_step asked for.
+  virtual void after_write(World&) noexcept {}
 };
 
 class HapticLoop final : public HapticTask {

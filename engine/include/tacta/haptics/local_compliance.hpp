@@ -21,7 +21,8 @@ namespace tacta::haptics {
 
 struct LocalCompliance {
   bool active = false;
-  double stiffness = 0.0;        // N/m, k_l: the body's point stiffness at the contact
+  double stiffness = 0.0;        // N/m, k_l: the body's point stiffness at the contact, as measured
+                                 // from its refreshed states (HapticInteraction)
   double reference_force = 0.0;  // N, f_ref: the normal force the refreshed surface has felt
 };
 
@@ -34,12 +35,6 @@ inline Vec3 yield_stretch(const Vec3& stretch, const Vec3& normal, double coupli
   if (d <= 0.0) return stretch;  // not pressing: nothing to yield
   const double s = (local.reference_force + local.stiffness * d) / (local.stiffness + coupling_stiffness);
   return add_scaled(stretch, normal, s - d);
-}
-
-// Sneddon's flat circular punch of radius a (m) on an elastic half-space (E in Pa, nu):
-// k = 2 a E / (1 - nu^2), N/m. The first guess of k_l before the body has shown its own.
-inline double punch_stiffness(double radius, double youngs_modulus, double poisson_ratio) noexcept {
-  return 2.0 * radius * youngs_modulus / (1.0 - poisson_ratio * poisson_ratio);
 }
 
 }  // namespace tacta::haptics
