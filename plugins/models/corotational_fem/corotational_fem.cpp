@@ -78,6 +78,7 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   polar_guess_.assign(elements_.size(), Eigen::Quaterniond::Identity());
   step_rotation_ = polar_guess_;
   step_turn_ = polar_guess_;
+  build_batches();
   const size_t n = 3 * static_cast<size_t>(node_count_);
   forces_.assign(n, 0.0);
   stiffness_velocity_.assign(n, 0.0);
@@ -171,7 +172,11 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   matrix_.set_zero();
   std::fill(forces_.begin(), forces_.end(), 0.0);
   const double stiffness_scale = h * beta_ + h * h;
-  for (uint32_t e = 0; e < elements_.size(); ++e) {
+  uint32_t e = 0;
+  if (options_.batch_elements)
+    for (; e + kBatchLanes <= elements_.size(); e += kBatchLanes)
+      result |= step_batch(e / kBatchLanes, state.positions, stiffness_scale);
+  for (; e < elements_.size(); ++e) {
     // Warm start extrapolated at constant angular velocity, R_n (R_n-1^T R_n): one Newton
     // step then usually suffices where the last rotation alone needed two.
     Eigen::Quaterniond rotation = step_turn_[e] * step_rotation_[e];

@@ -32,10 +32,15 @@ struct Options {
   int max_iterations = 25;  // CG iterations per step
   double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
   int refactor_interval = 1;  // incomplete Cholesky: steps between refactorisations
+  // step()'s element pass four tets at a time (element_batch.cpp); false: one at a time, the
+  // reference the batched pass is tested against.
+  bool batch_elements = true;
 };
 
 class CorotationalFem {
  public:
+  static constexpr int kBatchLanes = 4;  // elements per batch in step()'s element pass
+
   // Throws std::invalid_argument naming the element or node at fault.
   CorotationalFem(const tacta_mesh_view& mesh, const tacta_material& material,
                   std::span<const double> masses, std::span<const uint8_t> fixed,
@@ -77,6 +82,15 @@ class CorotationalFem {
   };
   // guess: the polar iteration's warm start on entry, the element's rotation on exit.
   ElementFrame frame_of(uint32_t e, const double* positions, Eigen::Quaterniond& guess) noexcept;
+  // Rest data of kBatchLanes consecutive elements, lane-minor (structure of arrays).
+  struct ElementBatch {
+    double gradients[4][3][kBatchLanes];  // 1/m
+    double volume[kBatchLanes];           // m^3
+  };
+  void build_batches();
+  // step()'s frame_of + accumulate for one batch, warm start and history included; returns
+  // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
+  uint32_t step_batch(uint32_t batch, const double* positions, double scale) noexcept;
   // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
@@ -84,6 +98,7 @@ class CorotationalFem {
   double lambda_, mu_;              // Pa
   double alpha_, beta_;             // Rayleigh: 1/s, s
   std::vector<Element> elements_;
+  std::vector<ElementBatch> batches_;
   std::vector<double> rest_, masses_;
   std::vector<uint8_t> fixed_;
   Options options_;
