@@ -60,7 +60,7 @@ ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
   if (out.in_contact) {
     out.contact = proxy_.contact();
     Vec3 stretch = sub(proxy_.position(), device_position);
-    stretch = yield_stretch(stretch, out.contact.normal, coupling_.params().stiffness, local_);
+    stretch = yield_stretch(stretch, coupling_.params().stiffness, local_);
     const double budget = onset_budget(stretch);
     if (params_.first_contact_enabled) stretch = onset_.shape(stretch, true, dt, budget);
     desired = coupling_.force(stretch, sub(proxy_.velocity(), device_velocity));

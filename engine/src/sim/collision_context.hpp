@@ -53,6 +53,8 @@ class CollisionContext {
   std::vector<tacta_collision_shape> obstacles_;
   std::vector<std::vector<double>> hull_points_;  // obstacle hulls, 3 per point, m
   std::vector<int> surface_of_body_;
+  std::vector<uint64_t> refits_seen_;  // per body: its SoftBody::refreshes at the last refit
+  bool refitted_once_ = false;
   std::vector<int> body_of_surface_;
   std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)
   std::vector<tacta_collision_pair> pairs_;

@@ -71,14 +71,15 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
 
 namespace {
 
-Vec3 point_on_triangle(const SoftBody& body, int triangle, const double* barycentric) noexcept {
+Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
+                       const double* barycentric) noexcept {
   const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
   Vec3 p{0, 0, 0};
   const double sum = barycentric[0] + barycentric[1] + barycentric[2];
   for (size_t k = 0; k < 3; ++k) {
     const uint32_t n = tris[3 * static_cast<size_t>(triangle) + k];
     const double w = sum > 0 ? barycentric[k] / sum : 1.0 / 3.0;
-    for (size_t a = 0; a < 3; ++a) p[a] += w * body.positions[3 * n + a];
+    for (size_t a = 0; a < 3; ++a) p[a] += w * positions[3 * n + a];
   }
   return p;
 }
@@ -107,9 +108,14 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
     m.impulse = {0, 0, 0};
     m.impulse_time = 0;
     if (m.pressing) {
+      // The refresh moved the touched point (collect() kept the previous state in
+      // saved_positions): the proxy moves with it.
+      const Vec3 before = point_on_triangle(body, body.saved_positions, m.triangle, m.barycentric);
+      const Vec3 after = point_on_triangle(body, body.positions, m.triangle, m.barycentric);
+      ch.renderer.carry_proxy(haptics::sub(after, before));
       // Secant point stiffness: the normal force the state felt over how far the pressed material
       // point has gone in since the contact began; smoothed, since one step is not a static state.
-      const Vec3 now = point_on_triangle(body, m.onset_triangle, m.onset_barycentric);
+      const Vec3 now = point_on_triangle(body, body.positions, m.onset_triangle, m.onset_barycentric);
       const double depth = haptics::dot(haptics::sub(m.onset_point, now), m.onset_normal);  // m
       const double force = haptics::dot(m.felt, m.onset_normal);                          // N
       if (depth > 1e-4 && force > 0.02) {
@@ -123,8 +129,16 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
   // as the last step left it: an analytic guess (a flat punch on a half-space) came out 3 to 4
   // times softer than the meshes' own response and made the force jump when the measurement came.
   c.active = body.local_contact_yielding && m.stiffness > 0;
+  // Why the measured stiffness matters: the surface the loop sees lags the force it renders by
+  // two periods (the step posted at k runs on the forces of k-2..k-1 and shows at k+1). With the
+  // device still, F_k = const + g F_(k-2) with g = k_c (k_true - k_l) / (k_true (k_l + k_c)): the
+  // rigid snapshot (k_l -> infinity) gives g = -k_c / k_true, a ringing or bouncing contact as soon
+  // as the coupling is stiffer than the tissue; k_l near k_true gives g near 0. Whatever k_l, the
+  // held force is the exact series k_c k_true / (k_c + k_true) d. (Half the measured value was
+  // tried as a safety margin: worse force error on the liver and the block, docs/BENCHMARKS.md.)
   c.stiffness = m.stiffness;
-  c.reference_force = std::max(0.0, haptics::dot(m.felt, m.normal));
+  c.normal = m.onset_normal;
+  c.reference_force = std::max(0.0, haptics::dot(m.felt, m.onset_normal));
   ch.renderer.set_local_compliance(c);
 }
 
@@ -138,11 +152,13 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch, const hapt
     return;
   }
   m.normal = out.contact.normal;
+  m.triangle = out.contact.triangle;
+  for (int k = 0; k < 3; ++k) m.barycentric[k] = out.contact.barycentric[k];
   if (!m.pressing) {
     m.pressing = true;
     m.onset_triangle = out.contact.triangle;
     for (int k = 0; k < 3; ++k) m.onset_barycentric[k] = out.contact.barycentric[k];
-    m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)), m.onset_triangle, m.onset_barycentric);
+    m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)), world.body(static_cast<size_t>(m.body)).positions, m.onset_triangle, m.onset_barycentric);
     m.onset_normal = out.contact.normal;
   }
 }

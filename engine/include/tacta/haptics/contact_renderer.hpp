@@ -64,6 +64,8 @@ class ContactRenderer {
   // The touched body's local contact model for the next ticks (a body on its own thread); the
   // default, inactive, renders the surface as the proxy finds it.
   void set_local_compliance(const LocalCompliance& local) noexcept { local_ = local; }
+  // The touched surface jumped by `displacement` (m) before this tick (GodObjectProxy::carry).
+  void carry_proxy(const Vec3& displacement) noexcept { proxy_.carry(displacement); }
   const ContactStats& stats() const noexcept { return stats_; }
   const GodObjectProxy& proxy() const noexcept { return proxy_; }
   const PassivityController& passivity() const noexcept { return passivity_; }

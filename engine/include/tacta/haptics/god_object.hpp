@@ -31,6 +31,15 @@ class GodObjectProxy {
   void update(const SurfaceQuery& world, const Vec3& device_position,
               const Vec3& device_velocity) noexcept;
 
+  // The touched surface jumped by `displacement` (m) since the last tick (a body stepping on its
+  // own thread was refreshed): the proxy rides along, so it is neither left inside a surface that
+  // moved out (the inside search would then pick a far side face) nor left behind.
+  void carry(const Vec3& displacement) noexcept {
+    if (!in_contact_) return;
+    position_ = add(position_, displacement);
+    contact_.point = add(contact_.point, displacement);
+  }
+
   const Vec3& position() const noexcept { return position_; }
   // m/s: the device's velocity in free space, its tangential part while sliding in contact.
   const Vec3& velocity() const noexcept { return velocity_; }

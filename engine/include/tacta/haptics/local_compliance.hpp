@@ -24,13 +24,16 @@ struct LocalCompliance {
   double stiffness = 0.0;        // N/m, k_l: the body's point stiffness at the contact, as measured
                                  // from its refreshed states (HapticInteraction)
   double reference_force = 0.0;  // N, f_ref: the normal force the refreshed surface has felt
+  Vec3 normal{0.0, 0.0, 1.0};    // unit outward direction the surface yields along: the press
+                                 // direction (the normal where the contact began), not the
+                                 // normal of each tick, which flips on faceted surfaces
 };
 
-// The coupling stretch (proxy - device, m) seen through the local model; `normal` is the unit
-// outward normal at the contact, coupling_stiffness k_c in N/m. Tangential parts are unchanged.
-inline Vec3 yield_stretch(const Vec3& stretch, const Vec3& normal, double coupling_stiffness,
-                          const LocalCompliance& local) noexcept {
+// The coupling stretch (proxy - device, m) seen through the local model (along local.normal),
+// coupling_stiffness k_c in N/m. The other directions are unchanged.
+inline Vec3 yield_stretch(const Vec3& stretch, double coupling_stiffness, const LocalCompliance& local) noexcept {
   if (!local.active || !(local.stiffness > 0.0) || !(coupling_stiffness > 0.0)) return stretch;
+  const Vec3& normal = local.normal;
   const double d = dot(stretch, normal);
   if (d <= 0.0) return stretch;  // not pressing: nothing to yield
   const double s = (local.reference_force + local.stiffness * d) / (local.stiffness + coupling_stiffness);
