@@ -48,12 +48,13 @@ uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
 
 void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
 
-TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y) const {
+TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y,
+                                                 size_t stride) const {
   const double* v = values_.data();
   double x_dot_y = 0.0;
-  std::fill_n(y, 3 * static_cast<size_t>(node_count_), 0.0);
+  std::fill_n(y, stride * node_count_, 0.0);
   for (uint32_t i = 0; i < node_count_; ++i) {
-    const double* xi = x + 3 * static_cast<size_t>(i);
+    const double* xi = x + stride * i;
     const double x0 = xi[0], x1 = xi[1], x2 = xi[2];
     const uint32_t first = row_starts_[i];
     const double* d = v + 9 * static_cast<size_t>(first);  // diagonal block
@@ -62,7 +63,7 @@ TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y) co
     double y2 = d[6] * x0 + d[7] * x1 + d[8] * x2;
     for (uint32_t k = first + 1; k < row_starts_[i + 1]; ++k) {
       const double* b = v + 9 * static_cast<size_t>(k);
-      const size_t j = 3 * static_cast<size_t>(columns_[k]);
+      const size_t j = stride * columns_[k];
       const double* xj = x + j;
       y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
       y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
@@ -73,12 +74,13 @@ TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y) co
       yj[2] += b[2] * x0 + b[5] * x1 + b[8] * x2;
     }
     // Rows above i have scattered into y_i already: with this row's part it is complete.
-    y0 += y[3 * i];
-    y1 += y[3 * i + 1];
-    y2 += y[3 * i + 2];
-    y[3 * i] = y0;
-    y[3 * i + 1] = y1;
-    y[3 * i + 2] = y2;
+    double* yi = y + stride * i;
+    y0 += yi[0];
+    y1 += yi[1];
+    y2 += yi[2];
+    yi[0] = y0;
+    yi[1] = y1;
+    yi[2] = y2;
     x_dot_y += x0 * y0 + x1 * y1 + x2 * y2;
   }
   return x_dot_y;

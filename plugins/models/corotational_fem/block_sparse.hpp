@@ -33,9 +33,10 @@ class BlockSparseMatrix {
   std::span<const uint32_t> columns() const { return columns_; }
 
   void set_zero();
-  // y = A x, both 3 per node (the lower triangle applied as the transpose of the upper).
-  // Returns x . y, summed as each row completes (CG's p . Ap without another pass).
-  double multiply(const double* x, double* y) const;
+  // y = A x (the lower triangle applied as the transpose of the upper), x and y with `stride`
+  // values per node of which the first 3 count (y's others set to 0). Returns x . y, summed as
+  // each row completes (CG's p . Ap without another pass).
+  double multiply(const double* x, double* y, size_t stride = 3) const;
   // Makes fixed nodes' rows and columns identity (zero off-diagonal, I on the diagonal).
   void apply_fixed(std::span<const uint8_t> fixed);
 

@@ -20,7 +20,8 @@ class BlockIncompleteCholesky {
   // can break down on matrices that are not M-matrices) is replaced by a's own diagonal block,
   // which keeps M symmetric positive definite; returns how many pivots were replaced.
   int factorize(const BlockSparseMatrix& a);
-  // z = M^-1 r (forward then backward block substitution), 3 values per node.
+  // z = M^-1 r (forward then backward block substitution), 4 values per node (the fourth 0,
+  // see PaddedBlocks).
   void apply(const double* r, double* z) const;
 
  private:

@@ -24,10 +24,13 @@ ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& patter
       tolerance_(tolerance),
       refactor_interval_(std::max(1, refactor_interval)),
       inverse_diagonal_(9 * static_cast<size_t>(pattern.node_count())),
-      r_(3 * static_cast<size_t>(pattern.node_count())),
-      z_(r_.size()),
-      p_(r_.size()),
-      ap_(r_.size()) {
+      x_(4 * static_cast<size_t>(pattern.node_count()), 0.0),
+      r_(x_.size(), 0.0),
+      z_(x_.size(), 0.0),
+      p_(x_.size(), 0.0),
+      ap_(x_.size(), 0.0),
+      start_product_(3 * static_cast<size_t>(pattern.node_count())),
+      padded_(pattern) {
   if (preconditioner_ == Preconditioner::kIncompleteCholesky)
     incomplete_cholesky_ = std::make_unique<BlockIncompleteCholesky>(pattern);
 }
@@ -38,6 +41,7 @@ void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
     solves_since_factor_ = (solves_since_factor_ + 1) % refactor_interval_;
     return;
   }
+  padded_.assign(a.values());
   for (uint32_t i = 0; i < a.node_count(); ++i) {
     const double* d = a.block(a.diagonal_block(i));
     double* inv = &inverse_diagonal_[9 * static_cast<size_t>(i)];
@@ -54,51 +58,50 @@ void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
 }
 
 void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) const {
-  const size_t nodes = r_.size() / 3;
+  const size_t nodes = r_.size() / 4;
   const double* inv = inverse_diagonal_.data();
   if (incomplete_cholesky_) {
     incomplete_cholesky_->apply(r, z);
     return;
   }
-  if (preconditioner_ == Preconditioner::kJacobi) {
-    for (size_t i = 0; i < nodes; ++i)
-      for (size_t c = 0; c < 3; ++c) z[3 * i + c] = inv[9 * i + c] * r[3 * i + c];
-    return;
-  }
   for (size_t i = 0; i < nodes; ++i) {
     const double* m = inv + 9 * i;
-    const double* ri = r + 3 * i;
-    z[3 * i] = m[0] * ri[0] + m[1] * ri[1] + m[2] * ri[2];
-    z[3 * i + 1] = m[3] * ri[0] + m[4] * ri[1] + m[5] * ri[2];
-    z[3 * i + 2] = m[6] * ri[0] + m[7] * ri[1] + m[8] * ri[2];
+    const double* ri = r + 4 * i;
+    double* zi = z + 4 * i;
+    if (preconditioner_ == Preconditioner::kJacobi) {
+      for (size_t c = 0; c < 3; ++c) zi[c] = m[c] * ri[c];
+    } else {
+      zi[0] = m[0] * ri[0] + m[1] * ri[1] + m[2] * ri[2];
+      zi[1] = m[3] * ri[0] + m[4] * ri[1] + m[5] * ri[2];
+      zi[2] = m[6] * ri[0] + m[7] * ri[1] + m[8] * ri[2];
+    }
   }
 }
 
-std::pair<double, double> ConjugateGradientSolver::update(double alpha, double converged_norm2,
-                                                          double* x) {
-  const size_t nodes = r_.size() / 3;
+std::pair<double, double> ConjugateGradientSolver::update(double alpha, double converged_norm2) {
+  const size_t nodes = r_.size() / 4;
   double r_norm2 = 0.0, rz = 0.0;
   if (preconditioner_ == Preconditioner::kBlockJacobi) {  // one pass: the block is local
     const double* inv = inverse_diagonal_.data();
     for (size_t i = 0; i < nodes; ++i) {
       double ri[3];
       for (size_t c = 0; c < 3; ++c) {
-        x[3 * i + c] += alpha * p_[3 * i + c];
-        ri[c] = r_[3 * i + c] - alpha * ap_[3 * i + c];
-        r_[3 * i + c] = ri[c];
+        x_[4 * i + c] += alpha * p_[4 * i + c];
+        ri[c] = r_[4 * i + c] - alpha * ap_[4 * i + c];
+        r_[4 * i + c] = ri[c];
       }
       const double* m = inv + 9 * i;
       for (size_t c = 0; c < 3; ++c) {
         const double zc = m[3 * c] * ri[0] + m[3 * c + 1] * ri[1] + m[3 * c + 2] * ri[2];
-        z_[3 * i + c] = zc;
+        z_[4 * i + c] = zc;
         r_norm2 += ri[c] * ri[c];
         rz += ri[c] * zc;
       }
     }
     return {r_norm2, rz};
   }
-  for (size_t i = 0; i < r_.size(); ++i) {
-    x[i] += alpha * p_[i];
+  for (size_t i = 0; i < r_.size(); ++i) {  // the fourth entries stay 0
+    x_[i] += alpha * p_[i];
     r_[i] -= alpha * ap_[i];
     r_norm2 += r_[i] * r_[i];
   }
@@ -109,19 +112,27 @@ std::pair<double, double> ConjugateGradientSolver::update(double alpha, double c
 
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
                                            double* x) {
-  const size_t n = r_.size();
+  const size_t nodes = r_.size() / 4;
   build_preconditioner(a);
   double b_norm2 = 0.0;
-  for (size_t i = 0; i < n; ++i) b_norm2 += b[i] * b[i];
+  for (size_t i = 0; i < 3 * nodes; ++i) b_norm2 += b[i] * b[i];
   SolveReport report;
   report.replaced_pivots = replaced_pivots_;
   if (b_norm2 == 0.0) {
-    std::fill_n(x, n, 0.0);
+    std::fill_n(x, 3 * nodes, 0.0);
     return report;
   }
   const double threshold2 = tolerance_ * tolerance_ * b_norm2;
-  a.multiply(x, ap_.data());
-  for (size_t i = 0; i < n; ++i) r_[i] = b[i] - ap_[i];
+  a.multiply(x, start_product_.data());
+  for (size_t i = 0; i < nodes; ++i)
+    for (size_t c = 0; c < 3; ++c) {
+      x_[4 * i + c] = x[3 * i + c];
+      r_[4 * i + c] = b[3 * i + c] - start_product_[3 * i + c];
+    }
+  auto write_back = [&] {
+    for (size_t i = 0; i < nodes; ++i)
+      for (size_t c = 0; c < 3; ++c) x[3 * i + c] = x_[4 * i + c];
+  };
   double r_norm2 = dot(r_, r_);
   report.relative_residual = std::sqrt(r_norm2 / b_norm2);
   if (r_norm2 <= threshold2) return report;
@@ -129,17 +140,23 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
   p_ = z_;
   double rz = dot(r_, z_);
   for (int k = 0; k < max_iterations_; ++k) {
-    const double p_ap = a.multiply(p_.data(), ap_.data());
+    // IC(0) needs few products: copying A to the padded layout would cost more than it saves.
+    const double p_ap = incomplete_cholesky_ ? a.multiply(p_.data(), ap_.data(), 4)
+                                             : padded_.multiply_symmetric(p_.data(), ap_.data());
     if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
-    const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2, x);
+    const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2);
     r_norm2 = r_norm2_next;
     report.iterations = k + 1;
     report.relative_residual = std::sqrt(r_norm2 / b_norm2);
-    if (r_norm2 <= threshold2) return report;
+    if (r_norm2 <= threshold2) {
+      write_back();
+      return report;
+    }
     const double beta = rz_next / rz;
     rz = rz_next;
-    for (size_t i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
+    for (size_t i = 0; i < p_.size(); ++i) p_[i] = z_[i] + beta * p_[i];
   }
+  write_back();
   report.converged = false;
   return report;
 }

@@ -13,6 +13,7 @@
 
 #include "block_sparse.hpp"
 #include "incomplete_cholesky.hpp"
+#include "padded_blocks.hpp"
 
 namespace tacta::models::corotational {
 
@@ -46,7 +47,7 @@ class ConjugateGradientSolver {
   void apply_preconditioner(const double* r, double* z) const;
   // x += alpha p, r -= alpha Ap, z = M^-1 r; returns (r.r, r.z) in one pass where M allows.
   // z is skipped (r.z returned as 0) when r.r <= converged_norm2 and M is not fused.
-  std::pair<double, double> update(double alpha, double converged_norm2, double* x);
+  std::pair<double, double> update(double alpha, double converged_norm2);
   Preconditioner preconditioner_;
   int max_iterations_;
   double tolerance_;
@@ -54,7 +55,11 @@ class ConjugateGradientSolver {
   int replaced_pivots_ = 0;
   std::unique_ptr<BlockIncompleteCholesky> incomplete_cholesky_;
   std::vector<double> inverse_diagonal_;  // 9 per node (block) or 3 per node (scalar)
-  std::vector<double> r_, z_, p_, ap_;
+  // CG's vectors hold 4 values per node (the fourth 0), the layout PaddedBlocks works in;
+  // b and x arrive with 3 and are converted at the solve's start and end.
+  std::vector<double> x_, r_, z_, p_, ap_;
+  std::vector<double> start_product_;  // A x at the start, 3 per node
+  PaddedBlocks padded_;  // A for the products, refreshed at each solve
 };
 
 // Eigen's LDL^T with an AMD ordering computed here once, so the matrix handed to the numeric

@@ -11,6 +11,7 @@
 #include "corotational_test_support.hpp"
 #include "incomplete_cholesky.hpp"
 #include "linear_solvers.hpp"
+#include "padded_blocks.hpp"
 
 namespace tacta::models::corotational {
 namespace {
@@ -54,9 +55,12 @@ TEST(BlockIncompleteCholesky, ExactWhenNothingIsDropped) {
   fill_from_dense(a, spd);
   BlockIncompleteCholesky ic(a);
   EXPECT_EQ(ic.factorize(a), 0);
-  std::vector<double> r(12), z(12);
-  for (double& v : r) v = uniform(random);
-  ic.apply(r.data(), z.data());
+  // apply() works on 4 values per node, the fourth 0.
+  std::vector<double> r4(16, 0.0), z4(16, 0.0), r(12), z(12);
+  for (int i = 0; i < 12; ++i) r4[4 * (i / 3) + i % 3] = r[i] = uniform(random);
+  ic.apply(r4.data(), z4.data());
+  for (int i = 0; i < 12; ++i) z[i] = z4[4 * (i / 3) + i % 3];
+  for (int node = 0; node < 4; ++node) EXPECT_EQ(z4[4 * node + 3], 0.0);
   EXPECT_LT(relative_residual(a, z, r), 1e-12);
 }
 
@@ -85,6 +89,23 @@ struct BeamSystem {
         rhs[3 * i + c] = mesh.fixed[i] ? 0.0 : std::sin(0.7 * i + c) * mesh.masses[i];
   }
 };
+
+TEST(PaddedBlocks, ProductMatchesTheBlockMatrix) {
+  BeamSystem system;
+  const uint32_t nodes = system.mesh.node_count();
+  PaddedBlocks padded(system.matrix);
+  padded.assign(system.matrix.values());
+  std::vector<double> x(3 * nodes), y(3 * nodes), x4(4 * nodes, 0.0), y4(4 * nodes, -1.0);
+  for (uint32_t k = 0; k < 3 * nodes; ++k) x4[4 * (k / 3) + k % 3] = x[k] = std::cos(0.3 * k);
+  const double dot = system.matrix.multiply(x.data(), y.data());
+  const double dot4 = padded.multiply_symmetric(x4.data(), y4.data());
+  double scale = 0.0;
+  for (double v : y) scale = std::max(scale, std::abs(v));
+  for (uint32_t k = 0; k < 3 * nodes; ++k)
+    EXPECT_NEAR(y4[4 * (k / 3) + k % 3], y[k], 1e-13 * scale);
+  for (uint32_t i = 0; i < nodes; ++i) EXPECT_EQ(y4[4 * i + 3], 0.0);
+  EXPECT_NEAR(dot4, dot, 1e-12 * std::abs(dot));
+}
 
 TEST(ConjugateGradient, IncompleteCholeskyMatchesSparseCholeskyInFewerIterations) {
   BeamSystem system;
