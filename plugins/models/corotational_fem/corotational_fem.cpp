@@ -173,7 +173,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   std::fill(forces_.begin(), forces_.end(), 0.0);
   const double stiffness_scale = h * beta_ + h * h;
   uint32_t e = 0;
-  if (options_.batch_elements)
+  if (options_.batch_elements && options_.rotation == RotationMethod::kPolar)
     for (; e + kBatchLanes <= elements_.size(); e += kBatchLanes)
       result |= step_batch(e / kBatchLanes, state.positions, stiffness_scale);
   for (; e < elements_.size(); ++e) {

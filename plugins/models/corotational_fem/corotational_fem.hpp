@@ -32,8 +32,8 @@ struct Options {
   int max_iterations = 25;  // CG iterations per step
   double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
   int refactor_interval = 1;  // incomplete Cholesky: steps between refactorisations
-  // step()'s element pass four tets at a time (element_batch.cpp); false: one at a time, the
-  // reference the batched pass is tested against.
+  // step()'s element pass four tets at a time (element_batch.cpp; polar rotation only); false:
+  // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
 };
 
