@@ -2,22 +2,13 @@
 
 namespace tacta::view {
 
-MouseTool::MouseTool(const PluginRegistry& plugins) {
-  const LoadedDescriptor* mouse = plugins.find(TACTA_KIND_DEVICE, "mouse");
-  if (mouse == nullptr) return;
-  const tacta_descriptor& d = *mouse->descriptor;
-  // Entries past the plugin's own table size are absent (an older plugin build).
-  if (d.api_size >= offsetof(tacta_device_api, input) + sizeof(InputFn))
-    input_ = static_cast<const tacta_device_api*>(d.api)->input;
-}
-
 void MouseTool::set_target(const Vec3d& target) {
   target_ = target;
-  if (input_ != nullptr) input_(nullptr, target_.data(), 3);
+  feed(target_);
 }
 
 void MouseTool::feed(const Vec3d& target) const {
-  if (input_ != nullptr) input_(nullptr, target.data(), 3);
+  if (feed_) feed_(target);
 }
 
 void MouseTool::update(const PointerState& pointer, const Camera& camera, const Viewport& viewport) {

@@ -1,16 +1,14 @@
 // The mouse as a haptic device: pointer input (real, or scripted in tests) moves the target of
 // the `mouse` device plugin. A left drag moves the target on the plane facing the camera through
 // the point where the drag began (grab-relative, so it does not jump); the wheel moves it along
-// the view direction. The target reaches the plugin through the device API's optional `input`
-// entry with a NULL instance (the mouse plugin's one process-wide target; the simulation owns
-// the instances).
+// the view direction. The target reaches the device through `feed`: the viewer wires it to
+// Simulation::device_input of every mouse device in the scene (the instances the simulation
+// owns, each with its own lock-free target).
 #pragma once
 
-#include <cstddef>
+#include <functional>
 
 #include "camera_ray.hpp"
-#include "tacta/device_api.h"
-#include "tacta/plugin_registry.hpp"
 
 namespace tacta::view {
 
@@ -23,11 +21,12 @@ struct PointerState {
 
 class MouseTool {
  public:
-  explicit MouseTool(const PluginRegistry& plugins);
-  bool available() const { return input_ != nullptr; }
+  using Feed = std::function<void(const Vec3d& target)>;  // m; must be safe from any thread
+  explicit MouseTool(Feed feed) : feed_(std::move(feed)) {}
+  bool available() const { return static_cast<bool>(feed_); }
 
   void set_target(const Vec3d& target);  // m, fed to the device at once
-  // Feeds a target without remembering it: safe from any thread (the plugin's slot is lock-free).
+  // Feeds a target without remembering it: safe from any thread (the device's slot is lock-free).
   void feed(const Vec3d& target) const;
   const Vec3d& target() const { return target_; }
   void set_depth_step(double metres_per_notch) { depth_step_m_ = metres_per_notch; }
@@ -36,8 +35,7 @@ class MouseTool {
   void update(const PointerState& pointer, const Camera& camera, const Viewport& viewport);
 
  private:
-  using InputFn = void (*)(void*, const double*, uint32_t);
-  InputFn input_ = nullptr;
+  Feed feed_;
   Vec3d target_{0, 0, 0};
   double depth_step_m_ = 0.002;  // m per wheel notch
   bool dragging_ = false;

@@ -53,6 +53,18 @@ std::vector<std::string> with_mouse(std::vector<std::string> overrides, bool mou
   return overrides;
 }
 
+// The viewer's pointer drives every mouse device of the scene, through the instances the
+// simulation owns; no feed when the scene has none.
+MouseTool::Feed mouse_feed(Simulation& simulation) {
+  std::vector<size_t> mice;
+  for (size_t d = 0; d < simulation.device_count(); ++d)
+    if (simulation.device_plugin(d) == "mouse") mice.push_back(d);
+  if (mice.empty()) return {};
+  return [&simulation, mice](const Vec3d& target) {
+    for (size_t d : mice) simulation.device_input(d, target.data(), 3);
+  };
+}
+
 PluginRegistry& loaded(PluginRegistry& plugins) {
   plugins.load();
   return plugins;
@@ -64,7 +76,7 @@ Viewer::Viewer(const ViewerOptions& options)
     : options_(options),
       scene_desc_(load_scene(options.scene, RegistrySchemas(loaded(plugins_)), with_mouse(options.overrides, options.mouse))),
       simulation_(std::make_unique<Simulation>(scene_desc_, plugins_)),
-      mouse_(plugins_),
+      mouse_(mouse_feed(*simulation_)),
       models_(std::make_unique<ModelPanel>(plugins_, *simulation_, scene_desc_)) {
   for (const DeviceDesc& d : scene_desc_.devices) mouse_driven_ = mouse_driven_ || d.plugin == "mouse";
   if (!options.script.empty()) script_.emplace(parse_script(options.script));

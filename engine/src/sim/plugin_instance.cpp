@@ -1,5 +1,7 @@
 #include "plugin_instance.hpp"
 
+#include <cstddef>
+
 #include <cstring>
 
 namespace tacta {
@@ -39,6 +41,13 @@ DeviceInstance::~DeviceInstance() {
   if (instance_ == nullptr) return;
   if (connected_) api_.disconnect(instance_);
   api_.destroy(instance_);
+}
+
+bool DeviceInstance::input(const double* values, uint32_t count) noexcept {
+  // An entry past the plugin's own table size is absent (a plugin built before it existed).
+  if (descriptor_.api_size < offsetof(tacta_device_api, input) + sizeof(api_.input) || api_.input == nullptr) return false;
+  api_.input(instance_, values, count);
+  return true;
 }
 
 void DeviceInstance::connect(const SourceLocation& where) {

@@ -62,6 +62,8 @@ class DeviceInstance {
     api_.write(instance_, time, &command);
   }
   const tacta_device_capabilities& capabilities() const noexcept { return capabilities_; }
+  // Host input (the optional `input` entry); false when the plugin has none. Any host thread.
+  bool input(const double* values, uint32_t count) noexcept;
   // The device's own account of its state; fills reason (NUL-terminated) when not connected.
   tacta_device_state status(char* reason, size_t capacity) noexcept;
 

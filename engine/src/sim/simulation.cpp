@@ -122,6 +122,16 @@ void Simulation::request_model_swap(size_t body, const std::string& model, const
   impl_->requested_models[body] = model;
 }
 
+bool Simulation::device_input(size_t device, const double* values, uint32_t count) {
+  World& world = impl_->world;
+  if (device >= world.device_count())
+    throw InputError({world.scene().path, 0, 0, "devices"}, "no device with index " + std::to_string(device));
+  return world.device(device).device->input(values, count);
+}
+
+size_t Simulation::device_count() const { return impl_->world.device_count(); }
+const std::string& Simulation::device_plugin(size_t device) const { return impl_->world.device(device).desc.plugin; }
+
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
 size_t Simulation::body_count() const { return impl_->world.body_count(); }
 const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }

@@ -6,9 +6,8 @@
 // that meets resistance. Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
 // about 1 N/mm usable stiffness at 1 kHz; numbers from /work/shared/data/README.md).
 //
-// There is one mouse per process: input() stores the target in a process-wide lock-free slot
-// that every instance follows, so the host may pass a NULL instance (the viewer does, since the
-// simulation owns the instances).
+// Each instance keeps its own target: the host feeds it through Simulation::device_input, which
+// calls input() with the instance the simulation owns. input() with a NULL instance is ignored.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -54,11 +53,6 @@ class TargetSlot {
   std::array<std::atomic<double>, 3> value_{};
 };
 
-TargetSlot& shared_target() {
-  static TargetSlot slot;
-  return slot;
-}
-
 Point to_point(std::span<const double> v, Point fallback) {
   return v.size() >= 3 ? Point{v[0], v[1], v[2]} : fallback;
 }
@@ -95,10 +89,11 @@ class MouseDevice {
     if (damping_ > 0.0) max_substep_ = std::min(max_substep_, 0.5 * mass_ / damping_);
   }
 
-  static void input(MouseDevice*, const double* values, uint32_t count) noexcept {
-    if (values == nullptr || count < 3) return;
+  // Host thread (the viewer's), while the haptic thread may be in read(): the slot is lock-free.
+  static void input(MouseDevice* self, const double* values, uint32_t count) noexcept {
+    if (self == nullptr || values == nullptr || count < 3) return;
     const Point p{values[0], values[1], values[2]};
-    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) shared_target().store(p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) self->target_.store(p);
   }
 
   void connect() { connected_ = true; }
@@ -136,7 +131,7 @@ class MouseDevice {
  private:
   Point current_target() const noexcept {
     Point target = start_;
-    shared_target().load(target);  // keeps start_ until the host feeds a target
+    target_.load(target);  // keeps start_ until the host feeds a target
     return target;
   }
 
@@ -159,6 +154,7 @@ class MouseDevice {
     if (position_[i] > high) { position_[i] = high; velocity_[i] = std::min(velocity_[i], 0.0); }
   }
 
+  TargetSlot target_;
   Point start_{}, origin_{};
   bool limit_to_workspace_ = false;
   double mass_ = 0.1, stiffness_ = 300, damping_ = 11;

@@ -1,5 +1,5 @@
-// The mouse device plugin through the real C ABI, and the viewer's MouseTool feeding it through
-// the plugin registry (the optional `input` entry of tacta_device_api).
+// The mouse device plugin through the real C ABI (its `input` entry feeds one instance), and the
+// viewer's MouseTool feeding a device.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,12 +58,20 @@ TEST(MouseDevice, FollowsTheFedTargetAndYieldsToTheRenderedForce) {
   testing::LoadedPlugin plugin("tacta_mouse.so");
   MouseInstance mouse(plugin);
   const double start[3] = {0.01, 0.12, -0.02};
-  mouse.api.input(nullptr, start, 3);
+  mouse.api.input(mouse.instance, start, 3);
   tacta_device_sample s = mouse.read(0.0);  // first read: at rest on the target
   EXPECT_DOUBLE_EQ(s.position[1], 0.12);
 
+  // Each instance has its own target: another mouse, and a NULL instance, leave this one alone.
+  MouseInstance other(plugin);
+  const double elsewhere[3] = {-0.05, 0.2, 0.05};
+  other.api.input(other.instance, elsewhere, 3);
+  mouse.api.input(nullptr, elsewhere, 3);
+  EXPECT_DOUBLE_EQ(other.read(0.0).position[1], 0.2);
+  EXPECT_DOUBLE_EQ(mouse.read(0.0).position[1], 0.12);
+
   const double moved[3] = {0.02, 0.10, -0.02};
-  mouse.api.input(nullptr, moved, 3);
+  mouse.api.input(mouse.instance, moved, 3);
   double t = mouse.hold(0.0, 0.5, {0, 0, 0});  // critically damped, omega = 55 rad/s: settled
   s = mouse.read(t);
   EXPECT_NEAR(s.position[0], 0.02, 1e-6);
@@ -80,10 +88,11 @@ TEST(MouseDevice, FollowsTheFedTargetAndYieldsToTheRenderedForce) {
 }
 
 TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
-  PluginRegistry plugins(PluginRegistry::DefaultPaths::Skip);
-  plugins.load_file(std::string(TACTA_PLUGIN_DIR) + "/tacta_mouse.so");
-  MouseTool tool(plugins);
+  testing::LoadedPlugin plugin("tacta_mouse.so");
+  MouseInstance mouse(plugin);
+  MouseTool tool([&mouse](const Vec3d& target) { mouse.api.input(mouse.instance, target.data(), 3); });
   ASSERT_TRUE(tool.available());
+  EXPECT_FALSE(MouseTool({}).available()) << "no feed: a scene without a mouse device";
   Camera camera;
   camera.eye = {0, 0.1, 1};
   camera.target = {0, 0.1, 0};
@@ -100,19 +109,10 @@ TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
   tool.update({100, 100, true, 0, true}, camera, view);  // over the panel: ignored
   EXPECT_FALSE(tool.dragging());
 
-  // The device the registry loaded follows what the tool fed.
-  const auto& api = *static_cast<const tacta_device_api*>(plugins.require(TACTA_KIND_DEVICE, "mouse").descriptor->api);
-  const std::vector<tacta_param_value> defaults = testing::default_params(*plugins.require(TACTA_KIND_DEVICE, "mouse").descriptor);
-  tacta_device_setup setup{sizeof(tacta_device_setup), defaults.data(), static_cast<uint32_t>(defaults.size()), "", 1, kDt};
-  void* instance = nullptr;
-  char message[256] = {0};
-  ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
-  api.connect(instance, message, sizeof message);
-  tacta_device_sample s{};
-  api.read(instance, 0.0, &s);
+  // The device follows what the tool fed (first read: at rest on the target).
+  const tacta_device_sample s = mouse.read(0.0);
   EXPECT_NEAR(s.position[1], tool.target()[1], 1e-12);
   EXPECT_NEAR(s.position[2], tool.target()[2], 1e-12);
-  api.destroy(instance);
 }
 
 }  // namespace

@@ -119,3 +119,50 @@ TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
 
 }  // namespace
 }  // namespace tacta::simtest
+
+namespace tacta::simtest {
+namespace {
+
+// Device input from outside the haptic thread (Simulation::device_input): each mouse device of
+// the scene follows its own target, fed to the instance the simulation owns.
+TEST(SimulationRequests, DeviceInputReachesEachDeviceInstance) {
+  const char* const scene_text = R"(
+name: two_mice
+gravity: [0, 0, 0]
+clock: {duration_s: 0.3}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1]}}
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000}
+    model: tensor_mass
+    fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+devices:
+  - {name: left, plugin: mouse, params: {start_position: [0, 0.3, 0]}}
+  - {name: right, plugin: mouse, params: {start_position: [0, 0.3, 0]}}
+)";
+  Simulation simulation(scene_from_text(scene_text, "two_mice"), plugins());
+  ASSERT_EQ(simulation.device_count(), 2u);
+  EXPECT_EQ(simulation.device_plugin(1), "mouse");
+  const double left[3] = {0.05, 0.25, 0.0}, right[3] = {-0.05, 0.35, 0.02};
+  EXPECT_TRUE(simulation.device_input(0, left, 3));
+  EXPECT_TRUE(simulation.device_input(1, right, 3));
+  EXPECT_THROW(simulation.device_input(2, left, 3), InputError);
+  const std::string out = fresh_dir("two_mice");
+  RunOptions options;
+  options.out_dir = out;
+  simulation.run(options);
+  // trace.csv: the last row of each device is where its stylus settled (critically damped hand).
+  const Csv trace = read_csv(out + "/trace.csv");
+  double settled[2][3] = {};
+  for (size_t i = 0; i < trace.rows.size(); ++i) {
+    const auto d = static_cast<size_t>(trace.number(i, "device"));
+    for (int a = 0; a < 3; ++a) settled[d][a] = trace.number(i, std::string("device_") + "xyz"[a] + "_m");
+  }
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(settled[0][a], left[a], 1e-4) << "axis " << a;
+    EXPECT_NEAR(settled[1][a], right[a], 1e-4) << "axis " << a;
+  }
+}
+
+}  // namespace
+}  // namespace tacta::simtest

@@ -72,6 +72,12 @@ class Simulation {
   // Ends run() after the current tick. The request is consumed when that run() returns, so a
   // later run() runs again (how the viewer pauses and plays on).
   void request_stop() noexcept;
+  // From any thread, before or during run(): hands `values` to device `device`'s input entry
+  // (the mouse device: a target x, y, z in m). Lock-free in the plugin; false when the device
+  // takes no input. Throws InputError for an index past device_count().
+  bool device_input(size_t device, const double* values, uint32_t count);
+  size_t device_count() const;
+  const std::string& device_plugin(size_t device) const;  // the plugin's name, e.g. "mouse"
   size_t body_count() const;
   const std::string& body_name(size_t body) const;
   const std::string& body_model(size_t body) const;  // the model asked for last
