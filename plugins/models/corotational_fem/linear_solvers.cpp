@@ -4,6 +4,10 @@
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include "hot_path.hpp"
+#include "lanes4.hpp"
 
 namespace tacta::models::corotational {
 
@@ -23,7 +27,7 @@ ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& patter
       max_iterations_(max_iterations),
       tolerance_(tolerance),
       refactor_interval_(std::max(1, refactor_interval)),
-      inverse_diagonal_(9 * static_cast<size_t>(pattern.node_count())),
+      inverse_columns_(12 * static_cast<size_t>(pattern.node_count()), 0.0),
       x_(4 * static_cast<size_t>(pattern.node_count()), 0.0),
       r_(x_.size(), 0.0),
       z_(x_.size(), 0.0),
@@ -43,63 +47,62 @@ void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
   }
   padded_.assign(a.values());
   for (uint32_t i = 0; i < a.node_count(); ++i) {
-    const double* d = a.block(a.diagonal_block(i));
-    double* inv = &inverse_diagonal_[9 * static_cast<size_t>(i)];
-    if (preconditioner_ == Preconditioner::kJacobi) {
-      inv[0] = 1.0 / d[0];
-      inv[1] = 1.0 / d[4];
-      inv[2] = 1.0 / d[8];
-    } else {
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> block(d);
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> inverse(inv);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> block(
+        a.block(a.diagonal_block(i)));
+    Eigen::Matrix3d inverse = Eigen::Matrix3d::Zero();
+    if (preconditioner_ == Preconditioner::kJacobi)
+      inverse.diagonal() = block.diagonal().cwiseInverse();
+    else
       inverse = block.inverse();
-    }
+    double* columns = &inverse_columns_[12 * static_cast<size_t>(i)];
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) columns[4 * c + r] = inverse(r, c);
   }
 }
 
 void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) const {
-  const size_t nodes = r_.size() / 4;
-  const double* inv = inverse_diagonal_.data();
   if (incomplete_cholesky_) {
     incomplete_cholesky_->apply(r, z);
     return;
   }
+  const size_t nodes = r_.size() / 4;
+  const double* columns = inverse_columns_.data();
   for (size_t i = 0; i < nodes; ++i) {
-    const double* m = inv + 9 * i;
-    const double* ri = r + 4 * i;
-    double* zi = z + 4 * i;
-    if (preconditioner_ == Preconditioner::kJacobi) {
-      for (size_t c = 0; c < 3; ++c) zi[c] = m[c] * ri[c];
-    } else {
-      zi[0] = m[0] * ri[0] + m[1] * ri[1] + m[2] * ri[2];
-      zi[1] = m[3] * ri[0] + m[4] * ri[1] + m[5] * ri[2];
-      zi[2] = m[6] * ri[0] + m[7] * ri[1] + m[8] * ri[2];
-    }
+    const double* m = columns + 12 * i;
+    for (int l = 0; l < 4; ++l)
+      z[4 * i + l] = r[4 * i] * m[l] + r[4 * i + 1] * m[4 + l] + r[4 * i + 2] * m[8 + l];
   }
 }
 
-std::pair<double, double> ConjugateGradientSolver::update(double alpha, double converged_norm2) {
+TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update(
+    double alpha, double converged_norm2) {
   const size_t nodes = r_.size() / 4;
-  double r_norm2 = 0.0, rz = 0.0;
-  if (preconditioner_ == Preconditioner::kBlockJacobi) {  // one pass: the block is local
-    const double* inv = inverse_diagonal_.data();
+  if (!incomplete_cholesky_) {  // one pass, 4-wide: the (block) Jacobi inverse is local
+    const Lanes4 a4 = TACTA_SPLAT4(alpha);
+    Lanes4 r_norm2 = TACTA_SPLAT4(0.0), rz = r_norm2;
     for (size_t i = 0; i < nodes; ++i) {
-      double ri[3];
-      for (size_t c = 0; c < 3; ++c) {
-        x_[4 * i + c] += alpha * p_[4 * i + c];
-        ri[c] = r_[4 * i + c] - alpha * ap_[4 * i + c];
-        r_[4 * i + c] = ri[c];
-      }
-      const double* m = inv + 9 * i;
-      for (size_t c = 0; c < 3; ++c) {
-        const double zc = m[3 * c] * ri[0] + m[3 * c + 1] * ri[1] + m[3 * c + 2] * ri[2];
-        z_[4 * i + c] = zc;
-        r_norm2 += ri[c] * ri[c];
-        rz += ri[c] * zc;
-      }
+      Lanes4 x, p, r, ap, c0, c1, c2;
+      std::memcpy(&x, &x_[4 * i], sizeof x);
+      std::memcpy(&p, &p_[4 * i], sizeof p);
+      std::memcpy(&r, &r_[4 * i], sizeof r);
+      std::memcpy(&ap, &ap_[4 * i], sizeof ap);
+      x += a4 * p;
+      r -= a4 * ap;
+      std::memcpy(&x_[4 * i], &x, sizeof x);
+      std::memcpy(&r_[4 * i], &r, sizeof r);
+      const double* m = &inverse_columns_[12 * i];
+      std::memcpy(&c0, m, sizeof c0);
+      std::memcpy(&c1, m + 4, sizeof c1);
+      std::memcpy(&c2, m + 8, sizeof c2);
+      const Lanes4 z = TACTA_SPLAT4(r[0]) * c0 + TACTA_SPLAT4(r[1]) * c1 + TACTA_SPLAT4(r[2]) * c2;
+      std::memcpy(&z_[4 * i], &z, sizeof z);
+      r_norm2 += r * r;
+      rz += r * z;
     }
-    return {r_norm2, rz};
+    return {(r_norm2[0] + r_norm2[1]) + (r_norm2[2] + r_norm2[3]),
+            (rz[0] + rz[1]) + (rz[2] + rz[3])};
   }
+  double r_norm2 = 0.0;
   for (size_t i = 0; i < r_.size(); ++i) {  // the fourth entries stay 0
     x_[i] += alpha * p_[i];
     r_[i] -= alpha * ap_[i];

@@ -54,7 +54,9 @@ class ConjugateGradientSolver {
   int refactor_interval_, solves_since_factor_ = 0;
   int replaced_pivots_ = 0;
   std::unique_ptr<BlockIncompleteCholesky> incomplete_cholesky_;
-  std::vector<double> inverse_diagonal_;  // 9 per node (block) or 3 per node (scalar)
+  // (Block) Jacobi: the inverse diagonal block per node as 3 columns of 4 (the fourth 0), so
+  // z_i = r_i0 col0 + r_i1 col1 + r_i2 col2 is 4-wide.
+  std::vector<double> inverse_columns_;
   // CG's vectors hold 4 values per node (the fourth 0), the layout PaddedBlocks works in;
   // b and x arrive with 3 and are converted at the solve's start and end.
   std::vector<double> x_, r_, z_, p_, ap_;

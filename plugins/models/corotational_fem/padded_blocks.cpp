@@ -4,15 +4,10 @@
 #include <cstring>
 
 #include "hot_path.hpp"
+#include "lanes4.hpp"
 
 namespace tacta::models::corotational {
 
-namespace {
-// Four doubles as one GCC vector: one AVX2 register in the x86-64-v3 clone, two SSE2 ones in
-// the baseline. Loaded and stored with memcpy (unaligned), never passed to a function.
-typedef double Lanes4 __attribute__((vector_size(32)));
-#define splat(value) (Lanes4{(value), (value), (value), (value)})
-}  // namespace
 
 PaddedBlocks::PaddedBlocks(const BlockSparseMatrix& pattern)
     : node_count_(pattern.node_count()),
@@ -34,9 +29,9 @@ TACTA_HOT_PATH double PaddedBlocks::multiply_symmetric(const double* __restrict 
   double x_dot_y = 0.0;
   for (uint32_t i = 0; i < node_count_; ++i) {
     const double* xi = x + 4 * size_t{i};
-    const Lanes4 x0 = splat(xi[0]), x1 = splat(xi[1]), x2 = splat(xi[2]);
+    const Lanes4 x0 = TACTA_SPLAT4(xi[0]), x1 = TACTA_SPLAT4(xi[1]), x2 = TACTA_SPLAT4(xi[2]);
     // acc_r: row r of each block times x_j, lane by lane; its lanes summed at the row's end.
-    Lanes4 acc0 = splat(0.0), acc1 = acc0, acc2 = acc0;
+    Lanes4 acc0 = TACTA_SPLAT4(0.0), acc1 = acc0, acc2 = acc0;
     for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {
       const double* b = v + 12 * size_t{k};
       const size_t j = 4 * size_t{columns_[k]};
