@@ -111,7 +111,7 @@ class CorotationalFem {
   std::unique_ptr<ConjugateGradientSolver> cg_;
   std::unique_ptr<CholeskySolver> cholesky_;
   std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
-      rhs_, delta_v_, weights_;
+      rhs_, delta_v_, previous_delta_v_, weights_;
   SolveReport last_solve_;
   long polar_iterations_ = 0;
 };
