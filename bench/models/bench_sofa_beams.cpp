@@ -132,6 +132,8 @@ const Variant kPolarIcTolerance{.preconditioner = Preconditioner::kIncompleteCho
                                 .tolerance = 1e-7};
 const Variant kPolarIcRefactor10{.preconditioner = Preconditioner::kIncompleteCholesky,
                                  .tolerance = 1e-7, .refactor_interval = 10};
+const Variant kPolarIcMatched{.preconditioner = Preconditioner::kIncompleteCholesky,
+                              .tolerance = 3e-7, .refactor_interval = 10};
 const Variant kPolarIcFactorOnce{.preconditioner = Preconditioner::kIncompleteCholesky,
                                  .tolerance = 1e-7, .refactor_interval = 1000000};
 
@@ -151,6 +153,7 @@ TACTA_BEAMS(polar_cholesky, kPolarCholesky);
 TACTA_BEAMS(polar_cg25_incomplete_cholesky, kPolarIc);
 TACTA_BEAMS(polar_cg_tol1e-7_incomplete_cholesky, kPolarIcTolerance);
 TACTA_BEAMS(polar_cg_tol1e-7_incomplete_cholesky_every10, kPolarIcRefactor10);
+TACTA_BEAMS(polar_cg_tol3e-7_incomplete_cholesky_every10, kPolarIcMatched);
 TACTA_BEAMS(polar_cg_tol1e-7_incomplete_cholesky_at_start_only, kPolarIcFactorOnce);
 
 }  // namespace

@@ -67,13 +67,18 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
         for (int l = 0; l < kLanes; ++l) f[3 * r + k][l] += x[r][l] * rest.gradients[a][k][l];
   }
   // Warm start q = turn * last (Eigen's coeffs are x, y, z, w).
-  Lanes qw, qx, qy, qz;
+  Lanes tw, tx, ty, tz, lw, lx, ly, lz, qw, qx, qy, qz;
   for (int l = 0; l < kLanes; ++l) {
-    const Eigen::Quaterniond q = step_turn_[first + l] * step_rotation_[first + l];
-    qw[l] = q.w();
-    qx[l] = q.x();
-    qy[l] = q.y();
-    qz[l] = q.z();
+    const double* turn = step_turn_[first + l].coeffs().data();
+    const double* last = step_rotation_[first + l].coeffs().data();
+    tx[l] = turn[0], ty[l] = turn[1], tz[l] = turn[2], tw[l] = turn[3];
+    lx[l] = last[0], ly[l] = last[1], lz[l] = last[2], lw[l] = last[3];
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    qw[l] = tw[l] * lw[l] - tx[l] * lx[l] - ty[l] * ly[l] - tz[l] * lz[l];
+    qx[l] = tw[l] * lx[l] + tx[l] * lw[l] + ty[l] * lz[l] - tz[l] * ly[l];
+    qy[l] = tw[l] * ly[l] - tx[l] * lz[l] + ty[l] * lw[l] + tz[l] * lx[l];
+    qz[l] = tw[l] * lz[l] + tx[l] * ly[l] - ty[l] * lx[l] + tz[l] * lw[l];
   }
   // One Newton step of polar_rotation() on every lane.
   Lanes rot[9];
@@ -87,7 +92,8 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
   Lanes wx, wy, wz;
   bool stepped[kLanes], finished[kLanes];
   for (int l = 0; l < kLanes; ++l) {
-    const double tx = b[7][l] - b[5][l], ty = b[2][l] - b[6][l], tz = b[3][l] - b[1][l];
+    // g: the torque sum_i r_i x f_i, gradient of tr(R^T F) in the rotation.
+    const double gx = b[7][l] - b[5][l], gy = b[2][l] - b[6][l], gz = b[3][l] - b[1][l];
     const double trace = b[0][l] + b[4][l] + b[8][l];
     const double h00 = trace - b[0][l], h11 = trace - b[4][l], h22 = trace - b[8][l];
     const double h01 = -0.5 * (b[1][l] + b[3][l]);
@@ -98,14 +104,14 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
     const double c12 = h01 * h02 - h00 * h12, c22 = h00 * h11 - h01 * h01;
     const double determinant = h00 * c00 + h01 * c01 + h02 * c02;
     const bool converged =
-        tx * tx + ty * ty + tz * tz < 4.0 * kAngleTolerance2 * (trace * trace) / 9.0;
+        gx * gx + gy * gy + gz * gz < 4.0 * kAngleTolerance2 * (trace * trace) / 9.0;
     const bool newton = h00 > 0.0 && c22 > 0.0 && determinant > 1e-12 * h00 * h00 * h00;
     const double newton_scale = newton ? 1.0 / determinant : 0.0;
     const double safe_scale = newton ? 0.0 : 1.0 / (std::abs(trace) + 1e-9);
     const double keep = converged ? 0.0 : 1.0;
-    wx[l] = keep * (newton_scale * (c00 * tx + c01 * ty + c02 * tz) + safe_scale * tx);
-    wy[l] = keep * (newton_scale * (c01 * tx + c11 * ty + c12 * tz) + safe_scale * ty);
-    wz[l] = keep * (newton_scale * (c02 * tx + c12 * ty + c22 * tz) + safe_scale * tz);
+    wx[l] = keep * (newton_scale * (c00 * gx + c01 * gy + c02 * gz) + safe_scale * gx);
+    wy[l] = keep * (newton_scale * (c01 * gx + c11 * gy + c12 * gz) + safe_scale * gy);
+    wz[l] = keep * (newton_scale * (c02 * gx + c12 * gy + c22 * gz) + safe_scale * gz);
     stepped[l] = !converged;
     finished[l] =
         converged || (newton && wx[l] * wx[l] + wy[l] * wy[l] + wz[l] * wz[l] < kNewtonFinalStep2);
@@ -126,8 +132,8 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
   uint32_t result = TACTA_STEP_OK;
   for (int l = 0; l < kLanes; ++l) {
     polar_iterations_ += stepped[l] ? 1 : 0;
-    Eigen::Quaterniond q(qw[l], qx[l], qy[l], qz[l]);
     if (!finished[l]) {  // rare: far from the answer, the scalar iteration carries on
+      Eigen::Quaterniond q(qw[l], qx[l], qy[l], qz[l]);
       Eigen::Matrix3d deformation;
       for (int i = 0; i < 9; ++i) deformation(i / 3, i % 3) = f[i][l];
       polar_iterations_ += polar_rotation(deformation, q, kPolarMaxIterations - 1);
@@ -136,8 +142,19 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
       qy[l] = q.y();
       qz[l] = q.z();
     }
-    step_turn_[first + l] = q * step_rotation_[first + l].conjugate();
-    step_rotation_[first + l] = q;
+  }
+  // History: turn = q last^-1 (last is a unit quaternion: its inverse is its conjugate).
+  for (int l = 0; l < kLanes; ++l) {
+    tw[l] = qw[l] * lw[l] + qx[l] * lx[l] + qy[l] * ly[l] + qz[l] * lz[l];
+    tx[l] = -qw[l] * lx[l] + qx[l] * lw[l] - qy[l] * lz[l] + qz[l] * ly[l];
+    ty[l] = -qw[l] * ly[l] + qx[l] * lz[l] + qy[l] * lw[l] - qz[l] * lx[l];
+    tz[l] = -qw[l] * lz[l] - qx[l] * ly[l] + qy[l] * lx[l] + qz[l] * lw[l];
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    double* turn = step_turn_[first + l].coeffs().data();
+    double* last = step_rotation_[first + l].coeffs().data();
+    turn[0] = tx[l], turn[1] = ty[l], turn[2] = tz[l], turn[3] = tw[l];
+    last[0] = qx[l], last[1] = qy[l], last[2] = qz[l], last[3] = qw[l];
   }
   quaternion_to_matrix(qw, qx, qy, qz, rot);
   // Inversion, strain eps = sym(R^T F) - I, stress, world stress R sigma.
