@@ -33,7 +33,6 @@ ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& patter
       z_(x_.size(), 0.0),
       p_(x_.size(), 0.0),
       ap_(x_.size(), 0.0),
-      start_product_(3 * static_cast<size_t>(pattern.node_count())),
       padded_(pattern) {
   if (preconditioner_ == Preconditioner::kIncompleteCholesky)
     incomplete_cholesky_ = std::make_unique<BlockIncompleteCholesky>(pattern);
@@ -113,6 +112,12 @@ TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update(
   return {r_norm2, dot(r_, z_)};
 }
 
+double ConjugateGradientSolver::multiply(const BlockSparseMatrix& a, const double* x,
+                                         double* y) const {
+  // IC(0) needs few products: copying A to the padded layout would cost more than it saves.
+  return incomplete_cholesky_ ? a.multiply(x, y, 4) : padded_.multiply_symmetric(x, y);
+}
+
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
                                            double* x) {
   const size_t nodes = r_.size() / 4;
@@ -126,12 +131,11 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
     return report;
   }
   const double threshold2 = tolerance_ * tolerance_ * b_norm2;
-  a.multiply(x, start_product_.data());
   for (size_t i = 0; i < nodes; ++i)
-    for (size_t c = 0; c < 3; ++c) {
-      x_[4 * i + c] = x[3 * i + c];
-      r_[4 * i + c] = b[3 * i + c] - start_product_[3 * i + c];
-    }
+    for (size_t c = 0; c < 3; ++c) x_[4 * i + c] = x[3 * i + c];
+  multiply(a, x_.data(), ap_.data());
+  for (size_t i = 0; i < nodes; ++i)
+    for (size_t c = 0; c < 3; ++c) r_[4 * i + c] = b[3 * i + c] - ap_[4 * i + c];
   auto write_back = [&] {
     for (size_t i = 0; i < nodes; ++i)
       for (size_t c = 0; c < 3; ++c) x[3 * i + c] = x_[4 * i + c];
@@ -143,9 +147,7 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
   p_ = z_;
   double rz = dot(r_, z_);
   for (int k = 0; k < max_iterations_; ++k) {
-    // IC(0) needs few products: copying A to the padded layout would cost more than it saves.
-    const double p_ap = incomplete_cholesky_ ? a.multiply(p_.data(), ap_.data(), 4)
-                                             : padded_.multiply_symmetric(p_.data(), ap_.data());
+    const double p_ap = multiply(a, p_.data(), ap_.data());
     if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
     const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2);
     r_norm2 = r_norm2_next;

@@ -45,6 +45,8 @@ class ConjugateGradientSolver {
  private:
   void build_preconditioner(const BlockSparseMatrix& a);
   void apply_preconditioner(const double* r, double* z) const;
+  // y = A x on 4-per-node vectors, returns x . y.
+  double multiply(const BlockSparseMatrix& a, const double* x, double* y) const;
   // x += alpha p, r -= alpha Ap, z = M^-1 r; returns (r.r, r.z) in one pass where M allows.
   // z is skipped (r.z returned as 0) when r.r <= converged_norm2 and M is not fused.
   std::pair<double, double> update(double alpha, double converged_norm2);
@@ -60,7 +62,6 @@ class ConjugateGradientSolver {
   // CG's vectors hold 4 values per node (the fourth 0), the layout PaddedBlocks works in;
   // b and x arrive with 3 and are converted at the solve's start and end.
   std::vector<double> x_, r_, z_, p_, ap_;
-  std::vector<double> start_product_;  // A x at the start, 3 per node
   PaddedBlocks padded_;  // A for the products, refreshed at each solve
 };
 
