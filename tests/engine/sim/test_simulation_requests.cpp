@@ -1,7 +1,9 @@
 // Requests from outside the haptic thread (Simulation::request_model_swap, request_stop): a swap
 // posted before run() is taken at the first tick and listed in report.json's models_run; a stop
 // ends the run after the current tick and is consumed, so the next run() runs in full.
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -162,6 +164,49 @@ devices:
     EXPECT_NEAR(settled[0][a], left[a], 1e-4) << "axis " << a;
     EXPECT_NEAR(settled[1][a], right[a], 1e-4) << "axis " << a;
   }
+}
+
+// The viewer's case: a target fed from the GUI thread while the haptic thread reads the device
+// (realtime). The stylus ends where the last target was; clean under ThreadSanitizer
+// (build-tsan/bin/sim_simulation_test --gtest_filter='*DeviceInput*').
+TEST(SimulationRequests, DeviceInputDuringARealtimeRun) {
+  const char* const scene_text = R"(
+name: one_mouse
+gravity: [0, 0, 0]
+clock: {mode: realtime, duration_s: 0.4}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1]}}
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000}
+    model: tensor_mass
+    fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+devices:
+  - {name: hand, plugin: mouse, params: {start_position: [0, 0.3, 0]}}
+)";
+  Simulation simulation(scene_from_text(scene_text, "one_mouse"), plugins());
+  const std::string out = fresh_dir("one_mouse");
+  std::atomic<bool> done{false};
+  std::thread runner([&] {
+    RunOptions options;
+    options.out_dir = out;
+    simulation.run(options);
+    done.store(true);
+  });
+  // Sweep the target for 0.15 s of wall time, then leave it at its last value.
+  const double last[3] = {0.02, 0.28, 0.01};
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; std::chrono::steady_clock::now() - start < std::chrono::milliseconds(150); ++k) {
+    const double target[3] = {0.02 * std::sin(0.1 * k), 0.28, 0.01};
+    simulation.device_input(0, target, 3);
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  simulation.device_input(0, last, 3);
+  runner.join();
+  ASSERT_TRUE(done.load());
+  const Csv trace = read_csv(out + "/trace.csv");
+  ASSERT_FALSE(trace.rows.empty());
+  const size_t end = trace.rows.size() - 1;
+  EXPECT_NEAR(trace.number(end, "device_y_m"), last[1], 2e-3) << "the stylus follows the fed target";
 }
 
 }  // namespace
