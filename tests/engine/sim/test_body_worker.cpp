@@ -156,7 +156,9 @@ TEST(BodyWorker, RealtimeRunNeverWaitsAndCountsLateSteps) {
   const RunResult r = run_scene(scene, options);
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.mode, "realtime");
-  EXPECT_GE(r.bodies[0].worker_steps, 15u) << "about 20 steps of 10 ms in 0.2 s";
+  // About 20 steps of 10 ms in 0.2 s; fewer only if steps came in late (a slow, shared machine).
+  EXPECT_GE(r.bodies[0].worker_steps + r.bodies[0].late_boundaries, 15u);
+  EXPECT_GE(r.bodies[0].worker_steps, 5u);
   EXPECT_LE(r.bodies[0].worker_steps, 21u);
 }
 
