@@ -72,9 +72,9 @@ typedef struct tacta_device_api {
   /* optional: current state and, when not connected, why (NUL-terminated). */
   tacta_device_state (*status)(void* instance, char* reason, size_t reason_capacity);
   /* optional: input fed by the host, such as the viewer's mouse; `values` are device-specific
-   * (mouse: target x, y, z in m). Called from a host thread (not the haptic one) while read()
-   * may run: the plugin makes it lock-free. A plugin may accept instance == NULL, meaning every
-   * live instance (a host that does not hold the instances); it documents whether it does. */
+   * (mouse: target x, y, z in m). The engine calls it for one instance (Simulation::device_input)
+   * from a host thread (not the haptic one) while read() may run: the plugin makes it
+   * lock-free. */
   void (*input)(void* instance, const double* values, uint32_t count);
 } tacta_device_api;
 
