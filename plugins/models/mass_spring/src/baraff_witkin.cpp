@@ -68,7 +68,8 @@ void BaraffWitkinSolver::assemble(const MassSpringModel& model, const double* x,
       for (int c = 0; c < 3; ++c)
         jac[3 * r + c] = k * (n[r] * n[c] + transverse * ((r == c ? 1.0 : 0.0) - n[r] * n[c]));
     const int32_t* slots = &spring_slots_[36 * s];
-    const double h2 = dt * dt;
+    // Implicit Euler with C = alpha M + beta K: the stiffness enters as (dt^2 + dt beta) K.
+    const double h2 = dt * dt + dt * model.stiffness_damping();
     for (int q = 0; q < 9; ++q) {
       if (!fixed[a]) values[slots[q]] += h2 * jac[q];
       if (!fixed[a] && !fixed[b]) {
@@ -113,7 +114,9 @@ uint32_t BaraffWitkinSolver::step(const MassSpringModel& model, tacta_body_state
   model.internal_forces(x, force_.data());
   const SpringSet& springs = model.springs();
   const std::vector<uint8_t>& fixed = model.fixed();
-  // rhs = dt (f0 + f_ext - C v + dt df/dx v); df/dx v gathered spring by spring.
+  // rhs = dt (f0 + f_ext - C v + dt df/dx v) with C = alpha M + beta K: the K v part is
+  // -(dt + beta) K v; df/dx v = -K v gathered spring by spring.
+  const double kv_scale = dt + model.stiffness_damping();  // s
   for (uint32_t i = 0; i < model.node_count(); ++i)
     for (uint32_t c = 3 * i; c < 3 * i + 3; ++c)
       rhs_[c] = force_[c] + state.external_forces[c] - model.damping_per_node(i) * v[c];
@@ -123,8 +126,8 @@ uint32_t BaraffWitkinSolver::step(const MassSpringModel& model, tacta_body_state
     for (int r = 0; r < 3; ++r) {
       double jv = 0;  // K_s (v_b - v_a): the spring's df_a/dx v
       for (int c = 0; c < 3; ++c) jv += jac[3 * r + c] * (v[3 * b + c] - v[3 * a + c]);
-      rhs_[3 * a + r] += dt * jv;
-      rhs_[3 * b + r] -= dt * jv;
+      rhs_[3 * a + r] += kv_scale * jv;
+      rhs_[3 * b + r] -= kv_scale * jv;
     }
   }
   for (uint32_t i = 0; i < model.node_count(); ++i)

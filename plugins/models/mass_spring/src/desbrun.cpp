@@ -17,7 +17,8 @@ DesbrunSolver::DesbrunSolver(const MassSpringModel& model, double dt) {
     const int a = static_cast<int>(springs.ends[2 * s]), b = static_cast<int>(springs.ends[2 * s + 1]);
     const double k = springs.stiffness[s];
     lap.insert(lap.end(), {{a, a, k}, {b, b, k}, {a, b, -k}, {b, a, -k}});
-    const double h2k = dt * dt * k;
+    // C = alpha M + beta K with K approximated by L_k, as the linear part itself.
+    const double h2k = (dt * dt + dt * model.stiffness_damping()) * k;
     if (!fixed[static_cast<size_t>(a)]) system.emplace_back(a, a, h2k);
     if (!fixed[static_cast<size_t>(b)]) system.emplace_back(b, b, h2k);
     if (!fixed[static_cast<size_t>(a)] && !fixed[static_cast<size_t>(b)])
@@ -65,7 +66,8 @@ void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state, 
       const uint32_t k = 3 * i + c;
       column_[i] = fixed[i] ? 0.0
                             : dt * (force_[k] + state.external_forces[k] -
-                                    model.damping_per_node(i) * v[k] - dt * laplacian_v_[i]);
+                                    model.damping_per_node(i) * v[k] -
+                                    (dt + model.stiffness_damping()) * laplacian_v_[i]);
     }
     solve_in_place(column_);
     for (uint32_t i = 0; i < n; ++i) dv_[3 * i + c] = column_[i];

@@ -42,6 +42,7 @@ MassSpringModel::MassSpringModel(const tacta_model_setup& setup, const MassSprin
     throw std::invalid_argument("mass_spring needs a tetrahedral mesh (stiffness from tet volumes)");
   node_count_ = mesh.node_count;
   alpha_ = setup.material->rayleigh_mass;
+  beta_ = setup.material->rayleigh_stiffness;
   mass_.assign(setup.masses, setup.masses + node_count_);
   fixed_.assign(node_count_, 0);
   if (setup.fixed) fixed_.assign(setup.fixed, setup.fixed + node_count_);

@@ -65,6 +65,10 @@ class MassSpringModel {
   const std::vector<double>& masses() const { return mass_; }
   const std::vector<uint8_t>& fixed() const { return fixed_; }
   double damping_per_node(uint32_t i) const { return alpha_ * mass_[i] + options_.damping; }
+  // s: the material's stiffness-proportional (Rayleigh) damping, C = alpha M + beta K. The
+  // implicit integrators take it in their solve; symplectic Euler ignores it (an explicit
+  // beta K v bounds the step by about 2 / (beta omega_max^2), far below the elastic limit).
+  double stiffness_damping() const { return beta_; }
   const MassSpringOptions& options() const { return options_; }
   // Last Baraff-Witkin CG iteration count (0 for the other integrators).
   int last_cg_iterations() const;
@@ -75,6 +79,7 @@ class MassSpringModel {
   MassSpringOptions options_;
   uint32_t node_count_ = 0;
   double alpha_ = 0;  // 1/s, material's mass-proportional damping
+  double beta_ = 0;   // s, material's stiffness-proportional damping
   std::vector<double> mass_;
   std::vector<uint8_t> fixed_;
   SpringSet springs_;

@@ -186,3 +186,45 @@ TEST(MassSpringDesbrun, CorrectionKeepsAngularMomentumOfASpinningBody) {
   EXPECT_LT(kept[0], 0.99);
   EXPECT_NEAR(kept[1], 1.0, 1e-6);
 }
+
+// Rayleigh stiffness damping (C = alpha M + beta K) in the implicit integrators. From the rest
+// shape (no spring force) with a velocity field, a step solves (M + s K) dv = -s K v with
+// s = dt (dt + beta): the same dv as an undamped step of dt' = sqrt(dt (dt + beta)). A beta that
+// reached only the matrix, or only the right-hand side, breaks the identity.
+TEST_P(MassSpringImplicit, StiffnessDampingEntersTheSolveAsDtTimesDtPlusBeta) {
+  const double dt = 0.004, beta = 0.01;  // s
+  TestMesh mesh = box_tet_mesh({3, 2, 2}, {0.3, 0.2, 0.2}, 1000.0);
+  mesh.fix_plane(0, 0.0);
+  std::vector<double> v0(mesh.positions.size());
+  for (size_t i = 0; i < v0.size(); ++i)
+    v0[i] = mesh.fixed[i / 3] ? 0.0 : 0.05 * std::sin(1.7 * static_cast<double>(i));  // m/s
+  auto velocity_after_one_step = [&](double step, double stiffness_damping) {
+    tacta_material material = make_material(1e5, 0.3, 1000.0);
+    material.rayleigh_stiffness = stiffness_damping;
+    MassSpringOptions options = with_integrator(GetParam());
+    options.cg_tolerance = 1e-14;
+    MsBody body(mesh, material, options, step);
+    checks::StateBuffers s(body.mesh.positions);
+    s.v = v0;
+    tacta_body_state st = s.state();
+    EXPECT_EQ(body.model->step(st, step) & TACTA_STEP_FAULT_MASK, 0u);
+    return s.v;
+  };
+  const std::vector<double> damped = velocity_after_one_step(dt, beta);
+  const std::vector<double> equivalent = velocity_after_one_step(std::sqrt(dt * (dt + beta)), 0.0);
+  const std::vector<double> undamped = velocity_after_one_step(dt, 0.0);
+  double largest = 0, mismatch = 0, effect = 0;
+  for (size_t i = 0; i < damped.size(); ++i) {
+    largest = std::max(largest, std::abs(v0[i]));
+    mismatch = std::max(mismatch, std::abs(damped[i] - equivalent[i]));
+    effect = std::max(effect, std::abs(damped[i] - undamped[i]));
+  }
+  EXPECT_LT(mismatch, 1e-9 * largest);
+  EXPECT_GT(effect, 1e-3 * largest) << "beta must change the step";
+  double ke_damped = 0, ke_undamped = 0;
+  for (size_t i = 0; i < damped.size(); ++i) {
+    ke_damped += damped[i] * damped[i];
+    ke_undamped += undamped[i] * undamped[i];
+  }
+  EXPECT_LT(ke_damped, ke_undamped) << "stiffness damping takes energy out";
+}
