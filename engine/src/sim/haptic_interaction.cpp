@@ -151,7 +151,6 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch, const hapt
     m.pressing = false;
     return;
   }
-  m.normal = out.contact.normal;
   m.triangle = out.contact.triangle;
   for (int k = 0; k < 3; ++k) m.barycentric[k] = out.contact.barycentric[k];
   if (!m.pressing) {

@@ -38,7 +38,6 @@ class HapticInteraction final : public Interaction {
     double onset_barycentric[3] = {0, 0, 0};
     Vec3 onset_point{0, 0, 0};   // m, where that point was when the contact began
     Vec3 onset_normal{0, 0, 1};
-    Vec3 normal{0, 0, 1};        // last contact normal
     int triangle = -1;           // last contact triangle and the point's barycentric weights
     double barycentric[3] = {0, 0, 0};
   };
