@@ -203,8 +203,15 @@ void HapticLoop::start_workers(bool lockstep, size_t expected_ticks) {
 }
 
 void HapticLoop::stop_workers() noexcept {
-  for (std::unique_ptr<BodyWorker>& w : workers_)
-    if (w) w->stop();
+  for (size_t i = 0; i < workers_.size(); ++i) {
+    if (!workers_[i]) continue;
+    workers_[i]->stop();
+    // The step still in flight when the run ended was collected by stop(): a fault in it is
+    // reported like any other, not lost with the run.
+    const StepOutcome& out = workers_[i]->last_outcome();
+    SoftBody& b = world_.body(i);
+    if (out.why != nullptr && !b.fault.frozen) freeze(b, i, tick_time_, out.bits, out.why);
+  }
 }
 
 void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, const char* why) noexcept {

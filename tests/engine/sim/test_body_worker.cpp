@@ -148,6 +148,19 @@ TEST(BodyWorker, AFaultOnTheWorkerFreezesTheBodyAndZeroesTheForce) {
   EXPECT_EQ(after, 0) << "ticks after the collected fault that sent a force";
 }
 
+// The step posted at the last boundary (t = 0.39 s of 0.4 s) is still in flight when the run
+// ends; it is collected then, and its fault is reported, not lost.
+TEST(BodyWorker, AFaultInTheStepInFlightAtTheEndIsReported) {
+  const std::vector<std::string> overrides = {
+      "bodies.cube.model={name: test_fault_model, fault_step: 39, fault_kind: diverged, stiffness: 20, damping: 0.05}",
+      "bodies.cube.step_rate_hz=100", "bodies.cube.step_thread=own"};
+  const RunResult r = run_scene(scene_from_text(kCubePressScene, "worker_last_fault", overrides));
+  EXPECT_EQ(r.bodies[0].worker_steps, 40u);
+  EXPECT_TRUE(r.bodies[0].frozen);
+  EXPECT_EQ(r.faults, 1u);
+  EXPECT_EQ(r.exit_code, 1);
+}
+
 TEST(BodyWorker, RealtimeRunNeverWaitsAndCountsLateSteps) {
   const SceneDesc scene = scene_from_text(kCubePressScene, "worker_realtime", slow_cube("own"));
   RunOptions options;
