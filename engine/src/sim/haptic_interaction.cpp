@@ -1,6 +1,7 @@
 #include "haptic_interaction.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace tacta {
 
@@ -54,37 +55,43 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
   }
 }
 
+namespace {
+
+// Normalised barycentric weights of a touched point; a hit without them gets equal thirds.
+std::array<double, 3> touch_weights(const double* barycentric) noexcept {
+  const double sum = barycentric[0] + barycentric[1] + barycentric[2];
+  if (!(sum > 0)) return {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0};
+  return {barycentric[0] / sum, barycentric[1] / sum, barycentric[2] / sum};
+}
+
+// Where the point with those weights on `triangle` of the body is, in `positions` (m).
+Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
+                       const double* barycentric) noexcept {
+  const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
+  const std::array<double, 3> w = touch_weights(barycentric);
+  Vec3 p{0, 0, 0};
+  for (size_t k = 0; k < 3; ++k) {
+    const uint32_t n = tris[3 * static_cast<size_t>(triangle) + k];
+    for (size_t a = 0; a < 3; ++a) p[a] += w[k] * positions[3 * n + a];
+  }
+  return p;
+}
+
+}  // namespace
+
 void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force) noexcept {
   if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0) return;
   SoftBody& body = world.body(static_cast<size_t>(hit.body));
   const std::vector<uint32_t>& triangles = body.topology->mesh.triangles;
   const auto t = static_cast<size_t>(hit.triangle);
   if (3 * t + 2 >= triangles.size()) return;
-  // Barycentric weights of the touched point; a hit without them spreads the force evenly.
-  const double sum = hit.barycentric[0] + hit.barycentric[1] + hit.barycentric[2];
-  for (int k = 0; k < 3; ++k) {
-    const uint32_t node = triangles[3 * t + static_cast<size_t>(k)];
-    const double w = sum > 0 ? hit.barycentric[k] / sum : 1.0 / 3.0;
-    for (int a = 0; a < 3; ++a) body.contact_forces[3 * node + static_cast<size_t>(a)] += w * force[static_cast<size_t>(a)];
-  }
-}
-
-namespace {
-
-Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
-                       const double* barycentric) noexcept {
-  const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
-  Vec3 p{0, 0, 0};
-  const double sum = barycentric[0] + barycentric[1] + barycentric[2];
+  // The reaction goes to the touched triangle's nodes by the touched point's weights.
+  const std::array<double, 3> w = touch_weights(hit.barycentric);
   for (size_t k = 0; k < 3; ++k) {
-    const uint32_t n = tris[3 * static_cast<size_t>(triangle) + k];
-    const double w = sum > 0 ? barycentric[k] / sum : 1.0 / 3.0;
-    for (size_t a = 0; a < 3; ++a) p[a] += w * positions[3 * n + a];
+    const uint32_t node = triangles[3 * t + k];
+    for (size_t a = 0; a < 3; ++a) body.contact_forces[3 * node + a] += w[k] * force[a];
   }
-  return p;
 }
-
-}  // namespace
 
 void HapticInteraction::prepare_local_model(World& world, Channel& ch, const DeviceSlot& slot) noexcept {
   LocalModel& m = ch.local;
