@@ -80,8 +80,12 @@ TEST(ZwidthCriterion, PortEnergyIsTheWorkOfTheHeldForce) {
 // controller off: 40000 N/m must ring or bounce, 300 N/m must settle.
 class ZwidthScene : public ::testing::Test {
  protected:
+  // A folder per test: ctest runs the two cases as parallel processes, and each run rewrites
+  // its trace.csv there.
   ZwidthRunner runner{std::string(TACTA_SOURCE_DIR) + "/scenes/bench/zwidth.yaml",
-                      std::string(TACTA_BINARY_DIR) + "/test_zwidth_runs", TACTA_PLUGIN_DIR};
+                      std::string(TACTA_BINARY_DIR) + "/test_zwidth_runs/" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                      TACTA_PLUGIN_DIR};
   ZwidthCase undamped{"corotational_fem", 0.0, false, {"devices.*.params.hand_damping=0"}};
 };
 
