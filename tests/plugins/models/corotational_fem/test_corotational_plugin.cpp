@@ -12,6 +12,30 @@ namespace {
 
 using tacta::testing::LoadedPlugin;
 
+// A 2 x 2 x 6-cell cantilever (0.02 x 0.02 x 0.2 m, E 2 MPa, clamped at z = 0) and the setup
+// that creates the plugin's instance on it with its default parameters. The setup points into
+// the members: built in place, never moved.
+struct Cantilever {
+  explicit Cantilever(const tacta_descriptor& d)
+      : mesh(fixed_root(tacta::models::box_tet_mesh({2, 2, 6}, {0.02, 0.02, 0.2}, 1100))),
+        view(mesh.view()),
+        material(tacta::models::make_material(2e6, 0.45, 1100)),
+        params(tacta::testing::default_params(d)),
+        setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(), mesh.fixed.data(),
+              params.data(), d.param_count, 1e-3} {}
+  Cantilever(const Cantilever&) = delete;
+  Cantilever& operator=(const Cantilever&) = delete;
+  static tacta::models::TestMesh fixed_root(tacta::models::TestMesh m) {
+    m.fix_plane(2, 0.0);
+    return m;
+  }
+  tacta::models::TestMesh mesh;
+  tacta_mesh_view view;
+  tacta_material material;
+  std::vector<tacta_param_value> params;
+  tacta_model_setup setup;
+};
+
 TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   LoadedPlugin plugin("tacta_corotational_fem.so");
   const tacta_descriptor& d = plugin.descriptor("corotational_fem");
@@ -27,13 +51,9 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   ASSERT_NE(api.node_stress, nullptr);
   ASSERT_NE(api.begin, nullptr);
 
-  tacta::models::TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 6}, {0.02, 0.02, 0.2}, 1100);
-  mesh.fix_plane(2, 0.0);
-  const tacta_mesh_view view = mesh.view();
-  const tacta_material material = tacta::models::make_material(2e6, 0.45, 1100);
-  std::vector<tacta_param_value> params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                          mesh.fixed.data(), params.data(), d.param_count, 1e-3};
+  Cantilever beam(d);
+  tacta::models::TestMesh& mesh = beam.mesh;
+  tacta_model_setup& setup = beam.setup;
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -65,13 +85,9 @@ TEST(CorotationalPlugin, SetParamChangesSolverLimitsOnly) {
   const tacta_descriptor& d = plugin.descriptor("corotational_fem");
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.set_param, nullptr);
-  tacta::models::TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 6}, {0.02, 0.02, 0.2}, 1100);
-  mesh.fix_plane(2, 0.0);
-  const tacta_mesh_view view = mesh.view();
-  const tacta_material material = tacta::models::make_material(2e6, 0.45, 1100);
-  std::vector<tacta_param_value> params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                          mesh.fixed.data(), params.data(), d.param_count, 1e-3};
+  Cantilever beam(d);
+  tacta::models::TestMesh& mesh = beam.mesh;
+  tacta_model_setup& setup = beam.setup;
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
