@@ -44,6 +44,23 @@ typedef int32_t tacta_device_state;
 #define TACTA_DEVICE_FAULT 2        /* a fault the device reports: zero force */
 #define TACTA_DEVICE_FINISHED 3     /* a replay reached the end of its log */
 
+/* One named figure a device reports for report.json (network devices: packets, drops, round
+ * trip). `name` is snake_case with its unit as suffix where it has one ("round_trip_p50_ms"). */
+typedef struct tacta_device_counter {
+  const char* name; /* static storage in the plugin */
+  double value;
+} tacta_device_counter;
+
+/* A body's deformed surface as the engine hands it to a device (optional `surface` entry). */
+typedef struct tacta_device_surface {
+  double time;                 /* s, simulated time of the state */
+  const char* body;            /* the body's name */
+  const double* positions;     /* 3 per node, m, world frame: every node of the body */
+  uint32_t node_count;
+  const uint32_t* triangles;   /* 3 per triangle, indices into positions, outward */
+  uint32_t triangle_count;
+} tacta_device_surface;
+
 typedef struct tacta_device_setup {
   uint32_t struct_size;
   const tacta_param_value* params; /* validated against the schema, schema order */
@@ -76,6 +93,14 @@ typedef struct tacta_device_api {
    * from a host thread (not the haptic one) while read() may run: the plugin makes it
    * lock-free. */
   void (*input)(void* instance, const double* values, uint32_t count);
+  /* optional (ABI 1.1): the deformed surface of the body this device touches (the last one it
+   * touched, else the first body), at the render rate, from the render task's thread while
+   * read() may run. The arrays live only for the call: the plugin copies what it keeps, into
+   * storage sized at the first call, and makes the hand-over to its own threads lock-free. */
+  void (*surface)(void* instance, const tacta_device_surface* surface);
+  /* optional (ABI 1.1): fills up to `capacity` counters, returns how many it has. Called after
+   * the run from the host thread, for report.json. */
+  uint32_t (*counters)(void* instance, tacta_device_counter* counters, uint32_t capacity);
 } tacta_device_api;
 
 #define TACTA_DEVICE_API_FIELD(member, required) \
@@ -86,7 +111,8 @@ static const tacta_api_field tacta_device_api_fields[] = {
     TACTA_DEVICE_API_FIELD(connect, 1),      TACTA_DEVICE_API_FIELD(disconnect, 1),
     TACTA_DEVICE_API_FIELD(read, 1),         TACTA_DEVICE_API_FIELD(write, 1),
     TACTA_DEVICE_API_FIELD(capabilities, 1), TACTA_DEVICE_API_FIELD(status, 0),
-    TACTA_DEVICE_API_FIELD(input, 0),
+    TACTA_DEVICE_API_FIELD(input, 0),        TACTA_DEVICE_API_FIELD(surface, 0),
+    TACTA_DEVICE_API_FIELD(counters, 0),
 };
 
 #ifdef __cplusplus

@@ -79,6 +79,14 @@ void write_devices(JsonWriter& j, const World& world) {
                      : s.state == TACTA_DEVICE_DISCONNECTED ? "disconnected"
                                                             : "fault");
     if (s.status_time_s >= 0) j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
+    j.field("reconnections", st.reconnections);
+    // The plugin's own figures (network devices: packets, drops, watchdog trips, round trip).
+    const auto counters = s.device->counters();
+    if (!counters.empty()) {
+      j.key("link").begin_object();
+      for (const auto& [name, value] : counters) j.field(name, value);
+      j.end_object();
+    }
     j.end_object();
   }
   j.end_array();

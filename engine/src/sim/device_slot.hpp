@@ -21,6 +21,7 @@ struct DeviceStats {
   uint64_t contact_ticks = 0;
   uint64_t zero_force_ticks = 0;     // ticks forced to zero force by a fault or disconnection
   uint64_t clamped_ticks = 0;        // ticks whose force was clamped to the peak
+  uint64_t reconnections = 0;        // times a disconnected device came back (a network link)
 };
 
 struct DeviceSlot {

@@ -34,6 +34,7 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     if (slot.state != TACTA_DEVICE_CONNECTED) {
       slot.force = {0, 0, 0};
       slot.in_contact = false;
+      ch.started = false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
       continue;
     }
     tacta_collision_shape& tool = collision_.tool(d);

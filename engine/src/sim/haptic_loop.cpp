@@ -125,8 +125,18 @@ void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
 void HapticLoop::read_devices(double time) noexcept {
   for (size_t d = 0; d < world_.device_count(); ++d) {
     DeviceSlot& slot = world_.device(d);
-    if (slot.state != TACTA_DEVICE_CONNECTED) continue;
-    const tacta_device_state state = slot.device->read(time, slot.sample);
+    // A disconnected device (a network link gone silent) is polled on and resumes when it comes
+    // back; finished and faulted ones stay so for the run.
+    if (slot.state != TACTA_DEVICE_CONNECTED && slot.state != TACTA_DEVICE_DISCONNECTED) continue;
+    const bool was_disconnected = slot.state == TACTA_DEVICE_DISCONNECTED;
+    tacta_device_sample sample = slot.sample;
+    const tacta_device_state state = slot.device->read(time, sample);
+    if (was_disconnected) {
+      if (state != TACTA_DEVICE_CONNECTED) continue;
+      slot.state = TACTA_DEVICE_CONNECTED;  // the interaction restarts its proxy at the new pose
+      ++slot.stats.reconnections;
+    }
+    slot.sample = sample;
     bool finite = true;
     for (double p : slot.sample.position) finite = finite && std::isfinite(p);
     if (state != TACTA_DEVICE_CONNECTED || !finite) {
@@ -331,6 +341,7 @@ void HapticLoop::publish(double time) noexcept {
     ds.proxy = slot.proxy;
     ds.force = slot.force;
     ds.contact = slot.in_contact;
+    ds.touched_body = slot.touched_body;
   }
   snapshots_.publish();
 }

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 
+#include <algorithm>
 #include <cstring>
 
 namespace tacta {
@@ -43,11 +44,33 @@ DeviceInstance::~DeviceInstance() {
   api_.destroy(instance_);
 }
 
-bool DeviceInstance::input(const double* values, uint32_t count) noexcept {
+bool DeviceInstance::has_entry(size_t offset, const void* entry) const noexcept {
   // An entry past the plugin's own table size is absent (a plugin built before it existed).
-  if (descriptor_.api_size < offsetof(tacta_device_api, input) + sizeof(api_.input) || api_.input == nullptr) return false;
+  return descriptor_.api_size >= offset + sizeof(void*) && entry != nullptr;
+}
+
+bool DeviceInstance::input(const double* values, uint32_t count) noexcept {
+  if (!has_entry(offsetof(tacta_device_api, input), reinterpret_cast<const void*>(api_.input))) return false;
   api_.input(instance_, values, count);
   return true;
+}
+
+bool DeviceInstance::wants_surface() const noexcept {
+  return has_entry(offsetof(tacta_device_api, surface), reinterpret_cast<const void*>(api_.surface));
+}
+
+void DeviceInstance::surface(const tacta_device_surface& surface) noexcept {
+  if (wants_surface()) api_.surface(instance_, &surface);
+}
+
+std::vector<std::pair<std::string, double>> DeviceInstance::counters() {
+  std::vector<std::pair<std::string, double>> out;
+  if (!has_entry(offsetof(tacta_device_api, counters), reinterpret_cast<const void*>(api_.counters))) return out;
+  std::vector<tacta_device_counter> buffer(64);
+  const uint32_t n = std::min<uint32_t>(api_.counters(instance_, buffer.data(), 64), 64);
+  for (uint32_t i = 0; i < n; ++i)
+    if (buffer[i].name != nullptr) out.emplace_back(buffer[i].name, buffer[i].value);
+  return out;
 }
 
 void DeviceInstance::connect(const SourceLocation& where) {
@@ -55,6 +78,8 @@ void DeviceInstance::connect(const SourceLocation& where) {
   if (api_.connect(instance_, message, sizeof message) != TACTA_OK)
     throw InputError(where, plugin_failure(descriptor_, "could not connect", message));
   connected_ = true;
+  // A bridged device announces its capabilities when it connects (plugins/devices/net).
+  api_.capabilities(instance_, &capabilities_);
 }
 
 tacta_device_state DeviceInstance::status(char* reason, size_t capacity) noexcept {

@@ -5,6 +5,9 @@
 
 #include <string>
 
+#include <utility>
+#include <vector>
+
 #include "tacta/device_api.h"
 #include "tacta/error.hpp"
 #include "tacta/model_api.h"
@@ -66,8 +69,15 @@ class DeviceInstance {
   bool input(const double* values, uint32_t count) noexcept;
   // The device's own account of its state; fills reason (NUL-terminated) when not connected.
   tacta_device_state status(char* reason, size_t capacity) noexcept;
+  // Whether the plugin takes a body surface (the optional `surface` entry), and hands it one.
+  bool wants_surface() const noexcept;
+  void surface(const tacta_device_surface& surface) noexcept;
+  // The plugin's counters for report.json (the optional `counters` entry); empty without it.
+  std::vector<std::pair<std::string, double>> counters();
 
  private:
+  // The optional entry at `offset` when the plugin's table reaches it and it is set.
+  bool has_entry(size_t offset, const void* entry) const noexcept;
   const tacta_descriptor& descriptor_;
   const tacta_device_api& api_;
   void* instance_ = nullptr;

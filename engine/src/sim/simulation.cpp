@@ -10,6 +10,7 @@
 
 #include "../report/run_outputs.hpp"
 #include "collision_context.hpp"
+#include "device_surface_feed.hpp"
 #include "haptic_interaction.hpp"
 #include "haptic_loop.hpp"
 #include "vtk_observer.hpp"
@@ -179,6 +180,8 @@ RunResult Simulation::run(const RunOptions& options) {
     vtk = make_vtk_observer(options.out_dir + "/vtk", scene.output.vtk_interval_s);
     observers.push_back(vtk.get());
   }
+  std::unique_ptr<FrameObserver> surface_feed = make_device_surface_feed(world);
+  if (surface_feed) observers.push_back(surface_feed.get());
   for (FrameObserver* o : observers) o->on_start(scene_static);
   OutputRenderTask render(snapshots, scene_static, observers);
   loop.start_workers(schedule.mode == ClockMode::Lockstep, expected_ticks);
@@ -213,6 +216,11 @@ RunResult Simulation::run(const RunOptions& options) {
     arrays.push_back(&b.positions);
   }
   result.state_hash = hash_positions(arrays);
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& slot = world.device(d);
+    result.devices.push_back({slot.name, slot.desc.plugin, slot.state, slot.stats.max_force_N,
+                              slot.stats.contact_ticks, slot.stats.reconnections, slot.device->counters()});
+  }
   result.faults = loop.faults().rows().size();
   result.exit_code = result.faults > 0 ? 1 : 0;
 

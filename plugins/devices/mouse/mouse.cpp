@@ -10,11 +10,11 @@
 // calls input() with the instance the simulation owns. input() with a NULL instance is ignored.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
+#include "tacta_devices/seqlock_slot.hpp"
 
 namespace tacta::mouse_device {
 namespace {
@@ -24,34 +24,6 @@ using Point = std::array<double, 3>;
 constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
 constexpr double kTeleportGap = 1.0;         // s; a longer gap (or time going back) restarts at the target
 constexpr int kMaxSubsteps = 100000;
-
-// The target, written by one host thread, read by the haptic thread: a sequence lock over
-// atomics (the reader retries while a write is in progress; a write takes nanoseconds).
-class TargetSlot {
- public:
-  void store(const Point& p) noexcept {
-    const uint64_t s = sequence_.load(std::memory_order_relaxed);
-    sequence_.store(s + 1, std::memory_order_relaxed);  // odd: writing
-    std::atomic_thread_fence(std::memory_order_release);
-    for (int i = 0; i < 3; ++i) value_[i].store(p[i], std::memory_order_relaxed);
-    sequence_.store(s + 2, std::memory_order_release);
-  }
-  // False while the host has never fed a target.
-  bool load(Point& out) const noexcept {
-    for (;;) {
-      const uint64_t before = sequence_.load(std::memory_order_acquire);
-      if (before == 0) return false;
-      if (before & 1) continue;
-      for (int i = 0; i < 3; ++i) out[i] = value_[i].load(std::memory_order_relaxed);
-      std::atomic_thread_fence(std::memory_order_acquire);
-      if (sequence_.load(std::memory_order_relaxed) == before) return true;
-    }
-  }
-
- private:
-  std::atomic<uint64_t> sequence_{0};
-  std::array<std::atomic<double>, 3> value_{};
-};
 
 Point to_point(std::span<const double> v, Point fallback) {
   return v.size() >= 3 ? Point{v[0], v[1], v[2]} : fallback;
@@ -154,7 +126,7 @@ class MouseDevice {
     if (position_[i] > high) { position_[i] = high; velocity_[i] = std::min(velocity_[i], 0.0); }
   }
 
-  TargetSlot target_;
+  devices::SeqlockSlot<3> target_;  // host thread -> haptic thread
   Point start_{}, origin_{};
   bool limit_to_workspace_ = false;
   double mass_ = 0.1, stiffness_ = 300, damping_ = 11;

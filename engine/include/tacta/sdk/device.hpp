@@ -13,6 +13,8 @@
 //   tacta_device_state status(char* reason, size_t capacity) const noexcept
 //   static void input(T* instance_or_null, const double* values, uint32_t count) noexcept
 //       host-fed input (lock-free); a null instance means every live instance
+//   void surface(const tacta_device_surface&) noexcept     render thread; copy what you keep
+//   uint32_t counters(tacta_device_counter*, uint32_t capacity) const noexcept   for report.json
 #pragma once
 
 #include "tacta/device_api.h"
@@ -47,6 +49,13 @@ struct DeviceAdapter {
     T::input(static_cast<T*>(instance), values, count);
   }
 
+  static void surface(void* instance, const tacta_device_surface* s) noexcept {
+    static_cast<T*>(instance)->surface(*s);
+  }
+  static uint32_t counters(void* instance, tacta_device_counter* out, uint32_t capacity) noexcept {
+    return static_cast<const T*>(instance)->counters(out, capacity);
+  }
+
   static tacta_device_api table() {
     tacta_device_api api{};
     api.create = &create;
@@ -58,6 +67,9 @@ struct DeviceAdapter {
     api.capabilities = &capabilities;
     if constexpr (requires(const T& t, char* r) { t.status(r, size_t{0}); }) api.status = &status;
     if constexpr (requires(T* t, const double* v) { T::input(t, v, uint32_t{0}); }) api.input = &input;
+    if constexpr (requires(T& t, const tacta_device_surface& s) { t.surface(s); }) api.surface = &surface;
+    if constexpr (requires(const T& t, tacta_device_counter* c) { t.counters(c, uint32_t{0}); })
+      api.counters = &counters;
     return api;
   }
 };

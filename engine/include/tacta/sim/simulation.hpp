@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tacta/plugin_registry.hpp"
@@ -42,12 +43,21 @@ struct BodyResult {
   double max_lateness_s = 0;         // realtime: longest time a step was collected past its boundary
 };
 
+struct DeviceResult {
+  std::string name, plugin;
+  int32_t state = 0;  // tacta_device_state at the end of the run
+  double max_force_N = 0;
+  uint64_t contact_ticks = 0, reconnections = 0;
+  std::vector<std::pair<std::string, double>> counters;  // the plugin's (device_api.h `counters`)
+};
+
 struct RunResult {
   std::string scene, mode;
   ScheduleResult schedule;
   double sim_time_s = 0;
   std::string state_hash;  // FNV-1a 64 of every body's final node positions, hex
   std::vector<BodyResult> bodies;
+  std::vector<DeviceResult> devices;
   size_t faults = 0;
   std::vector<std::string> outputs;  // files written
   int exit_code = 0;                 // 0 ok, 1 runtime fault

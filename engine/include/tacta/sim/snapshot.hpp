@@ -23,6 +23,7 @@ struct DeviceSnapshot {
   std::array<double, 3> proxy{};     // m
   std::array<double, 3> force{};     // N, as sent to the device
   bool contact = false;
+  int touched_body = -1;             // index of the body it touches, -1 when none
 };
 
 struct Snapshot {
