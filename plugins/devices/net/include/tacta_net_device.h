@@ -1,6 +1,6 @@
 /* Tacta net device client: bridge a real haptic device to a Tacta simulation over UDP from the
  * vendor SDK's own loop. Header-only C99 on POSIX sockets, no other dependency. Copy this file
- * and tacta_net_protocol.h next to your bridge. docs/DEVICES.md shows a whole bridge.
+ * and tacta_net_protocol.h next to your bridge; link with -lm (libc's maths). docs/DEVICES.md shows a whole bridge.
  *
  *   tacta_net_device dev;
  *   tnet_hello caps = {...};                       // your device's workspace, peak force, ...
@@ -26,6 +26,7 @@
 
 #include <arpa/inet.h>
 #include <errno.h>
+#include <math.h>
 #include <netdb.h>
 #include <stdio.h>
 #include <sys/socket.h>
@@ -103,7 +104,7 @@ static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const doub
   }
   magnitude2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
   if (!(magnitude2 <= peak * peak)) { /* also catches NaN */
-    const double scale = magnitude2 > 0.0 && magnitude2 < 1e300 ? peak / __builtin_sqrt(magnitude2) : 0.0;
+    const double scale = magnitude2 > 0.0 && magnitude2 < 1e300 ? peak / sqrt(magnitude2) : 0.0;
     for (i = 0; i < 3; ++i) f[i] *= scale;
   }
   power = f[0] * velocity[0] + f[1] * velocity[1] + f[2] * velocity[2];
