@@ -1,0 +1,166 @@
+// Teleoperation under delay: the teleoperated_palpation scene (the net device, realtime clock)
+// runs here while net_teleop_peer, a separate process with the real C client, presses the liver
+// through a delay line of 0, 20, 100 and 250 ms round trip (with jitter and loss). Passivity: the
+// device side's energy ledger never goes negative, the force never exceeds the device's peak,
+// and contact is held. Prints the latency table of docs/DEVICES.md (force error and transparency
+// against the undelayed run).
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "tacta/plugin_registry.hpp"
+#include "tacta/scene_loader.hpp"
+#include "tacta/sim/registry_schemas.hpp"
+#include "tacta/sim/simulation.hpp"
+
+extern char** environ;
+
+namespace tacta {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPressSeconds = 2.0;  // s of the peer's timeline from the first live force
+constexpr double kPeakForce = 3.3;     // N, the peer's announced peak (an Omni)
+
+const PluginRegistry& plugins() {
+  static const std::unique_ptr<PluginRegistry> registry = [] {
+    auto r = std::make_unique<PluginRegistry>();
+    r->load();
+    return r;
+  }();
+  return *registry;
+}
+
+struct TeleopRun {
+  std::map<std::string, double> peer;        // the peer's summary line
+  std::vector<std::pair<double, double>> fy;  // (s, N): the force the hand felt, vertical
+  RunResult sim;
+  std::map<std::string, double> link;        // the net device's counters
+};
+
+bool wait_for_file(const fs::path& file, double seconds) {
+  for (int i = 0; i < static_cast<int>(seconds * 100); ++i) {
+    if (fs::exists(file)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss) {
+  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / ("net_teleop_" + std::to_string(static_cast<int>(round_trip_ms)));
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const RegistrySchemas schemas(plugins());
+  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
+                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+                                      "devices.0.params.connect_timeout=30", "output.plots=[]"});
+  // The simulation connects (waits for the peer's HELLO) on its own thread while the peer starts.
+  auto building = std::async(std::launch::async, [&] { return std::make_unique<Simulation>(scene, plugins()); });
+  EXPECT_TRUE(wait_for_file(work / "port", 20.0)) << "the net device wrote no port file";
+  std::string port;
+  std::ifstream(work / "port") >> port;
+  const std::string out_csv = (work / "peer.csv").string(), summary = (work / "peer.txt").string();
+  std::vector<std::string> args{NET_TELEOP_PEER, port, std::to_string(round_trip_ms), std::to_string(jitter_ms),
+                                std::to_string(loss), "7", std::to_string(kPressSeconds), out_csv};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, summary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t peer = 0;
+  EXPECT_EQ(posix_spawn(&peer, NET_TELEOP_PEER, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  std::unique_ptr<Simulation> sim = building.get();  // throws (test fails) if the peer never said HELLO
+
+  // The run ends when the peer is done (it says BYE); the duration is only a bound.
+  std::atomic<bool> peer_done{false};
+  std::thread watcher([&] {
+    int status = 0;
+    waitpid(peer, &status, 0);
+    peer_done = true;
+    sim->request_stop();
+  });
+  RunOptions options;
+  options.realtime = true;
+  options.duration_s = kPressSeconds + 30.0;
+  options.out_dir = (work / "run").string();
+  TeleopRun run;
+  run.sim = sim->run(options);
+  if (!peer_done) kill(peer, SIGKILL);
+  watcher.join();
+
+  std::ifstream summary_in(summary);
+  for (std::string key; summary_in >> key;) summary_in >> run.peer[key];
+  std::ifstream csv(out_csv);
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::istringstream row(line);
+    double t, y, fx, fy;
+    char c;
+    if (row >> t >> c >> y >> c >> fx >> c >> fy) run.fy.emplace_back(t, fy);
+  }
+  for (const auto& [name, value] : run.sim.devices.at(0).counters) run.link[name] = value;
+  return run;
+}
+
+// RMS (N) of the difference of two force traces over their common span, by time.
+double force_error(const std::vector<std::pair<double, double>>& run, const std::vector<std::pair<double, double>>& base) {
+  double sum = 0;
+  size_t n = 0, j = 0;
+  for (const auto& [t, f] : run) {
+    while (j + 1 < base.size() && base[j + 1].first <= t) ++j;
+    if (j >= base.size() || std::abs(base[j].first - t) > 2e-3) continue;
+    sum += (f - base[j].second) * (f - base[j].second);
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : -1.0;
+}
+
+TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
+  struct Case { double rtt_ms, jitter_ms, loss; };
+  const Case cases[] = {{0, 0, 0}, {20, 1, 0.01}, {100, 5, 0.01}, {250, 12.5, 0.01}};
+  std::vector<std::pair<Case, TeleopRun>> runs;
+  for (const Case& c : cases) {
+    SCOPED_TRACE("round trip " + std::to_string(c.rtt_ms) + " ms");
+    TeleopRun run = teleoperate(c.rtt_ms, c.jitter_ms, c.loss);
+    ASSERT_GT(run.peer["ticks"], 0.5 * kPressSeconds * 1000) << "the peer did not run through";
+    EXPECT_GE(run.peer["min_ledger"], 0.0) << "the device returned more energy than the hand put in";
+    EXPECT_LE(run.peer["peak"], kPeakForce + 1e-9);
+    EXPECT_GE(run.peer["held_fraction"], 0.8) << "contact was not held while pressed in";
+    EXPECT_GT(run.sim.devices.at(0).contact_ticks, 500u);
+    EXPECT_LE(run.sim.devices.at(0).max_force_N, kPeakForce + 1e-9);
+    if (c.rtt_ms > 0) {  // the engine measures the injected round trip (plus loopback and a tick or two)
+      EXPECT_GT(run.link["round_trip_p50_ms"], 0.8 * c.rtt_ms);
+      EXPECT_LT(run.link["round_trip_p50_ms"], c.rtt_ms + 40.0);
+      EXPECT_GT(run.link["dropped_out_of_order"] + run.link["late"], 0.0) << "jitter reordered nothing";
+    }
+    runs.emplace_back(c, std::move(run));
+  }
+  const TeleopRun& base = runs.front().second;
+  std::printf("| round trip (ms) | jitter (ms) | loss | RTT p50 / p99 (ms) | force error RMS (N) | transparency | "
+              "min ledger (J) | exact-hold ledger min (J) | dissipated (J) | peak (N) | watchdog trips |\n");
+  for (const auto& [c, run] : runs) {
+    const double transparency = run.peer.at("held_mean") / base.peer.at("held_mean");
+    std::printf("| %.0f | %.1f | %.0f %% | %.2f / %.2f | %.3f | %.3f | %.2e | %.2e | %.2e | %.3f | %.0f |\n", c.rtt_ms,
+                c.jitter_ms, c.loss * 100, run.link.at("round_trip_p50_ms"), run.link.at("round_trip_p99_ms"),
+                force_error(run.fy, base.fy), transparency, run.peer.at("min_ledger"), run.peer.at("min_exact_ledger"),
+                run.peer.at("dissipated"), run.peer.at("peak"), run.link.at("watchdog_trips"));
+  }
+}
+
+}  // namespace
+}  // namespace tacta
