@@ -87,13 +87,17 @@ static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const doub
                                               double remote_budget, const double desired[3], double peak,
                                               double out[3]) {
   double f[3] = {desired[0], desired[1], desired[2]};
-  double bound = p->energy_in, power, speed2, magnitude2;
+  double bound = p->energy_in, power, speed2, magnitude2, remaining;
   int i;
   if (p->use_remote && remote_budget < bound) bound = remote_budget;
   power = f[0] * velocity[0] + f[1] * velocity[1] + f[2] * velocity[2];
   speed2 = velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2];
-  if (dt > 0.0 && power * dt > bound - p->energy_out) {
-    const double excess = power * dt - (bound - p->energy_out); /* J, > 0 */
+  /* J left to return, aimed a hair under (relative 1e-9, and 1e-12 of |f||v|dt) so that rounding
+   * in the damper never takes the ledger below zero */
+  remaining = (bound - p->energy_out) * (1.0 - 1e-9) -
+              1e-12 * sqrt((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * speed2) * dt;
+  if (dt > 0.0 && power * dt > remaining) {
+    const double excess = power * dt - remaining; /* J, > 0 */
     if (speed2 > 1e-18) {
       const double alpha = excess / (speed2 * dt); /* N s/m */
       for (i = 0; i < 3; ++i) f[i] -= alpha * velocity[i];

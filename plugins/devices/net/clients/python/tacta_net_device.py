@@ -59,8 +59,11 @@ class Passivity:
         bound = min(self.energy_in, remote_budget) if self.use_remote else self.energy_in
         power = sum(a * b for a, b in zip(f, velocity))
         speed2 = sum(v * v for v in velocity)
-        if dt > 0 and power * dt > bound - self.energy_out:
-            excess = power * dt - (bound - self.energy_out)
+        # a hair under the budget, so that rounding in the damper never takes the ledger below zero
+        remaining = ((bound - self.energy_out) * (1.0 - 1e-9)
+                     - 1e-12 * math.sqrt(sum(x * x for x in f) * speed2) * dt)
+        if dt > 0 and power * dt > remaining:
+            excess = power * dt - remaining
             if speed2 > 1e-18:
                 alpha = excess / (speed2 * dt)  # N s/m
                 f = [fi - alpha * vi for fi, vi in zip(f, velocity)]
