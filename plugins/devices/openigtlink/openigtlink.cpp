@@ -21,7 +21,7 @@ class OpenIgtlinkDevice {
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
   static constexpr std::array<tacta_param_spec, 10> kParams{{
-      sdk::choice_param("role", "server,client", 0, "server: wait for a peer (Slicer's default); client: connect to one"),
+      sdk::choice_param("role", "server|client", 0, "server: wait for a peer (Slicer's default); client: connect to one"),
       {"host", TACTA_PARAM_TEXT, "text", 0, 0, 0, nullptr, "127.0.0.1", 0, "client role: the server's address"},
       sdk::int_param("port", 18944, 0, 65535, "TCP port (server role: 0 picks a free one, see port_file)"),
       sdk::text_param("port_file", "", "if set, the server's port is written there"),

@@ -1,0 +1,212 @@
+// The openigtlink device end to end: scenes/examples/slicer_liver.yaml runs (realtime) while a
+// real OpenIGTLink client built from the same library, on a thread of the test, sends TRANSFORM
+// poses that press the liver, and receives the SENSOR forces and the POLYDATA surface. The last
+// surface it gets is checked against the simulation's own state at that time: vertex count,
+// triangles, positions.
+#include <gtest/gtest.h>
+#include <igtlClientSocket.h>
+#include <igtlPolyDataMessage.h>
+#include <igtlSensorMessage.h>
+#include <igtlTransformMessage.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "../../../plugins/devices/openigtlink/igtl_io.hpp"
+#include "tacta/plugin_registry.hpp"
+#include "tacta/scene_loader.hpp"
+#include "tacta/sim/registry_schemas.hpp"
+#include "tacta/sim/simulation.hpp"
+
+namespace tacta {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using igtl_device::Received;
+
+// The tool's path (mm, Slicer's unit): 12 mm over a point of the liver's upper surface, down to
+// 8 mm under it within 0.6 s, held there.
+void tool_position_mm(double t, float out[3]) {
+  const double s = std::min(t / 0.6, 1.0);
+  out[0] = -49.0f;
+  out[1] = static_cast<float>(159.0 + (139.0 - 159.0) * s);
+  out[2] = 27.0f;
+}
+
+class SlicerLikeClient {
+ public:
+  explicit SlicerLikeClient(const fs::path& port_file) {
+    thread_ = std::thread([this, port_file] { run(port_file); });
+  }
+  ~SlicerLikeClient() {
+    stop_ = true;
+    thread_.join();
+  }
+  std::atomic<double> max_force_N{0};
+  std::atomic<int> sensors{0}, surfaces{0};
+  std::atomic<bool> stop_sending{false};
+  // The newest POLYDATA: its time stamp (s), points (mm) and triangles.
+  std::mutex mutex;
+  double surface_time = -1;
+  std::string surface_name;
+  std::vector<float> points;
+  std::vector<uint32_t> triangles;
+
+ private:
+  void run(const fs::path& port_file) {
+    int port = 0;
+    igtl::ClientSocket::Pointer socket = igtl::ClientSocket::New();
+    for (int i = 0; i < 1000 && !stop_; ++i) {  // the server comes up while the scene loads
+      if (fs::exists(port_file) && (std::ifstream(port_file) >> port) && socket->ConnectToServer("127.0.0.1", port) == 0) break;
+      std::this_thread::sleep_for(10ms);
+    }
+    if (!socket->GetConnected()) return;
+    socket->SetReceiveTimeout(1);
+    const auto start = std::chrono::steady_clock::now();
+    auto next_pose = start;
+    igtl::MessageHeader::Pointer header = igtl::MessageHeader::New();
+    while (!stop_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (!stop_sending && now >= next_pose) {
+        next_pose += 2ms;  // 500 Hz, a fast tracker
+        igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+        m->SetDeviceName("Stylus");
+        igtl::Matrix4x4 matrix;
+        igtl::IdentityMatrix(matrix);
+        float p[3];
+        tool_position_mm(std::chrono::duration<double>(now - start).count(), p);
+        for (int a = 0; a < 3; ++a) matrix[a][3] = p[a];
+        m->SetMatrix(matrix);
+        m->Pack();
+        socket->Send(m->GetPackPointer(), static_cast<int>(m->GetPackSize()));
+      }
+      const Received r = igtl_device::receive_header(*socket, header);
+      if (r == Received::kClosed) return;
+      if (r == Received::kNothing) continue;
+      bool closed = false;
+      if (std::string(header->GetDeviceType()) == "SENSOR") {
+        igtl::SensorMessage::Pointer m = igtl::SensorMessage::New();
+        if (igtl_device::receive_body(*socket, header, m, closed) && m->GetLength() == 3) {
+          const double f = std::hypot(m->GetValue(0), m->GetValue(1), m->GetValue(2));
+          if (f > max_force_N) max_force_N = f;
+          ++sensors;
+        }
+      } else if (std::string(header->GetDeviceType()) == "POLYDATA") {
+        igtl::PolyDataMessage::Pointer m = igtl::PolyDataMessage::New();
+        if (igtl_device::receive_body(*socket, header, m, closed)) take_surface(m, header);
+      } else {
+        socket->Skip(static_cast<int>(header->GetBodySizeToRead()));
+      }
+      if (closed) return;
+    }
+  }
+
+  void take_surface(igtl::PolyDataMessage::Pointer& m, igtl::MessageHeader::Pointer& header) {
+    igtl::TimeStamp::Pointer stamp = igtl::TimeStamp::New();
+    header->GetTimeStamp(stamp);
+    std::lock_guard<std::mutex> lock(mutex);
+    surface_time = stamp->GetTimeStamp();
+    surface_name = m->GetDeviceName();
+    points.clear();
+    igtl::PolyDataPointArray::Pointer p = m->GetPoints();
+    for (int i = 0; p && i < p->GetNumberOfPoints(); ++i) {
+      igtlFloat32 xyz[3];
+      p->GetPoint(static_cast<unsigned>(i), xyz);
+      points.insert(points.end(), xyz, xyz + 3);
+    }
+    triangles.clear();
+    igtl::PolyDataCellArray::Pointer cells = m->GetPolygons();
+    for (unsigned i = 0; cells && i < cells->GetNumberOfCells(); ++i) {
+      std::list<igtlUint32> cell;
+      cells->GetCell(i, cell);
+      triangles.insert(triangles.end(), cell.begin(), cell.end());
+    }
+    ++surfaces;
+  }
+
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// Every snapshot the render task took: the liver's node positions by simulated time.
+struct StateKeeper final : FrameObserver {
+  void on_start(const SceneStatic& scene) override { body = scene.bodies.at(0); }
+  void on_frame(const SceneStatic&, const Snapshot& s) override { positions[s.time_s] = s.bodies.at(0).positions; }
+  BodyStatic body;
+  std::map<double, std::vector<double>> positions;
+};
+
+TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSurface) {
+  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  PluginRegistry plugins;
+  plugins.load();
+  const RegistrySchemas schemas(plugins);
+  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
+                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+                                      "devices.0.params.connect_timeout=30"});
+  SlicerLikeClient client(work / "port");
+  Simulation sim(scene, plugins);  // connect waits for the client's first TRANSFORM
+  StateKeeper keeper;
+  RunOptions options;
+  options.realtime = true;
+  options.duration_s = 1.5;
+  options.observers = {&keeper};
+  const RunResult result = sim.run(options);
+  client.stop_sending = true;
+  ASSERT_FALSE(keeper.positions.empty());
+  const double final_time = keeper.positions.rbegin()->first;
+  for (int i = 0; i < 300; ++i) {  // the final frame's POLYDATA follows within a frame period or two
+    {
+      std::lock_guard<std::mutex> lock(client.mutex);
+      if (client.surface_time >= final_time - 1e-6) break;  // s: the stamp carries ~1 ns
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  std::printf("openigtlink: %d SENSOR (max %.3f N), %d POLYDATA in %.2f s\n", client.sensors.load(),
+              client.max_force_N.load(), client.surfaces.load(), result.sim_time_s);
+  EXPECT_GT(client.sensors, 100);
+  EXPECT_GT(client.max_force_N, 0.3) << "pressing 8 mm into the liver should be felt";
+  EXPECT_LE(client.max_force_N, 3.3 + 1e-9);
+  EXPECT_GT(client.surfaces, 10);  // 60 Hz over 1.5 s
+  EXPECT_EQ(result.devices.at(0).counters.empty(), false);
+
+  std::lock_guard<std::mutex> lock(client.mutex);
+  EXPECT_EQ(client.surface_name, "liver");
+  const auto state = keeper.positions.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
+  ASSERT_TRUE(state != keeper.positions.end() && state->first < client.surface_time + 1e-6) << "the surface's time stamp " << client.surface_time
+                                            << " s is no state the simulation had";
+  // The streamed vertices are the nodes the boundary triangles use, in the order first used.
+  std::vector<int64_t> vertex_of_node(keeper.body.rest_positions.size() / 3, -1);
+  std::vector<uint32_t> node_of_vertex, expected_triangles;
+  for (uint32_t n : keeper.body.triangles) {
+    if (vertex_of_node[n] < 0) {
+      vertex_of_node[n] = static_cast<int64_t>(node_of_vertex.size());
+      node_of_vertex.push_back(n);
+    }
+    expected_triangles.push_back(static_cast<uint32_t>(vertex_of_node[n]));
+  }
+  ASSERT_EQ(client.points.size(), 3 * node_of_vertex.size());
+  EXPECT_EQ(client.triangles, expected_triangles);
+  double worst = 0, moved = 0;
+  for (size_t v = 0; v < node_of_vertex.size(); ++v)
+    for (size_t a = 0; a < 3; ++a) {
+      const double simulated = state->second[3 * node_of_vertex[v] + a];
+      worst = std::max(worst, std::abs(static_cast<double>(client.points[3 * v + a]) * 1e-3 - simulated));
+      moved = std::max(moved, std::abs(simulated - keeper.body.rest_positions[3 * node_of_vertex[v] + a]));
+    }
+  EXPECT_LT(worst, 1e-7) << "m: float32 mm carries a ~0.2 mm-long coordinate to ~1e-8 m";
+  EXPECT_GT(moved, 1e-3) << "the pressed liver's surface should have moved";
+}
+
+}  // namespace
+}  // namespace tacta
