@@ -7,6 +7,7 @@
 #include <igtlClientSocket.h>
 #include <igtlPolyDataMessage.h>
 #include <igtlSensorMessage.h>
+#include <igtlStringMessage.h>
 #include <igtlTransformMessage.h>
 
 #include <atomic>
@@ -20,6 +21,7 @@
 #include <thread>
 
 #include "../../../plugins/devices/openigtlink/igtl_io.hpp"
+#include "device_harness.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
@@ -206,6 +208,82 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
     }
   EXPECT_LT(worst, 1e-7) << "m: float32 mm carries a ~0.2 mm-long coordinate to ~1e-8 m";
   EXPECT_GT(moved, 1e-3) << "the pressed liver's surface should have moved";
+}
+
+
+// Through the C ABI: a corrupt message and an unknown one are dropped and counted, a lost
+// connection reads DISCONNECTED (zero force), and the next client reconnects.
+TEST(OpenIgtlinkDevice, CorruptAndUnknownMessagesAndADisconnectNeverCrash) {
+  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink_abi";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  testing::LoadedPlugin plugin("tacta_openigtlink.so");
+  const tacta_device_api& api = plugin.api<tacta_device_api>("openigtlink");
+  testing::DeviceParams params(plugin.descriptor("openigtlink"));
+  params.number("port", 0).text("port_file", (work / "port").string()).number("connect_timeout", 20);
+  const auto send_pose = [](igtl::ClientSocket& socket, float y_mm, bool corrupt) {
+    igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+    igtl::Matrix4x4 matrix;
+    igtl::IdentityMatrix(matrix);
+    matrix[1][3] = y_mm;
+    m->SetMatrix(matrix);
+    m->Pack();
+    if (corrupt) static_cast<unsigned char*>(m->GetPackBodyPointer())[4] ^= 0x5A;  // the CRC no longer holds
+    socket.Send(m->GetPackPointer(), static_cast<int>(m->GetPackSize()));
+  };
+  const auto connect = [&](igtl::ClientSocket::Pointer& socket) {
+    for (int i = 0; i < 1000; ++i) {
+      int port = 0;
+      if (fs::exists(work / "port") && (std::ifstream(work / "port") >> port) && socket->ConnectToServer("127.0.0.1", port) == 0)
+        return true;
+      std::this_thread::sleep_for(10ms);
+    }
+    return false;
+  };
+  igtl::ClientSocket::Pointer first = igtl::ClientSocket::New();
+  std::thread peer([&] {
+    if (!connect(first)) return;
+    send_pose(*first, 100.0f, false);
+  });
+  const tacta_device_setup setup = params.setup();
+  void* device = nullptr;
+  char message[512] = {0};
+  ASSERT_EQ(api.create(&setup, &device, message, sizeof message), TACTA_OK) << message;
+  ASSERT_EQ(api.connect(device, message, sizeof message), TACTA_OK) << message;
+  peer.join();
+  tacta_device_sample s{};
+  ASSERT_EQ(api.read(device, 0.0, &s), TACTA_DEVICE_CONNECTED);
+  EXPECT_NEAR(s.position[1], 0.1, 1e-9);  // mm in, m out
+
+  igtl::StringMessage::Pointer text = igtl::StringMessage::New();
+  text->SetString("hello");
+  text->Pack();
+  first->Send(text->GetPackPointer(), static_cast<int>(text->GetPackSize()));
+  send_pose(*first, 200.0f, true);
+  std::this_thread::sleep_for(100ms);
+  ASSERT_EQ(api.read(device, 0.001, &s), TACTA_DEVICE_CONNECTED);
+  EXPECT_NEAR(s.position[1], 0.1, 1e-9) << "the corrupt pose was taken";
+  first->CloseSocket();
+  tacta_device_state state = TACTA_DEVICE_CONNECTED;
+  for (int i = 0; i < 1000 && (state = api.read(device, 0.002, &s)) == TACTA_DEVICE_CONNECTED; ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(state, TACTA_DEVICE_DISCONNECTED);
+
+  igtl::ClientSocket::Pointer second = igtl::ClientSocket::New();
+  ASSERT_TRUE(connect(second));
+  send_pose(*second, 120.0f, false);
+  for (int i = 0; i < 1000 && (state = api.read(device, 0.003, &s)) != TACTA_DEVICE_CONNECTED; ++i) std::this_thread::sleep_for(1ms);
+  EXPECT_EQ(state, TACTA_DEVICE_CONNECTED);
+  EXPECT_NEAR(s.position[1], 0.12, 1e-7);
+  tacta_device_counter c[32];
+  std::map<std::string, double> counters;
+  for (uint32_t i = 0, n = api.counters(device, c, 32); i < n; ++i) counters[c[i].name] = c[i].value;
+  EXPECT_EQ(counters["dropped"], 1.0);
+  EXPECT_EQ(counters["ignored"], 1.0);
+  EXPECT_EQ(counters["connections"], 2.0);
+  EXPECT_EQ(counters["disconnections"], 1.0);
+  EXPECT_EQ(counters["watchdog_trips"], 1.0);
+  second->CloseSocket();
+  api.destroy(device);
 }
 
 }  // namespace
