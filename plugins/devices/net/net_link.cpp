@@ -14,19 +14,7 @@
 
 namespace tacta::net_device {
 
-double now_seconds() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
-
 namespace {
-
-uint64_t now_ns() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<uint64_t>(t.tv_sec) * 1000000000ull + static_cast<uint64_t>(t.tv_nsec);
-}
 
 constexpr int kPollMs = 5;  // how often the thread looks at its stop flag
 
@@ -159,7 +147,7 @@ void NetLink::handle(const unsigned char* data, size_t size, const void* from, u
   fastest_transit_ = std::min(fastest_transit_, transit);
   if (transit - fastest_transit_ > late_s_) counts_.late.fetch_add(1, std::memory_order_relaxed);
   if (h.echo_time_ns != 0) {
-    const uint64_t now = now_ns();
+    const uint64_t now = devices::monotonic_ns();
     if (now > h.echo_time_ns + h.echo_hold_ns) round_trips_.add(static_cast<double>(now - h.echo_time_ns - h.echo_hold_ns) * 1e-9);
   }
   reply(h, arrival);
@@ -182,7 +170,7 @@ void NetLink::reply(const tnet_header& to, double arrival) noexcept {
   h.type = TNET_FORCE;
   h.session = session_;
   h.sequence = ++reply_sequence_;
-  const uint64_t now = now_ns();
+  const uint64_t now = devices::monotonic_ns();
   h.sender_time_ns = now;
   h.echo_time_ns = to.sender_time_ns;
   const double hold = now_seconds() - arrival;

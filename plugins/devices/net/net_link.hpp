@@ -12,13 +12,14 @@
 #include <thread>
 
 #include "tacta_devices/round_trip_log.hpp"
+#include "tacta_devices/monotonic_clock.hpp"
 #include "tacta_devices/seqlock_slot.hpp"
 #include "tacta_net_protocol.h"
 
 namespace tacta::net_device {
 
 // Steady (monotonic) clock, s; the same clock the clients stamp with.
-double now_seconds() noexcept;
+inline double now_seconds() noexcept { return devices::monotonic_seconds(); }
 
 // Newest accepted state: position 3, orientation 4, velocity 3, buttons, arrival (s), session,
 // said_bye (1 after BYE).

@@ -18,12 +18,6 @@
 
 namespace tacta::igtl_device {
 
-double now_seconds() noexcept {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
-}
-
 namespace {
 constexpr int kReceiveTimeoutMs = 2;         // how long a read waits before the thread does other work
 constexpr unsigned long kAcceptWaitMs = 50;  // how long the server waits for a client per round

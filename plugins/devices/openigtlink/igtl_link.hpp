@@ -17,11 +17,12 @@
 #include <thread>
 
 #include "surface_frame.hpp"
+#include "tacta_devices/monotonic_clock.hpp"
 #include "tacta_devices/seqlock_slot.hpp"
 
 namespace tacta::igtl_device {
 
-double now_seconds() noexcept;
+inline double now_seconds() noexcept { return devices::monotonic_seconds(); }  // s
 
 struct LinkSettings {
   bool server = true;
