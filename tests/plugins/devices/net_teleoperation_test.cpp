@@ -20,7 +20,9 @@
 #include <sstream>
 #include <thread>
 
+#include "tacta/device_api.h"
 #include "tacta/plugin_registry.hpp"
+#include "tacta_net_device.h"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/sim/simulation.hpp"
@@ -160,6 +162,65 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
                 force_error(run.fy, base.fy), transparency, run.peer.at("min_ledger"), run.peer.at("min_exact_ledger"),
                 run.peer.at("dissipated"), run.peer.at("peak"), run.link.at("watchdog_trips"));
   }
+}
+
+
+// The engine side of a link that drops: a bridge (the C client, on a thread) that falls silent
+// for 0.2 s mid-run gets zero force, is reported disconnected (a fault, exit 1) and reconnects.
+TEST(NetTeleoperation, ASilentBridgeIsDisconnectedThenReconnects) {
+  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "net_reconnect";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  const RegistrySchemas schemas(plugins());
+  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
+                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+                                      "devices.0.params.watchdog=0.1", "output.plots=[]"});
+  std::atomic<bool> stop{false};
+  std::atomic<int> silent_ms{0};
+  std::thread bridge([&] {
+    if (!wait_for_file(work / "port", 20.0)) return;
+    unsigned port = 0;
+    std::ifstream(work / "port") >> port;
+    const tnet_hello caps{{-0.13, 0.06, -0.035}, {0.03, 0.18, 0.105}, 3.3, 0.88, 1000.0, 1000.0, 3, 3};
+    tacta_net_device dev;
+    char error[256];
+    if (tacta_net_open(&dev, "127.0.0.1", static_cast<uint16_t>(port), &caps, error, sizeof error) != 0) return;
+    const tnet_state held{{-0.049, 0.16, 0.027}, {1, 0, 0, 0}, {0, 0, 0}, 0, 0};  // above the liver
+    while (!stop) {
+      if (silent_ms > 0) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(silent_ms.exchange(0)));
+        continue;
+      }
+      tacta_net_send_state(&dev, &held);
+      tacta_net_poll(&dev);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    tacta_net_close(&dev);
+  });
+  Simulation sim(scene, plugins());
+  std::thread pause([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    silent_ms = 300;  // ms: three watchdogs
+  });
+  RunOptions options;
+  options.realtime = true;
+  options.duration_s = 1.2;
+  options.out_dir = (work / "run").string();
+  const RunResult result = sim.run(options);
+  pause.join();
+  stop = true;
+  bridge.join();
+  const DeviceResult& device = result.devices.at(0);
+  std::map<std::string, double> link(device.counters.begin(), device.counters.end());
+  EXPECT_GE(link["watchdog_trips"], 1.0);
+  EXPECT_EQ(device.reconnections, static_cast<uint64_t>(link["watchdog_trips"]));
+  EXPECT_EQ(device.state, TACTA_DEVICE_CONNECTED) << "it came back";
+  EXPECT_EQ(result.faults, device.reconnections) << "each drop is reported";
+  EXPECT_EQ(result.exit_code, 1);
+  std::ifstream report(work / "run" / "report.json");
+  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"watchdog_trips\""), std::string::npos);
+  EXPECT_NE(text.find("\"reconnections\""), std::string::npos);
 }
 
 }  // namespace
