@@ -70,7 +70,8 @@ int main(int argc, char** argv) {
   size = sizeof client_address;
   getsockname(dev.socket, (struct sockaddr*)&client_address, &size);
   fprintf(out, "t,y,fx,fy,fz,ledger\n");
-  for (next = tacta_net_now_ns();; next += 1000000ull) {
+  const uint64_t begun = tacta_net_now_ns();
+  for (next = begun;; next += 1000000ull) {
     unsigned char buffer[512];
     struct sockaddr_in from;
     double raw[3], target_y, tau;
@@ -103,7 +104,7 @@ int main(int argc, char** argv) {
     if (start == 0 && live) start = now;
     tau = start == 0 ? 0.0 : (double)(now - start) * 1e-9;
     if (start != 0 && tau > duration) break;
-    if (start == 0 && (double)(now - next + 1000000ull) * 1e-9 > 60.0) return 3;
+    if (start == 0 && now - begun > 60000000000ull) return 3; /* no simulation answered in 60 s */
     tacta_net_passivity_filter(&dev.passivity, v, dt, tacta_net_remote_budget(&dev), raw, caps.peak_force, f);
     target_y = start_y + (pressed_y - start_y) * (tau < 0.4 ? tau / 0.4 : 1.0);
     memcpy(last_x, x, sizeof x);
