@@ -143,7 +143,7 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
     EXPECT_GE(run.peer["min_ledger"], 0.0) << "the device returned more energy than the hand put in";
     EXPECT_LE(run.peer["peak"], kPeakForce + 1e-9);
     EXPECT_GE(run.peer["held_fraction"], 0.8) << "contact was not held while pressed in";
-    EXPECT_GT(run.sim.devices.at(0).contact_ticks, 500u);
+    EXPECT_GT(run.sim.devices.at(0).contact_ticks, 100u);  // ticks: fewer when the engine runs late (ASan, load)
     EXPECT_LE(run.sim.devices.at(0).max_force_N, kPeakForce + 1e-9);
     if (c.rtt_ms > 0) {  // the engine measures the injected round trip (plus loopback and a tick or two)
       EXPECT_GT(run.link["round_trip_p50_ms"], 0.8 * c.rtt_ms);
