@@ -60,14 +60,20 @@ bool wait_for_file(const fs::path& file, double seconds) {
   return false;
 }
 
-TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss) {
-  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / ("net_teleop_" + std::to_string(static_cast<int>(round_trip_ms)));
+// The teleoperated_palpation scene in a fresh work folder, its net device on a free port that it
+// writes to work/port, with one more override.
+SceneDesc teleop_scene(const fs::path& work, const std::string& override_) {
   fs::remove_all(work);
   fs::create_directories(work);
   const RegistrySchemas schemas(plugins());
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
-                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-                                      "devices.0.params.connect_timeout=30", "output.plots=[]"});
+  return load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
+                    {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+                     "output.plots=[]", override_});
+}
+
+TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss) {
+  const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / ("net_teleop_" + std::to_string(static_cast<int>(round_trip_ms)));
+  const SceneDesc scene = teleop_scene(work, "devices.0.params.connect_timeout=30");
   // The simulation connects (waits for the peer's HELLO) on its own thread while the peer starts.
   auto building = std::async(std::launch::async, [&] { return std::make_unique<Simulation>(scene, plugins()); });
   EXPECT_TRUE(wait_for_file(work / "port", 20.0)) << "the net device wrote no port file";
@@ -169,12 +175,7 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
 // for 0.2 s mid-run gets zero force, is reported disconnected (a fault, exit 1) and reconnects.
 TEST(NetTeleoperation, ASilentBridgeIsDisconnectedThenReconnects) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "net_reconnect";
-  fs::remove_all(work);
-  fs::create_directories(work);
-  const RegistrySchemas schemas(plugins());
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
-                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-                                      "devices.0.params.watchdog=0.1", "output.plots=[]"});
+  const SceneDesc scene = teleop_scene(work, "devices.0.params.watchdog=0.1");
   std::atomic<bool> stop{false};
   std::atomic<int> silent_ms{0};
   std::thread bridge([&] {
