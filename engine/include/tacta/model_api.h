@@ -72,6 +72,13 @@ typedef struct tacta_body_state {
 #define TACTA_STEP_INVERTED_ELEMENT (1u << 3)    /* warning: an element turned inside out */
 #define TACTA_STEP_FAULT_MASK (TACTA_STEP_NOT_FINITE | TACTA_STEP_DIVERGED)
 
+/* A named figure a model keeps about its own work since create() (solver fallbacks, Newton
+ * iterations), for report.json. name: static storage, snake_case. */
+typedef struct tacta_model_counter {
+  const char* name;
+  double value;
+} tacta_model_counter;
+
 typedef struct tacta_model_api {
   /* required: build an instance for one body; may allocate. Writes a reason on failure. */
   tacta_status (*create)(const tacta_model_setup* setup, void** instance, char* message,
@@ -94,6 +101,10 @@ typedef struct tacta_model_api {
                             char* message, size_t message_capacity);
   /* optional: von Mises stress per node (Pa), for colour maps and VTK output. */
   void (*node_stress)(void* instance, const double* positions, double* von_mises);
+  /* optional, appended (the engine reads it only when api_size reaches it): the model's counters;
+   * writes at most capacity of them into out and returns how many it has. Not from the 1 kHz
+   * path. */
+  uint32_t (*counters)(void* instance, tacta_model_counter* out, uint32_t capacity);
 } tacta_model_api;
 
 #define TACTA_MODEL_API_FIELD(member, required) \
@@ -104,6 +115,7 @@ static const tacta_api_field tacta_model_api_fields[] = {
     TACTA_MODEL_API_FIELD(step, 1),            TACTA_MODEL_API_FIELD(begin, 0),
     TACTA_MODEL_API_FIELD(elastic_energy, 0),  TACTA_MODEL_API_FIELD(internal_forces, 0),
     TACTA_MODEL_API_FIELD(set_param, 0),       TACTA_MODEL_API_FIELD(node_stress, 0),
+    TACTA_MODEL_API_FIELD(counters, 0),
 };
 
 #ifdef __cplusplus

@@ -36,6 +36,11 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     j.field("max_displacement_m", b.max_displacement_m);
     j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
     j.field("initial_energy_J", b.initial_energy_J);
+    if (!b.model_counters.empty()) {
+      j.key("model_counters").begin_object();
+      for (const auto& [name, value] : b.model_counters) j.field(name, value);
+      j.end_object();
+    }
     j.field("step_thread", b.own_thread ? "own" : "haptic").field("step_rate_hz", b.step_rate_hz);
     if (b.own_thread) {
       j.key("worker").begin_object();

@@ -1,5 +1,6 @@
 #include "plugin_instance.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 #include <algorithm>
@@ -27,6 +28,20 @@ ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_mod
 
 ModelInstance::~ModelInstance() {
   if (instance_ != nullptr) api_.destroy(instance_);
+}
+
+std::vector<std::pair<std::string, double>> ModelInstance::counters() {
+  std::vector<std::pair<std::string, double>> named;
+  // An entry past the plugin's own table size is absent (a plugin built before it existed).
+  if (descriptor_.api_size < offsetof(tacta_model_api, counters) + sizeof(api_.counters) ||
+      api_.counters == nullptr)
+    return named;
+  std::vector<tacta_model_counter> raw(api_.counters(instance_, nullptr, 0));
+  raw.resize(std::min<size_t>(raw.size(), api_.counters(instance_, raw.data(),
+                                                        static_cast<uint32_t>(raw.size()))));
+  for (const tacta_model_counter& c : raw)
+    if (c.name != nullptr) named.emplace_back(c.name, c.value);
+  return named;
 }
 
 DeviceInstance::DeviceInstance(const tacta_descriptor& descriptor, const tacta_device_setup& setup,

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <utility>
 #include <vector>
@@ -37,6 +39,10 @@ class ModelInstance {
   void node_stress(const double* positions, double* von_mises) noexcept {
     if (api_.node_stress) api_.node_stress(instance_, positions, von_mises);
   }
+
+  // The model's own counters (solver fallbacks, Newton iterations); empty when it keeps none.
+  // Allocates: not from the 1 kHz path.
+  std::vector<std::pair<std::string, double>> counters();
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;

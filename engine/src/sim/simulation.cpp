@@ -203,6 +203,7 @@ RunResult Simulation::run(const RunOptions& options) {
     br.max_displacement_m = b.max_displacement_m;
     br.kinetic_energy_J = b.kinetic_energy();
     br.elastic_energy_J = b.model->elastic_energy(b.positions.data());
+    br.model_counters = b.model->counters();
     br.frozen = b.fault.frozen;
     br.own_thread = b.own_thread;
     br.step_rate_hz = b.step_period_s > 0 ? 1.0 / b.step_period_s : 0.0;

@@ -24,6 +24,20 @@ namespace tacta::models::corotational {
 
 enum class RotationMethod { kPolar = 0, kSvd = 1 };
 enum class LinearSolver { kConjugateGradient = 0, kCholesky = 1 };
+// What CG does when a step's solve has not converged within max_iterations.
+enum class SolverFallback { kDirect = 0, kRestartOnly = 1, kNone = 2 };
+
+// Counts since creation, for report.json (the plugin's counters entry).
+struct SolverCounters {
+  uint64_t solves = 0;
+  uint64_t cg_iterations = 0;         // every pass included
+  uint64_t warm_starts_rejected = 0;  // the extrapolated guess was worse than zero
+  uint64_t restarts = 0;              // CG not converged: restarted from zero, more iterations
+  uint64_t direct_fallbacks = 0;      // still not converged: sparse LDL^T solved the step
+  uint64_t direct_solves_held = 0;    // steps sent straight to LDL^T after a recent fallback
+  uint64_t unconverged = 0;           // steps left with a residual above the tolerance
+  double max_relative_residual = 0.0;  // of the accepted solutions
+};
 
 struct Options {
   RotationMethod rotation = RotationMethod::kPolar;
@@ -32,6 +46,11 @@ struct Options {
   int max_iterations = 25;  // CG iterations per step
   double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
   int refactor_interval = 1;  // incomplete Cholesky: steps between refactorisations
+  // Unconverged CG: restart from zero with restart_factor x max_iterations, then (kDirect)
+  // sparse LDL^T. A capped CG that is accepted unconverged lets errors pile up (SOFA's
+  // cantilever collapsed at 0.44 s).
+  SolverFallback fallback = SolverFallback::kDirect;
+  int restart_factor = 8;
   // step()'s element pass four tets at a time (element_batch.cpp; polar rotation only); false:
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
@@ -59,6 +78,7 @@ class CorotationalFem {
   // the next step refills.
   const BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
   SolveReport last_solve() const { return last_solve_; }
+  const SolverCounters& counters() const { return counters_; }
   // Polar iterations summed over elements in the last step (0 with the SVD).
   long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
@@ -91,6 +111,8 @@ class CorotationalFem {
   // step()'s frame_of + accumulate for one batch, warm start and history included; returns
   // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
   uint32_t step_batch(uint32_t batch, const double* positions, double scale) noexcept;
+  // Solves matrix_ dv = rhs_ into delta_v_ (CG with its fallbacks, or LDL^T); counts.
+  void solve_step() noexcept;
   // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
@@ -113,6 +135,8 @@ class CorotationalFem {
   std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
       rhs_, delta_v_, previous_delta_v_, weights_;
   SolveReport last_solve_;
+  SolverCounters counters_;
+  int direct_hold_ = 0, direct_hold_length_ = 1;  // steps left on LDL^T; the next hold's length
   long polar_iterations_ = 0;
 };
 

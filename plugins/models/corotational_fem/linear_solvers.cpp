@@ -120,8 +120,13 @@ double ConjugateGradientSolver::multiply(const BlockSparseMatrix& a, const doubl
 
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
                                            double* x) {
-  const size_t nodes = r_.size() / 4;
   build_preconditioner(a);
+  return iterate(a, b, x, max_iterations_);
+}
+
+SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const double* b,
+                                             double* x, int max_iterations) {
+  const size_t nodes = r_.size() / 4;
   double b_norm2 = 0.0;
   for (size_t i = 0; i < 3 * nodes; ++i) b_norm2 += b[i] * b[i];
   SolveReport report;
@@ -141,12 +146,22 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
       for (size_t c = 0; c < 3; ++c) x[3 * i + c] = x_[4 * i + c];
   };
   double r_norm2 = dot(r_, r_);
+  if (!(r_norm2 <= b_norm2)) {  // the guess is worse than none (or not finite): start from zero
+    report.warm_start_rejected = true;
+    std::fill(x_.begin(), x_.end(), 0.0);
+    for (size_t i = 0; i < nodes; ++i)
+      for (size_t c = 0; c < 3; ++c) r_[4 * i + c] = b[3 * i + c];
+    r_norm2 = b_norm2;
+  }
   report.relative_residual = std::sqrt(r_norm2 / b_norm2);
-  if (r_norm2 <= threshold2) return report;
+  if (r_norm2 <= threshold2) {
+    write_back();
+    return report;
+  }
   apply_preconditioner(r_.data(), z_.data());
   p_ = z_;
   double rz = dot(r_, z_);
-  for (int k = 0; k < max_iterations_; ++k) {
+  for (int k = 0; k < max_iterations; ++k) {
     const double p_ap = multiply(a, p_.data(), ap_.data());
     if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
     const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2);

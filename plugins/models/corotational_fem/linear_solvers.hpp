@@ -24,6 +24,7 @@ struct SolveReport {
   bool converged = true;
   double relative_residual = 0.0;  // ||b - A x|| / ||b|| at exit (CG's recurrence residual)
   int replaced_pivots = 0;         // IC(0) pivots replaced by A's diagonal block
+  bool warm_start_rejected = false;  // ||b - A x0|| > ||b||: CG started from zero instead
 };
 
 class ConjugateGradientSolver {
@@ -35,6 +36,11 @@ class ConjugateGradientSolver {
   // x holds the initial guess (the previous step's solution) and receives the solution.
   // Convergence: ||b - A x|| <= tolerance ||b||.
   SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x);
+  // Solves again with the preconditioner of the last solve() on the same a, at most
+  // max_iterations: the fallback when solve() did not converge.
+  SolveReport resolve(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations) {
+    return iterate(a, b, x, max_iterations);
+  }
   void set_limits(int max_iterations, double tolerance, int refactor_interval) {
     max_iterations_ = max_iterations;
     tolerance_ = tolerance;
@@ -44,6 +50,7 @@ class ConjugateGradientSolver {
 
  private:
   void build_preconditioner(const BlockSparseMatrix& a);
+  SolveReport iterate(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations);
   void apply_preconditioner(const double* r, double* z) const;
   // y = A x on 4-per-node vectors, returns x . y.
   double multiply(const BlockSparseMatrix& a, const double* x, double* y) const;

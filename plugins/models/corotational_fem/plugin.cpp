@@ -1,4 +1,5 @@
 // corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -20,7 +21,7 @@ class CorotationalFemPlugin {
       "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 6> kParams = {
+  static constexpr std::array<tacta_param_spec, 8> kParams = {
       sdk::choice_param("rotation", "polar|svd", 0,
                         "element rotation: polar (warm-started iteration) or svd (inversion-aware)"),
       sdk::choice_param("solver", "pcg|cholesky", 0,
@@ -33,6 +34,12 @@ class CorotationalFemPlugin {
                       "CG stops when the residual norm falls below this fraction of the rhs norm"),
       sdk::int_param("refactor_interval", 1, 1, 1000,
                      "incomplete_cholesky: steps between refactorisations (1: every step)"),
+      sdk::choice_param("fallback", "direct|restart|none", 0,
+                        "when CG has not converged: restart from zero with restart_factor x "
+                        "max_iterations, then sparse LDL^T (direct); the restart only; or "
+                        "accept the unconverged solution (none)"),
+      sdk::int_param("restart_factor", 8, 1, 1000,
+                     "the restart's iteration cap, in units of max_iterations"),
   };
 
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
@@ -44,6 +51,8 @@ class CorotationalFemPlugin {
     options.max_iterations = params.integer("max_iterations");
     options.tolerance = params.real("tolerance");
     options.refactor_interval = params.integer("refactor_interval");
+    options.fallback = static_cast<SolverFallback>(params.choice("fallback"));
+    options.restart_factor = params.integer("restart_factor");
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),
@@ -55,6 +64,22 @@ class CorotationalFemPlugin {
   double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
+  uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
+    const SolverCounters& c = model_->counters();
+    const tacta_model_counter all[] = {
+        {"solves", static_cast<double>(c.solves)},
+        {"cg_iterations", static_cast<double>(c.cg_iterations)},
+        {"warm_starts_rejected", static_cast<double>(c.warm_starts_rejected)},
+        {"cg_restarts", static_cast<double>(c.restarts)},
+        {"direct_fallbacks", static_cast<double>(c.direct_fallbacks)},
+        {"direct_solves_held", static_cast<double>(c.direct_solves_held)},
+        {"unconverged_solves", static_cast<double>(c.unconverged)},
+        {"max_relative_residual", c.max_relative_residual},
+    };
+    const uint32_t count = static_cast<uint32_t>(std::size(all));
+    for (uint32_t i = 0; i < std::min(count, capacity); ++i) out[i] = all[i];
+    return count;
+  }
   // Live changes reach the solver's limits only (max_iterations, tolerance, refactor_interval):
   // rotation, solver and preconditioner decide the buffers built at creation.
   void set_param(uint32_t index, const tacta_param_value& value) {

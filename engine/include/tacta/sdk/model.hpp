@@ -11,6 +11,7 @@
 //   void internal_forces(const double* positions, double* forces) noexcept
 //   void set_param(uint32_t index, const tacta_param_value&)   may throw
 //   void node_stress(const double* positions, double* von_mises) noexcept
+//   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept
 #pragma once
 
 #include "tacta/model_api.h"
@@ -44,6 +45,9 @@ struct ModelAdapter {
   static void node_stress(void* instance, const double* positions, double* von_mises) noexcept {
     static_cast<T*>(instance)->node_stress(positions, von_mises);
   }
+  static uint32_t counters(void* instance, tacta_model_counter* out, uint32_t capacity) noexcept {
+    return static_cast<T*>(instance)->counters(out, capacity);
+  }
 
   static tacta_model_api table() {
     tacta_model_api api{};
@@ -59,6 +63,8 @@ struct ModelAdapter {
       api.set_param = &set_param;
     if constexpr (requires(T& t, const double* x, double* s) { t.node_stress(x, s); })
       api.node_stress = &node_stress;
+    if constexpr (requires(T& t, tacta_model_counter* c) { t.counters(c, 0u); })
+      api.counters = &counters;
     return api;
   }
 };

@@ -41,6 +41,8 @@ struct BodyResult {
   TickSummary worker_step_ms;        // wall time of each step on the worker
   uint64_t late_boundaries = 0;      // realtime: boundaries where the step was not finished
   double max_lateness_s = 0;         // realtime: longest time a step was collected past its boundary
+  // The final model's own counters (solver fallbacks, Newton iterations), in its order.
+  std::vector<std::pair<std::string, double>> model_counters;
 };
 
 struct DeviceResult {
