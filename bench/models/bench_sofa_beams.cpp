@@ -20,6 +20,7 @@ using models::corotational::LinearSolver;
 using models::corotational::Options;
 using models::corotational::Preconditioner;
 using models::corotational::RotationMethod;
+using models::corotational::SolverFallback;
 
 struct Variant {
   RotationMethod rotation = RotationMethod::kPolar;
@@ -28,6 +29,8 @@ struct Variant {
   LinearSolver solver = LinearSolver::kConjugateGradient;
   int max_iterations = 25;
   int refactor_interval = 1;
+  // Fixed-iteration variants (tolerance 1e-12) accept an unconverged CG: no fallback.
+  SolverFallback fallback = SolverFallback::kNone;
 };
 
 // The scene's body, at rest, with gravity as the external force.
@@ -56,6 +59,7 @@ struct BeamsRun {
     o.max_iterations = variant.max_iterations;
     o.tolerance = variant.tolerance;
     o.refactor_interval = variant.refactor_interval;
+    o.fallback = variant.fallback;
     return o;
   }
   // Mean displacement of the beams' free-end nodes (z = 40), m.
@@ -93,6 +97,7 @@ void sofa_beams_step(benchmark::State& state, Variant variant) {
   state.counters["max_residual"] = residual;
   state.counters["polar_per_tet"] = polar / steps / run.model.element_count();
   state.counters["fault"] = (bits & TACTA_STEP_FAULT_MASK) ? 1 : 0;
+  state.counters["fallbacks"] = static_cast<double>(run.model.counters().restarts);
   state.counters["sofa_ms"] = 13.8;
 }
 
@@ -124,6 +129,8 @@ const Variant kPolarBlockJacobi{};
 const Variant kPolarJacobi{.preconditioner = Preconditioner::kJacobi};
 const Variant kSvdBlockJacobi{.rotation = RotationMethod::kSvd};
 const Variant kPolarTolerance{.tolerance = 1e-5};
+// The plugin's defaults: CG to 1e-5 (max 25), restart and LDL^T fallbacks.
+const Variant kDefaults{.tolerance = 1e-5, .fallback = SolverFallback::kDirect};
 // 3e-7: the worst steady-state residual of 25 block-Jacobi iterations from the previous dv.
 const Variant kPolarMatchedTolerance{.tolerance = 3e-7};
 const Variant kPolarCholesky{.solver = LinearSolver::kCholesky};
@@ -148,6 +155,7 @@ TACTA_BEAMS(polar_cg25_block_jacobi, kPolarBlockJacobi);
 TACTA_BEAMS(polar_cg25_jacobi, kPolarJacobi);
 TACTA_BEAMS(svd_cg25_block_jacobi, kSvdBlockJacobi);
 TACTA_BEAMS(polar_cg_tol1e-5_block_jacobi, kPolarTolerance);
+TACTA_BEAMS(defaults_with_fallbacks, kDefaults);
 TACTA_BEAMS(polar_cg_tol3e-7_block_jacobi, kPolarMatchedTolerance);
 TACTA_BEAMS(polar_cholesky, kPolarCholesky);
 TACTA_BEAMS(polar_cg25_incomplete_cholesky, kPolarIc);

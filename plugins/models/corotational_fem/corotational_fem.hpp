@@ -22,6 +22,12 @@
 
 namespace tacta::models::corotational {
 
+using sparse::BlockSparseMatrix;
+using sparse::CholeskySolver;
+using sparse::ConjugateGradientSolver;
+using sparse::Preconditioner;
+using sparse::SolveReport;
+
 enum class RotationMethod { kPolar = 0, kSvd = 1 };
 enum class LinearSolver { kConjugateGradient = 0, kCholesky = 1 };
 // What CG does when a step's solve has not converged within max_iterations.

@@ -16,6 +16,8 @@
 namespace tacta::models::corotational {
 namespace {
 
+using sparse::BlockIncompleteCholesky;
+using sparse::PaddedBlocks;
 using testing::BodyState;
 using testing::make_model;
 

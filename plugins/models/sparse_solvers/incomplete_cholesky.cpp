@@ -5,7 +5,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 namespace {
 using Block = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
@@ -126,4 +126,4 @@ TACTA_HOT_PATH void BlockIncompleteCholesky::apply(const double* r, double* z) c
   }
 }
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

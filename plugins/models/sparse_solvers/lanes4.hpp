@@ -5,12 +5,12 @@
 
 #include <cstring>
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 typedef double Lanes4 __attribute__((vector_size(32)));
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse
 
 // All four lanes set to one value.
 #define TACTA_SPLAT4(value) \
-  (::tacta::models::corotational::Lanes4{(value), (value), (value), (value)})
+  (::tacta::models::sparse::Lanes4{(value), (value), (value), (value)})

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 class BlockSparseMatrix {
  public:
@@ -50,4 +50,4 @@ class BlockSparseMatrix {
   bool fixed_built_ = false;
 };
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

@@ -6,7 +6,7 @@
 #include "hot_path.hpp"
 #include "lanes4.hpp"
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 
 PaddedBlocks::PaddedBlocks(const BlockSparseMatrix& pattern)
@@ -58,4 +58,4 @@ TACTA_HOT_PATH double PaddedBlocks::multiply_symmetric(const double* __restrict 
   return x_dot_y;
 }
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

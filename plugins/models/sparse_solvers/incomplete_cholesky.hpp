@@ -10,7 +10,7 @@
 
 #include "block_sparse.hpp"
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 class BlockIncompleteCholesky {
  public:
@@ -37,4 +37,4 @@ class BlockIncompleteCholesky {
   std::vector<double> scaled_row_;    // D_k^-1 U_kj for the row being eliminated
 };
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets)
     : node_count_(node_count) {
@@ -103,4 +103,4 @@ void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {
   }
 }
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

@@ -15,7 +15,7 @@
 #include "incomplete_cholesky.hpp"
 #include "padded_blocks.hpp"
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1, kIncompleteCholesky = 2 };
 
@@ -92,4 +92,4 @@ class CholeskySolver {
   Eigen::VectorXd rhs_, solution_;
 };
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

@@ -11,7 +11,7 @@
 
 #include "block_sparse.hpp"
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 class PaddedBlocks {
  public:
@@ -27,4 +27,4 @@ class PaddedBlocks {
   std::vector<double> values_;  // 12 per block
 };
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse

@@ -9,7 +9,7 @@
 #include "hot_path.hpp"
 #include "lanes4.hpp"
 
-namespace tacta::models::corotational {
+namespace tacta::models::sparse {
 
 namespace {
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
@@ -258,4 +258,4 @@ bool CholeskySolver::solve(const BlockSparseMatrix& a, const double* b, double* 
   return true;
 }
 
-}  // namespace tacta::models::corotational
+}  // namespace tacta::models::sparse
