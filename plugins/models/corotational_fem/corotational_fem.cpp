@@ -16,7 +16,6 @@ namespace {
 using tacta::models::node_position;
 using tacta::models::Vec3;
 constexpr int kPolarMaxIterations = 30;  // warm-started: usually 1 to 3 are used
-constexpr int kMaxDirectHold = 64;       // steps on LDL^T before CG is tried again, at most
 constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
 
@@ -87,12 +86,11 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   delta_v_.assign(n, 0.0);
   previous_delta_v_.assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
-  if (options_.solver == LinearSolver::kCholesky || options_.fallback == SolverFallback::kDirect)
-    cholesky_ = std::make_unique<CholeskySolver>(matrix_);
-  if (options_.solver == LinearSolver::kConjugateGradient)
-    cg_ = std::make_unique<ConjugateGradientSolver>(matrix_, options_.preconditioner,
-                                                    options_.max_iterations, options_.tolerance,
-                                                    options_.refactor_interval);
+  solver_ = std::make_unique<SafeSolver>(
+      matrix_, sparse::SolverOptions{options_.solver, options_.preconditioner,
+                                     options_.max_iterations, options_.tolerance,
+                                     options_.refactor_interval, options_.fallback,
+                                     options_.restart_factor});
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 
@@ -103,7 +101,7 @@ void CorotationalFem::set_solver_limits(int max_iterations, double tolerance,
   options_.max_iterations = max_iterations;
   options_.tolerance = tolerance;
   options_.refactor_interval = refactor_interval;
-  if (cg_) cg_->set_limits(max_iterations, tolerance, refactor_interval);
+  solver_->set_limits(max_iterations, tolerance, refactor_interval);
 }
 
 TACTA_HOT_PATH CorotationalFem::ElementFrame CorotationalFem::frame_of(
@@ -207,7 +205,17 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   if (!fixed_.empty())
     for (uint32_t i = 0; i < node_count_; ++i)
       if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
-  solve_step();
+  if (solver_->iterative()) {
+    // CG starts from dv extrapolated linearly over the last two steps (a smooth motion changes
+    // its velocity increment slowly): a smaller first residual, fewer iterations. The solver
+    // drops the guess when it is worse than zero.
+    for (size_t k = 0; k < n; ++k) {
+      const double last = delta_v_[k];
+      delta_v_[k] = 2.0 * last - previous_delta_v_[k];
+      previous_delta_v_[k] = last;
+    }
+  }
+  last_solve_ = solver_->solve(matrix_, rhs_.data(), delta_v_.data());
   if (!last_solve_.converged) result |= TACTA_STEP_SOLVER_NOT_CONVERGED;
   for (uint32_t i = 0; i < node_count_; ++i) {
     const bool held = !fixed_.empty() && fixed_[i];
@@ -219,59 +227,6 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   }
   result |= guard_.check(state.positions, state.velocities);
   return result;
-}
-
-void CorotationalFem::solve_step() noexcept {
-  ++counters_.solves;
-  if (!cg_) {
-    last_solve_ = SolveReport{};
-    last_solve_.converged = cholesky_->solve(matrix_, rhs_.data(), delta_v_.data());
-    if (!last_solve_.converged) ++counters_.unconverged;
-    return;
-  }
-  // CG starts from dv extrapolated linearly over the last two steps (a smooth motion changes
-  // its velocity increment slowly): a smaller first residual, fewer iterations. CG itself
-  // drops the guess when it is worse than zero.
-  const size_t n = delta_v_.size();
-  for (size_t k = 0; k < n; ++k) {
-    const double last = delta_v_[k];
-    delta_v_[k] = 2.0 * last - previous_delta_v_[k];
-    previous_delta_v_[k] = last;
-  }
-  if (cholesky_ && direct_hold_ > 0) {  // CG failed lately: do not pay for it to fail again
-    --direct_hold_;
-    ++counters_.direct_solves_held;
-    last_solve_ = SolveReport{};
-    last_solve_.converged = cholesky_->solve(matrix_, rhs_.data(), delta_v_.data());
-    if (!last_solve_.converged) ++counters_.unconverged;
-    return;
-  }
-  last_solve_ = cg_->solve(matrix_, rhs_.data(), delta_v_.data());
-  counters_.cg_iterations += static_cast<uint64_t>(last_solve_.iterations);
-  if (last_solve_.warm_start_rejected) ++counters_.warm_starts_rejected;
-  if (!last_solve_.converged && options_.fallback != SolverFallback::kNone) {
-    ++counters_.restarts;
-    std::fill(delta_v_.begin(), delta_v_.end(), 0.0);
-    const SolveReport restart = cg_->resolve(matrix_, rhs_.data(), delta_v_.data(),
-                                             options_.restart_factor * options_.max_iterations);
-    counters_.cg_iterations += static_cast<uint64_t>(restart.iterations);
-    last_solve_.iterations += restart.iterations;
-    last_solve_.converged = restart.converged;
-    last_solve_.relative_residual = restart.relative_residual;
-    if (!restart.converged && cholesky_) {
-      ++counters_.direct_fallbacks;
-      last_solve_.converged = cholesky_->solve(matrix_, rhs_.data(), delta_v_.data());
-      last_solve_.relative_residual = 0.0;
-      // The next steps go straight to LDL^T, for twice as many steps each time CG fails again.
-      direct_hold_ = direct_hold_length_;
-      direct_hold_length_ = std::min(2 * direct_hold_length_, kMaxDirectHold);
-    }
-  } else if (last_solve_.converged) {
-    direct_hold_length_ = 1;
-  }
-  if (!last_solve_.converged) ++counters_.unconverged;
-  counters_.max_relative_residual =
-      std::max(counters_.max_relative_residual, last_solve_.relative_residual);
 }
 
 void CorotationalFem::begin(const tacta_body_state& state, double /*dt*/) noexcept {

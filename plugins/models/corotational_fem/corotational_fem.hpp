@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "block_sparse.hpp"
-#include "linear_solvers.hpp"
+#include "safe_solver.hpp"
 #include "tacta/models/divergence_guard.hpp"
 #include "tacta/model_api.h"
 
@@ -26,25 +26,13 @@ using sparse::BlockSparseMatrix;
 using sparse::CholeskySolver;
 using sparse::ConjugateGradientSolver;
 using sparse::Preconditioner;
+using sparse::LinearSolver;
+using sparse::SafeSolver;
+using sparse::SolverCounters;
+using sparse::SolverFallback;
 using sparse::SolveReport;
 
 enum class RotationMethod { kPolar = 0, kSvd = 1 };
-enum class LinearSolver { kConjugateGradient = 0, kCholesky = 1 };
-// What CG does when a step's solve has not converged within max_iterations.
-enum class SolverFallback { kDirect = 0, kRestartOnly = 1, kNone = 2 };
-
-// Counts since creation, for report.json (the plugin's counters entry).
-struct SolverCounters {
-  uint64_t solves = 0;
-  uint64_t cg_iterations = 0;         // every pass included
-  uint64_t warm_starts_rejected = 0;  // the extrapolated guess was worse than zero
-  uint64_t restarts = 0;              // CG not converged: restarted from zero, more iterations
-  uint64_t direct_fallbacks = 0;      // still not converged: sparse LDL^T solved the step
-  uint64_t direct_solves_held = 0;    // steps sent straight to LDL^T after a recent fallback
-  uint64_t unconverged = 0;           // steps left with a residual above the tolerance
-  double max_relative_residual = 0.0;  // of the accepted solutions
-};
-
 struct Options {
   RotationMethod rotation = RotationMethod::kPolar;
   LinearSolver solver = LinearSolver::kConjugateGradient;
@@ -84,7 +72,7 @@ class CorotationalFem {
   // the next step refills.
   const BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
   SolveReport last_solve() const { return last_solve_; }
-  const SolverCounters& counters() const { return counters_; }
+  const SolverCounters& counters() const { return solver_->counters(); }
   // Polar iterations summed over elements in the last step (0 with the SVD).
   long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
@@ -117,8 +105,6 @@ class CorotationalFem {
   // step()'s frame_of + accumulate for one batch, warm start and history included; returns
   // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
   uint32_t step_batch(uint32_t batch, const double* positions, double scale) noexcept;
-  // Solves matrix_ dv = rhs_ into delta_v_ (CG with its fallbacks, or LDL^T); counts.
-  void solve_step() noexcept;
   // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
@@ -136,13 +122,10 @@ class CorotationalFem {
   // and the turn it made in the last step.
   std::vector<Eigen::Quaterniond> step_rotation_, step_turn_;
   BlockSparseMatrix matrix_;
-  std::unique_ptr<ConjugateGradientSolver> cg_;
-  std::unique_ptr<CholeskySolver> cholesky_;
+  std::unique_ptr<SafeSolver> solver_;
   std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
       rhs_, delta_v_, previous_delta_v_, weights_;
   SolveReport last_solve_;
-  SolverCounters counters_;
-  int direct_hold_ = 0, direct_hold_length_ = 1;  // steps left on LDL^T; the next hold's length
   long polar_iterations_ = 0;
 };
 

@@ -1,0 +1,79 @@
+#include "safe_solver.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+namespace tacta::models::sparse {
+
+namespace {
+constexpr int kMaxDirectHold = 64;  // solves on LDL^T before CG is tried again, at most
+}
+
+SafeSolver::SafeSolver(const BlockSparseMatrix& pattern, const SolverOptions& options)
+    : options_(options) {
+  if (options_.solver == LinearSolver::kCholesky || options_.fallback == SolverFallback::kDirect)
+    cholesky_ = std::make_unique<CholeskySolver>(pattern);
+  if (options_.solver == LinearSolver::kConjugateGradient)
+    cg_ = std::make_unique<ConjugateGradientSolver>(pattern, options_.preconditioner,
+                                                    options_.max_iterations, options_.tolerance,
+                                                    options_.refactor_interval);
+}
+
+SafeSolver::~SafeSolver() = default;
+
+void SafeSolver::set_limits(int max_iterations, double tolerance, int refactor_interval) {
+  options_.max_iterations = max_iterations;
+  options_.tolerance = tolerance;
+  options_.refactor_interval = refactor_interval;
+  if (cg_) cg_->set_limits(max_iterations, tolerance, refactor_interval);
+}
+
+SolveReport SafeSolver::solve_direct(const BlockSparseMatrix& a, const double* b,
+                                     double* x) noexcept {
+  SolveReport report;
+  report.converged = cholesky_->solve(a, b, x);
+  return report;
+}
+
+SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, double* x) noexcept {
+  ++counters_.solves;
+  SolveReport report;
+  if (!cg_) {
+    report = solve_direct(a, b, x);
+  } else if (cholesky_ && direct_hold_ > 0) {  // CG failed lately: do not pay for it to fail again
+    --direct_hold_;
+    ++counters_.direct_solves_held;
+    report = solve_direct(a, b, x);
+  } else {
+    report = cg_->solve(a, b, x);
+    counters_.cg_iterations += static_cast<uint64_t>(report.iterations);
+    if (report.warm_start_rejected) ++counters_.warm_starts_rejected;
+    if (!report.converged && options_.fallback != SolverFallback::kNone) {
+      ++counters_.restarts;
+      std::fill_n(x, 3 * static_cast<size_t>(a.node_count()), 0.0);
+      const SolveReport restart =
+          cg_->resolve(a, b, x, options_.restart_factor * options_.max_iterations);
+      counters_.cg_iterations += static_cast<uint64_t>(restart.iterations);
+      report.iterations += restart.iterations;
+      report.converged = restart.converged;
+      report.relative_residual = restart.relative_residual;
+      if (!restart.converged && cholesky_) {
+        ++counters_.direct_fallbacks;
+        const int iterations = report.iterations;
+        report = solve_direct(a, b, x);
+        report.iterations = iterations;
+        // The next solves go straight to LDL^T, twice as many each time CG fails again.
+        direct_hold_ = direct_hold_length_;
+        direct_hold_length_ = std::min(2 * direct_hold_length_, kMaxDirectHold);
+      }
+    } else if (report.converged) {
+      direct_hold_length_ = 1;
+    }
+  }
+  if (!report.converged) ++counters_.unconverged;
+  counters_.max_relative_residual =
+      std::max(counters_.max_relative_residual, report.relative_residual);
+  return report;
+}
+
+}  // namespace tacta::models::sparse
