@@ -1,5 +1,4 @@
 // corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -65,20 +64,8 @@ class CorotationalFemPlugin {
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
-    const SolverCounters& c = model_->counters();
-    const tacta_model_counter all[] = {
-        {"solves", static_cast<double>(c.solves)},
-        {"cg_iterations", static_cast<double>(c.cg_iterations)},
-        {"warm_starts_rejected", static_cast<double>(c.warm_starts_rejected)},
-        {"cg_restarts", static_cast<double>(c.restarts)},
-        {"direct_fallbacks", static_cast<double>(c.direct_fallbacks)},
-        {"direct_solves_held", static_cast<double>(c.direct_solves_held)},
-        {"unconverged_solves", static_cast<double>(c.unconverged)},
-        {"max_relative_residual", c.max_relative_residual},
-    };
-    const uint32_t count = static_cast<uint32_t>(std::size(all));
-    for (uint32_t i = 0; i < std::min(count, capacity); ++i) out[i] = all[i];
-    return count;
+    const auto all = sparse::named_counters(model_->counters());
+    return sdk::copy_counters(all.data(), static_cast<uint32_t>(all.size()), out, capacity);
   }
   // Live changes reach the solver's limits only (max_iterations, tolerance, refactor_interval):
   // rotation, solver and preconditioner decide the buffers built at creation.

@@ -9,6 +9,17 @@ namespace {
 constexpr int kMaxDirectHold = 64;  // solves on LDL^T before CG is tried again, at most
 }
 
+std::array<tacta_model_counter, 8> named_counters(const SolverCounters& c) {
+  return {{{"solves", static_cast<double>(c.solves)},
+           {"cg_iterations", static_cast<double>(c.cg_iterations)},
+           {"warm_starts_rejected", static_cast<double>(c.warm_starts_rejected)},
+           {"cg_restarts", static_cast<double>(c.restarts)},
+           {"direct_fallbacks", static_cast<double>(c.direct_fallbacks)},
+           {"direct_solves_held", static_cast<double>(c.direct_solves_held)},
+           {"unconverged_solves", static_cast<double>(c.unconverged)},
+           {"max_relative_residual", c.max_relative_residual}}};
+}
+
 SafeSolver::SafeSolver(const BlockSparseMatrix& pattern, const SolverOptions& options)
     : options_(options) {
   if (options_.solver == LinearSolver::kCholesky || options_.fallback == SolverFallback::kDirect)

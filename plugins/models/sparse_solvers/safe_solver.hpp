@@ -5,10 +5,12 @@
 // cantilever collapsed at 0.44 s that way. Counts everything for report.json.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 
 #include "linear_solvers.hpp"
+#include "tacta/model_api.h"
 
 namespace tacta::models::sparse {
 
@@ -37,6 +39,9 @@ struct SolverCounters {
   uint64_t unconverged = 0;           // solves left with a residual above the tolerance
   double max_relative_residual = 0.0;  // of the accepted solutions
 };
+
+// The counters as report.json names them.
+std::array<tacta_model_counter, 8> named_counters(const SolverCounters& counters);
 
 class SafeSolver {
  public:

@@ -19,6 +19,13 @@
 
 namespace tacta::sdk {
 
+// For a model's counters(): copies what fits into out and returns how many there are.
+inline uint32_t copy_counters(const tacta_model_counter* all, uint32_t count,
+                              tacta_model_counter* out, uint32_t capacity) noexcept {
+  for (uint32_t i = 0; i < count && i < capacity; ++i) out[i] = all[i];
+  return count;
+}
+
 template <class T>
 struct ModelAdapter {
   static tacta_status create(const tacta_model_setup* setup, void** instance, char* message,

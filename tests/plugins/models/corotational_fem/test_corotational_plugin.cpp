@@ -44,7 +44,9 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   for (uint32_t i = 0; i < d.param_count; ++i) names.emplace_back(d.params[i].name);
   EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
                                              "max_iterations", "tolerance",
-                                             "refactor_interval"}));
+                                             "refactor_interval", "fallback",
+                                             "restart_factor"}));
+  ASSERT_NE(api.counters, nullptr);
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
   ASSERT_NE(api.internal_forces, nullptr);

@@ -1,0 +1,160 @@
+// HyperelasticModel: construction and the element pass (energy, forces, tangent assembly).
+// The Newton iterations that use them are in newton_solve.cpp.
+#include "hyperelastic_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "isotropic_element.hpp"
+#include "tacta/models/tet_geometry.hpp"
+
+namespace tacta::models::hyperelastic {
+
+namespace {
+constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
+constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+}  // namespace
+
+HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_material& material,
+                                     std::span<const double> masses,
+                                     std::span<const uint8_t> fixed, const Options& options)
+    : node_count_(mesh.node_count),
+      masses_(masses.begin(), masses.end()),
+      fixed_(fixed.begin(), fixed.end()),
+      options_(options),
+      guard_(mesh),
+      matrix_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})),
+      damping_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})),
+      rayleigh_mass_(material.rayleigh_mass),
+      rayleigh_stiffness_(material.rayleigh_stiffness) {
+  // The moduli arrive in options.material (the plugin derives them from E, nu or its keys).
+  if (mesh.tet_count == 0)
+    throw std::invalid_argument("hyperelastic needs a tetrahedral mesh (the mesh has no tets)");
+  if (masses_.size() != node_count_)
+    throw std::invalid_argument("hyperelastic: expected one mass per node");
+  const bool any_fixed = std::find(fixed_.begin(), fixed_.end(), uint8_t{1}) != fixed_.end();
+  if (options_.mode == SolveMode::kStatic && !any_fixed)
+    throw std::invalid_argument("hyperelastic: solve: static needs fixed nodes (a free body has "
+                                "no equilibrium under a net load)");
+  for (uint32_t i = 0; i < node_count_; ++i)
+    if (!(masses_[i] > 0.0) && (fixed_.empty() || !fixed_[i]))
+      throw std::invalid_argument("hyperelastic: node " + std::to_string(i) +
+                                  " is free but has mass " + std::to_string(masses_[i]) + " kg");
+  elements_.resize(mesh.tet_count);
+  for (uint32_t e = 0; e < mesh.tet_count; ++e) {
+    Element& element = elements_[e];
+    Vec3 x[4];
+    for (int a = 0; a < 4; ++a) {
+      element.nodes[a] = mesh.tets[4 * e + a];
+      if (element.nodes[a] >= node_count_)
+        throw std::invalid_argument("hyperelastic: tet " + std::to_string(e) + " names node " +
+                                    std::to_string(element.nodes[a]) + " but the mesh has " +
+                                    std::to_string(node_count_));
+      x[a] = node_position(mesh.rest_positions, element.nodes[a]);
+    }
+    element.volume = tet_signed_volume(x[0], x[1], x[2], x[3]);
+    if (!(element.volume > 0.0))
+      throw std::invalid_argument("hyperelastic: tet " + std::to_string(e) +
+                                  " has non-positive rest volume " +
+                                  std::to_string(element.volume) +
+                                  " m^3 (expected positive orientation)");
+    const std::array<Vec3, 4> gradients = tet_shape_gradients(x[0], x[1], x[2], x[3]);
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 3; ++c) element.gradients[a][c] = gradients[a][c];
+  }
+  const size_t n = 3 * static_cast<size_t>(node_count_);
+  for (auto* buffer : {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
+                       &equilibrium_loads_, &scratch_, &product_, &last_correction_})
+    buffer->assign(n, 0.0);
+  weights_.assign(node_count_, 0.0);
+  solver_ = std::make_unique<sparse::SafeSolver>(matrix_, options_.solver);
+  matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
+}
+
+HyperelasticModel::~HyperelasticModel() = default;
+
+double HyperelasticModel::element_pass(const double* x, double* forces, double scale) noexcept {
+  const MaterialConstants& material = options_.material;
+  double energy = 0.0;
+  inverted_ = false;
+  for (uint32_t e = 0; e < elements_.size(); ++e) {
+    const Element& element = elements_[e];
+    Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
+    for (int a = 0; a < 4; ++a)
+      deformation.noalias() += node_position(x, element.nodes[a]) *
+                               Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
+    const StretchFrame frame = rotation_variant_svd(deformation);
+    if (frame.sigma[2] <= 0.0) inverted_ = true;
+    if (forces == nullptr && scale == 0.0) {
+      energy += element.volume * clamped_stretch_energy(material, frame.sigma);
+      continue;
+    }
+    const StretchDerivatives psi = clamped_stretch_derivatives(material, frame.sigma);
+    energy += element.volume * psi.energy;
+    if (forces != nullptr) {
+      const Eigen::Matrix3d stress = first_piola(frame, psi);
+      for (int a = 0; a < 4; ++a) {
+        const Eigen::Vector3d f =
+            -element.volume * (stress * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]));
+        for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
+      }
+    }
+    if (scale == 0.0) continue;
+    const DiagonalTangent tangent = diagonal_tangent(frame.sigma, psi, options_.project_tangent);
+    Eigen::Vector3d w[4];  // V^T grad_a
+    for (int a = 0; a < 4; ++a)
+      w[a] = frame.v.transpose() * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]);
+    const uint32_t* slots = matrix_.element_slots(e);
+    for (int p = 0; p < 10; ++p) {
+      int a = kPairA[p], b = kPairB[p];
+      if (element.nodes[a] > element.nodes[b]) std::swap(a, b);  // the stored block is (low, high)
+      const Eigen::Matrix3d k = stiffness_block(frame, tangent, w[a], w[b], scale * element.volume);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(matrix_.block(slots[p])) += k;
+    }
+  }
+  return energy;
+}
+
+double HyperelasticModel::elastic_energy(const double* positions) noexcept {
+  return element_pass(positions, nullptr, 0.0);
+}
+
+void HyperelasticModel::internal_forces(const double* positions, double* forces) noexcept {
+  std::fill_n(forces, 3 * static_cast<size_t>(node_count_), 0.0);
+  element_pass(positions, forces, 0.0);
+}
+
+const sparse::BlockSparseMatrix& HyperelasticModel::assemble_stiffness(
+    const double* positions) noexcept {
+  matrix_.set_zero();
+  element_pass(positions, nullptr, 1.0);
+  return matrix_;
+}
+
+void HyperelasticModel::node_stress(const double* positions, double* von_mises) noexcept {
+  std::fill_n(von_mises, node_count_, 0.0);
+  std::fill(weights_.begin(), weights_.end(), 0.0);
+  for (const Element& element : elements_) {
+    Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < 4; ++a)
+      deformation.noalias() += node_position(positions, element.nodes[a]) *
+                               Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
+    const StretchFrame frame = rotation_variant_svd(deformation);
+    const StretchDerivatives psi = clamped_stretch_derivatives(options_.material, frame.sigma);
+    // Cauchy stress sigma = P F^T / J, in the principal frame: g_i s_i / J.
+    const double j = std::max(std::abs(frame.sigma.prod()), 1e-12);
+    const Eigen::Vector3d s = psi.gradient.cwiseProduct(frame.sigma) / j;
+    const double vm = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
+                                       (s[2] - s[0]) * (s[2] - s[0])));
+    for (uint32_t a : element.nodes) {  // volume-weighted average over adjacent elements
+      von_mises[a] += element.volume * vm;
+      weights_[a] += element.volume;
+    }
+  }
+  for (uint32_t i = 0; i < node_count_; ++i)
+    if (weights_[i] > 0.0) von_mises[i] /= weights_[i];
+}
+
+}  // namespace tacta::models::hyperelastic

@@ -1,0 +1,121 @@
+// Hyperelastic tetrahedral FEM (the physics of the hyperelastic plugin): linear tets of a
+// compressible Neo-Hookean, St Venant-Kirchhoff or Mooney-Rivlin material (stretch_energy.hpp),
+// with a projected tangent that stays positive semi-definite through inversion.
+//
+// Dynamic steps: backward Euler as the minimisation of the incremental potential
+//   Phi(x) = 1/2 |x - x_n - h v_n|_M^2 + h alpha/2 |x - x_n|_M^2 + h beta/2 |x - x_n|_Kd^2
+//            + h^2 (W(x) - f_ext . x)
+// (Rayleigh damping with Kd, the tangent at the step's first iterate), by Newton iterations
+// with a backtracking (Armijo) line search on Phi; one iteration is the usual linearised step.
+// Static solves: the same Newton on W(x) - f_ext . x, the change of load since the last
+// equilibrium applied in load_steps increments, an increment halved when Newton fails.
+// The sparsity pattern and every buffer are fixed at creation: step() allocates nothing.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "block_sparse.hpp"
+#include "safe_solver.hpp"
+#include "stretch_energy.hpp"
+#include "tacta/model_api.h"
+#include "tacta/models/divergence_guard.hpp"
+
+namespace tacta::models::hyperelastic {
+
+enum class SolveMode { kDynamic = 0, kStatic = 1 };
+
+struct Options {
+  MaterialConstants material;
+  bool project_tangent = true;   // false: the exact tangent (may be indefinite; tests)
+  SolveMode mode = SolveMode::kDynamic;
+  int newton_iterations = 3;       // dynamic: per step, at most
+  double newton_tolerance = 1e-3;  // dynamic: stop when |r| <= this * |r_0| (residual in N s^2)
+  int load_steps = 1;              // static: increments of the load change per solve
+  int static_iterations = 25;      // static: Newton iterations per increment, at most
+  double static_tolerance = 1e-6;  // static: |f_int + f_ext| <= this * the load scale (N)
+  int max_load_cuts = 8;           // static: halvings of a failed increment, at most
+  sparse::SolverOptions solver;
+};
+
+struct NewtonCounters {
+  uint64_t steps = 0, newton_iterations = 0, line_search_backtracks = 0;
+  uint64_t unconverged_steps = 0;  // dynamic: iterations ran out; static: cuts ran out
+  uint64_t static_solves = 0, load_increments = 0, load_cuts = 0;
+  uint64_t inverted_element_steps = 0;  // steps that ended with an inverted element
+  double last_static_residual = 0.0;    // N: |f_int + f_ext| on the free nodes at the end
+};
+
+class HyperelasticModel {
+ public:
+  // Throws std::invalid_argument naming the element or node at fault.
+  HyperelasticModel(const tacta_mesh_view& mesh, const tacta_material& material,
+                    std::span<const double> masses, std::span<const uint8_t> fixed,
+                    const Options& options);
+  ~HyperelasticModel();
+  HyperelasticModel(const HyperelasticModel&) = delete;
+  HyperelasticModel& operator=(const HyperelasticModel&) = delete;
+
+  uint32_t step(tacta_body_state& state, double dt) noexcept;
+  void begin(const tacta_body_state& state, double dt) noexcept;
+  double elastic_energy(const double* positions) noexcept;
+  void internal_forces(const double* positions, double* forces) noexcept;
+  void node_stress(const double* positions, double* von_mises) noexcept;
+  // The tangent stiffness dF/dx (no mass, no fixed-node projection) at these positions, for
+  // tests; overwrites the matrix the next step refills.
+  const sparse::BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
+
+  const NewtonCounters& counters() const { return counters_; }
+  const sparse::SolverCounters& solver_counters() const { return solver_->counters(); }
+  const Options& options() const { return options_; }
+  uint32_t node_count() const { return node_count_; }
+  uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
+
+ private:
+  struct Element {
+    uint32_t nodes[4];
+    double gradients[4][3];  // grad N_a at rest, 1/m
+    double volume;           // m^3
+  };
+  // One pass over the elements at x: returns W (J); adds internal forces into forces (if not
+  // null) and scale * K into matrix_ (if scale != 0); sets inverted_ when an element is.
+  double element_pass(const double* x, double* forces, double scale) noexcept;
+  // Newton on Phi with weights (inertia a, mass damping b, stiffness damping c, potential s);
+  // x holds the first iterate and the result. Returns true when converged.
+  struct Objective {
+    double inertia, mass_damping, stiffness_damping, potential;
+    const double* predicted;  // x_n + h v_n (inertia)
+    const double* start;      // x_n (damping)
+    const double* loads;      // N
+    const double* first_guess;  // the first correction's CG guess, or null for zero
+    int max_iterations;
+    double relative_tolerance, absolute_tolerance;  // on |r|, in the residual's units
+  };
+  bool newton(const Objective& objective, double* x) noexcept;
+  // Phi at x, with the element energy already known.
+  double objective_value(const Objective& objective, const double* x, double energy) noexcept;
+  uint32_t step_dynamic(tacta_body_state& state, double h) noexcept;
+  uint32_t solve_static(tacta_body_state& state) noexcept;
+
+  uint32_t node_count_;
+  std::vector<Element> elements_;
+  std::vector<double> masses_;
+  std::vector<uint8_t> fixed_;
+  Options options_;
+  DivergenceGuard guard_;
+  sparse::BlockSparseMatrix matrix_, damping_;
+  std::unique_ptr<sparse::SafeSolver> solver_;
+  // 3 per node: forces, residual, Newton correction, predicted and start positions, the trial
+  // point of the line search, the loads applied, the last equilibrium's loads and scratch.
+  std::vector<double> forces_, residual_, correction_, predicted_, start_, trial_, loads_,
+      equilibrium_loads_, scratch_, product_, last_correction_;
+  std::vector<double> weights_;  // node_stress: volume per node
+  NewtonCounters counters_;
+  double rayleigh_mass_, rayleigh_stiffness_;  // alpha (1/s), beta (s)
+  bool inverted_ = false;
+  bool linear_solve_failed_ = false;  // in this step
+};
+
+}  // namespace tacta::models::hyperelastic

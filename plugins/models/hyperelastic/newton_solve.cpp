@@ -1,0 +1,210 @@
+// HyperelasticModel's Newton iterations: the dynamic step (backward Euler as a minimisation)
+// and the static solve with load stepping. See hyperelastic_model.hpp for the objective.
+#include <algorithm>
+#include <cmath>
+
+#include "hyperelastic_model.hpp"
+
+namespace tacta::models::hyperelastic {
+
+namespace {
+constexpr int kMaxBacktracks = 8;       // line search halvings before the step is taken anyway
+constexpr double kArmijo = 1e-4;        // sufficient decrease, fraction of the linear model
+double norm(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (const double x : v) sum += x * x;
+  return std::sqrt(sum);
+}
+}  // namespace
+
+double HyperelasticModel::objective_value(const Objective& o, const double* x,
+                                          double energy) noexcept {
+  double inertia = 0.0, mass_damping = 0.0, work = 0.0;
+  for (size_t k = 0; k < scratch_.size(); ++k) {
+    const double m = masses_[k / 3];
+    const double d = x[k] - o.predicted[k], s = x[k] - o.start[k];
+    inertia += m * d * d;
+    mass_damping += m * s * s;
+    work += o.loads[k] * x[k];
+    scratch_[k] = s;
+  }
+  double value = 0.5 * o.inertia * inertia + 0.5 * o.mass_damping * mass_damping +
+                 o.potential * (energy - work);
+  if (o.stiffness_damping != 0.0) {
+    const double skds = damping_.multiply(scratch_.data(), product_.data());  // (x-x_n).Kd(x-x_n)
+    value += 0.5 * o.stiffness_damping * skds;
+  }
+  return value;
+}
+
+bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
+  const size_t n = residual_.size();
+  const bool has_fixed = !fixed_.empty();
+  double first_norm = 0.0;
+  bool converged = false;
+  for (int iteration = 0;; ++iteration) {
+    matrix_.set_zero();
+    std::fill(forces_.begin(), forces_.end(), 0.0);
+    // The last pass only measures the residual: no tangent.
+    const bool last = iteration == o.max_iterations;
+    const double energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
+    if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
+      const auto from = matrix_.values();
+      const auto to = damping_.values();
+      for (size_t k = 0; k < from.size(); ++k) to[k] = from[k] / o.potential;
+    }
+    // r = -grad Phi = s (f_int + f_ext) - a M (x - x~) - b M (x - x_n) - c Kd (x - x_n)
+    for (size_t k = 0; k < n; ++k) scratch_[k] = x[k] - o.start[k];
+    if (o.stiffness_damping != 0.0) damping_.multiply(scratch_.data(), product_.data());
+    for (size_t k = 0; k < n; ++k) {
+      const double m = masses_[k / 3];
+      double r = o.potential * (forces_[k] + o.loads[k]) - o.inertia * m * (x[k] - o.predicted[k]) -
+                 o.mass_damping * m * scratch_[k];
+      if (o.stiffness_damping != 0.0) r -= o.stiffness_damping * product_[k];
+      residual_[k] = has_fixed && fixed_[k / 3] ? 0.0 : r;
+    }
+    const double residual_norm = norm(residual_);
+    if (iteration == 0) first_norm = residual_norm;
+    if (residual_norm <= o.absolute_tolerance ||
+        (iteration > 0 && residual_norm <= o.relative_tolerance * first_norm)) {
+      converged = true;
+      break;
+    }
+    if (last) break;
+    ++counters_.newton_iterations;
+    // A = (a + b) M + c Kd + s K(x)
+    if (o.stiffness_damping != 0.0) {
+      const auto kd = damping_.values();
+      const auto a = matrix_.values();
+      for (size_t k = 0; k < a.size(); ++k) a[k] += o.stiffness_damping * kd[k];
+    }
+    const double mass_scale = o.inertia + o.mass_damping;
+    if (mass_scale != 0.0)
+      for (uint32_t i = 0; i < node_count_; ++i) {
+        double* d = matrix_.block(matrix_.diagonal_block(i));
+        d[0] += mass_scale * masses_[i];
+        d[4] += mass_scale * masses_[i];
+        d[8] += mass_scale * masses_[i];
+      }
+    matrix_.apply_fixed(fixed_);
+    if (iteration == 0 && o.first_guess != nullptr) std::copy_n(o.first_guess, n, correction_.begin());
+    else std::fill(correction_.begin(), correction_.end(), 0.0);
+    if (!solver_->solve(matrix_, residual_.data(), correction_.data()).converged)
+      linear_solve_failed_ = true;
+    if (has_fixed)
+      for (size_t k = 0; k < n; ++k)
+        if (fixed_[k / 3]) correction_[k] = 0.0;
+    // Backtracking on Phi along the correction: Phi(x + t d) <= Phi(x) - armijo t r.d.
+    const double value = objective_value(o, x, energy);
+    double slope = 0.0;
+    for (size_t k = 0; k < n; ++k) slope += residual_[k] * correction_[k];
+    double t = 1.0;
+    for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack) {
+      for (size_t k = 0; k < n; ++k) trial_[k] = x[k] + t * correction_[k];
+      const double trial_energy = element_pass(trial_.data(), nullptr, 0.0);
+      const double trial_value = objective_value(o, trial_.data(), trial_energy);
+      if (std::isfinite(trial_value) && trial_value <= value - kArmijo * t * slope) break;
+      if (backtrack == kMaxBacktracks) break;  // take the shortest step anyway
+      ++counters_.line_search_backtracks;
+      t *= 0.5;
+    }
+    for (size_t k = 0; k < n; ++k) x[k] += t * correction_[k];
+  }
+  return converged;
+}
+
+}  // namespace tacta::models::hyperelastic
+
+namespace tacta::models::hyperelastic {
+
+uint32_t HyperelasticModel::step_dynamic(tacta_body_state& state, double h) noexcept {
+  const size_t n = forces_.size();
+  const bool has_fixed = !fixed_.empty();
+  for (size_t k = 0; k < n; ++k) {
+    const bool held = has_fixed && fixed_[k / 3];
+    start_[k] = state.positions[k];
+    predicted_[k] = held ? start_[k] : start_[k] + h * state.velocities[k];
+    loads_[k] = state.external_forces[k];
+  }
+  std::copy(predicted_.begin(), predicted_.end(), state.positions);
+  const Objective objective{1.0, h * rayleigh_mass_, h * rayleigh_stiffness_, h * h,
+                            predicted_.data(), start_.data(), loads_.data(),
+                            last_correction_.data(), options_.newton_iterations,
+                            options_.newton_tolerance, 0.0};
+  // Newton stopping at its iteration cap is the usual haptic-rate compromise (counted); a
+  // linear solve that failed every fallback is a warning.
+  if (!newton(objective, state.positions)) ++counters_.unconverged_steps;
+  const uint32_t result = linear_solve_failed_ ? TACTA_STEP_SOLVER_NOT_CONVERGED : TACTA_STEP_OK;
+  for (size_t k = 0; k < n; ++k) {
+    // The whole correction from the prediction: the next step's first guess (a smooth motion
+    // changes it slowly).
+    last_correction_[k] = state.positions[k] - predicted_[k];
+    state.velocities[k] = (state.positions[k] - start_[k]) / h;
+  }
+  return result;
+}
+
+uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
+  const size_t n = forces_.size();
+  ++counters_.static_solves;
+  // The load scale for the convergence test: the loads on free nodes, or (prescribed motion
+  // alone) the reactions at the held ones, measured at the start.
+  std::fill(forces_.begin(), forces_.end(), 0.0);
+  element_pass(state.positions, forces_.data(), 0.0);
+  double load_scale2 = 0.0, reaction2 = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    const bool held = !fixed_.empty() && fixed_[k / 3];
+    (held ? reaction2 : load_scale2) += held ? forces_[k] * forces_[k]
+                                             : state.external_forces[k] * state.external_forces[k];
+  }
+  const double load_scale = std::max({std::sqrt(load_scale2), std::sqrt(reaction2), 1e-12});
+  double done = 0.0, increment = 1.0 / std::max(1, options_.load_steps);
+  int cuts = 0;
+  bool failed = false;
+  while (done < 1.0 && !failed) {
+    const double target = std::min(1.0, done + increment);
+    for (size_t k = 0; k < n; ++k)
+      loads_[k] = equilibrium_loads_[k] + target * (state.external_forces[k] - equilibrium_loads_[k]);
+    std::copy_n(state.positions, n, start_.begin());
+    const Objective objective{0.0, 0.0, 0.0, 1.0, start_.data(), start_.data(), loads_.data(),
+                              nullptr, options_.static_iterations, 0.0,
+                              options_.static_tolerance * load_scale};
+    ++counters_.load_increments;
+    if (newton(objective, state.positions)) {
+      done = target;
+      continue;
+    }
+    std::copy(start_.begin(), start_.end(), state.positions);  // undo, and take half the step
+    ++counters_.load_cuts;
+    increment *= 0.5;
+    failed = ++cuts > options_.max_load_cuts;
+  }
+  counters_.last_static_residual = norm(residual_);
+  if (failed) {
+    ++counters_.unconverged_steps;
+    return TACTA_STEP_SOLVER_NOT_CONVERGED;
+  }
+  for (size_t k = 0; k < n; ++k) {
+    equilibrium_loads_[k] = state.external_forces[k];
+    state.velocities[k] = 0.0;
+  }
+  return TACTA_STEP_OK;
+}
+
+uint32_t HyperelasticModel::step(tacta_body_state& state, double dt) noexcept {
+  ++counters_.steps;
+  linear_solve_failed_ = false;
+  uint32_t result = options_.mode == SolveMode::kStatic ? solve_static(state)
+                                                        : step_dynamic(state, dt);
+  if (inverted_) {
+    result |= TACTA_STEP_INVERTED_ELEMENT;
+    ++counters_.inverted_element_steps;
+  }
+  return result | guard_.check(state.positions, state.velocities);
+}
+
+void HyperelasticModel::begin(const tacta_body_state& /*state*/, double /*dt*/) noexcept {
+  std::fill(last_correction_.begin(), last_correction_.end(), 0.0);
+}
+
+}  // namespace tacta::models::hyperelastic

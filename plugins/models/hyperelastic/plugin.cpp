@@ -1,0 +1,130 @@
+// hyperelastic plugin: descriptor, parameter schema and the SDK glue around HyperelasticModel.
+#include <array>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "hyperelastic_model.hpp"
+#include "tacta/sdk/model.hpp"
+
+namespace tacta::models::hyperelastic {
+namespace {
+
+class HyperelasticPlugin {
+ public:
+  static constexpr const char* kName = "hyperelastic";
+  static constexpr const char* kDescription =
+      "Hyperelastic tetrahedral FEM (Neo-Hookean, St Venant-Kirchhoff, Mooney-Rivlin), "
+      "projected tangents, implicit Newton steps with line search, or static equilibrium";
+  static constexpr uint32_t kVersion = 10000;
+  static constexpr std::array<tacta_param_spec, 17> kParams = {
+      sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
+                        "energy: compressible Neo-Hookean, St Venant-Kirchhoff, or compressible "
+                        "Mooney-Rivlin (C10, C01, bulk modulus)"),
+      sdk::real_param("c10", "Pa", 0.0, 0.0, 1e12,
+                      "mooney_rivlin: C10; 0 with c01 0: C10 = mu/2 from the body's material"),
+      sdk::real_param("c01", "Pa", 0.0, 0.0, 1e12, "mooney_rivlin: C01"),
+      sdk::real_param("bulk_modulus", "Pa", 0.0, 0.0, 1e15,
+                      "mooney_rivlin: K; 0: lambda + 2 mu / 3 from the body's material"),
+      sdk::real_param("min_stretch", "", 0.1, 0.01, 0.9,
+                      "principal stretches below this (and inverted ones) use the energy's "
+                      "Taylor continuation"),
+      sdk::choice_param("tangent", "projected|exact", 0,
+                        "projected: negative tangent eigenvalues set to 0 (robust); exact"),
+      sdk::choice_param("solve", "dynamic|static", 0,
+                        "dynamic: backward Euler steps; static: each step finds equilibrium "
+                        "under the current loads and held nodes (velocities 0)"),
+      sdk::int_param("newton_iterations", 3, 1, 100, "dynamic: Newton iterations per step, at most"),
+      sdk::real_param("newton_tolerance", "", 1e-3, 1e-14, 1.0,
+                      "dynamic: Newton stops when the residual falls below this fraction of "
+                      "its first value"),
+      sdk::int_param("load_steps", 1, 1, 10000, "static: increments per solve (halved on failure)"),
+      sdk::int_param("static_iterations", 25, 1, 1000, "static: Newton iterations per increment"),
+      sdk::real_param("static_tolerance", "", 1e-6, 1e-14, 1.0,
+                      "static: converged when |f_int + f_ext| on free nodes is below this "
+                      "fraction of the load (or reaction) norm"),
+      sdk::choice_param("solver", "pcg|cholesky", 0,
+                        "linear solver: preconditioned CG with fallbacks, or sparse LDL^T"),
+      sdk::choice_param("preconditioner", "jacobi|block_jacobi|incomplete_cholesky", 1,
+                        "CG preconditioner"),
+      sdk::int_param("max_iterations", 50, 1, 10000, "CG iterations per solve before the fallbacks"),
+      sdk::real_param("tolerance", "", 1e-6, 1e-14, 1.0,
+                      "CG stops when the residual falls below this fraction of the rhs"),
+      sdk::choice_param("fallback", "direct|restart|none", 0,
+                        "when CG has not converged: restart from zero with 8x the iterations "
+                        "then sparse LDL^T (direct); the restart only; or nothing"),
+  };
+
+  explicit HyperelasticPlugin(const tacta_model_setup& setup) {
+    const sdk::Params params(kParams, setup.params, setup.param_count);
+    const tacta_material& material = *setup.material;
+    Options options;
+    MaterialConstants& m = options.material;
+    m.law = static_cast<MaterialLaw>(params.choice("material"));
+    m.mu = material.lame_mu;
+    m.lambda = material.lame_lambda;
+    m.c10 = params.real("c10");
+    m.c01 = params.real("c01");
+    if (m.c10 == 0.0 && m.c01 == 0.0) m.c10 = 0.5 * m.mu;
+    m.bulk = params.real("bulk_modulus");
+    if (m.bulk == 0.0) m.bulk = m.lambda + 2.0 * m.mu / 3.0;
+    m.min_stretch = params.real("min_stretch");
+    if (m.law != MaterialLaw::kMooneyRivlin && !(m.mu > 0.0 && m.lambda + 2.0 * m.mu / 3.0 > 0.0))
+      throw std::invalid_argument("hyperelastic: the material needs lame_mu > 0 and a positive "
+                                  "bulk modulus (got lambda " + std::to_string(m.lambda) +
+                                  " Pa, mu " + std::to_string(m.mu) + " Pa)");
+    if (m.law == MaterialLaw::kMooneyRivlin && !(m.c10 + m.c01 > 0.0 && m.bulk > 0.0))
+      throw std::invalid_argument("hyperelastic: mooney_rivlin needs c10 + c01 > 0 and a "
+                                  "positive bulk modulus");
+    options.project_tangent = params.choice("tangent") == 0;
+    options.mode = static_cast<SolveMode>(params.choice("solve"));
+    options.newton_iterations = params.integer("newton_iterations");
+    options.newton_tolerance = params.real("newton_tolerance");
+    options.load_steps = params.integer("load_steps");
+    options.static_iterations = params.integer("static_iterations");
+    options.static_tolerance = params.real("static_tolerance");
+    options.solver.solver = static_cast<sparse::LinearSolver>(params.choice("solver"));
+    options.solver.preconditioner =
+        static_cast<sparse::Preconditioner>(params.choice("preconditioner"));
+    options.solver.max_iterations = params.integer("max_iterations");
+    options.solver.tolerance = params.real("tolerance");
+    options.solver.fallback = static_cast<sparse::SolverFallback>(params.choice("fallback"));
+    const uint32_t n = setup.mesh->node_count;
+    model_ = std::make_unique<HyperelasticModel>(
+        *setup.mesh, material, std::span<const double>(setup.masses, n),
+        setup.fixed ? std::span<const uint8_t>(setup.fixed, n) : std::span<const uint8_t>(),
+        options);
+  }
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return model_->step(state, dt); }
+  void begin(const tacta_body_state& state, double dt) noexcept { model_->begin(state, dt); }
+  double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
+  void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
+  void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
+  uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
+    const NewtonCounters& c = model_->counters();
+    const auto solver = sparse::named_counters(model_->solver_counters());
+    std::array<tacta_model_counter, 9 + solver.size()> all = {{
+        {"steps", static_cast<double>(c.steps)},
+        {"newton_iterations", static_cast<double>(c.newton_iterations)},
+        {"line_search_backtracks", static_cast<double>(c.line_search_backtracks)},
+        {"unconverged_steps", static_cast<double>(c.unconverged_steps)},
+        {"static_solves", static_cast<double>(c.static_solves)},
+        {"load_increments", static_cast<double>(c.load_increments)},
+        {"load_cuts", static_cast<double>(c.load_cuts)},
+        {"inverted_element_steps", static_cast<double>(c.inverted_element_steps)},
+        {"last_static_residual_N", c.last_static_residual},
+    }};
+    for (size_t i = 0; i < solver.size(); ++i) all[9 + i] = solver[i];
+    return sdk::copy_counters(all.data(), static_cast<uint32_t>(all.size()), out, capacity);
+  }
+
+ private:
+  std::unique_ptr<HyperelasticModel> model_;
+};
+
+}  // namespace
+}  // namespace tacta::models::hyperelastic
+
+TACTA_PLUGIN_EXPORT(
+    tacta::sdk::model_descriptor<tacta::models::hyperelastic::HyperelasticPlugin>())
