@@ -1,5 +1,6 @@
 #include "stretch_energy.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -85,11 +86,25 @@ StretchDerivatives stretch_derivatives(const MaterialConstants& material,
   return neo_hookean(material, sigma);
 }
 
+double lowest_stretch(const MaterialConstants& material) {
+  // St Venant-Kirchhoff softens in compression below 1/sqrt(3) (its stress turns back toward
+  // zero and it has a second minimum at full inversion): the continuation takes over there.
+  return material.law == MaterialLaw::kStVenantKirchhoff
+             ? std::max(material.min_stretch, 1.0 / std::sqrt(3.0))
+             : material.min_stretch;
+}
+
 StretchDerivatives clamped_stretch_derivatives(const MaterialConstants& material,
                                                const Eigen::Vector3d& sigma) {
-  const Eigen::Vector3d clamped = sigma.cwiseMax(material.min_stretch);
+  const Eigen::Vector3d clamped = sigma.cwiseMax(lowest_stretch(material));
   StretchDerivatives d = stretch_derivatives(material, clamped);
   if (clamped == sigma) return d;
+  // The continuation's curvature is the clamped point's Hessian with negative eigenvalues set
+  // to zero: the energy keeps rising the further an element is crushed or inverted.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(d.hessian);
+  d.hessian = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+              eigen.eigenvectors().transpose();
   const Eigen::Vector3d offset = sigma - clamped;
   d.energy += d.gradient.dot(offset) + 0.5 * offset.dot(d.hessian * offset);
   d.gradient += d.hessian * offset;
@@ -97,7 +112,7 @@ StretchDerivatives clamped_stretch_derivatives(const MaterialConstants& material
 }
 
 double clamped_stretch_energy(const MaterialConstants& material, const Eigen::Vector3d& sigma) {
-  const Eigen::Vector3d clamped = sigma.cwiseMax(material.min_stretch);
+  const Eigen::Vector3d clamped = sigma.cwiseMax(lowest_stretch(material));
   if (clamped != sigma) return clamped_stretch_derivatives(material, sigma).energy;
   if (material.law == MaterialLaw::kNeoHookean) {
     const double log_j = std::log(sigma.prod());

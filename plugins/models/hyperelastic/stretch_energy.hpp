@@ -6,8 +6,11 @@
 //   mooney_rivlin psi = C10 (J^-2/3 I1 - 3) + C01 (J^-4/3 I2 - 3) + K/2 (J - 1)^2
 // with I1 = sum sigma_i^2, I2 = sum_{i<j} sigma_i^2 sigma_j^2, J = sigma_1 sigma_2 sigma_3.
 // Units: psi in J/m^3 (Pa), moduli in Pa. Below min_stretch (where ln J and J^-2/3 blow up or
-// an element inverts) the energy continues as its second-order Taylor expansion about the
-// clamped stretches: finite, with the clamped point's stiffness (invertible FEM).
+// an element inverts; for stvk below 1/sqrt(3), where it softens) the energy continues as its
+// second-order Taylor expansion about the clamped stretches, with the Hessian's negative
+// eigenvalues dropped: finite, and rising the further an element is crushed (invertible FEM).
+// The continuation's gradient uses the clamped point's Hessian, so there the tangent is the
+// energy's up to the Hessian's change along the clamp.
 #pragma once
 
 #include <Eigen/Core>
