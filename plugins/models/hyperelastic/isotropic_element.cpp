@@ -1,7 +1,8 @@
 #include "isotropic_element.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace tacta::models::hyperelastic {
@@ -10,20 +11,35 @@ namespace {
 constexpr int kPairI[3] = {0, 0, 1};
 constexpr int kPairJ[3] = {1, 2, 2};
 constexpr double kCloseStretches = 1e-6;  // |s_i -+ s_j| below this: the limit formula
+constexpr double kDegenerate = 1e-12;     // a stretch this small has no direction of its own
 }  // namespace
 
 StretchFrame rotation_variant_svd(const Eigen::Matrix3d& deformation) {
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(deformation, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  StretchFrame frame{svd.matrixU(), svd.matrixV(), svd.singularValues()};
-  // Reflections go into the smallest stretch (Eigen sorts them in decreasing order).
-  if (frame.u.determinant() < 0.0) {
-    frame.u.col(2) *= -1.0;
-    frame.sigma[2] *= -1.0;
+  // From the eigen-decomposition of C = F^T F in closed form (several times cheaper than a
+  // Jacobi SVD): V and sigma^2, then U's columns from F v_i / sigma_i, the last one as a cross
+  // product so that U is a rotation, and the smallest stretch signed by u_2 . F v_2.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(deformation.transpose() * deformation);
+  StretchFrame frame;
+  for (int i = 0; i < 3; ++i) {  // decreasing order: the smallest stretch last
+    frame.v.col(i) = eigen.eigenvectors().col(2 - i);
+    frame.sigma[i] = std::sqrt(std::max(eigen.eigenvalues()[2 - i], 0.0));
   }
-  if (frame.v.determinant() < 0.0) {
-    frame.v.col(2) *= -1.0;
-    frame.sigma[2] *= -1.0;
+  if (frame.v.determinant() < 0.0) frame.v.col(2) *= -1.0;
+  const Eigen::Vector3d f0 = deformation * frame.v.col(0);
+  frame.u.col(0) = frame.sigma[0] > kDegenerate ? Eigen::Vector3d(f0 / frame.sigma[0])
+                                                : Eigen::Vector3d::UnitX();
+  Eigen::Vector3d f1 = deformation * frame.v.col(1);
+  f1 -= frame.u.col(0).dot(f1) * frame.u.col(0);
+  if (f1.norm() > kDegenerate * std::max(1.0, frame.sigma[0])) {
+    frame.u.col(1) = f1.normalized();
+  } else {  // F is (nearly) rank one: any unit vector orthogonal to u_0
+    const Eigen::Vector3d axis = std::abs(frame.u(0, 0)) < 0.9 ? Eigen::Vector3d::UnitX()
+                                                                : Eigen::Vector3d::UnitY();
+    frame.u.col(1) = frame.u.col(0).cross(axis).normalized();
   }
+  frame.u.col(2) = frame.u.col(0).cross(frame.u.col(1));
+  frame.sigma[2] = frame.u.col(2).dot(deformation * frame.v.col(2));
   return frame;
 }
 
@@ -47,6 +63,10 @@ DiagonalTangent diagonal_tangent(const Eigen::Vector3d& sigma, const StretchDeri
     t.flip[p] = std::max(t.flip[p], 0.0);
     t.twist[p] = std::max(t.twist[p], 0.0);
   }
+  // Positive definite (Sylvester's leading minors) is the common case: no eigen-decomposition.
+  const Eigen::Matrix3d& h = t.scaling;
+  if (h(0, 0) > 0.0 && h(0, 0) * h(1, 1) - h(0, 1) * h(1, 0) > 0.0 && h.determinant() > 0.0)
+    return t;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(t.scaling);
   if (eigen.eigenvalues().minCoeff() < 0.0)

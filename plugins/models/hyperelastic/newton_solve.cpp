@@ -42,12 +42,17 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
   const bool has_fixed = !fixed_.empty();
   double first_norm = 0.0;
   bool converged = false;
+  bool forces_at_x = false;  // the line search's last trial left forces_ at x
   for (int iteration = 0;; ++iteration) {
-    matrix_.set_zero();
-    std::fill(forces_.begin(), forces_.end(), 0.0);
-    // The last pass only measures the residual: no tangent.
+    // The last pass only measures the residual: no tangent, and no pass at all when the line
+    // search has just computed the forces there.
     const bool last = iteration == o.max_iterations;
-    const double energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
+    double energy = 0.0;
+    if (!(last && forces_at_x)) {
+      matrix_.set_zero();
+      std::fill(forces_.begin(), forces_.end(), 0.0);
+      energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
+    }
     if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
       const auto from = matrix_.values();
       const auto to = damping_.values();
@@ -101,7 +106,8 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     double t = 1.0;
     for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack) {
       for (size_t k = 0; k < n; ++k) trial_[k] = x[k] + t * correction_[k];
-      const double trial_energy = element_pass(trial_.data(), nullptr, 0.0);
+      std::fill(forces_.begin(), forces_.end(), 0.0);
+      const double trial_energy = element_pass(trial_.data(), forces_.data(), 0.0);
       const double trial_value = objective_value(o, trial_.data(), trial_energy);
       if (std::isfinite(trial_value) && trial_value <= value - kArmijo * t * slope) break;
       if (backtrack == kMaxBacktracks) break;  // take the shortest step anyway
@@ -109,6 +115,7 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       t *= 0.5;
     }
     for (size_t k = 0; k < n; ++k) x[k] += t * correction_[k];
+    forces_at_x = true;
   }
   return converged;
 }
