@@ -86,6 +86,14 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   delta_v_.assign(n, 0.0);
   previous_delta_v_.assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
+  if (options_.static_solve) {
+    if (std::find(fixed_.begin(), fixed_.end(), uint8_t{1}) == fixed_.end())
+      throw std::invalid_argument("corotational_fem: solve: static needs fixed nodes (a free "
+                                  "body has no equilibrium under a net load)");
+    loads_.assign(n, 0.0);
+    equilibrium_loads_.assign(n, 0.0);
+    static_start_.assign(n, 0.0);
+  }
   solver_ = std::make_unique<SafeSolver>(
       matrix_, sparse::SolverOptions{options_.solver, options_.preconditioner,
                                      options_.max_iterations, options_.tolerance,
@@ -165,6 +173,7 @@ TACTA_HOT_PATH void CorotationalFem::accumulate(uint32_t e, const ElementFrame& 
 }
 
 uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
+  if (options_.static_solve) return solve_static(state);
   const size_t n = 3 * static_cast<size_t>(node_count_);
   const double h = dt;
   uint32_t result = TACTA_STEP_OK;

@@ -45,9 +45,21 @@ struct Options {
   // cantilever collapsed at 0.44 s).
   SolverFallback fallback = SolverFallback::kDirect;
   int restart_factor = 8;
+  // Static solve: each step finds equilibrium under the current loads and held nodes by Newton
+  // iterations on the corotational forces (tangent: R K0 R^T), the load change since the last
+  // equilibrium applied in load_steps increments, an increment halved when Newton fails.
+  bool static_solve = false;
+  int load_steps = 1;
+  int static_iterations = 25;      // per increment, at most
+  double static_tolerance = 1e-6;  // |f_int + f_ext| on free nodes <= this * the load scale
   // step()'s element pass four tets at a time (element_batch.cpp; polar rotation only); false:
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
+};
+
+struct StaticCounters {
+  uint64_t solves = 0, newton_iterations = 0, load_increments = 0, load_cuts = 0, unconverged = 0;
+  double last_residual = 0.0;  // N
 };
 
 class CorotationalFem {
@@ -73,6 +85,7 @@ class CorotationalFem {
   const BlockSparseMatrix& assemble_stiffness(const double* positions) noexcept;
   SolveReport last_solve() const { return last_solve_; }
   const SolverCounters& counters() const { return solver_->counters(); }
+  const StaticCounters& static_counters() const { return static_counters_; }
   // Polar iterations summed over elements in the last step (0 with the SVD).
   long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
@@ -105,6 +118,13 @@ class CorotationalFem {
   // step()'s frame_of + accumulate for one batch, warm start and history included; returns
   // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
   uint32_t step_batch(uint32_t batch, const double* positions, double scale) noexcept;
+  // Static solve (corotational_static.cpp): Newton to equilibrium, load stepping.
+  uint32_t solve_static(tacta_body_state& state) noexcept;
+  // One increment's Newton iterations toward f_int(x) + loads_ = 0; true when converged.
+  bool newton_to_equilibrium(double* positions, double tolerance) noexcept;
+  // |f_int + loads_| over free nodes at positions; leaves the forces in forces_ and, when
+  // with_matrix, K (fixed rows projected) in matrix_.
+  double equilibrium_residual(const double* positions, bool with_matrix) noexcept;
   // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
@@ -126,6 +146,8 @@ class CorotationalFem {
   std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
       rhs_, delta_v_, previous_delta_v_, weights_;
   SolveReport last_solve_;
+  StaticCounters static_counters_;
+  std::vector<double> loads_, equilibrium_loads_, static_start_;  // static solve, 3 per node
   long polar_iterations_ = 0;
 };
 

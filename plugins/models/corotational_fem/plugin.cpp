@@ -1,4 +1,5 @@
 // corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -20,7 +21,7 @@ class CorotationalFemPlugin {
       "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 8> kParams = {
+  static constexpr std::array<tacta_param_spec, 12> kParams = {
       sdk::choice_param("rotation", "polar|svd", 0,
                         "element rotation: polar (warm-started iteration) or svd (inversion-aware)"),
       sdk::choice_param("solver", "pcg|cholesky", 0,
@@ -39,6 +40,14 @@ class CorotationalFemPlugin {
                         "accept the unconverged solution (none)"),
       sdk::int_param("restart_factor", 8, 1, 1000,
                      "the restart's iteration cap, in units of max_iterations"),
+      sdk::choice_param("solve", "dynamic|static", 0,
+                        "dynamic: implicit Euler steps; static: each step finds equilibrium "
+                        "under the current loads and held nodes (velocities 0)"),
+      sdk::int_param("load_steps", 1, 1, 10000, "static: increments per solve (halved on failure)"),
+      sdk::int_param("static_iterations", 25, 1, 1000, "static: Newton iterations per increment"),
+      sdk::real_param("static_tolerance", "", 1e-6, 1e-14, 1.0,
+                      "static: converged when |f_int + f_ext| on free nodes is below this "
+                      "fraction of the load (or reaction) norm"),
   };
 
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
@@ -52,6 +61,10 @@ class CorotationalFemPlugin {
     options.refactor_interval = params.integer("refactor_interval");
     options.fallback = static_cast<SolverFallback>(params.choice("fallback"));
     options.restart_factor = params.integer("restart_factor");
+    options.static_solve = params.choice("solve") == 1;
+    options.load_steps = params.integer("load_steps");
+    options.static_iterations = params.integer("static_iterations");
+    options.static_tolerance = params.real("static_tolerance");
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),
@@ -64,7 +77,17 @@ class CorotationalFemPlugin {
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
-    const auto all = sparse::named_counters(model_->counters());
+    const auto solver = sparse::named_counters(model_->counters());
+    const StaticCounters& s = model_->static_counters();
+    std::array<tacta_model_counter, 6 + solver.size()> all = {{
+        {"static_solves", static_cast<double>(s.solves)},
+        {"static_newton_iterations", static_cast<double>(s.newton_iterations)},
+        {"load_increments", static_cast<double>(s.load_increments)},
+        {"load_cuts", static_cast<double>(s.load_cuts)},
+        {"unconverged_static_solves", static_cast<double>(s.unconverged)},
+        {"last_static_residual_N", s.last_residual},
+    }};
+    std::copy(solver.begin(), solver.end(), all.begin() + 6);
     return sdk::copy_counters(all.data(), static_cast<uint32_t>(all.size()), out, capacity);
   }
   // Live changes reach the solver's limits only (max_iterations, tolerance, refactor_interval):

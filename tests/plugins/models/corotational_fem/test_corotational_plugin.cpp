@@ -45,13 +45,14 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
                                              "max_iterations", "tolerance",
                                              "refactor_interval", "fallback",
-                                             "restart_factor"}));
-  ASSERT_NE(api.counters, nullptr);
+                                             "restart_factor", "solve", "load_steps",
+                                             "static_iterations", "static_tolerance"}));
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
   ASSERT_NE(api.internal_forces, nullptr);
   ASSERT_NE(api.node_stress, nullptr);
   ASSERT_NE(api.begin, nullptr);
+  ASSERT_NE(api.counters, nullptr);
 
   Cantilever beam(d);
   tacta::models::TestMesh& mesh = beam.mesh;
@@ -107,13 +108,28 @@ TEST(CorotationalPlugin, SetParamChangesSolverLimitsOnly) {
     tacta_param_value value{number, nullptr, nullptr, 0};
     return api.set_param(instance, index_of(name), &value, message, sizeof message);
   };
-  // One CG iteration to 1e-14 cannot converge; 500 to 1e-6 do.
+  // One CG iteration to 1e-14 cannot converge, nor can its restart (8): the step falls back
+  // to LDL^T (seen in the counters) and converges; 500 to 1e-6 need no fallback.
+  auto counter = [&](const std::string& name) {
+    tacta_model_counter counters[32];
+    const uint32_t count = api.counters(instance, counters, 32);
+    for (uint32_t i = 0; i < count && i < 32; ++i)
+      if (name == counters[i].name) return counters[i].value;
+    ADD_FAILURE() << "no counter " << name;
+    return -1.0;
+  };
   ASSERT_EQ(set("max_iterations", 1), TACTA_OK) << message;
   ASSERT_EQ(set("tolerance", 1e-14), TACTA_OK) << message;
-  EXPECT_NE(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  EXPECT_EQ(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  EXPECT_EQ(counter("direct_fallbacks"), 1.0);
+  EXPECT_EQ(counter("cg_restarts"), 1.0);
   ASSERT_EQ(set("max_iterations", 500), TACTA_OK) << message;
   ASSERT_EQ(set("tolerance", 1e-6), TACTA_OK) << message;
-  EXPECT_EQ(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  for (int i = 0; i < 2; ++i)  // the first goes straight to LDL^T (held after the fallback)
+    EXPECT_EQ(api.step(instance, &state, 1e-3) & TACTA_STEP_SOLVER_NOT_CONVERGED, 0u);
+  EXPECT_EQ(counter("direct_fallbacks"), 1.0);
+  EXPECT_EQ(counter("direct_solves_held"), 1.0);
+  EXPECT_EQ(counter("unconverged_solves"), 0.0);
   EXPECT_EQ(set("refactor_interval", 4), TACTA_OK) << message;
 
   EXPECT_NE(set("rotation", 1), TACTA_OK);
