@@ -1,8 +1,11 @@
 // The corotational FEM's default solver (CG with its fallbacks) against the direct solve on the
 // project's scenes: SOFA's beams benchmark and the liver demo. Each body's largest displacement
 // over the run must agree within 0.5%, with no solve left unconverged.
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
 
@@ -50,9 +53,19 @@ TEST(DefaultSolvers, LiverDemoFollowsTheDirectSolve) {
   // The first palpation: the stylus presses during the scene's first 1.5 s.
   RunOptions options;
   options.duration_s = 1.5;
+  options.out_dir = fresh_dir("default_solvers_liver");
   expect_default_follows_direct("liver_palpation.yaml", {0},
                                 {"bodies.0.model={name: corotational_fem, solver: cholesky}"},
                                 options);
+  // The counters reach report.json (the direct run wrote last; its CG counters are zero).
+  std::ifstream in(options.out_dir + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& counters = report["bodies"][0]["model_counters"];
+  for (const char* key : {"solves", "cg_iterations", "warm_starts_rejected", "cg_restarts",
+                          "direct_fallbacks", "direct_solves_held", "unconverged_solves",
+                          "max_relative_residual"})
+    EXPECT_TRUE(counters.contains(key)) << key;
+  EXPECT_EQ(counters["solves"].get<double>(), 1500.0);
 }
 
 }  // namespace
