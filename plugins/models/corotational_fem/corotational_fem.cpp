@@ -44,31 +44,15 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
     throw std::invalid_argument("corotational_fem: material needs lame_mu > 0 and a positive bulk "
                                 "modulus (got lambda " + std::to_string(lambda_) + " Pa, mu " +
                                 std::to_string(mu_) + " Pa)");
-  for (uint32_t i = 0; i < node_count_; ++i)
-    if (!(masses_[i] > 0.0) && (fixed_.empty() || !fixed_[i]))
-      throw std::invalid_argument("corotational_fem: node " + std::to_string(i) +
-                                  " is free but has mass " + std::to_string(masses_[i]) + " kg");
+  check_free_node_masses("corotational_fem", masses_, fixed_);
   elements_.resize(mesh.tet_count);
   for (uint32_t e = 0; e < mesh.tet_count; ++e) {
     Element& element = elements_[e];
-    Vec3 x[4];
-    for (int a = 0; a < 4; ++a) {
-      element.nodes[a] = mesh.tets[4 * e + a];
-      if (element.nodes[a] >= node_count_)
-        throw std::invalid_argument("corotational_fem: tet " + std::to_string(e) + " names node " +
-                                    std::to_string(element.nodes[a]) + " but the mesh has " +
-                                    std::to_string(node_count_));
-      x[a] = node_position(rest_.data(), element.nodes[a]);
-    }
-    element.volume = tet_signed_volume(x[0], x[1], x[2], x[3]);
-    if (!(element.volume > 0.0))
-      throw std::invalid_argument("corotational_fem: tet " + std::to_string(e) +
-                                  " has non-positive rest volume " +
-                                  std::to_string(element.volume) + " m^3 (expected positive "
-                                  "orientation)");
-    const std::array<Vec3, 4> gradients = tet_shape_gradients(x[0], x[1], x[2], x[3]);
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 3; ++c) element.gradients[a][c] = gradients[a][c];
+    const TetRest rest =
+        checked_tet_rest("corotational_fem", rest_.data(), node_count_, mesh.tets, e);
+    std::copy_n(rest.nodes, 4, element.nodes);
+    std::copy_n(&rest.gradients[0][0], 12, &element.gradients[0][0]);
+    element.volume = rest.volume;
     for (int p = 0; p < 10; ++p) {
       const double* ga = element.gradients[kPairA[p]];
       const double* gb = element.gradients[kPairB[p]];
@@ -198,13 +182,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
   // damping term, one pass over the blocks instead of a K_e v per element.
   matrix_.multiply(state.velocities, stiffness_velocity_.data());
-  const double mass_scale = 1.0 + h * alpha_;
-  for (uint32_t i = 0; i < node_count_; ++i) {
-    double* d = matrix_.block(matrix_.diagonal_block(i));
-    d[0] += mass_scale * masses_[i];
-    d[4] += mass_scale * masses_[i];
-    d[8] += mass_scale * masses_[i];
-  }
+  matrix_.add_to_diagonal(masses_, 1.0 + h * alpha_);
   matrix_.apply_fixed(fixed_);
   for (size_t k = 0; k < n; ++k) {
     const double m = masses_[k / 3];

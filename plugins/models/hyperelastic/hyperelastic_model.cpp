@@ -38,32 +38,11 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
   if (options_.mode == SolveMode::kStatic && !any_fixed)
     throw std::invalid_argument("hyperelastic: solve: static needs fixed nodes (a free body has "
                                 "no equilibrium under a net load)");
-  for (uint32_t i = 0; i < node_count_; ++i)
-    if (!(masses_[i] > 0.0) && (fixed_.empty() || !fixed_[i]))
-      throw std::invalid_argument("hyperelastic: node " + std::to_string(i) +
-                                  " is free but has mass " + std::to_string(masses_[i]) + " kg");
-  elements_.resize(mesh.tet_count);
-  for (uint32_t e = 0; e < mesh.tet_count; ++e) {
-    Element& element = elements_[e];
-    Vec3 x[4];
-    for (int a = 0; a < 4; ++a) {
-      element.nodes[a] = mesh.tets[4 * e + a];
-      if (element.nodes[a] >= node_count_)
-        throw std::invalid_argument("hyperelastic: tet " + std::to_string(e) + " names node " +
-                                    std::to_string(element.nodes[a]) + " but the mesh has " +
-                                    std::to_string(node_count_));
-      x[a] = node_position(mesh.rest_positions, element.nodes[a]);
-    }
-    element.volume = tet_signed_volume(x[0], x[1], x[2], x[3]);
-    if (!(element.volume > 0.0))
-      throw std::invalid_argument("hyperelastic: tet " + std::to_string(e) +
-                                  " has non-positive rest volume " +
-                                  std::to_string(element.volume) +
-                                  " m^3 (expected positive orientation)");
-    const std::array<Vec3, 4> gradients = tet_shape_gradients(x[0], x[1], x[2], x[3]);
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 3; ++c) element.gradients[a][c] = gradients[a][c];
-  }
+  check_free_node_masses("hyperelastic", masses_, fixed_);
+  elements_.reserve(mesh.tet_count);
+  for (uint32_t e = 0; e < mesh.tet_count; ++e)
+    elements_.push_back(
+        checked_tet_rest("hyperelastic", mesh.rest_positions, node_count_, mesh.tets, e));
   const size_t n = 3 * static_cast<size_t>(node_count_);
   for (auto* buffer : {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
                        &equilibrium_loads_, &scratch_, &product_, &last_correction_})

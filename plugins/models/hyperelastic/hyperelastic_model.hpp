@@ -22,6 +22,7 @@
 #include "stretch_energy.hpp"
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models::hyperelastic {
 
@@ -74,11 +75,7 @@ class HyperelasticModel {
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
 
  private:
-  struct Element {
-    uint32_t nodes[4];
-    double gradients[4][3];  // grad N_a at rest, 1/m
-    double volume;           // m^3
-  };
+  using Element = TetRest;  // nodes, rest gradients (1/m), volume (m^3)
   // One pass over the elements at x: returns W (J); adds internal forces into forces (if not
   // null) and scale * K into matrix_ (if scale != 0); sets inverted_ when an element is.
   double element_pass(const double* x, double* forces, double scale) noexcept;

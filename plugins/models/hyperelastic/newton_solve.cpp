@@ -83,14 +83,8 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       const auto a = matrix_.values();
       for (size_t k = 0; k < a.size(); ++k) a[k] += o.stiffness_damping * kd[k];
     }
-    const double mass_scale = o.inertia + o.mass_damping;
-    if (mass_scale != 0.0)
-      for (uint32_t i = 0; i < node_count_; ++i) {
-        double* d = matrix_.block(matrix_.diagonal_block(i));
-        d[0] += mass_scale * masses_[i];
-        d[4] += mass_scale * masses_[i];
-        d[8] += mass_scale * masses_[i];
-      }
+    if (o.inertia + o.mass_damping != 0.0)
+      matrix_.add_to_diagonal(masses_, o.inertia + o.mass_damping);
     matrix_.apply_fixed(fixed_);
     if (iteration == 0 && o.first_guess != nullptr) std::copy_n(o.first_guess, n, correction_.begin());
     else std::fill(correction_.begin(), correction_.end(), 0.0);

@@ -103,4 +103,13 @@ void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {
   }
 }
 
+void BlockSparseMatrix::add_to_diagonal(std::span<const double> values, double scale) {
+  for (uint32_t i = 0; i < node_count_; ++i) {
+    double* d = block(diagonal_block(i));
+    d[0] += scale * values[i];
+    d[4] += scale * values[i];
+    d[8] += scale * values[i];
+  }
+}
+
 }  // namespace tacta::models::sparse

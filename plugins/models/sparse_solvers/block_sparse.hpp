@@ -37,6 +37,8 @@ class BlockSparseMatrix {
   // values per node of which the first 3 count (y's others set to 0). Returns x . y, summed as
   // each row completes (CG's p . Ap without another pass).
   double multiply(const double* x, double* y, size_t stride = 3) const;
+  // Adds scale * values[i] * I to each node's diagonal block (a lumped mass matrix).
+  void add_to_diagonal(std::span<const double> values, double scale);
   // Makes fixed nodes' rows and columns identity (zero off-diagonal, I on the diagonal).
   void apply_fixed(std::span<const uint8_t> fixed);
 

@@ -26,6 +26,18 @@ tacta_mesh_view TestMesh::view() const {
   return v;
 }
 
+double TestMesh::mean_displacement_on_plane(const double* current, int axis, double value,
+                                            int component, double tolerance) const {
+  double sum = 0.0;
+  int count = 0;
+  for (uint32_t i = 0; i < node_count(); ++i)
+    if (std::abs(positions[3 * i + axis] - value) <= tolerance) {
+      sum += current[3 * i + component] - positions[3 * i + component];
+      ++count;
+    }
+  return count > 0 ? sum / count : 0.0;
+}
+
 void TestMesh::fix_plane(int axis, double value, double tolerance) {
   for (uint32_t i = 0; i < node_count(); ++i)
     if (std::abs(positions[3 * i + static_cast<uint32_t>(axis)] - value) <= tolerance) fixed[i] = 1;

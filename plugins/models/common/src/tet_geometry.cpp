@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace tacta::models {
 
@@ -45,6 +47,37 @@ double min_tet_edge_length(std::span<const double> positions, std::span<const ui
                                        node_position(positions.data(), tets[t + b]))
                                           .norm());
   return shortest;
+}
+
+TetRest checked_tet_rest(const char* model, const double* rest_positions, uint32_t node_count,
+                         const uint32_t* tets, uint32_t e) {
+  TetRest tet;
+  Vec3 x[4];
+  for (int a = 0; a < 4; ++a) {
+    tet.nodes[a] = tets[4 * size_t{e} + a];
+    if (tet.nodes[a] >= node_count)
+      throw std::invalid_argument(std::string(model) + ": tet " + std::to_string(e) +
+                                  " names node " + std::to_string(tet.nodes[a]) +
+                                  " but the mesh has " + std::to_string(node_count));
+    x[a] = node_position(rest_positions, tet.nodes[a]);
+  }
+  tet.volume = tet_signed_volume(x[0], x[1], x[2], x[3]);
+  if (!(tet.volume > 0.0))
+    throw std::invalid_argument(std::string(model) + ": tet " + std::to_string(e) +
+                                " has non-positive rest volume " + std::to_string(tet.volume) +
+                                " m^3 (expected positive orientation)");
+  const std::array<Vec3, 4> gradients = tet_shape_gradients(x[0], x[1], x[2], x[3]);
+  for (int a = 0; a < 4; ++a)
+    for (int c = 0; c < 3; ++c) tet.gradients[a][c] = gradients[a][c];
+  return tet;
+}
+
+void check_free_node_masses(const char* model, std::span<const double> masses,
+                            std::span<const uint8_t> fixed) {
+  for (size_t i = 0; i < masses.size(); ++i)
+    if (!(masses[i] > 0.0) && (fixed.empty() || !fixed[i]))
+      throw std::invalid_argument(std::string(model) + ": node " + std::to_string(i) +
+                                  " is free but has mass " + std::to_string(masses[i]) + " kg");
 }
 
 }  // namespace tacta::models

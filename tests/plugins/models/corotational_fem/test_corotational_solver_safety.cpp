@@ -36,14 +36,7 @@ CantileverRun run_sofa_cantilever(const Options& options) {
   CantileverRun run;
   for (int step = 0; step < 100 && !run.faulted; ++step)
     run.faulted = (model->step(body.state, dt) & TACTA_STEP_FAULT_MASK) != 0;
-  double sum = 0.0;
-  int count = 0;
-  for (uint32_t i = 0; i < mesh.node_count(); ++i)
-    if (mesh.positions[3 * i + 2] > 0.2 - 1e-9) {
-      sum += mesh.positions[3 * i + 1] - body.positions[3 * i + 1];
-      ++count;
-    }
-  run.tip_deflection = sum / count;
+  run.tip_deflection = -mesh.mean_displacement_on_plane(body.positions.data(), 2, 0.2, 1);
   run.counters = model->counters();
   return run;
 }

@@ -26,6 +26,10 @@ struct TestMesh {
   tacta_mesh_view view() const;  // points into this object: keep it alive and unchanged
   // Marks every node whose coordinate `axis` (0 x, 1 y, 2 z) is within tolerance of value.
   void fix_plane(int axis, double value, double tolerance = 1e-9);
+  // Mean displacement along `component` of the nodes whose rest coordinate `axis` is within
+  // tolerance of value (a beam's tip face), m.
+  double mean_displacement_on_plane(const double* positions, int axis, double value, int component,
+                                    double tolerance = 1e-9) const;
 };
 
 // Material in SI units from (E, nu, rho), with both Lamé and Young filled; no damping.

@@ -27,6 +27,20 @@ double tet_signed_volume(const Vec3& x0, const Vec3& x1, const Vec3& x2, const V
 std::array<Vec3, 4> tet_shape_gradients(const Vec3& x0, const Vec3& x1, const Vec3& x2,
                                         const Vec3& x3);
 
+// One tet at rest as a model keeps it: node indices, shape-function gradients and volume.
+struct TetRest {
+  uint32_t nodes[4];
+  double gradients[4][3];  // grad N_a, 1/m
+  double volume;           // m^3
+};
+// Tet e of a mesh (4 node indices per tet), checked: nodes within node_count and a positive
+// rest volume. Throws std::invalid_argument naming the model, the tet and what is wrong.
+TetRest checked_tet_rest(const char* model, const double* rest_positions, uint32_t node_count,
+                         const uint32_t* tets, uint32_t e);
+// Every free node (fixed empty or 0) has a positive mass; else std::invalid_argument naming it.
+void check_free_node_masses(const char* model, std::span<const double> masses,
+                            std::span<const uint8_t> fixed);
+
 // Lumped nodal masses (kg): each tet gives a quarter of rho * V to each of its nodes.
 std::vector<double> lumped_tet_masses(std::span<const double> positions,
                                       std::span<const uint32_t> tets, double density);
