@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "fd_debunne_model.hpp"
+#include "hyperelastic_model.hpp"
 #include "mass_spring_model.hpp"
 #include "tacta/models/model_checks.hpp"
 #include "tacta/models/test_meshes.hpp"
@@ -90,7 +91,48 @@ long allocations_in_steps(const Options& options, bool with_begin) {
   return g_allocations;
 }
 
+// The hyperelastic core built the way allocations_in_steps builds the others, its moduli from
+// the setup's material.
+struct Hyperelastic {
+  Hyperelastic(const tacta_model_setup& setup, tacta::models::hyperelastic::Options options)
+      : model(*setup.mesh, *setup.material,
+              std::span<const double>(setup.masses, setup.mesh->node_count),
+              std::span<const uint8_t>(setup.fixed, setup.mesh->node_count),
+              with_moduli(options, *setup.material)) {}
+  static tacta::models::hyperelastic::Options with_moduli(tacta::models::hyperelastic::Options o,
+                                                         const tacta_material& m) {
+    o.material.mu = m.lame_mu;
+    o.material.lambda = m.lame_lambda;
+    o.material.c10 = 0.5 * m.lame_mu;
+    o.material.bulk = m.lame_lambda + 2.0 * m.lame_mu / 3.0;
+    return o;
+  }
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return model.step(state, dt); }
+  void begin(const tacta_body_state& state, double dt) noexcept { model.begin(state, dt); }
+  void internal_forces(const double* x, double* f) noexcept { model.internal_forces(x, f); }
+  tacta::models::hyperelastic::HyperelasticModel model;
+};
+
 }  // namespace
+
+TEST(ModelsNoAllocation, HyperelasticStepsWithoutAllocating) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "malloc belongs to the sanitizer here";
+  using tacta::models::hyperelastic::MaterialLaw;
+  using tacta::models::hyperelastic::SolveMode;
+  for (const MaterialLaw law : {MaterialLaw::kNeoHookean, MaterialLaw::kStVenantKirchhoff,
+                                MaterialLaw::kMooneyRivlin})
+    for (const SolveMode mode : {SolveMode::kDynamic, SolveMode::kStatic})
+      for (const auto solver : {tacta::models::sparse::LinearSolver::kConjugateGradient,
+                                tacta::models::sparse::LinearSolver::kCholesky}) {
+        tacta::models::hyperelastic::Options o;
+        o.material.law = law;
+        o.mode = mode;
+        o.solver.solver = solver;
+        EXPECT_EQ((allocations_in_steps<Hyperelastic>(o, true)), 0)
+            << "hyperelastic " << static_cast<int>(law) << " " << static_cast<int>(mode) << " "
+            << static_cast<int>(solver);
+      }
+}
 
 TEST(ModelsNoAllocation, EveryIntegratorStepsWithoutAllocating) {
   if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "malloc belongs to the sanitizer here";
