@@ -1,6 +1,7 @@
 // The net protocol (tacta_net_protocol.h) and the C client's passivity filter, without sockets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -92,28 +93,48 @@ TEST(NetClient, DropsDuplicateOlderAndForeignForces) {
   EXPECT_DOUBLE_EQ(tacta_net_remote_budget(&d), 0.5);
 }
 
-// Random forces and motions, with and without a remote budget: the ledger never goes negative,
-// the returned energy never passes the remote budget, and no force passes the peak.
-TEST(NetClient, PassivityFilterKeepsTheLedgerAndTheBudget) {
+// Random forces and a random hand, with and without a remote budget. The hand moves v dt plus a
+// miss of up to kMiss per axis that the filter cannot foresee (acceleration, jitter, encoder
+// noise). The filter's ledger is the exact work of the held forces, recomputed here; it never
+// goes below what one tick's unforeseen miss can cost. The energy returned in sampled power
+// (how the simulation counts the remote budget) never passes the remote budget; no force passes
+// the peak.
+TEST(NetClient, PassivityFilterKeepsTheExactLedgerAndTheBudget) {
+  constexpr double kPeak = 3.3, kMiss = 2e-6;  // N, m
+  const double one_tick = kPeak * kMiss * std::sqrt(3.0);  // J: the most one unforeseen miss can cost
   std::mt19937 rng(3);
   std::normal_distribution<double> force(0.0, 3.0), speed(0.0, 0.05);
+  std::uniform_real_distribution<double> miss(-kMiss, kMiss);
   for (int use_remote = 0; use_remote < 2; ++use_remote) {
     tacta_net_passivity p{};
     tacta_net_passivity_reset(&p);
     p.use_remote = use_remote;
-    double remote = 0.0;
+    double remote = 0.0, x[3] = {0, 0, 0}, exact = 0.0, returned = 0.0;
     for (int n = 0; n < 20000; ++n) {
       const double v[3] = {speed(rng), speed(rng), speed(rng)};
       const double wanted[3] = {force(rng), force(rng), force(rng)};
       remote += 1e-5 * std::abs(force(rng));  // the environment returns a little now and then
       double out[3];
-      tacta_net_passivity_filter(&p, v, 1e-3, remote, wanted, 3.3, out);
-      ASSERT_LE(std::hypot(out[0], out[1], out[2]), 3.3 + 1e-12);
-      ASSERT_GE(tacta_net_passivity_ledger(&p), -1e-15) << "tick " << n;
+      tacta_net_passivity_filter(&p, x, v, 1e-3, remote, wanted, kPeak, out);
+      ASSERT_LE(std::hypot(out[0], out[1], out[2]), kPeak + 1e-12);
+      double work = 0.0, sampled = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const double moved = v[a] * 1e-3 + miss(rng);
+        work += out[a] * moved;
+        sampled += out[a] * v[a] * 1e-3;
+        x[a] += moved;
+      }
+      exact -= work;
+      returned += std::max(sampled, 0.0);
+      ASSERT_GE(exact, -one_tick) << "tick " << n;
       if (use_remote) {
-        ASSERT_LE(p.energy_out, remote + 1e-15);
+        ASSERT_LE(returned, remote + 1e-12) << "tick " << n;
       }
     }
+    const double still[3] = {0, 0, 0};
+    double unused[3];
+    tacta_net_passivity_filter(&p, x, still, 1e-3, remote, still, kPeak, unused);  // charges the last tick
+    EXPECT_NEAR(tacta_net_passivity_ledger(&p), exact, 1e-12);
     EXPECT_GT(p.dissipated, 0.0);
   }
 }

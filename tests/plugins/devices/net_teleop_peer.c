@@ -3,12 +3,15 @@
  * delay line inside this process (a UDP relay on 127.0.0.1 that holds each datagram for half the
  * round trip, plus uniform jitter, and loses a fraction of them).
  *
- *   net_teleop_peer PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv
+ *   net_teleop_peer PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv [unfiltered]
  *
  * The hand (0.1 kg, pulled by a 300 N/m, 11 N s/m spring-damper towards a target) starts 12 mm
- * above the liver's upper surface, its target goes 8 mm below it within 0.4 s and stays there.
- * The device force, after the two-port passivity filter, acts on the hand. Timeline zero is the
- * first live force. OUT.csv: t, position y, force x y z, ledger; stdout: one summary line. */
+ * above the liver's upper surface, its target goes 8 mm below it within PRESS_RAMP_S (1 s) and stays there.
+ * The device force, after the two-port passivity filter (or only limited to the peak with
+ * `unfiltered`), acts on the hand, held over each 1 ms tick. Timeline zero is the first live
+ * force. OUT.csv, a row per tick: t, the position at the tick's start and the force held over it
+ * (full double precision, so a reader can recompute the exact work), the filter's ledger;
+ * stdout: one summary line. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,7 +36,7 @@ static void sleep_until_ns(uint64_t deadline) {
 
 int main(int argc, char** argv) {
   const double pressed_y = 0.147 - 0.008, start_y = 0.147 + 0.012; /* m, at x = -0.049, z = 0.027 */
-  const double mass = 0.1, k_hand = 300.0, b_hand = 11.0, dt = 1e-3;
+  const double mass = 0.1, k_hand = 300.0, b_hand = 11.0, dt = 1e-3, ramp = 1.0; /* kg, N/m, N s/m, s, s */
   tnet_hello caps = {{-0.13, 0.06, -0.035}, {0.03, 0.18, 0.105}, 3.3, 0.88, 1000.0, 1000.0, 3, 3};
   struct sockaddr_in relay_address = {0}, sim_address = {0}, client_address = {0};
   socklen_t size = sizeof relay_address;
@@ -47,12 +50,13 @@ int main(int argc, char** argv) {
   char error[256];
   tacta_net_device dev;
   FILE* out;
-  if (argc != 8) {
-    fprintf(stderr, "usage: %s PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv\n", argv[0]);
+  if (argc != 8 && !(argc == 9 && strcmp(argv[8], "unfiltered") == 0)) {
+    fprintf(stderr, "usage: %s PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv [unfiltered]\n", argv[0]);
     return 2;
   }
   const double one_way = atof(argv[2]) * 0.5e-3, jitter = atof(argv[3]) * 1e-3, loss = atof(argv[4]);
   const double duration = atof(argv[6]);
+  const int filtered = argc == 8;
   rng = (unsigned)strtoul(argv[5], NULL, 10);
   out = fopen(argv[7], "w");
   relay = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
@@ -69,7 +73,7 @@ int main(int argc, char** argv) {
   }
   size = sizeof client_address;
   getsockname(dev.socket, (struct sockaddr*)&client_address, &size);
-  fprintf(out, "t,y,fx,fy,fz,ledger\n");
+  fprintf(out, "t,x,y,z,fx,fy,fz,ledger\n");
   const uint64_t begun = tacta_net_now_ns();
   for (next = begun;; next += 1000000ull) {
     unsigned char buffer[512];
@@ -105,8 +109,13 @@ int main(int argc, char** argv) {
     tau = start == 0 ? 0.0 : (double)(now - start) * 1e-9;
     if (start != 0 && tau > duration) break;
     if (start == 0 && now - begun > 60000000000ull) return 3; /* no simulation answered in 60 s */
-    tacta_net_passivity_filter(&dev.passivity, v, dt, tacta_net_remote_budget(&dev), raw, caps.peak_force, f);
-    target_y = start_y + (pressed_y - start_y) * (tau < 0.4 ? tau / 0.4 : 1.0);
+    if (filtered) {
+      tacta_net_passivity_filter(&dev.passivity, x, v, dt, tacta_net_remote_budget(&dev), raw, caps.peak_force, f);
+    } else {
+      const double m = sqrt(raw[0] * raw[0] + raw[1] * raw[1] + raw[2] * raw[2]);
+      for (i = 0; i < 3; ++i) f[i] = m > caps.peak_force ? raw[i] * caps.peak_force / m : raw[i];
+    }
+    target_y = start_y + (pressed_y - start_y) * (tau < ramp ? tau / ramp : 1.0);
     memcpy(last_x, x, sizeof x);
     for (i = 0; i < 10; ++i) { /* the hand, 0.1 ms sub-steps, the device force held */
       int a;
@@ -129,7 +138,8 @@ int main(int argc, char** argv) {
         held_force += m;
       }
       if (dev.round_trip_s > 0) { rtt_sum += dev.round_trip_s; ++rtt_count; }
-      fprintf(out, "%.4f,%.6f,%.5f,%.5f,%.5f,%.6g\n", tau, x[1], f[0], f[1], f[2], ledger);
+      fprintf(out, "%.4f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6g\n", tau, last_x[0], last_x[1], last_x[2], f[0], f[1],
+              f[2], ledger);
       ++ticks;
     }
     {

@@ -9,15 +9,15 @@
  *     tacta_net_send_state(&dev, &state);          // pose, velocity, buttons
  *     tacta_net_poll(&dev);                        // drains forces that arrived
  *     tacta_net_force(&dev, force);                // zero when the simulation fell silent
- *     tacta_net_passivity_filter(&dev.passivity, state.velocity, dt,
+ *     tacta_net_passivity_filter(&dev.passivity, state.position, state.velocity, dt,
  *                                tacta_net_remote_budget(&dev), force, caps.peak_force, force);
  *     vendor_set_force(force);
  *   tacta_net_close(&dev);                         // says BYE
  *
  * Passivity under delay (time-domain passivity on the delayed two-port, after Ryu, Artigas
  * and Preusche, Mechatronics 20(7), 2010): the energy the device returns to the hand is kept
- * below both the energy the hand has put in (one-port ledger, observed with sampled power
- * f(n).v(n) dt as in Hannaford and Ryu 2002) and the energy the simulated environment has
+ * below both the energy the hand has put in (one-port ledger, observed exactly for a force held
+ * over each servo tick: F(n).(x(n+1) - x(n)), not sampled power) and the energy the simulated environment has
  * returned into the link (`energy_returned` of the newest FORCE datagram, which arrives one
  * delay late). Any excess is removed by a damper along the velocity, just large enough.
  */
@@ -40,10 +40,16 @@ extern "C" {
 #endif
 
 typedef struct tacta_net_passivity {
-  double energy_in;   /* J: work the hand did against the device's force */
+  double energy_in;   /* J: work the hand did against the device's force (exact, see below) */
   double energy_out;  /* J: work the device's force did on the hand */
-  double dissipated;  /* J: removed by the controller's damper */
+  double dissipated;  /* J: sampled work the controller removed (damper or scaling) */
+  double link_out;    /* J: energy returned to the hand in sampled power, for the two-port bound */
   int use_remote;     /* 1: also bound by the environment's returned energy (two-port) */
+  int have_last;      /* a force is held since last_position */
+  double last_position[3], last_force[3]; /* m, N: the previous tick's position and held force */
+  double last_predicted[3];               /* m: the displacement that tick was planned with */
+  double last_step[3], curvature[3];      /* m: its v dt, and the newest (actual - v dt) */
+  double miss;        /* m: recent largest |actual - predicted displacement|, decaying */
 } tacta_net_passivity;
 
 typedef struct tacta_net_device {
@@ -71,50 +77,101 @@ static inline uint64_t tacta_net_now_ns(void) {
 }
 
 static inline void tacta_net_passivity_reset(tacta_net_passivity* p) {
-  p->energy_in = p->energy_out = p->dissipated = 0.0;
+  memset(p, 0, sizeof *p);
   p->use_remote = 1;
 }
 
-/* J, >= 0 at every tick while the controller runs: what the hand put in minus what it got back. */
+/* J: what the hand put in minus what it got back, up to the newest position. */
 static inline double tacta_net_passivity_ledger(const tacta_net_passivity* p) {
   return p->energy_in - p->energy_out;
 }
 
-/* The force to apply this tick: `desired` (N) with just enough damping along `velocity` (m/s)
- * that the energy returned to the hand stays within budget, then limited to `peak` (N).
- * `remote_budget` (J) is the environment's returned energy (tacta_net_remote_budget). */
-static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const double velocity[3], double dt,
-                                              double remote_budget, const double desired[3], double peak,
-                                              double out[3]) {
-  double f[3] = {desired[0], desired[1], desired[2]};
-  double bound = p->energy_in, power, speed2, magnitude2, remaining;
+static inline double tacta_net_dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Scales `f` (N) down to `peak` (N); a non-finite force becomes zero. */
+static inline void tacta_net_limit(double f[3], double peak) {
+  const double magnitude2 = tacta_net_dot3(f, f);
   int i;
-  if (p->use_remote && remote_budget < bound) bound = remote_budget;
-  power = f[0] * velocity[0] + f[1] * velocity[1] + f[2] * velocity[2];
-  speed2 = velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2];
-  /* J left to return, aimed a hair under (relative 1e-9, and 1e-12 of |f||v|dt) so that rounding
-   * in the damper never takes the ledger below zero */
-  remaining = (bound - p->energy_out) * (1.0 - 1e-9) -
-              1e-12 * sqrt((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * speed2) * dt;
-  if (dt > 0.0 && power * dt > remaining) {
-    const double excess = power * dt - remaining; /* J, > 0 */
-    if (speed2 > 1e-18) {
-      const double alpha = excess / (speed2 * dt); /* N s/m */
-      for (i = 0; i < 3; ++i) f[i] -= alpha * velocity[i];
-      p->dissipated += excess;
-    } else {
-      f[0] = f[1] = f[2] = 0.0;
-    }
-  }
-  magnitude2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
   if (!(magnitude2 <= peak * peak)) { /* also catches NaN */
     const double scale = magnitude2 > 0.0 && magnitude2 < 1e300 ? peak / sqrt(magnitude2) : 0.0;
     for (i = 0; i < 3; ++i) f[i] *= scale;
   }
-  power = f[0] * velocity[0] + f[1] * velocity[1] + f[2] * velocity[2];
-  if (power > 0.0) p->energy_out += power * dt;
-  else p->energy_in -= power * dt;
-  for (i = 0; i < 3; ++i) out[i] = f[i];
+}
+
+/* The force to apply this tick, given the device's `position` (m) and `velocity` (m/s) now:
+ * `desired` (N), damped and scaled just enough that the energy returned to the hand stays within
+ * both budgets, and limited to `peak` (N). `remote_budget` (J): tacta_net_remote_budget. The
+ * caller must render `out` unchanged until the next call (the ledger charges it over the motion).
+ *
+ * Observer: the force is held over each servo tick, so its exact work is the held force times
+ * the displacement, F(n).(x(n+1) - x(n)), charged when x(n+1) arrives. Controller: the next
+ * displacement is unknown, so it plans with v dt plus the previous tick's own departure from
+ * v dt (the acceleration's share) and keeps back |F| times twice the largest recent miss of that
+ * prediction (which tracks changes of acceleration, servo jitter and encoder noise; decay 0.998
+ * per tick, about 0.5 s). A miss beyond that leaves a deficit: zero force until the hand has
+ * put it back. */
+static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const double position[3],
+                                              const double velocity[3], double dt, double remote_budget,
+                                              const double desired[3], double peak, double out[3]) {
+  double f[3] = {desired[0], desired[1], desired[2]}, d[3], speed2, sampled, own, worst, planned;
+  int i;
+  if (!(isfinite(position[0]) && isfinite(position[1]) && isfinite(position[2]))) {
+    out[0] = out[1] = out[2] = 0.0; /* no position, no ledger: render nothing, restart the hold */
+    p->have_last = 0;
+    return;
+  }
+  if (p->have_last) {
+    double moved[3], miss2 = 0.0, work;
+    for (i = 0; i < 3; ++i) {
+      moved[i] = position[i] - p->last_position[i];
+      miss2 += (moved[i] - p->last_predicted[i]) * (moved[i] - p->last_predicted[i]);
+      p->curvature[i] = moved[i] - p->last_step[i];
+    }
+    work = tacta_net_dot3(p->last_force, moved);
+    if (work > 0.0) p->energy_out += work;
+    else p->energy_in -= work;
+    p->miss = sqrt(miss2) > p->miss * 0.998 ? sqrt(miss2) : p->miss * 0.998;
+  }
+  /* Two-port: the energy returned to the hand, in sampled power f.v dt as the simulation sums
+   * the environment's, stays below what the environment returned (one delay ago); a damper
+   * along the velocity removes the excess (Ryu, Artigas and Preusche 2010). */
+  speed2 = tacta_net_dot3(velocity, velocity);
+  sampled = dt > 0.0 && isfinite(speed2) ? tacta_net_dot3(f, velocity) * dt : 0.0;
+  if (p->use_remote && sampled > remote_budget - p->link_out) {
+    const double excess = sampled - (remote_budget - p->link_out); /* J, > 0 */
+    if (speed2 > 1e-18) {
+      for (i = 0; i < 3; ++i) f[i] -= excess / (speed2 * dt) * velocity[i];
+    } else {
+      f[0] = f[1] = f[2] = 0.0;
+    }
+  }
+  tacta_net_limit(f, peak);
+  /* One-port, exact: the worst work over the unsure displacement stays within what the hand put
+   * in; scaling the force down never makes it worse (no damper: it would chatter on a hand
+   * that barely moves). */
+  for (i = 0; i < 3; ++i) {
+    p->last_step[i] = dt > 0.0 && isfinite(velocity[i]) ? velocity[i] * dt : 0.0;
+    d[i] = p->last_step[i] + (p->have_last ? p->curvature[i] : 0.0);
+  }
+  own = p->have_last ? p->energy_in - p->energy_out : -1.0; /* first tick: no miss measured yet */
+  worst = tacta_net_dot3(f, d) + sqrt(tacta_net_dot3(f, f)) * (2.0 * p->miss + 1e-12) + 1e-15;
+  if (worst > own) {
+    const double scale = own > 0.0 ? own / worst : 0.0;
+    for (i = 0; i < 3; ++i) f[i] *= scale;
+  }
+  sampled = dt > 0.0 && isfinite(speed2) ? tacta_net_dot3(f, velocity) * dt : 0.0;
+  if (sampled > 0.0) p->link_out += sampled;
+  planned = tacta_net_dot3(desired, velocity) * dt - sampled;
+  if (isfinite(planned) && planned > 0.0) p->dissipated += planned;
+  for (i = 0; i < 3; ++i) {
+    out[i] = f[i];
+    p->last_force[i] = f[i];
+    p->last_position[i] = position[i];
+    p->last_predicted[i] = d[i];
+  }
+  p->have_last = 1;
 }
 
 static inline int tacta_net_send_datagram(tacta_net_device* d, uint32_t type, const void* payload) {

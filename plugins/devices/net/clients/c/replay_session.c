@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     ++sent;
     tacta_net_poll(&dev);
     tacta_net_force(&dev, force);
-    tacta_net_passivity_filter(&dev.passivity, s.velocity, dt, tacta_net_remote_budget(&dev), force,
+    tacta_net_passivity_filter(&dev.passivity, s.position, s.velocity, dt, tacta_net_remote_budget(&dev), force,
                                caps.peak_force, force);
     {
       const double m = force[0] * force[0] + force[1] * force[1] + force[2] * force[2];
