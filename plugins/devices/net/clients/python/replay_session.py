@@ -48,7 +48,8 @@ def main():
         velocity = row[8:11]
         dev.send_state(row[1:4], velocity, row[4:8], int(row[11]))
         dev.poll()
-        force = dev.passivity.filter(velocity, row[0] - last, dev.remote_budget(), dev.force(), caps.peak_force)
+        force = dev.passivity.filter(row[1:4], velocity, row[0] - last, dev.remote_budget(), dev.force(),
+                                      caps.peak_force)
         last = row[0]
         peak = max(peak, math.sqrt(sum(x * x for x in force)))
     dev.close()

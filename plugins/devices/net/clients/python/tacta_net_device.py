@@ -7,7 +7,7 @@ devices and tests; bridge a 1 kHz arm with the C client (tacta_net_device.h).
     every tick:
         dev.send_state(position, velocity)
         dev.poll()
-        force = dev.passivity.filter(velocity, dt, dev.remote_budget(), dev.force(), 3.3)
+        force = dev.passivity.filter(position, velocity, dt, dev.remote_budget(), dev.force(), 3.3)
     dev.close()
 """
 import math
@@ -43,41 +43,67 @@ class Capabilities:
     dof_out: int = 3
 
 
+def _dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def _limit(f, peak):
+    """f scaled down to peak (N); a non-finite force becomes zero."""
+    magnitude = math.sqrt(_dot(f, f))
+    if magnitude <= peak:
+        return f
+    return [x * peak / magnitude for x in f] if math.isfinite(magnitude) else [0.0, 0.0, 0.0]
+
+
 @dataclass
 class Passivity:
-    """Time-domain passivity on the delayed two-port, as tacta_net_passivity_filter in C."""
-    energy_in: float = 0.0  # J, work the hand did against the device's force
-    energy_out: float = 0.0  # J, work the device's force did on the hand
-    dissipated: float = 0.0  # J
+    """Time-domain passivity on the delayed two-port with an exact zero-order-hold ledger, as
+    tacta_net_passivity_filter in C (its comment explains the reserve)."""
+    energy_in: float = 0.0  # J, exact work the hand did against the held forces
+    energy_out: float = 0.0  # J, exact work the held forces did on the hand
+    dissipated: float = 0.0  # J, sampled work the controller removed
+    link_out: float = 0.0  # J, returned to the hand in sampled power (two-port bound)
     use_remote: bool = True
+    miss: float = 0.0  # m, recent largest miss of the displacement prediction, decaying
+    last: tuple = None  # (position, force, predicted displacement, v dt) of the previous tick
+    curvature: tuple = (0.0, 0.0, 0.0)  # m, the previous tick's actual minus v dt
 
     def ledger(self):
         return self.energy_in - self.energy_out
 
-    def filter(self, velocity, dt, remote_budget, desired, peak):
-        f = list(desired)
-        bound = min(self.energy_in, remote_budget) if self.use_remote else self.energy_in
-        power = sum(a * b for a, b in zip(f, velocity))
-        speed2 = sum(v * v for v in velocity)
-        # a hair under the budget, so that rounding in the damper never takes the ledger below zero
-        remaining = ((bound - self.energy_out) * (1.0 - 1e-9)
-                     - 1e-12 * math.sqrt(sum(x * x for x in f) * speed2) * dt)
-        if dt > 0 and power * dt > remaining:
-            excess = power * dt - remaining
-            if speed2 > 1e-18:
-                alpha = excess / (speed2 * dt)  # N s/m
-                f = [fi - alpha * vi for fi, vi in zip(f, velocity)]
-                self.dissipated += excess
+    def filter(self, position, velocity, dt, remote_budget, desired, peak):
+        if not all(math.isfinite(x) for x in position):
+            self.last = None  # no position, no ledger: render nothing, restart the hold
+            return [0.0, 0.0, 0.0]
+        if self.last is not None:
+            last_position, last_force, predicted, step = self.last
+            moved = [x - y for x, y in zip(position, last_position)]
+            work = _dot(last_force, moved)
+            if work > 0:
+                self.energy_out += work
             else:
-                f = [0.0, 0.0, 0.0]
-        magnitude = math.sqrt(sum(x * x for x in f))
-        if not magnitude <= peak:
-            f = [x * peak / magnitude for x in f] if math.isfinite(magnitude) else [0.0, 0.0, 0.0]
-        power = sum(a * b for a, b in zip(f, velocity))
-        if power > 0:
-            self.energy_out += power * dt
-        else:
-            self.energy_in -= power * dt
+                self.energy_in -= work
+            self.miss = max(math.dist(moved, predicted), self.miss * 0.998)
+            self.curvature = tuple(m - s for m, s in zip(moved, step))
+        f = list(desired)
+        speed2 = _dot(velocity, velocity)
+        sampled = _dot(f, velocity) * dt if dt > 0 and math.isfinite(speed2) else 0.0
+        if self.use_remote and sampled > remote_budget - self.link_out:  # two-port, sampled power
+            excess = sampled - (remote_budget - self.link_out)
+            f = [fi - excess / (speed2 * dt) * vi for fi, vi in zip(f, velocity)] if speed2 > 1e-18 else [0.0] * 3
+        f = _limit(f, peak)
+        step = [v * dt if dt > 0 and math.isfinite(v) else 0.0 for v in velocity]
+        predicted = [s + (c if self.last is not None else 0.0) for s, c in zip(step, self.curvature)]
+        own = self.ledger() if self.last is not None else -1.0  # first tick: no miss measured yet
+        worst = _dot(f, predicted) + math.sqrt(_dot(f, f)) * (2.0 * self.miss + 1e-12) + 1e-15
+        if worst > own:  # one-port, exact: scale down (never worse)
+            f = [x * (own / worst if own > 0 else 0.0) for x in f]
+        sampled = _dot(f, velocity) * dt if dt > 0 and math.isfinite(speed2) else 0.0
+        self.link_out += max(sampled, 0.0)
+        removed = _dot(desired, velocity) * dt - sampled
+        if math.isfinite(removed) and removed > 0:
+            self.dissipated += removed
+        self.last = (tuple(position), tuple(f), predicted, step)
         return f
 
 
