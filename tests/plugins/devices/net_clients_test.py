@@ -3,11 +3,14 @@
 in another: a recorded session (tacta run --record) replayed as if it were hardware by the C
 example (tacta_net_replay) and by the pure-Python one (replay_session.py). Each run must take
 every datagram, touch the liver, end with the client's BYE (no fault, exit 0) and report its link.
+Also the Python client's passivity filter alone: its exact ledger against a random hand.
 
     net_clients_test.py SOURCE_DIR BUILD_DIR WORK_DIR
 """
 import json
+import math
 import os
+import random
 import shutil
 import subprocess
 import sys
@@ -53,8 +56,32 @@ def replay(source, build, work, name, client):
     assert 0 < link["round_trip_p50_ms"] < 50, link
 
 
+def check_python_filter(source):
+    """Random forces on a hand that moves v dt plus up to 20 um per axis the filter cannot foresee:
+    the exact work of the held forces, summed here, never goes below zero (rounding aside; it does
+    without the reserve), and the filter's own ledger is that exact sum (as in the C test)."""
+    sys.path.insert(0, os.path.join(source, "plugins/devices/net/clients/python"))
+    from tacta_net_device import Passivity
+    peak, miss = 3.3, 2e-5  # N, m
+    rng, passivity, x, exact, remote = random.Random(3), Passivity(), [0.0, 0.0, 0.0], 0.0, 0.0
+    for tick in range(20000):
+        v = [rng.gauss(0, 0.05) for _ in range(3)]
+        remote += 1e-5 * abs(rng.gauss(0, 3))
+        f = passivity.filter(x, v, 1e-3, remote, [rng.gauss(0, 3) for _ in range(3)], peak)
+        moved = [vi * 1e-3 + rng.uniform(-miss, miss) for vi in v]
+        exact -= sum(a * b for a, b in zip(f, moved))
+        x = [a + b for a, b in zip(x, moved)]
+        assert exact >= -1e-12, (tick, exact)
+        assert math.hypot(*f) <= peak + 1e-12, (tick, f)
+    passivity.filter(x, [0.0] * 3, 1e-3, remote, [0.0] * 3, peak)  # charges the last tick
+    assert abs(passivity.ledger() - exact) < 1e-12, (passivity.ledger(), exact)
+    assert passivity.dissipated > 0
+    print(f"python filter: exact ledger {exact:.6f} J, dissipated {passivity.dissipated:.6f} J")
+
+
 def main():
     source, build, work = sys.argv[1:4]
+    check_python_filter(source)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     session = os.path.join(work, "session.csv")

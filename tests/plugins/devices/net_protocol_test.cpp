@@ -96,12 +96,11 @@ TEST(NetClient, DropsDuplicateOlderAndForeignForces) {
 // Random forces and a random hand, with and without a remote budget. The hand moves v dt plus a
 // miss of up to kMiss per axis that the filter cannot foresee (acceleration, jitter, encoder
 // noise). The filter's ledger is the exact work of the held forces, recomputed here; it never
-// goes below what one tick's unforeseen miss can cost. The energy returned in sampled power
-// (how the simulation counts the remote budget) never passes the remote budget; no force passes
-// the peak.
+// goes below zero (rounding aside): the reserve covers every miss (without it: below zero within
+// a few ticks). The energy returned in sampled power (how the simulation counts the remote
+// budget) never passes the remote budget; no force passes the peak.
 TEST(NetClient, PassivityFilterKeepsTheExactLedgerAndTheBudget) {
-  constexpr double kPeak = 3.3, kMiss = 2e-6;  // N, m
-  const double one_tick = kPeak * kMiss * std::sqrt(3.0);  // J: the most one unforeseen miss can cost
+  constexpr double kPeak = 3.3, kMiss = 2e-5;  // N, m
   std::mt19937 rng(3);
   std::normal_distribution<double> force(0.0, 3.0), speed(0.0, 0.05);
   std::uniform_real_distribution<double> miss(-kMiss, kMiss);
@@ -126,7 +125,7 @@ TEST(NetClient, PassivityFilterKeepsTheExactLedgerAndTheBudget) {
       }
       exact -= work;
       returned += std::max(sampled, 0.0);
-      ASSERT_GE(exact, -one_tick) << "tick " << n;
+      ASSERT_GE(exact, -1e-12) << "tick " << n;
       if (use_remote) {
         ASSERT_LE(returned, remote + 1e-12) << "tick " << n;
       }
