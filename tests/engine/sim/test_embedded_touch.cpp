@@ -1,0 +1,156 @@
+// Touching an embedded surface: the simulated stylus strokes over the top of a held sphere that
+// was loaded from a surface file (an icosphere of 5,120 triangles, so its facets tilt the normal
+// by under 2 degrees) and voxelised coarsely (5 cells across). Through its embedded
+// surface the force stays along the sphere's analytic normal and changes smoothly; through the
+// boundary of its voxel tets (`surface: tet_boundary`) the same stroke feels the staircase: the
+// force tilts towards the voxel faces' axes and jumps where the proxy crosses a voxel edge.
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "sim_test_support.hpp"
+
+namespace tacta::simtest {
+namespace {
+
+constexpr double kRadius = 0.05;  // m, sphere.obj (unit radius) scaled by 0.05
+constexpr double kCentreY = 0.06;  // m
+
+// A unit icosphere (the icosahedron split `levels` times, vertices pushed onto the sphere) as OBJ.
+std::string write_icosphere(int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<std::array<double, 3>> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                          {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                       {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      if (auto it = middle.find(key); it != middle.end()) return it->second;
+      v.push_back({(v[a][0] + v[b][0]) / 2, (v[a][1] + v[b][1]) / 2, (v[a][2] + v[b][2]) / 2});
+      return middle[key] = static_cast<int>(v.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(finer);
+  }
+  const std::string path = fresh_dir("icosphere") + "/icosphere.obj";
+  std::ofstream out(path);
+  for (const auto& p : v) {
+    const double r = std::hypot(p[0], p[1], p[2]);
+    out << "v " << p[0] / r << " " << p[1] / r << " " << p[2] / r << "\n";
+  }
+  for (const auto& t : f) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  return path;
+}
+
+// The stylus comes down on the sphere at 50 degrees left of its top, strokes 10 mm below its
+// surface over the top to 50 degrees right (2 s), and lifts off.
+std::string stroke_scene(const std::string& sphere, const std::string& surface) {
+  std::string waypoints = "0, -0.0766, 0.135, 0";
+  constexpr int kPoints = 41;
+  for (int i = 0; i < kPoints; ++i) {
+    const double angle = (-50.0 + 100.0 * i / (kPoints - 1)) * M_PI / 180.0;
+    const double r = kRadius - 0.010;
+    char point[96];
+    std::snprintf(point, sizeof point, ",  %.4f, %.6f, %.6f, 0", 0.3 + 2.0 * i / (kPoints - 1), r * std::sin(angle),
+                  kCentreY + r * std::cos(angle));
+    waypoints += point;
+  }
+  return R"(
+name: embedded_stroke
+gravity: [0, 0, 0]
+seed: 5
+clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 2.4}
+bodies:
+  - name: ball
+    mesh:
+      file: )" + sphere + R"(
+      scale: 0.05
+      translate: [0, 0.06, 0]
+      voxel_size: 0.02
+      surface: )" + surface + R"(
+    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 1000}
+    model: corotational_fem
+    fixed: [{box: {min: [-1, -1, -1], max: [1, 1, 1]}}]   # held: the analytic sphere stays exact
+devices:
+  - name: stylus
+    plugin: sim_stylus
+    params: {workspace_origin: [0, 0.1, 0], pattern: waypoints, waypoints: [)" + waypoints + R"(]}
+    tool: {sphere: {radius: 0.002}}
+    coupling: {stiffness: 200, damping: 0.1}
+    touches: ball
+collision: {broad_phase: bvh}
+)";
+}
+
+struct StrokeFeel {
+  double worst_angle_deg = 0;  // force direction against the analytic normal at the proxy
+  double mean_angle_deg = 0;
+  double largest_step_N = 0;   // largest change of |F| from one tick to the next
+  int samples = 0;
+  int contact_lost = 0;        // sampled ticks out of contact
+};
+
+// Runs the stroke; samples the ticks between 0.6 s and 2.1 s (in steady contact).
+StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
+  const SceneDesc scene = scene_from_text(stroke_scene(sphere, surface), "embedded_stroke");
+  LoopHarness h(scene, 2400);
+  StrokeFeel feel;
+  double previous = -1, angle_sum = 0;
+  for (int k = 0; k < 2400; ++k) {
+    h.tick();
+    const DeviceSlot& slot = h.world.device(0);
+    const double t = static_cast<double>(k + 1) * h.dt;
+    if (t < 0.6 || t > 2.1) continue;
+    const double magnitude = std::hypot(slot.force[0], slot.force[1], slot.force[2]);
+    if (previous >= 0) feel.largest_step_N = std::max(feel.largest_step_N, std::fabs(magnitude - previous));
+    previous = magnitude;
+    if (!slot.in_contact || !(magnitude > 0)) {
+      ++feel.contact_lost;
+      continue;
+    }
+    const double normal[3] = {slot.proxy[0], slot.proxy[1] - kCentreY, slot.proxy[2]};
+    const double length = std::hypot(normal[0], normal[1], normal[2]);
+    const double cosine =
+        (slot.force[0] * normal[0] + slot.force[1] * normal[1] + slot.force[2] * normal[2]) / (magnitude * length);
+    const double angle = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI;
+    feel.worst_angle_deg = std::max(feel.worst_angle_deg, angle);
+    angle_sum += angle;
+    ++feel.samples;
+  }
+  feel.mean_angle_deg = angle_sum / std::max(feel.samples, 1);
+  return feel;
+}
+
+TEST(EmbeddedTouch, StrokingAnEmbeddedSphereFollowsItsNormalWithoutSteps) {
+  const std::string sphere = write_icosphere(4);
+  const StrokeFeel smooth = feel_stroke(sphere, sphere);
+  const StrokeFeel voxels = feel_stroke(sphere, "tet_boundary");
+  RecordProperty("embedded_worst_angle_deg", std::to_string(smooth.worst_angle_deg));
+  RecordProperty("embedded_mean_angle_deg", std::to_string(smooth.mean_angle_deg));
+  RecordProperty("embedded_largest_step_N", std::to_string(smooth.largest_step_N));
+  RecordProperty("voxel_worst_angle_deg", std::to_string(voxels.worst_angle_deg));
+  RecordProperty("voxel_mean_angle_deg", std::to_string(voxels.mean_angle_deg));
+  RecordProperty("voxel_largest_step_N", std::to_string(voxels.largest_step_N));
+  std::printf("embedded: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks)\n", smooth.worst_angle_deg,
+              smooth.mean_angle_deg, smooth.largest_step_N, smooth.samples);
+  std::printf("voxel boundary: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks, %d out of contact)\n",
+              voxels.worst_angle_deg, voxels.mean_angle_deg, voxels.largest_step_N, voxels.samples, voxels.contact_lost);
+  ASSERT_EQ(smooth.samples, 1501);  // in contact all along
+  EXPECT_EQ(smooth.contact_lost, 0);
+  EXPECT_LT(smooth.worst_angle_deg, 5.0);
+  EXPECT_LT(smooth.largest_step_N, 0.02);
+  // The staircase, for contrast: the voxel boundary tilts the force far off the normal and steps.
+  EXPECT_GT(voxels.worst_angle_deg, 3 * smooth.worst_angle_deg);
+  EXPECT_GT(voxels.largest_step_N, 3 * smooth.largest_step_N);
+}
+
+}  // namespace
+}  // namespace tacta::simtest
