@@ -13,6 +13,9 @@ EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body, co
   end_before_.assign(3 * vertices, 0.0);
   velocities_before_.assign(3 * vertices, 0.0);
   inverse_masses_.assign(vertices, 0.0);
+  target_positions_.assign(3 * vertices, 0.0);
+  target_velocities_.assign(3 * vertices, 0.0);
+  corrected_.assign(vertices, 0);
   // A unit impulse on vertex v moves it by sum_k w_k^2 / m_k (the nodes' own responses, seen
   // through the weights): that is the vertex's inverse mass.
   for (size_t v = 0; v < vertices; ++v)
@@ -52,36 +55,47 @@ void EmbeddedCollisionSurface::remember() noexcept {
 
 void EmbeddedCollisionSurface::apply_response() noexcept {
   SoftBody& b = body();
-  const EmbeddedSurface& s = *b.surface;
-  bool changed = false;
+  EmbeddedSurface& s = *b.surface;
+  // What the response asked of each vertex: its corrected end position and velocity.
+  bool any = false;
   for (size_t v = 0; v < s.vertex_count(); ++v) {
-    const double* x = &s.positions[3 * v];
-    const double* x0 = &end_before_[3 * v];
-    const double* u = &velocities_[3 * v];
-    const double* u0 = &velocities_before_[3 * v];
-    if (x[0] == x0[0] && x[1] == x0[1] && x[2] == x0[2] && u[0] == u0[0] && u[1] == u0[1] && u[2] == u0[2]) continue;
-    if (!(inverse_masses_[v] > 0)) continue;
-    changed = true;
-    const double position_impulse[3] = {(x[0] - x0[0]) / inverse_masses_[v], (x[1] - x0[1]) / inverse_masses_[v],
-                                        (x[2] - x0[2]) / inverse_masses_[v]};
-    const double velocity_impulse[3] = {(u[0] - u0[0]) / inverse_masses_[v], (u[1] - u0[1]) / inverse_masses_[v],
-                                        (u[2] - u0[2]) / inverse_masses_[v]};
-    spread_to_nodes(s, static_cast<uint32_t>(v), position_impulse, node_position_change_.data());
-    spread_to_nodes(s, static_cast<uint32_t>(v), velocity_impulse, node_velocity_change_.data());
-    for (size_t k = 0; k < 4; ++k)
-      if (s.weights[4 * v + k] != 0) ++node_reached_[s.nodes[4 * v + k]];
+    bool moved = false;
+    for (size_t a = 0; a < 3; ++a)
+      moved = moved || s.positions[3 * v + a] != end_before_[3 * v + a] || velocities_[3 * v + a] != velocities_before_[3 * v + a];
+    corrected_[v] = moved && inverse_masses_[v] > 0;
+    any = any || corrected_[v];
   }
-  if (!changed) return;
-  for (size_t n = 0; n < node_reached_.size(); ++n) {
-    if (node_reached_[n] == 0) continue;
-    const double scale = node_inverse_masses_[n] / static_cast<double>(node_reached_[n]);
-    for (size_t a = 0; a < 3; ++a) {
-      b.positions[3 * n + a] += scale * node_position_change_[3 * n + a];
-      b.velocities[3 * n + a] += scale * node_velocity_change_[3 * n + a];
-      node_position_change_[3 * n + a] = 0;
-      node_velocity_change_[3 * n + a] = 0;
+  if (!any) return;
+  std::copy(s.positions.begin(), s.positions.end(), target_positions_.begin());
+  std::copy(velocities_.begin(), velocities_.end(), target_velocities_.begin());
+  // Averaging under-corrects where vertices share nodes: a few passes close the gap to the targets.
+  constexpr int kPasses = 4;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    interpolate_to_surface(s, b.positions.data(), s.positions.data());
+    interpolate_to_surface(s, b.velocities.data(), velocities_.data());
+    for (size_t v = 0; v < s.vertex_count(); ++v) {
+      if (!corrected_[v]) continue;
+      double position_impulse[3], velocity_impulse[3];
+      for (size_t a = 0; a < 3; ++a) {
+        position_impulse[a] = (target_positions_[3 * v + a] - s.positions[3 * v + a]) / inverse_masses_[v];
+        velocity_impulse[a] = (target_velocities_[3 * v + a] - velocities_[3 * v + a]) / inverse_masses_[v];
+      }
+      spread_to_nodes(s, static_cast<uint32_t>(v), position_impulse, node_position_change_.data());
+      spread_to_nodes(s, static_cast<uint32_t>(v), velocity_impulse, node_velocity_change_.data());
+      for (size_t k = 0; k < 4; ++k)
+        if (s.weights[4 * v + k] != 0) ++node_reached_[s.nodes[4 * v + k]];
     }
-    node_reached_[n] = 0;
+    for (size_t n = 0; n < node_reached_.size(); ++n) {
+      if (node_reached_[n] == 0) continue;
+      const double scale = node_inverse_masses_[n] / static_cast<double>(node_reached_[n]);
+      for (size_t a = 0; a < 3; ++a) {
+        b.positions[3 * n + a] += scale * node_position_change_[3 * n + a];
+        b.velocities[3 * n + a] += scale * node_velocity_change_[3 * n + a];
+        node_position_change_[3 * n + a] = 0;
+        node_velocity_change_[3 * n + a] = 0;
+      }
+      node_reached_[n] = 0;
+    }
   }
   refresh();
 }

@@ -24,8 +24,10 @@ class EmbeddedCollisionSurface {
   // Before the response: keeps the surface's end positions and velocities to see what it changed.
   void remember() noexcept;
   // After it: each vertex's correction is an impulse (its change over its inverse mass), spread
-  // to the nodes by the weights; a node reached by several corrected vertices takes their mean,
-  // so a tet pushed by many vertices is not pushed many times. Then the surface follows the nodes.
+  // to the nodes by the weights (the transpose of the interpolation); a node reached by several
+  // corrected vertices takes their mean, so a tet pushed by many vertices is not pushed many
+  // times, and a few such passes bring the vertices to where the response put them. Then the
+  // surface follows the nodes.
   void apply_response() noexcept;
 
  private:
@@ -38,6 +40,9 @@ class EmbeddedCollisionSurface {
   std::vector<double> inverse_masses_;     // 1 per vertex, 1/kg: sum of w^2 / m over its tet's nodes
   std::vector<double> end_before_;         // 3 per vertex, m
   std::vector<double> velocities_before_;  // 3 per vertex, m/s
+  std::vector<double> target_positions_;   // 3 per vertex, m: where the response put it
+  std::vector<double> target_velocities_;  // 3 per vertex, m/s
+  std::vector<uint8_t> corrected_;         // 1 per vertex: the response changed it
   std::vector<double> node_position_change_;  // 3 per node, m
   std::vector<double> node_velocity_change_;  // 3 per node, m/s
   std::vector<uint32_t> node_reached_;        // 1 per node: corrected vertices that reach it

@@ -152,5 +152,53 @@ TEST(EmbeddedTouch, StrokingAnEmbeddedSphereFollowsItsNormalWithoutSteps) {
   EXPECT_GT(voxels.largest_step_N, 3 * smooth.largest_step_N);
 }
 
+// A ball dropped 2 cm onto a table with contact response on: what rests on the table is the
+// embedded sphere (its lowest vertex at the table, within the contact margin and the tick's
+// motion), not its voxel staircase (whose lowest voxel face lies up to a cell above or below).
+TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
+  const std::string sphere = write_icosphere(3);
+  const std::string text = R"(
+name: embedded_drop
+gravity: [0, -9.81, 0]
+clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 1.0}
+bodies:
+  - name: ball
+    mesh: {file: )" + sphere + R"(, scale: 0.05, translate: [0, 0.07, 0], voxel_size: 0.02}
+    material: {youngs_modulus: 3.0e4, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 5.0}
+    model: corotational_fem
+obstacles:
+  - name: table
+    shape: {plane: {normal: [0, 1, 0], offset: 0}}
+collision: {enabled: true, broad_phase: bvh, narrow_phase: ccd, convex: convex, friction: 0.4}
+)";
+  const SceneDesc scene = scene_from_text(text, "embedded_drop");
+  World world(scene, plugins());
+  CollisionContext collision(world, plugins());
+  CollisionResponse response(collision);
+  TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
+  HapticLoop loop(world, snapshots, 1000);
+  loop.add_interaction(&response);
+  SoftBody& ball = world.body(0);
+  ASSERT_TRUE(ball.surface != nullptr);
+  const double dt = 1e-3;
+  ball.model->begin(ball.state_view(0.0), dt);
+  double lowest_ever = 1;
+  for (uint64_t k = 0; k < 1000; ++k) {
+    loop.tick(k, static_cast<double>(k) * dt, dt);
+    update_embedded_surface(*ball.surface, ball.positions.data());
+    for (size_t v = 0; v < ball.surface->vertex_count(); ++v) lowest_ever = std::min(lowest_ever, ball.surface->positions[3 * v + 1]);
+  }
+  ASSERT_FALSE(ball.fault.frozen) << ball.fault.reason.data();
+  double lowest_surface = 1, lowest_node = 1;
+  for (size_t v = 0; v < ball.surface->vertex_count(); ++v) lowest_surface = std::min(lowest_surface, ball.surface->positions[3 * v + 1]);
+  for (size_t n = 0; n < ball.node_count(); ++n) lowest_node = std::min(lowest_node, ball.positions[3 * n + 1]);
+  std::printf("lowest surface vertex %.4f m (ever %.4f m), lowest node %.4f m\n", lowest_surface, lowest_ever, lowest_node);
+  RecordProperty("lowest_surface_m", std::to_string(lowest_surface));
+  RecordProperty("lowest_surface_ever_m", std::to_string(lowest_ever));
+  EXPECT_GT(lowest_ever, -2e-3);          // never sank more than 2 mm into the table
+  EXPECT_NEAR(lowest_surface, 0.0, 1e-3);  // and rests on it (a 10 cm ball, 2 cm voxels)
+  EXPECT_GT(response.contacts_total(), 0u);
+}
+
 }  // namespace
 }  // namespace tacta::simtest
