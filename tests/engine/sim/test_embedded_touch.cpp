@@ -155,9 +155,9 @@ TEST(EmbeddedTouch, StrokingAnEmbeddedSphereFollowsItsNormalWithoutSteps) {
 // A ball dropped 2 cm onto a table with contact response on: what rests on the table is the
 // embedded sphere (its lowest vertex at the table, within the contact margin and the tick's
 // motion), not its voxel staircase (whose lowest voxel face lies up to a cell above or below).
-TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
-  const std::string sphere = write_icosphere(3);
-  const std::string text = R"(
+// A 10 cm ball loaded from a surface file (voxelised, 2 cm cells) 2 cm above a table.
+std::string drop_scene(const std::string& sphere) {
+  return R"(
 name: embedded_drop
 gravity: [0, -9.81, 0]
 clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 1.0}
@@ -171,7 +171,10 @@ obstacles:
     shape: {plane: {normal: [0, 1, 0], offset: 0}}
 collision: {enabled: true, broad_phase: bvh, narrow_phase: ccd, convex: convex, friction: 0.4}
 )";
-  const SceneDesc scene = scene_from_text(text, "embedded_drop");
+}
+
+TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
+  const SceneDesc scene = scene_from_text(drop_scene(write_icosphere(3)), "embedded_drop");
   World world(scene, plugins());
   CollisionContext collision(world, plugins());
   CollisionResponse response(collision);
@@ -198,6 +201,22 @@ collision: {enabled: true, broad_phase: bvh, narrow_phase: ccd, convex: convex, 
   EXPECT_GT(lowest_ever, -2e-3);          // never sank more than 2 mm into the table
   EXPECT_NEAR(lowest_surface, 0.0, 1e-3);  // and rests on it (a 10 cm ball, 2 cm voxels)
   EXPECT_GT(response.contacts_total(), 0u);
+}
+
+TEST(EmbeddedTouch, TheVtkSeriesHoldsTheEmbeddedSurface) {
+  const std::string dir = fresh_dir("embedded_vtk");
+  const SceneDesc scene = scene_from_text(drop_scene(write_icosphere(2)), "embedded_vtk",
+                                          {"clock.duration_s=0.05", "output.vtk=true"});
+  RunOptions options;
+  options.out_dir = dir;
+  const RunResult result = run_scene(scene, options);
+  ASSERT_EQ(result.exit_code, 0);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/vtk/ball_surface.pvd"));
+  std::ifstream in(dir + "/vtk/ball_surface_000000.vtu");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The icosphere split twice: 162 vertices, 320 triangles.
+  EXPECT_NE(text.find("NumberOfPoints=\"162\" NumberOfCells=\"320\""), std::string::npos) << text.substr(0, 400);
+  EXPECT_NE(text.find("Name=\"displacement\""), std::string::npos);
 }
 
 }  // namespace
