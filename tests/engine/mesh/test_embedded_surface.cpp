@@ -3,6 +3,7 @@
 // updating it allocates nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -78,6 +79,7 @@ TEST_P(EmbeddedSurfaceBoth, WeightsReproduceTheRestSurface) {
     EXPECT_NEAR(s.weights[4 * v] + s.weights[4 * v + 1] + s.weights[4 * v + 2] + s.weights[4 * v + 3], 1.0, 1e-12);
   EXPECT_LT(max_difference(s.positions, s.rest_positions), 1e-12);
   RecordProperty("extrapolated_vertices", std::to_string(s.extrapolated_vertices));
+  RecordProperty("lowest_weight", std::to_string(*std::min_element(s.weights.begin(), s.weights.end())));
 }
 
 TEST_P(EmbeddedSurfaceBoth, ARigidMotionOfTheTetsMovesTheSurfaceRigidly) {
