@@ -18,6 +18,7 @@ namespace tacta {
 
 struct EmbeddedSurface {
   std::vector<uint32_t> triangles;       // 3 per triangle, counter-clockwise seen from outside
+  std::vector<double> corner_uvs;        // 6 per triangle (u, v per corner), or empty: for texturing
   std::vector<double> rest_positions;    // 3 per vertex, m (as given, after scale and translate)
   std::vector<uint32_t> tet;             // 1 per vertex: the tet it follows
   std::vector<uint32_t> nodes;           // 4 per vertex: that tet's nodes

@@ -54,7 +54,12 @@ SurfaceMesh load_placed_surface(const std::string& path, const MeshSourceDesc& d
   SurfaceMesh surface = load_surface(path, &r);
   transform(surface.positions, desc);
   if (desc.scale[0] * desc.scale[1] * desc.scale[2] < 0) {
-    for (size_t t = 0; t < surface.triangle_count(); ++t) std::swap(surface.triangles[3 * t + 1], surface.triangles[3 * t + 2]);
+    for (size_t t = 0; t < surface.triangle_count(); ++t) {
+      std::swap(surface.triangles[3 * t + 1], surface.triangles[3 * t + 2]);
+      if (surface.corner_uvs.empty()) continue;
+      std::swap(surface.corner_uvs[6 * t + 2], surface.corner_uvs[6 * t + 4]);
+      std::swap(surface.corner_uvs[6 * t + 3], surface.corner_uvs[6 * t + 5]);
+    }
   }
   return surface;
 }

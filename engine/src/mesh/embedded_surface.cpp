@@ -53,12 +53,10 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
     }
     mean_diagonal += mesh_detail::norm(b.hi - b.lo) / static_cast<double>(tets);
   }
-  Embedding e;
-  e.surface = surface;
-  e.element.resize(surface.vertex_count());
-  e.weights.resize(4 * surface.vertex_count());
+  const size_t count = surface.vertex_count();
+  Embedding e{surface, std::vector<uint32_t>(count), std::vector<double>(4 * count)};
   size_t outside = 0;
-  for (size_t v = 0; v < surface.vertex_count(); ++v) {
+  for (size_t v = 0; v < count; ++v) {
     const P3 p = point(surface.positions, static_cast<uint32_t>(v));
     // Tets whose box holds p; failing those (p outside the mesh), the tets whose boxes lie within
     // one mean tet size of the nearest box. Among them, the one needing the least extrapolation.
@@ -90,6 +88,7 @@ EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh) {
     throw InputError({e.surface.source, 0, 0, ""}, "embedded surface: one tet and 4 weights are needed per vertex");
   EmbeddedSurface s;
   s.triangles = e.surface.triangles;
+  s.corner_uvs = e.surface.corner_uvs;
   s.rest_positions = e.surface.positions;
   s.tet = e.element;
   s.weights = e.weights;

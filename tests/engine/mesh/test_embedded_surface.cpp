@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <new>
 #include <random>
 
@@ -182,6 +183,39 @@ TEST(EmbeddedSurface, BindingALiverSurfaceOutsideItsTetsIsReported) {
   bool warned = false;
   for (const std::string& w : report.warnings) warned = warned || w.find("extrapolation") != std::string::npos;
   EXPECT_TRUE(warned);
+}
+
+TEST(EmbeddedSurface, TextureCoordinatesFollowTheTrianglesThroughAMirror) {
+  // A unit cube, each face with its own (u, v) square: the corners are welded to 8 vertices, the
+  // coordinates stay per triangle corner (a seam keeps both sides).
+  const std::string path = ::testing::TempDir() + "/tacta_uv_cube.obj";
+  {
+    std::ofstream out(path);
+    out << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+    const int faces[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}};
+    for (const auto& f : faces)
+      out << "f " << f[0] << "/1 " << f[1] << "/2 " << f[2] << "/3\nf " << f[0] << "/1 " << f[2] << "/3 " << f[3] << "/4\n";
+  }
+  MeshSourceDesc d;
+  d.path = path;
+  d.voxel_size = 0.5;
+  d.scale = {-1, 1, 1};  // a mirror: the winding flips, and the corners' coordinates with it
+  const VolumeMesh m = load_body_mesh(d);
+  const EmbeddedSurface s = make_embedded_surface(m);
+  ASSERT_EQ(s.vertex_count(), 8u);
+  ASSERT_EQ(s.corner_uvs.size(), 6 * s.triangle_count());
+  // Every corner keeps the coordinate written for it: the cube corner (x, y, z) of face f.
+  for (size_t t = 0; t < s.triangle_count(); ++t) {
+    double sum = 0;
+    for (size_t k = 0; k < 6; ++k) sum += s.corner_uvs[6 * t + k];
+    EXPECT_DOUBLE_EQ(sum, 3.0) << "triangle " << t;  // (0,0)+(1,0)+(1,1) or (0,0)+(1,1)+(0,1)
+  }
+  // Triangle 0 was written (v1 vt1, v4 vt2, v3 vt3); mirrored it is stored (v1, v3, v4).
+  EXPECT_EQ(s.corner_uvs[2], 1.0);  // v3's (1, 1)
+  EXPECT_EQ(s.corner_uvs[3], 1.0);
+  EXPECT_EQ(s.corner_uvs[4], 1.0);  // v4's (1, 0)
+  EXPECT_EQ(s.corner_uvs[5], 0.0);
 }
 
 TEST(EmbeddedSurface, AMissingSurfaceFileIsAClearError) {
