@@ -9,6 +9,8 @@
 #include <map>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
@@ -203,7 +205,7 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
   EXPECT_GT(response.contacts_total(), 0u);
 }
 
-TEST(EmbeddedTouch, TheVtkSeriesHoldsTheEmbeddedSurface) {
+TEST(EmbeddedTouch, TheVtkSeriesAndTheReportHoldTheEmbeddedSurface) {
   const std::string dir = fresh_dir("embedded_vtk");
   const SceneDesc scene = scene_from_text(drop_scene(write_icosphere(2)), "embedded_vtk",
                                           {"clock.duration_s=0.05", "output.vtk=true"});
@@ -217,6 +219,13 @@ TEST(EmbeddedTouch, TheVtkSeriesHoldsTheEmbeddedSurface) {
   // The icosphere split twice: 162 vertices, 320 triangles.
   EXPECT_NE(text.find("NumberOfPoints=\"162\" NumberOfCells=\"320\""), std::string::npos) << text.substr(0, 400);
   EXPECT_NE(text.find("Name=\"displacement\""), std::string::npos);
+  // report.json says what the body was shown and touched through.
+  std::ifstream report_file(dir + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(report_file);
+  const nlohmann::json& surface = report.at("bodies").at(0).at("surface");
+  EXPECT_EQ(surface.at("vertices").get<int>(), 162);
+  EXPECT_EQ(surface.at("triangles").get<int>(), 320);
+  EXPECT_NE(surface.at("source").get<std::string>().find("icosphere.obj"), std::string::npos);
 }
 
 }  // namespace
