@@ -268,7 +268,8 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
-    if (broad != nullptr)
+    // One surface and no self-collision: every pair the broad phase could find would be dropped.
+    if (broad != nullptr && (self_collision || view_.surface_count > 1))
       bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
     if (!self_collision) {  // the scene's collision.self_collision: drop pairs within one surface
       uint32_t kept = 0;

@@ -30,6 +30,9 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     if (!ch.started) {
       ch.renderer.reset(device);
       ch.started = true;
+      // The tool starts where the proxy does: from the default origin, its first sweep would cut
+      // through whatever lies between (contacts tens of mm deep for the collision response).
+      slot.proxy = ch.renderer.proxy().position();
     }
     if (slot.state != TACTA_DEVICE_CONNECTED) {
       slot.force = {0, 0, 0};
