@@ -205,6 +205,18 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
   EXPECT_GT(response.contacts_total(), 0u);
 }
 
+// The demo with contact response on: the tool's collision shape starts at the proxy, not at the
+// origin (from there its first sweep cut through the liver's embedded surface and froze the body).
+TEST(EmbeddedTouch, TheDemoWithCollisionOnStartsWithoutAFault) {
+  std::ifstream in(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const SceneDesc scene = scene_from_text(text, "liver_palpation", {"collision.enabled=true", "clock.duration_s=0.02",
+                                                                    "output.frames=false", "output.vtk=false"});
+  const RunResult result = run_scene(scene);
+  EXPECT_EQ(result.faults, 0u);
+  EXPECT_EQ(result.exit_code, 0);
+}
+
 TEST(EmbeddedTouch, TheVtkSeriesAndTheReportHoldTheEmbeddedSurface) {
   const std::string dir = fresh_dir("embedded_vtk");
   const SceneDesc scene = scene_from_text(drop_scene(write_icosphere(2)), "embedded_vtk",
