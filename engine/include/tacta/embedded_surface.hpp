@@ -33,7 +33,7 @@ struct EmbeddedSurface {
 
 // Binds each vertex of `surface` to the tet of `mesh` that holds it (the one whose smallest
 // barycentric weight is largest); a vertex outside every tet gets the tet that needs the least
-// extrapolation (weights below 0), counted in a warning. Load time; O(vertices x tets), boxes first.
+// extrapolation (weights below 0), counted in a warning. Load time; nearby tets found through a grid.
 Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh, LoadReport* report = nullptr);
 
 // The runtime surface of a mesh that carries an Embedding (voxelised or given `surface:`), at

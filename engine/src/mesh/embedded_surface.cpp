@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "mesh/geometry.hpp"
 #include "tacta/error.hpp"
@@ -37,6 +39,81 @@ double lowest(const double* w) { return std::min({w[0], w[1], w[2], w[3]}); }
 double lowest(const std::array<double, 4>& w) { return lowest(w.data()); }
 constexpr double kInside = -1e-9;  // barycentric round-off still counts as inside
 
+// Tets bucketed by the grid cells their boxes overlap (cells at least a mean tet wide, at most
+// 128 a side), so that binding a vertex looks at the tets near it, not at all of them.
+class TetGrid {
+ public:
+  TetGrid(const std::vector<Box>& boxes, double mean_diagonal) {
+    Box all = boxes[0];
+    for (const Box& b : boxes)
+      for (size_t a = 0; a < 3; ++a) all.lo[a] = std::min(all.lo[a], b.lo[a]), all.hi[a] = std::max(all.hi[a], b.hi[a]);
+    origin_ = all.lo;
+    const double extent = std::max({all.hi[0] - all.lo[0], all.hi[1] - all.lo[1], all.hi[2] - all.lo[2]});
+    h_ = std::max({mean_diagonal, extent / 128.0, 1e-300});
+    for (size_t a = 0; a < 3; ++a) n_[a] = static_cast<int64_t>((all.hi[a] - all.lo[a]) / h_) + 1;
+    start_.assign(static_cast<size_t>(n_[0] * n_[1] * n_[2]) + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {  // count, then fill
+      std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+      for (size_t t = 0; t < boxes.size(); ++t) {
+        int64_t lo[3], hi[3];
+        for (size_t a = 0; a < 3; ++a) lo[a] = index(boxes[t].lo[a], a), hi[a] = index(boxes[t].hi[a], a);
+        for (int64_t k = lo[2]; k <= hi[2]; ++k)
+          for (int64_t j = lo[1]; j <= hi[1]; ++j)
+            for (int64_t i = lo[0]; i <= hi[0]; ++i) {
+              const size_t c = cell(i, j, k);
+              if (pass == 0) ++start_[c + 1];
+              else items_[fill[c]++] = static_cast<uint32_t>(t);
+            }
+      }
+      if (pass == 0) {
+        for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+        items_.resize(start_.back());
+      }
+    }
+  }
+  double cell_size() const { return h_; }
+  // Visits the tets listed in the cells at Chebyshev distance r from p's cell (a tet may come
+  // more than once); false when no cell of the grid is that far.
+  template <class Visit>
+  bool ring(const P3& p, int64_t r, Visit&& visit) const {
+    int64_t c[3], lo[3], hi[3];
+    bool any = false;
+    for (size_t a = 0; a < 3; ++a) {
+      c[a] = index(p[a], a);
+      lo[a] = std::max<int64_t>(c[a] - r, 0);
+      hi[a] = std::min<int64_t>(c[a] + r, n_[a] - 1);
+      any = any || c[a] - r >= 0 || c[a] + r < n_[a];
+    }
+    if (!any) return false;
+    auto visit_cell = [&](int64_t i, int64_t j, int64_t k) {
+      const size_t at = cell(i, j, k);
+      for (uint32_t q = start_[at]; q < start_[at + 1]; ++q) visit(items_[q]);
+    };
+    for (int64_t i = lo[0]; i <= hi[0]; ++i)
+      for (int64_t j = lo[1]; j <= hi[1]; ++j) {
+        if (r == 0 || std::abs(i - c[0]) == r || std::abs(j - c[1]) == r) {
+          for (int64_t k = lo[2]; k <= hi[2]; ++k) visit_cell(i, j, k);
+          continue;
+        }
+        // Inside the ring's x-y rim: only its top and bottom cells.
+        if (c[2] - r >= 0) visit_cell(i, j, c[2] - r);
+        if (c[2] + r < n_[2]) visit_cell(i, j, c[2] + r);
+      }
+    return true;
+  }
+
+ private:
+  int64_t index(double x, size_t a) const {
+    const double f = std::floor((x - origin_[a]) / h_);
+    return std::clamp<int64_t>(std::isfinite(f) ? static_cast<int64_t>(std::clamp(f, -1.0, 1e9)) : 0, 0, n_[a] - 1);
+  }
+  size_t cell(int64_t i, int64_t j, int64_t k) const { return static_cast<size_t>(i + n_[0] * (j + n_[1] * k)); }
+  P3 origin_{};
+  double h_ = 1;
+  int64_t n_[3] = {1, 1, 1};
+  std::vector<uint32_t> start_, items_;  // cell c holds items_[start_[c] .. start_[c + 1])
+};
+
 }  // namespace
 
 Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh, LoadReport* report) {
@@ -56,20 +133,34 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
   const size_t count = surface.vertex_count();
   Embedding e{surface, std::vector<uint32_t>(count), std::vector<double>(4 * count)};
   size_t outside = 0;
+  const TetGrid grid(boxes, mean_diagonal);
+  std::vector<size_t> seen(tets, SIZE_MAX);  // the vertex that last looked at each tet
+  std::vector<std::pair<uint32_t, double>> near;  // tet, distance from its box (m)
   for (size_t v = 0; v < count; ++v) {
     const P3 p = point(surface.positions, static_cast<uint32_t>(v));
     // Tets whose box holds p; failing those (p outside the mesh), the tets whose boxes lie within
     // one mean tet size of the nearest box. Among them, the one needing the least extrapolation.
+    // After ring r of the grid every box nearer than r cells has been seen.
+    near.clear();
     double nearest = std::numeric_limits<double>::infinity();
-    for (const Box& b : boxes) nearest = std::min(nearest, b.distance(p));
+    for (int64_t r = 0;; ++r) {
+      const bool inside_grid = grid.ring(p, r, [&](uint32_t t) {
+        if (seen[t] == v) return;
+        seen[t] = v;
+        near.emplace_back(t, boxes[t].distance(p));
+        nearest = std::min(nearest, near.back().second);
+      });
+      const double reach = nearest > 0 ? nearest + mean_diagonal : 0.0;
+      if (!inside_grid || (!near.empty() && static_cast<double>(r) * grid.cell_size() > reach)) break;
+    }
     const double reach = nearest > 0 ? nearest + mean_diagonal : 0.0;
     double best = -std::numeric_limits<double>::infinity();
     std::array<double, 4> best_weights{};
     uint32_t best_tet = 0;
-    for (size_t t = 0; t < tets; ++t) {
-      if (boxes[t].distance(p) > reach) continue;
+    for (const auto& [t, distance] : near) {
+      if (distance > reach) continue;
       const std::array<double, 4> w = weights_in(mesh, t, p);
-      if (lowest(w) > best) best = lowest(w), best_weights = w, best_tet = static_cast<uint32_t>(t);
+      if (lowest(w) > best) best = lowest(w), best_weights = w, best_tet = t;
     }
     if (best < kInside) ++outside;
     e.element[v] = best_tet;
