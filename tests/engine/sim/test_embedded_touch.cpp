@@ -98,6 +98,7 @@ struct StrokeFeel {
   double largest_step_N = 0;   // largest change of |F| from one tick to the next
   int samples = 0;
   int contact_lost = 0;        // sampled ticks out of contact
+  double worst_reaction_error_N = 0;  // |sum of node reactions + device force|, any tick
 };
 
 // Runs the stroke; samples the ticks between 0.6 s and 2.1 s (in steady contact).
@@ -109,6 +110,13 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
   for (int k = 0; k < 2400; ++k) {
     h.tick();
     const DeviceSlot& slot = h.world.device(0);
+    // Newton's third law through the embedding: the nodes get exactly minus the device force.
+    const SoftBody& body = h.world.body(0);
+    for (size_t a = 0; a < 3; ++a) {
+      double sum = 0;
+      for (size_t n = 0; n < body.node_count(); ++n) sum += body.contact_forces[3 * n + a];
+      feel.worst_reaction_error_N = std::max(feel.worst_reaction_error_N, std::fabs(sum + (slot.in_contact ? slot.force[a] : 0.0)));
+    }
     const double t = static_cast<double>(k + 1) * h.dt;
     if (t < 0.6 || t > 2.1) continue;
     const double magnitude = std::hypot(slot.force[0], slot.force[1], slot.force[2]);
@@ -149,6 +157,7 @@ TEST(EmbeddedTouch, StrokingAnEmbeddedSphereFollowsItsNormalWithoutSteps) {
   EXPECT_EQ(smooth.contact_lost, 0);
   EXPECT_LT(smooth.worst_angle_deg, 5.0);
   EXPECT_LT(smooth.largest_step_N, 0.02);
+  EXPECT_LT(smooth.worst_reaction_error_N, 1e-12);
   // The staircase, for contrast: the voxel boundary tilts the force far off the normal and steps.
   EXPECT_GT(voxels.worst_angle_deg, 3 * smooth.worst_angle_deg);
   EXPECT_GT(voxels.largest_step_N, 3 * smooth.largest_step_N);
