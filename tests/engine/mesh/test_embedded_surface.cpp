@@ -26,7 +26,13 @@ void* operator new(size_t size) {
   throw std::bad_alloc();
 }
 void* operator new[](size_t size) { return operator new(size); }
-// libstdc++'s operator delete frees with std::free, which matches the malloc above.
+// The matching deletes (AddressSanitizer checks that malloc'd memory goes back through free).
+// GCC, seeing gtest's `new` inlined into these, would call the pair mismatched: it is not.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+void operator delete[](void* p, size_t) noexcept { std::free(p); }
 
 namespace tacta {
 namespace {
