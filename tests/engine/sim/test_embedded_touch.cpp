@@ -42,7 +42,8 @@ std::string write_icosphere(int levels) {
     }
     f = std::move(finer);
   }
-  const std::string path = fresh_dir("icosphere") + "/icosphere.obj";
+  // A folder per level: each test uses its own level, and ctest runs tests as parallel processes.
+  const std::string path = fresh_dir("icosphere_" + std::to_string(levels)) + "/icosphere.obj";
   std::ofstream out(path);
   for (const auto& p : v) {
     const double r = std::hypot(p[0], p[1], p[2]);
