@@ -55,7 +55,8 @@ typedef struct tacta_device_counter {
 typedef struct tacta_device_surface {
   double time;                 /* s, simulated time of the state */
   const char* body;            /* the body's name */
-  const double* positions;     /* 3 per node, m, world frame: every node of the body */
+  const double* positions;     /* 3 per point, m, world frame: every node of the body, or every
+                                  vertex of its embedded surface (tacta/embedded_surface.hpp) */
   uint32_t node_count;
   const uint32_t* triangles;   /* 3 per triangle, indices into positions, outward */
   uint32_t triangle_count;

@@ -13,6 +13,9 @@ namespace tacta {
 struct SurfaceMesh {
   std::vector<double> positions;    // 3 per vertex, m
   std::vector<uint32_t> triangles;  // 3 per triangle, counter-clockwise seen from outside
+  // Texture coordinates per triangle corner (u, v for each of its 3 corners: 6 per triangle),
+  // so a seam keeps both sides' values on a welded vertex; empty when the file has none.
+  std::vector<double> corner_uvs;
   std::string source;               // file it came from, for messages
   size_t vertex_count() const { return positions.size() / 3; }
   size_t triangle_count() const { return triangles.size() / 3; }

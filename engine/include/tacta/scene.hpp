@@ -69,6 +69,10 @@ struct MeshSourceDesc {
   double voxel_size = 0;            // File with a surface only: tet grid cell, m (0 = automatic)
   Vec3 scale{1, 1, 1};              // applied to file coordinates (e.g. mm -> m: 0.001)
   Vec3 translate{0, 0, 0};          // applied after scale, m
+  // `surface:` a finer surface file bound to the tets (scale and translate apply to it too);
+  // empty: a voxelised surface file is its own embedded surface, other meshes show their tets.
+  std::string surface_path;
+  bool surface_tet_boundary = false;  // `surface: tet_boundary`: draw and touch the tets' boundary
 };
 
 struct FixedRegionDesc {

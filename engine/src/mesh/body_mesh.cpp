@@ -3,6 +3,7 @@
 #include <string>
 
 #include "mesh/readers.hpp"
+#include "tacta/embedded_surface.hpp"
 #include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 
@@ -48,11 +49,22 @@ VolumeMesh primitive(const MeshSourceDesc& d) {
   throw InputError({"", 0, 0, ""}, "unknown mesh primitive");
 }
 
-}  // namespace
+// A surface file as the scene places it: scaled, translated, outward even under a mirroring scale.
+SurfaceMesh load_placed_surface(const std::string& path, const MeshSourceDesc& desc, LoadReport& r) {
+  SurfaceMesh surface = load_surface(path, &r);
+  transform(surface.positions, desc);
+  if (desc.scale[0] * desc.scale[1] * desc.scale[2] < 0) {
+    for (size_t t = 0; t < surface.triangle_count(); ++t) {
+      std::swap(surface.triangles[3 * t + 1], surface.triangles[3 * t + 2]);
+      if (surface.corner_uvs.empty()) continue;
+      std::swap(surface.corner_uvs[6 * t + 2], surface.corner_uvs[6 * t + 4]);
+      std::swap(surface.corner_uvs[6 * t + 3], surface.corner_uvs[6 * t + 5]);
+    }
+  }
+  return surface;
+}
 
-VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
-  LoadReport local;
-  LoadReport& r = report ? *report : local;
+VolumeMesh load_tets(const MeshSourceDesc& desc, LoadReport& r) {
   const std::string source = desc.kind == MeshSourceDesc::Kind::File ? desc.path : "primitive";
   check_transform(desc, source);
   if (desc.kind != MeshSourceDesc::Kind::File) {
@@ -70,11 +82,7 @@ VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
     finalize(mesh, &r);
     return mesh;
   }
-  SurfaceMesh surface = load_surface(desc.path, &r);
-  transform(surface.positions, desc);
-  if (desc.scale[0] * desc.scale[1] * desc.scale[2] < 0) {
-    for (size_t t = 0; t < surface.triangle_count(); ++t) std::swap(surface.triangles[3 * t + 1], surface.triangles[3 * t + 2]);
-  }
+  SurfaceMesh surface = load_placed_surface(desc.path, desc, r);
   double voxel = desc.voxel_size;
   if (!std::isfinite(voxel) || voxel < 0) throw InputError({desc.path, 0, 0, ""}, "voxel_size must be 0 (automatic) or positive");
   if (voxel == 0) voxel = bounding_diagonal(surface) / kAutoVoxelsPerDiagonal;
@@ -83,6 +91,22 @@ VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
   // (Cover overestimates it by about half a cell over the whole surface: 2x for liver.obj at the
   // automatic cell size).
   return voxelize(surface, voxel, &r, VoxelFill::Majority);
+}
+
+}  // namespace
+
+VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
+  LoadReport local;
+  LoadReport& r = report ? *report : local;
+  VolumeMesh mesh = load_tets(desc, r);
+  if (desc.surface_tet_boundary) {
+    mesh.embedding.reset();
+  } else if (!desc.surface_path.empty()) {
+    LoadReport surface_report;
+    mesh.embedding = bind_surface_to_tets(load_placed_surface(desc.surface_path, desc, surface_report), mesh, &surface_report);
+    for (const std::string& w : surface_report.warnings) r.warnings.push_back("surface " + desc.surface_path + ": " + w);
+  }
+  return mesh;
 }
 
 }  // namespace tacta

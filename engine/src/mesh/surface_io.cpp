@@ -60,6 +60,8 @@ class SurfaceBuilder {
       local[v] = it->second;
     }
     const bool mirrored = transform.Determinant() < 0;  // a mirror flips the winding
+    const aiVector3D* uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0] : nullptr;
+    any_uv_ = any_uv_ || uv != nullptr;
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
       if (face.mNumIndices != 3) {
@@ -67,21 +69,29 @@ class SurfaceBuilder {
         continue;
       }
       uint32_t t[3];
+      double corner_uv[6] = {0, 0, 0, 0, 0, 0};  // a sub-mesh without coordinates gets zeros
       for (int k = 0; k < 3; ++k) {
         unsigned i = face.mIndices[k];
         if (i >= mesh.mNumVertices) throw InputError({out_.source, 0, 0, ""}, "a face refers to a vertex that does not exist");
         t[k] = local[i];
+        if (uv != nullptr) corner_uv[2 * k] = uv[i].x, corner_uv[2 * k + 1] = uv[i].y;
       }
-      if (mirrored) std::swap(t[1], t[2]);
+      if (mirrored) {
+        std::swap(t[1], t[2]);
+        std::swap(corner_uv[2], corner_uv[4]);
+        std::swap(corner_uv[3], corner_uv[5]);
+      }
       if (degenerate(t)) {
         ++report_.degenerate_triangles;
         continue;
       }
       out_.triangles.insert(out_.triangles.end(), t, t + 3);
+      out_.corner_uvs.insert(out_.corner_uvs.end(), corner_uv, corner_uv + 6);
     }
   }
 
   void finish() {
+    if (!any_uv_) out_.corner_uvs.clear();
     report_.welded_vertices += welded_;
     if (report_.degenerate_triangles > 0) {
       report_.warnings.push_back(std::to_string(report_.degenerate_triangles) +
@@ -103,6 +113,7 @@ class SurfaceBuilder {
   LoadReport& report_;
   std::unordered_map<PositionKey, uint32_t, PositionHash> index_;
   size_t welded_ = 0, non_triangles_ = 0;
+  bool any_uv_ = false;  // some sub-mesh has texture coordinates
 };
 
 void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, SurfaceBuilder& builder, int depth) {

@@ -12,13 +12,19 @@ namespace tacta::render {
 
 namespace {
 
+// What a body shows: its embedded surface when it has one, else the boundary of its tets.
+bool shows_embedded(const BodyStatic& b, const BodySnapshot& s) {
+  return !b.surface_triangles.empty() && s.surface_positions.size() == b.surface_rest_positions.size();
+}
+
 // Rest bounds of every body, for a camera that stays put while the bodies move.
 void fit_to_rest(RenderFrame& frame, const SceneStatic& scene) {
   RenderFrame rest;
   for (const BodyStatic& b : scene.bodies) {
     BodyDraw d;
-    d.positions = b.rest_positions;
-    d.triangles = b.triangles;
+    const bool embedded = !b.surface_triangles.empty();
+    d.positions = embedded ? b.surface_rest_positions : b.rest_positions;
+    d.triangles = embedded ? b.surface_triangles : b.triangles;
     rest.bodies.push_back(std::move(d));
   }
   fit_camera(rest);
@@ -35,15 +41,17 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
     const BodyStatic& b = scene.bodies[i];
     const BodySnapshot& s = snapshot.bodies[i];
     BodyDraw d;
-    d.positions = s.positions;
-    d.triangles = b.triangles;
+    const bool embedded = shows_embedded(b, s);
+    const std::vector<double>& rest = embedded ? b.surface_rest_positions : b.rest_positions;
+    d.positions = embedded ? s.surface_positions : s.positions;
+    d.triangles = embedded ? b.surface_triangles : b.triangles;
     d.wireframe = style.wireframe;
     if (style.colour_by_displacement) {
-      d.scalar.resize(s.positions.size() / 3);
+      d.scalar.resize(d.positions.size() / 3);
       for (size_t n = 0; n < d.scalar.size(); ++n) {
-        const double dx = s.positions[3 * n] - b.rest_positions[3 * n];
-        const double dy = s.positions[3 * n + 1] - b.rest_positions[3 * n + 1];
-        const double dz = s.positions[3 * n + 2] - b.rest_positions[3 * n + 2];
+        const double dx = d.positions[3 * n] - rest[3 * n];
+        const double dy = d.positions[3 * n + 1] - rest[3 * n + 1];
+        const double dz = d.positions[3 * n + 2] - rest[3 * n + 2];
         d.scalar[n] = std::sqrt(dx * dx + dy * dy + dz * dz);
         max_displacement = std::max(max_displacement, d.scalar[n]);
       }

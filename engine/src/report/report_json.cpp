@@ -42,6 +42,14 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
       j.end_object();
     }
     j.field("step_thread", b.own_thread ? "own" : "haptic").field("step_rate_hz", b.step_rate_hz);
+    if (body.surface) {  // what the body was drawn, touched and collided through
+      const EmbeddedSurface& s = *body.surface;
+      j.key("surface").begin_object();
+      j.field("source", s.source).field("vertices", static_cast<uint64_t>(s.vertex_count()));
+      j.field("triangles", static_cast<uint64_t>(s.triangle_count()));
+      j.field("extrapolated_vertices", static_cast<uint64_t>(s.extrapolated_vertices));
+      j.end_object();
+    }
     if (b.own_thread) {
       j.key("worker").begin_object();
       j.field("steps", b.worker_steps);

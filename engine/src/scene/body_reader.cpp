@@ -134,7 +134,7 @@ MeshSourceDesc read_mesh_source(const Field& field) {
   }
   field.expect_map("a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
                    "unit_square, sphere), or 'unit_square'");
-  field.check_keys({"file", "scale", "translate", "voxel_size", "box_grid", "beam_grid",
+  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "box_grid", "beam_grid",
                     "quad_grid", "unit_square", "sphere"});
   const std::string source =
       exactly_one_of(field, {"file", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
@@ -173,6 +173,11 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     mesh.kind = MeshSourceDesc::Kind::Sphere;
     mesh.origin = {0, 0, 0};
     read_sphere(value, mesh);
+  }
+  if (auto f = field.get("surface")) {
+    if (mesh.kind == MeshSourceDesc::Kind::QuadGrid) f->fail("a surface can only be embedded in tetrahedra, not in a planar quad_grid");
+    if (f->is_scalar() && f->yaml().Scalar() == "tet_boundary") mesh.surface_tet_boundary = true;
+    else mesh.surface_path = f->file_path();
   }
   return mesh;
 }

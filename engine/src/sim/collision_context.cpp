@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "embedded_collision.hpp"
 #include "param_defaults.hpp"
 #include "tacta/mesh_io.hpp"
 
@@ -137,6 +138,7 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   surface_of_body_.assign(world.body_count(), -1);
   refits_seen_.assign(world.body_count(), 0);
   inverse_masses_.resize(world.body_count());
+  embedded_.resize(world.body_count());
   for (size_t i = 0; i < world.body_count(); ++i) {
     SoftBody& b = world.body(i);
     if (!scene.bodies[i].collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
@@ -158,6 +160,11 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
     s.tet_count = static_cast<uint32_t>(b.topology->mesh.tets.size() / 4);
     s.tets = s.tet_count ? b.topology->mesh.tets.data() : nullptr;
     s.thickness = c.thickness;
+    // A body with an embedded surface is seen, touched and collided through that surface.
+    if (b.surface) {
+      embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(world, i, inverse_masses_[i]);
+      embedded_[i]->describe(s);
+    }
     surface_of_body_[i] = static_cast<int>(surfaces_.size());
     body_of_surface_.push_back(static_cast<int>(i));
     surfaces_.push_back(s);
@@ -239,6 +246,8 @@ void CollisionContext::refit(double time, double dt) noexcept {
   }
   if (!moved) return;
   refitted_once_ = true;
+  for (auto& e : embedded_)
+    if (e) e->refresh();
   for (auto& inst : instances_)
     if (inst->api.update != nullptr) inst->api.update(inst->instance, &view_);
 }
@@ -259,7 +268,8 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
-    if (broad != nullptr)
+    // One surface and no self-collision: every pair the broad phase could find would be dropped.
+    if (broad != nullptr && (self_collision || view_.surface_count > 1))
       bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
     if (!self_collision) {  // the scene's collision.self_collision: drop pairs within one surface
       uint32_t kept = 0;
@@ -276,11 +286,15 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
                                contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
       contact_count_ += found;
     }
+    for (auto& e : embedded_)
+      if (e) e->remember();
     for (auto& inst : instances_) {
       if (inst->api.respond == nullptr) continue;
       bits |= inst->api.respond(inst->instance, &view_, contacts_.data() + first, contact_count_ - first);
       break;
     }
+    for (auto& e : embedded_)
+      if (e) e->apply_response();
     bool surface_contacts = false;
     for (uint32_t c = first; c < contact_count_; ++c)
       surface_contacts = surface_contacts || contacts_[c].type == TACTA_CONTACT_VERTEX_FACE ||

@@ -16,6 +16,7 @@
 namespace tacta {
 
 class CollisionInstance;
+class EmbeddedCollisionSurface;
 
 class CollisionContext {
  public:
@@ -53,6 +54,7 @@ class CollisionContext {
   std::vector<tacta_collision_shape> obstacles_;
   std::vector<std::vector<double>> hull_points_;  // obstacle hulls, 3 per point, m
   std::vector<int> surface_of_body_;
+  std::vector<std::unique_ptr<EmbeddedCollisionSurface>> embedded_;  // per body; null: its tets' boundary
   std::vector<uint64_t> refits_seen_;  // per body: its SoftBody::refreshes at the last refit
   bool refitted_once_ = false;
   std::vector<int> body_of_surface_;

@@ -17,13 +17,17 @@ class DeviceSurfaceFeed final : public FrameObserver {
       if (touched >= 0 && static_cast<size_t>(touched) < scene.bodies.size()) shown_body_[k] = static_cast<size_t>(touched);
       const size_t b = shown_body_[k];
       const BodyStatic& body = scene.bodies[b];
-      const std::vector<double>& positions = snapshot.bodies[b].positions;
+      // The surface the body is drawn and touched through: its embedded one when it has one.
+      const bool embedded = !body.surface_triangles.empty() &&
+                            snapshot.bodies[b].surface_positions.size() == body.surface_rest_positions.size();
+      const std::vector<double>& positions = embedded ? snapshot.bodies[b].surface_positions : snapshot.bodies[b].positions;
+      const std::vector<uint32_t>& triangles = embedded ? body.surface_triangles : body.triangles;
       const tacta_device_surface surface{snapshot.time_s,
                                          body.name.c_str(),
                                          positions.data(),
                                          static_cast<uint32_t>(positions.size() / 3),
-                                         body.triangles.data(),
-                                         static_cast<uint32_t>(body.triangles.size() / 3)};
+                                         triangles.data(),
+                                         static_cast<uint32_t>(triangles.size() / 3)};
       world_.device(d).device->surface(surface);
     }
   }

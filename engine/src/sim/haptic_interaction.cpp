@@ -30,6 +30,9 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     if (!ch.started) {
       ch.renderer.reset(device);
       ch.started = true;
+      // The tool starts where the proxy does: from the default origin, its first sweep would cut
+      // through whatever lies between (contacts tens of mm deep for the collision response).
+      slot.proxy = ch.renderer.proxy().position();
     }
     if (slot.state != TACTA_DEVICE_CONNECTED) {
       slot.force = {0, 0, 0};
@@ -68,6 +71,7 @@ std::array<double, 3> touch_weights(const double* barycentric) noexcept {
 // Where the point with those weights on `triangle` of the body is, in `positions` (m).
 Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
                        const double* barycentric) noexcept {
+  if (body.surface) return surface_point(*body.surface, static_cast<uint32_t>(triangle), barycentric, positions.data());
   const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
   const std::array<double, 3> w = touch_weights(barycentric);
   Vec3 p{0, 0, 0};
@@ -83,14 +87,19 @@ Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& position
 void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force) noexcept {
   if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0) return;
   SoftBody& body = world.body(static_cast<size_t>(hit.body));
-  const std::vector<uint32_t>& triangles = body.topology->mesh.triangles;
+  const std::vector<uint32_t>& triangles = body.surface ? body.surface->triangles : body.topology->mesh.triangles;
   const auto t = static_cast<size_t>(hit.triangle);
   if (3 * t + 2 >= triangles.size()) return;
-  // The reaction goes to the touched triangle's nodes by the touched point's weights.
+  // The reaction goes to the touched triangle's vertices by the touched point's weights; an
+  // embedded surface's vertices pass their share on to their tet's nodes by the same rule.
   const std::array<double, 3> w = touch_weights(hit.barycentric);
   for (size_t k = 0; k < 3; ++k) {
-    const uint32_t node = triangles[3 * t + k];
-    for (size_t a = 0; a < 3; ++a) body.contact_forces[3 * node + a] += w[k] * force[a];
+    const double share[3] = {w[k] * force[0], w[k] * force[1], w[k] * force[2]};
+    if (body.surface) {
+      spread_to_nodes(*body.surface, triangles[3 * t + k], share, body.contact_forces.data());
+      continue;
+    }
+    for (size_t a = 0; a < 3; ++a) body.contact_forces[3 * triangles[3 * t + k] + a] += share[a];
   }
 }
 

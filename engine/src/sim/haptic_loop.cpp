@@ -50,6 +50,7 @@ Snapshot HapticLoop::make_prototype(World& world) {
     s.bodies[i].positions = b.positions;
     s.bodies[i].velocities = b.velocities;
     if (b.model->has_stress()) s.bodies[i].von_mises.assign(b.node_count(), 0.0);
+    if (b.surface) s.bodies[i].surface_positions = b.surface->positions;
     s.bodies[i].model = b.model->name();
     s.bodies[i].model.reserve(64);  // a swap copies the new name without reallocating
   }
@@ -320,6 +321,7 @@ void HapticLoop::publish(double time) noexcept {
     BodySnapshot& bs = s.bodies[i];
     std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
     std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
+    if (b.surface) interpolate_to_surface(*b.surface, b.positions.data(), bs.surface_positions.data());
     const BodyWorker* w = worker(i);
     // A worker body's model may be mid-step on its thread: use what the worker computed.
     if (w != nullptr) {

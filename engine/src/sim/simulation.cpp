@@ -43,7 +43,11 @@ SceneStatic describe(World& world) {
   for (size_t i = 0; i < world.body_count(); ++i) {
     const SoftBody& b = world.body(i);
     const VolumeMesh& m = b.topology->mesh;
-    BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension};
+    BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
+    if (b.surface) {
+      bs.surface_rest_positions = b.surface->rest_positions;
+      bs.surface_triangles = b.surface->triangles;
+    }
     for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
       if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
     s.bodies.push_back(std::move(bs));

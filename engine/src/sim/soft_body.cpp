@@ -99,6 +99,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   }
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
+  if (topo.mesh.embedding) body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
   topo.view = make_view(topo.mesh);
   topo.material = make_material(desc.material);
   topo.masses = lumped_masses(topo.mesh, desc.material.density);
@@ -135,6 +136,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.external_forces.assign(3 * n, 0.0);
   body.contact_forces.assign(3 * n, 0.0);
   body.saved_positions = body.positions;
+  if (body.surface) update_embedded_surface(*body.surface, body.positions.data());
   if (desc.probe_node) check_node(*desc.probe_node, n, desc.where, "probe_node");
   body.probe_node = desc.probe_node;
   body.recorded_nodes = recorded_nodes(desc, scene, n);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "plugin_instance.hpp"
+#include "tacta/embedded_surface.hpp"
 #include "tacta/mesh.hpp"
 #include "tacta/model_api.h"
 #include "tacta/scene.hpp"
@@ -60,6 +61,9 @@ struct BodyFault {
 struct SoftBody {
   std::string name;
   std::unique_ptr<BodyTopology> topology;
+  // The surface the body is drawn, touched and collided through when it came from a surface file
+  // or was given `surface:`; null: the boundary triangles of its tets. Heap-held: views point in.
+  std::unique_ptr<EmbeddedSurface> surface;
   std::vector<double> positions;        // 3 per node, m
   std::vector<double> velocities;       // 3 per node, m/s
   std::vector<double> external_forces;  // 3 per node, N: gravity + contact + tool, rebuilt each tick

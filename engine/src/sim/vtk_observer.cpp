@@ -17,6 +17,9 @@ class VtkObserver final : public FrameObserver {
     for (const BodyStatic& b : scene.bodies) {
       series_.emplace_back(directory_, b.name);
       displacement_.emplace_back(b.rest_positions.size(), 0.0);
+      // The embedded surface, the one the body is seen and touched through, as a series of its own.
+      surface_series_.emplace_back(directory_, b.name + "_surface");
+      surface_displacement_.emplace_back(b.surface_rest_positions.size(), 0.0);
     }
   }
 
@@ -36,12 +39,22 @@ class VtkObserver final : public FrameObserver {
       grid.point_data.push_back({"velocity", 3, s.velocities});
       if (!s.von_mises.empty()) grid.point_data.push_back({"von_mises_stress", 1, s.von_mises});
       series_[i].write(snapshot.time_s, grid);
+      if (b.surface_triangles.empty() || s.surface_positions.size() != b.surface_rest_positions.size()) continue;
+      for (size_t k = 0; k < s.surface_positions.size(); ++k)
+        surface_displacement_[i][k] = s.surface_positions[k] - b.surface_rest_positions[k];
+      output::VtkGrid surface;
+      surface.points = s.surface_positions;
+      surface.triangles = b.surface_triangles;
+      surface.point_data.push_back({"displacement", 3, surface_displacement_[i]});
+      surface_series_[i].write(snapshot.time_s, surface);
     }
   }
 
   std::vector<std::string> finish() override {
     std::vector<std::string> files;
     for (const output::VtkSeries& s : series_) files.push_back(s.pvd_file().string());
+    for (const output::VtkSeries& s : surface_series_)
+      if (s.step_count() > 0) files.push_back(s.pvd_file().string());
     return files;
   }
 
@@ -51,6 +64,8 @@ class VtkObserver final : public FrameObserver {
   double next_time_s_ = 0;
   std::vector<output::VtkSeries> series_;
   std::vector<std::vector<double>> displacement_;  // 3 per node, m, scratch per body
+  std::vector<output::VtkSeries> surface_series_;  // per body; written only for embedded surfaces
+  std::vector<std::vector<double>> surface_displacement_;  // 3 per surface vertex, m
 };
 
 }  // namespace

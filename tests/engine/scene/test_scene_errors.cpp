@@ -67,6 +67,15 @@ TEST(SceneErrors, WrongType) {
                {"expected a list of devices", "found a map (keys: name)"});
 }
 
+TEST(SceneErrors, EmbeddedSurfaceNeedsTets) {
+  std::string text = yaml(kMinimalScene);
+  const std::string old = "mesh: {box_grid: {size: [0.1, 0.1, 0.1], cells: [2, 2, 2]}}";
+  text.replace(text.find(old), old.size(), "mesh: {quad_grid: {size: [1, 1], cells: [2, 2]}, surface: s.obj}");
+  const InputError e = load_error(text);
+  EXPECT_EQ(e.where().key_path, "bodies[0].mesh.surface") << e.what();
+  EXPECT_NE(std::string(e.what()).find("only be embedded in tetrahedra"), std::string::npos) << e.what();
+}
+
 TEST(SceneErrors, OutOfRange) {
   expect_error(load_error(with_material("{youngs_modulus: 1.0e4, poisson_ratio: 0.5}")), 4, 54,
                "bodies[0].material.poisson_ratio", {"expected a number in (-1, 0.5)", "found '0.5'"});

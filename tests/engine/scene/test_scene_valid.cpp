@@ -17,7 +17,7 @@ seed: 42
 clock: {mode: realtime, haptic_rate_hz: 2000, render_rate_hz: 30, duration_s: 2.5}
 bodies:
   - name: liver
-    mesh: {file: meshes/liver.msh, scale: 0.001, translate: [0, 0.1, 0], voxel_size: 0.005}
+    mesh: {file: meshes/liver.msh, scale: 0.001, translate: [0, 0.1, 0], voxel_size: 0.005, surface: meshes/smooth.obj}
     material: {youngs_modulus: 3.0e3, poisson_ratio: 0.45, density: 1060,
                rayleigh_mass: 0.1, rayleigh_stiffness: 0.01}
     model: {name: corotational_fem, solver: jacobi, iterations: 20, gains: [1, 1, 1, 2, 2, 2],
@@ -98,6 +98,8 @@ TEST(SceneLoader, FullSceneRoundTrip) {
   EXPECT_EQ(liver.mesh.scale, (Vec3{0.001, 0.001, 0.001}));
   EXPECT_EQ(liver.mesh.translate, (Vec3{0, 0.1, 0}));
   EXPECT_DOUBLE_EQ(liver.mesh.voxel_size, 0.005);
+  EXPECT_EQ(liver.mesh.surface_path, "/scenes/meshes/smooth.obj");
+  EXPECT_FALSE(liver.mesh.surface_tet_boundary);
   EXPECT_DOUBLE_EQ(liver.material.youngs_modulus, 3.0e3);
   EXPECT_DOUBLE_EQ(liver.material.poisson_ratio, 0.45);
   EXPECT_DOUBLE_EQ(liver.material.density, 1060);

@@ -13,6 +13,7 @@ struct BodySnapshot {
   std::vector<double> positions;   // 3 per node, m
   std::vector<double> velocities;  // 3 per node, m/s
   std::vector<double> von_mises;   // 1 per node, Pa (empty when the model gives no stress)
+  std::vector<double> surface_positions;  // 3 per embedded surface vertex, m (empty: none)
   std::string model;               // model name at the time of the snapshot (set at swaps only)
   bool frozen = false;
   double kinetic_J = 0, elastic_J = 0, max_displacement_m = 0;
@@ -43,6 +44,9 @@ struct BodyStatic {
   std::vector<uint32_t> quads;          // 4 per quad (planar meshes)
   std::vector<uint32_t> fixed_nodes;    // indices of the fixed nodes
   uint32_t dimension = 3;
+  // The embedded surface (tacta/embedded_surface.hpp), drawn instead of `triangles` when present.
+  std::vector<double> surface_rest_positions;  // 3 per surface vertex, m
+  std::vector<uint32_t> surface_triangles;     // 3 per triangle (outward)
 };
 
 struct DeviceStatic {
