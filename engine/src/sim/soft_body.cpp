@@ -64,6 +64,14 @@ std::vector<uint32_t> recorded_nodes(const BodyDesc& desc, const SceneDesc& scen
   return nodes;
 }
 
+// Nodes with free axes are advanced against the model's internal forces (BoundaryMotion).
+void require_internal_forces(const SoftBody& body, const ModelInstance& model, const SourceLocation& where) {
+  if (body.boundary && body.boundary->needs_internal_forces() && !model.has_internal_forces())
+    throw InputError(where, std::string("model '") + model.name() +
+                                "' gives no internal forces, which per-axis constraints and plates need "
+                                "(use a model that does, e.g. corotational_fem)");
+}
+
 }  // namespace
 
 ModelMailbox::~ModelMailbox() {
@@ -120,6 +128,9 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
       throw InputError(desc.where, "fixed: a region holds no node of the mesh (check its box against the mesh bounds)");
   }
 
+  body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
+  body.probes = locate_probes(desc.probes, topo.mesh, desc.where);
+
   body.positions = rest;
   body.velocities.assign(3 * n, 0.0);
   for (size_t i = 0; i < n; ++i)
@@ -133,6 +144,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
     check_node(v.node, n, desc.where, "initial.velocity");
     for (int a = 0; a < 3; ++a) body.velocities[3 * v.node + a] = v.value[a];
   }
+  if (body.boundary) body.boundary->place(body.positions, body.velocities, 0.0);
   body.external_forces.assign(3 * n, 0.0);
   body.contact_forces.assign(3 * n, 0.0);
   body.saved_positions = body.positions;
@@ -148,11 +160,13 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.own_thread = desc.own_thread;
   body.local_contact_yielding = desc.local_contact_yielding;
   body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
+  require_internal_forces(body, *body.model, desc.where);
   body.initial_model = desc.model;
   body.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
     body.swaps.push_back({swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
+    require_internal_forces(body, *body.swaps.back().model, desc.where);
   }
   std::stable_sort(body.swaps.begin(), body.swaps.end(),
                    [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });
