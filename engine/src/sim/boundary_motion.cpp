@@ -37,11 +37,15 @@ std::vector<uint32_t> select(const FixedRegionDesc& region, const VolumeMesh& me
   return nodes;
 }
 
-// Rest stiffness blocks K_ii of linear elasticity on the tets (N/m, row-major), one per node:
-// V ((lambda + mu) g g^T + mu |g|^2 I) summed over the tets around the node, g its shape gradient.
-std::vector<std::array<double, 9>> diagonal_stiffness(const VolumeMesh& mesh, const MaterialDesc& material) {
-  std::vector<std::array<double, 9>> blocks(mesh.node_count(), std::array<double, 9>{});
+// A diagonal that bounds the rest stiffness of linear elasticity on the tets (N/m, 3 per node):
+// per row, the sum of the absolute entries of that row of every element matrix
+// K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g the shape gradients. With it
+// 2D - K is positive definite, the condition for the engine's per-node (Jacobi) updates of the
+// managed nodes, and for the sweep between them and the model's solve, to converge.
+std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, const MaterialDesc& material) {
+  std::vector<std::array<double, 3>> bound(mesh.node_count(), std::array<double, 3>{});
   const auto x = [&](uint32_t i) { return V3(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]); };
+  const double lambda = material.lame_lambda, mu = material.lame_mu;
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     const uint32_t* n = &mesh.tets[4 * t];
     Mat3 edges;
@@ -49,16 +53,17 @@ std::vector<std::array<double, 9>> diagonal_stiffness(const VolumeMesh& mesh, co
     const double volume = std::abs(edges.determinant()) / 6.0;
     if (!(volume > 0)) continue;
     const Mat3 inverse = edges.inverse();  // rows: gradients of the barycentric weights 1..3
-    std::array<V3, 4> g{V3(-(inverse.col(0) + inverse.col(1) + inverse.col(2))), V3(inverse.col(0)),
-                        V3(inverse.col(1)), V3(inverse.col(2))};
-    for (int a = 0; a < 4; ++a) {
-      const Mat3 k = volume * ((material.lame_lambda + material.lame_mu) * g[a] * g[a].transpose() +
-                               material.lame_mu * g[a].squaredNorm() * Mat3::Identity());
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) blocks[n[a]][static_cast<size_t>(3 * r + c)] += k(r, c);
-    }
+    const std::array<V3, 4> g{V3(-(inverse.row(0) + inverse.row(1) + inverse.row(2)).transpose()),
+                              V3(inverse.row(0).transpose()), V3(inverse.row(1).transpose()),
+                              V3(inverse.row(2).transpose())};
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const Mat3 k = volume * (lambda * g[a] * g[b].transpose() + mu * g[b] * g[a].transpose() +
+                                 mu * g[a].dot(g[b]) * Mat3::Identity());
+        for (int r = 0; r < 3; ++r) bound[n[a]][static_cast<size_t>(r)] += k.row(r).cwiseAbs().sum();
+      }
   }
-  return blocks;
+  return bound;
 }
 
 }  // namespace
@@ -114,7 +119,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
     m.series_.emplace_back(p.motion);
     for (uint32_t node : select(p.region, mesh, p.where, "plates")) plate_of[node] = index;
   }
-  std::vector<std::array<double, 9>> stiffness;
+  std::vector<std::array<double, 3>> stiffness;
   for (uint32_t i = 0; i < n; ++i) {
     if (fixed[i]) continue;
     const std::array<int32_t, 3>& s = axis_series[i];
@@ -126,7 +131,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
       if (mesh.tets.empty())
         throw InputError(desc.where, "prescribed/plates: nodes with free axes (per-axis constraints, plates) need a "
                                      "tetrahedral mesh");
-      if (stiffness.empty()) stiffness = diagonal_stiffness(mesh, material);
+      if (stiffness.empty()) stiffness = stiffness_bound(mesh, material);
       Managed node;
       node.node = i;
       node.series = s;
@@ -181,13 +186,14 @@ void BoundaryMotion::after_step(ModelInstance& model, std::span<double> x, std::
   }
 }
 
-// One linearly implicit Euler step of a node with the rest of the body frozen:
-// (m (1 + h alpha) I + h (h + beta) K) dv = h (f - alpha m v - (h + beta) K v), then the node's
+// One linearly implicit Euler step of a node with the rest of the body frozen, its stiffness
+// replaced by the bound D (convergent, and over-damped in motion):
+// (m (1 + h alpha) I + h (h + beta) D) dv = h (f - alpha m v - (h + beta) D v), then the node's
 // constraints (prescribed axes, a plate it touches) fix their components of the new state.
 void BoundaryMotion::advance(Managed& node, const double* force, double* x, double* v, double time,
                              double dt) const noexcept {
   const double h = dt;
-  const Mat3 k = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(node.stiffness.data());
+  const Mat3 k = V3(node.stiffness[0], node.stiffness[1], node.stiffness[2]).asDiagonal();
   const V3 v0(node.saved_velocity[0], node.saved_velocity[1], node.saved_velocity[2]);
   const V3 x0(x[0], x[1], x[2]);
   const Mat3 a = node.mass * (1.0 + h * alpha_) * Mat3::Identity() + h * (h + beta_) * k;

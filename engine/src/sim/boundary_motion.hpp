@@ -5,9 +5,10 @@
 // - nodes with some axes free (per-axis constraints, sliding) and nodes a plate may touch are
 //   also held by the model, and the engine advances their free components itself after the step:
 //   one linearly implicit Euler update per node against the model's internal forces at the new
-//   positions (a Gauss-Seidel sweep over those nodes), with the node's rest stiffness block.
-//   At equilibrium this is exact (the free components carry zero net force); in motion the
-//   boundary lags the body by one step.
+//   positions, with a diagonal bound of the node's rest stiffness (a Jacobi sweep over those
+//   nodes after the model's solve of the others; the bound makes the sweep converge). At
+//   equilibrium this is exact (the free components carry zero net force); in motion those nodes
+//   lag the body by a step and are over-damped, and a static state takes more steps to reach.
 // Built at load time; before_step/after_step allocate nothing and throw nothing (1 kHz path).
 #pragma once
 
@@ -69,7 +70,7 @@ class BoundaryMotion {
     uint32_t node;
     std::array<int32_t, 3> series;  // per axis: index into series_, -1 = free
     int32_t plate = -1;             // index into plates_, -1 = none
-    std::array<double, 9> stiffness{};  // rest stiffness block K_ii, N/m, row-major
+    std::array<double, 3> stiffness{};  // diagonal bound of the rest stiffness, N/m
     double mass = 0;                    // kg
     Vec3 saved_velocity{};              // m/s, before the model zeroed it
     bool stuck = false;                 // glued to its stuck plate
