@@ -12,31 +12,6 @@ namespace {
 using Mat3 = Eigen::Matrix3d;
 using V3 = Eigen::Vector3d;
 
-bool inside(const std::array<Vec3, 2>& box, const double* p) {
-  for (size_t a = 0; a < 3; ++a)
-    if (p[a] < box[0][a] || p[a] > box[1][a]) return false;
-  return true;
-}
-
-// The nodes a region selects; throws when it selects none.
-std::vector<uint32_t> select(const FixedRegionDesc& region, const VolumeMesh& mesh, const SourceLocation& where,
-                             const char* what) {
-  std::vector<uint32_t> nodes;
-  const size_t n = mesh.node_count();
-  if (region.box)
-    for (size_t i = 0; i < n; ++i)
-      if (inside(*region.box, &mesh.positions[3 * i])) nodes.push_back(static_cast<uint32_t>(i));
-  for (uint32_t node : region.indices) {
-    if (node >= n)
-      throw InputError(where, std::string(what) + ": node " + std::to_string(node) + " is out of range (the mesh has " +
-                                  std::to_string(n) + " nodes)");
-    nodes.push_back(node);
-  }
-  if (nodes.empty())
-    throw InputError(where, std::string(what) + ": the region holds no node of the mesh (check its box against the mesh bounds)");
-  return nodes;
-}
-
 // A diagonal that bounds the rest stiffness of linear elasticity on the tets (N/m, 3 per node):
 // per row, the sum of the absolute entries of that row of every element matrix
 // K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g the shape gradients. With it
@@ -67,6 +42,29 @@ std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, const
 }
 
 }  // namespace
+
+std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh, const SourceLocation& where,
+                                   const char* what) {
+  const auto inside = [&](const double* p) {
+    for (size_t a = 0; a < 3; ++a)
+      if (p[a] < (*region.box)[0][a] || p[a] > (*region.box)[1][a]) return false;
+    return true;
+  };
+  std::vector<uint32_t> nodes;
+  const size_t n = mesh.node_count();
+  if (region.box)
+    for (size_t i = 0; i < n; ++i)
+      if (inside(&mesh.positions[3 * i])) nodes.push_back(static_cast<uint32_t>(i));
+  for (uint32_t node : region.indices) {
+    if (node >= n)
+      throw InputError(where, std::string(what) + ": node " + std::to_string(node) + " is out of range (the mesh has " +
+                                  std::to_string(n) + " nodes)");
+    nodes.push_back(node);
+  }
+  if (nodes.empty())
+    throw InputError(where, std::string(what) + ": a region holds no node of the mesh (check its box against the mesh bounds)");
+  return nodes;
+}
 
 size_t TimeSeries::segment(double t) const noexcept {
   const auto it = std::upper_bound(times_.begin(), times_.end(), t);
@@ -109,7 +107,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
   for (const PrescribedDesc& p : desc.prescribed) {
     const auto index = static_cast<int32_t>(m.series_.size());
     m.series_.emplace_back(p.displacement);
-    for (uint32_t node : select(p.region, mesh, p.where, "prescribed"))
+    for (uint32_t node : select_nodes(p.region, mesh, p.where, "prescribed"))
       for (size_t a = 0; a < 3; ++a)
         if (p.axes[a]) axis_series[node][a] = index;
   }
@@ -117,7 +115,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
     const auto index = static_cast<int32_t>(m.plates_.size());
     m.plates_.push_back({p.point, p.normal, static_cast<int32_t>(m.series_.size()), p.stuck});
     m.series_.emplace_back(p.motion);
-    for (uint32_t node : select(p.region, mesh, p.where, "plates")) plate_of[node] = index;
+    for (uint32_t node : select_nodes(p.region, mesh, p.where, "plates")) plate_of[node] = index;
   }
   std::vector<std::array<double, 3>> stiffness;
   for (uint32_t i = 0; i < n; ++i) {
@@ -177,7 +175,13 @@ void BoundaryMotion::after_step(ModelInstance& model, std::span<double> x, std::
   place(x, v, time + dt);
   if (managed_.empty()) return;
   // Internal forces at the new positions of the free nodes (the managed ones where they were).
-  if (!model.internal_forces(x.data(), forces_.data())) std::fill(forces_.begin(), forces_.end(), 0.0);
+  // A model without internal forces (swapped in at run time; the loader refuses one in the
+  // scene): the managed nodes stay held where they are rather than move on external forces alone.
+  if (!model.internal_forces(x.data(), forces_.data())) {
+    for (const Managed& node : managed_)
+      for (size_t a = 0; a < 3; ++a) v[3 * size_t{node.node} + a] = 0.0;
+    return;
+  }
   for (Managed& node : managed_) {
     const size_t b = 3 * size_t{node.node};
     double force[3];

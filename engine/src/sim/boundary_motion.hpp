@@ -24,6 +24,11 @@
 
 namespace tacta {
 
+// The nodes a region ({box} or {nodes}) selects. Throws InputError naming `what` for an index
+// out of range or a region that holds no node.
+std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh, const SourceLocation& where,
+                                   const char* what);
+
 // A vector series evaluated without allocation: piecewise linear, held outside its points.
 class TimeSeries {
  public:

@@ -30,12 +30,6 @@ tacta_material make_material(const MaterialDesc& d) {
           d.rayleigh_stiffness};
 }
 
-bool inside(const std::array<Vec3, 2>& box, const double* p) {
-  for (int a = 0; a < 3; ++a)
-    if (p[a] < box[0][a] || p[a] > box[1][a]) return false;
-  return true;
-}
-
 void check_node(uint32_t node, size_t count, const SourceLocation& where, const char* what) {
   if (node >= count)
     throw InputError(where, std::string(what) + ": node " + std::to_string(node) +
@@ -114,19 +108,8 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   topo.fixed.assign(n, 0);
 
   const std::vector<double>& rest = topo.mesh.positions;
-  for (const FixedRegionDesc& region : desc.fixed) {
-    size_t matched = 0;
-    if (region.box)
-      for (size_t i = 0; i < n; ++i)
-        if (inside(*region.box, &rest[3 * i])) topo.fixed[i] = 1, ++matched;
-    for (uint32_t node : region.indices) {
-      check_node(node, n, desc.where, "fixed");
-      topo.fixed[node] = 1;
-      ++matched;
-    }
-    if (matched == 0)
-      throw InputError(desc.where, "fixed: a region holds no node of the mesh (check its box against the mesh bounds)");
-  }
+  for (const FixedRegionDesc& region : desc.fixed)
+    for (uint32_t node : select_nodes(region, topo.mesh, desc.where, "fixed")) topo.fixed[node] = 1;
 
   body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
   body.probes = locate_probes(desc.probes, topo.mesh, desc.where);
