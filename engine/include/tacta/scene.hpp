@@ -80,6 +80,39 @@ struct FixedRegionDesc {
   std::vector<uint32_t> indices;           // explicit node indices
 };
 
+// A vector as a function of time, piecewise linear through (time, value) points and held at the
+// first and last value outside them; a single point is a constant. Units of the quantity (m).
+struct TimeSeriesDesc {
+  std::vector<double> times_s;  // strictly increasing
+  std::vector<Vec3> values;     // one per time
+};
+
+// Prescribed displacement (from rest) of the nodes of a region, on some or all world axes; the
+// other axes stay free (sliding on a plane: prescribe 0 along its normal axis only).
+struct PrescribedDesc {
+  FixedRegionDesc region;
+  std::array<bool, 3> axes{true, true, true};  // x, y, z: which components are prescribed
+  TimeSeriesDesc displacement;                 // m, added to the rest position
+  SourceLocation where;
+};
+
+// A rigid plate (a moving plane) that presses the nodes of a region when they reach it.
+struct PlateDesc {
+  std::string name;
+  FixedRegionDesc region;       // nodes the plate may touch
+  Vec3 point{0, 0, 0};          // a point of the plate at rest, m
+  Vec3 normal{0, 1, 0};         // unit, from the plate into the body
+  TimeSeriesDesc motion;        // m, translation of the plate from its rest place
+  bool stuck = false;           // true: a node that touches sticks; false: frictionless
+  SourceLocation where;
+};
+
+// A point of a body given in rest coordinates, followed through its element (probes.csv).
+struct ProbeDesc {
+  std::string name;
+  Vec3 rest{0, 0, 0};  // m
+};
+
 struct BodyDesc {
   std::string name;
   MeshSourceDesc mesh;
@@ -93,6 +126,9 @@ struct BodyDesc {
   std::vector<NodeVector> initial_velocity;      // m/s
   Vec3 uniform_velocity{0, 0, 0};                // m/s, added to every free node
   std::optional<uint32_t> probe_node;            // node whose displacement compare/plots follow
+  std::vector<PrescribedDesc> prescribed;        // boundary motion, engine-applied for any model
+  std::vector<PlateDesc> plates;
+  std::vector<ProbeDesc> probes;
   double step_rate_hz = 0;  // 0: step at the haptic rate; else at this rate
   bool own_thread = false;  // step_thread: own: step on a worker thread (needs step_rate_hz)
   // own_thread: the haptic loop renders its surface through the local spring model

@@ -46,6 +46,18 @@ void write_csv_records(const std::string& dir, const HapticLoop& loop, const Wor
                    world.body(r.body).name.c_str(), r.node, r.x[0], r.x[1], r.x[2], r.v[0], r.v[1], r.v[2]);
     result.outputs.push_back(path);
   }
+  if (!loop.probes().rows().empty()) {
+    const std::string path = dir + "/probes.csv";
+    File f = open_or_throw(path);
+    std::fprintf(f.get(), "time_s,body,probe,x,y,z,ux,uy,uz\n");
+    for (const ProbeRow& r : loop.probes().rows()) {
+      const Vec3& rest = world.body(r.body).probes[r.probe].rest;
+      std::fprintf(f.get(), "%.6f,%s,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r.time_s,
+                   world.body(r.body).name.c_str(), world.body(r.body).probes[r.probe].name.c_str(), r.x[0], r.x[1],
+                   r.x[2], r.x[0] - rest[0], r.x[1] - rest[1], r.x[2] - rest[2]);
+    }
+    result.outputs.push_back(path);
+  }
   if (!loop.energy().rows().empty()) {
     const std::string path = dir + "/energy.csv";
     File f = open_or_throw(path);

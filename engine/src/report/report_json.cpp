@@ -59,6 +59,20 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
       j.field("late_boundaries", b.late_boundaries).field("max_lateness_s", b.max_lateness_s);
       j.end_object();
     }
+    // Probes at the end of the run: rest point, position and displacement, m.
+    j.key("probes").begin_array();
+    for (const Probe& probe : body.probes) {
+      const Vec3 x = probe.position(body.positions.data());
+      j.begin_object().field("name", probe.name);
+      j.key("rest").begin_array();
+      for (double c : probe.rest) j.value(c);
+      j.end_array().key("position").begin_array();
+      for (double c : x) j.value(c);
+      j.end_array().key("displacement").begin_array();
+      for (size_t a = 0; a < 3; ++a) j.value(x[a] - probe.rest[a]);
+      j.end_array().end_object();
+    }
+    j.end_array();
     j.key("faults").begin_array();
     if (b.frozen) {
       j.begin_object();

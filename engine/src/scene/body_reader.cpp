@@ -49,6 +49,27 @@ void make_unit_square(MeshSourceDesc& mesh) {
   mesh.origin = {0.0, 0.0, 0.0};
 }
 
+std::vector<BodyDesc::NodeVector> read_node_vectors(const Field& field,
+                                                    std::optional<uint64_t> node_count) {
+  std::vector<BodyDesc::NodeVector> out;
+  for (const Field& item : field.items("a list of {node: i, value: [x, y, z]}")) {
+    item.expect_map("a map {node: i, value: [x, y, z]}");
+    item.check_keys({"node", "value"});
+    out.push_back({read_node(item.require("node"), node_count), item.require("value").vec3()});
+  }
+  return out;
+}
+
+void read_initial(const Field& field, BodyDesc& body, std::optional<uint64_t> node_count) {
+  field.expect_map("a map {displacement, velocity, uniform_velocity}");
+  field.check_keys({"displacement", "velocity", "uniform_velocity"});
+  if (auto f = field.get("displacement")) body.initial_displacement = read_node_vectors(*f, node_count);
+  if (auto f = field.get("velocity")) body.initial_velocity = read_node_vectors(*f, node_count);
+  if (auto f = field.get("uniform_velocity")) body.uniform_velocity = f->vec3();
+}
+
+}  // namespace
+
 // A node index, checked against the node count when the mesh is a grid.
 uint32_t read_node(const Field& field, std::optional<uint64_t> node_count) {
   if (!node_count) return field.index();
@@ -82,27 +103,6 @@ FixedRegionDesc read_fixed_region(const Field& field, std::optional<uint64_t> no
   region.box = std::array<Vec3, 2>{lo, hi};
   return region;
 }
-
-std::vector<BodyDesc::NodeVector> read_node_vectors(const Field& field,
-                                                    std::optional<uint64_t> node_count) {
-  std::vector<BodyDesc::NodeVector> out;
-  for (const Field& item : field.items("a list of {node: i, value: [x, y, z]}")) {
-    item.expect_map("a map {node: i, value: [x, y, z]}");
-    item.check_keys({"node", "value"});
-    out.push_back({read_node(item.require("node"), node_count), item.require("value").vec3()});
-  }
-  return out;
-}
-
-void read_initial(const Field& field, BodyDesc& body, std::optional<uint64_t> node_count) {
-  field.expect_map("a map {displacement, velocity, uniform_velocity}");
-  field.check_keys({"displacement", "velocity", "uniform_velocity"});
-  if (auto f = field.get("displacement")) body.initial_displacement = read_node_vectors(*f, node_count);
-  if (auto f = field.get("velocity")) body.initial_velocity = read_node_vectors(*f, node_count);
-  if (auto f = field.get("uniform_velocity")) body.uniform_velocity = f->vec3();
-}
-
-}  // namespace
 
 std::string exactly_one_of(const Field& field, const std::vector<std::string>& allowed) {
   std::vector<std::string> present;
@@ -185,7 +185,8 @@ MeshSourceDesc read_mesh_source(const Field& field) {
 BodyDesc read_body(const Field& field) {
   field.expect_map("a body: a map {name, mesh, material, model, ...}");
   field.check_keys({"name", "mesh", "material", "model", "fixed", "initial", "probe_node",
-                    "step_rate_hz", "step_thread", "local_contact", "collide"});
+                    "prescribed", "plates", "probes", "step_rate_hz", "step_thread", "local_contact",
+                    "collide"});
   BodyDesc body;
   body.where = field.where();
   body.name = field.require("name").text();
@@ -200,6 +201,7 @@ BodyDesc read_body(const Field& field) {
       body.fixed.push_back(read_fixed_region(item, node_count));
   if (auto f = field.get("initial")) read_initial(*f, body, node_count);
   if (auto f = field.get("probe_node")) body.probe_node = read_node(*f, node_count);
+  read_boundary(field, body, node_count);
   if (auto f = field.get("step_rate_hz")) body.step_rate_hz = f->real(Range::non_negative());
   if (auto f = field.get("step_thread")) {
     body.own_thread = f->choice({"haptic", "own"}) == "own";

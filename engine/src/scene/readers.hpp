@@ -25,6 +25,15 @@ OutputDesc read_output(const Field& field);
 // Node count of a grid primitive (known before the mesh is built), nullopt for files and spheres.
 std::optional<uint64_t> grid_node_count(const MeshSourceDesc& mesh);
 
+// Node selections: an index (checked against a grid's node count when known), a non-empty list
+// of them, and a region {box: {min, max}} or {nodes: [...]}.
+uint32_t read_node(const Field& field, std::optional<uint64_t> node_count);
+std::vector<uint32_t> read_nodes(const Field& field, std::optional<uint64_t> node_count);
+FixedRegionDesc read_fixed_region(const Field& field, std::optional<uint64_t> node_count);
+
+// A body's `prescribed`, `plates` and `probes` (boundary_reader.cpp).
+void read_boundary(const Field& body_field, BodyDesc& body, std::optional<uint64_t> node_count);
+
 // The one key of `allowed` that `field` (a map) holds; fails when it holds none or several.
 std::string exactly_one_of(const Field& field, const std::vector<std::string>& allowed);
 

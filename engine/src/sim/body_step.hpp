@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "boundary_motion.hpp"
 #include "plugin_instance.hpp"
 #include "soft_body.hpp"
 #include "tacta/scene.hpp"
@@ -30,8 +31,9 @@ struct StepOutcome {
   double max_displacement = 0;  // m from rest, after the step (0 when it faulted)
 };
 
+// `boundary` (may be null) moves the body's prescribed and plate-pressed nodes around the step.
 StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology, const Vec3& gravity,
                              double divergence_limit_m, const StepArrays& arrays, double time,
-                             double dt) noexcept;
+                             double dt, BoundaryMotion* boundary = nullptr) noexcept;
 
 }  // namespace tacta

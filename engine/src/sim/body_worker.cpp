@@ -124,7 +124,7 @@ void BodyWorker::step_job() noexcept {
   const auto start = std::chrono::steady_clock::now();
   const StepArrays arrays{positions_, velocities_, external_forces_, saved_positions_, contact_mean_};
   job_outcome_ = step_body_arrays(*job_model_, *body_.topology, gravity_, body_.divergence_limit_m, arrays,
-                                  job_time_, job_dt_);
+                                  job_time_, job_dt_, body_.boundary.get());
   // What snapshots want from the model is computed here, where the model lives during a step.
   job_elastic_J_ = job_model_->elastic_energy(positions_.data());
   job_has_stress_ = job_model_->has_stress();

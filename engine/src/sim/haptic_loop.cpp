@@ -20,9 +20,10 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
   record_interval_s_ = scene.output.record_interval_s;
   const size_t devices = world.device_count();
   trace_.reserve(expected_ticks * std::max<size_t>(devices, 1) + 16);
-  size_t recorded_nodes = 0;
+  size_t recorded_nodes = 0, probes = 0;
   for (size_t i = 0; i < world.body_count(); ++i) {
     recorded_nodes += world.body(i).recorded_nodes.size();
+    probes += world.body(i).probes.size();
   }
   const double interval_ticks =
       record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
@@ -31,6 +32,8 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
       static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) * recorded_nodes,
       200'000'000 / sizeof(TrajectoryRow));
   trajectory_.reserve(trajectory_rows);
+  const size_t records = static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
+  probes_.reserve(std::min<size_t>(records * probes, 200'000'000 / sizeof(ProbeRow)));
   const size_t frames = static_cast<size_t>(scene.clock.duration_s * scene.clock.render_rate_hz) + 4;
   energy_.reserve(frames * world.body_count() + 16);
   faults_.reserve(64 + world.body_count() + devices);
@@ -172,7 +175,8 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
       step_dt = b.step_period_s;
     }
     const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions, b.contact_forces};
-    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays, time, step_dt);
+    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays, time, step_dt,
+                                             b.boundary.get());
     if (out.why != nullptr) {
       freeze(b, i, time, out.bits, out.why);
       healthy = false;
@@ -307,6 +311,10 @@ void HapticLoop::record(double time) noexcept {
         row.v[a] = b.velocities[3 * n + a];
       }
       trajectory_.push(row);
+    }
+    for (size_t p = 0; p < b.probes.size(); ++p) {
+      const Vec3 x = b.probes[p].position(b.positions.data());
+      probes_.push({time, static_cast<uint32_t>(i), static_cast<uint32_t>(p), {x[0], x[1], x[2]}});
     }
   }
 }

@@ -59,6 +59,7 @@ class HapticLoop final : public HapticTask {
 
   const Recorder<TraceRow>& trace() const { return trace_; }
   const Recorder<TrajectoryRow>& trajectory() const { return trajectory_; }
+  const Recorder<ProbeRow>& probes() const { return probes_; }
   const Recorder<EnergyRow>& energy() const { return energy_; }
   const Recorder<FaultRecord>& faults() const { return faults_; }
   // A prototype snapshot with every buffer sized, for building the triple buffer.
@@ -88,6 +89,7 @@ class HapticLoop final : public HapticTask {
   std::vector<std::unique_ptr<BodyWorker>> workers_;  // per body; null for haptic-thread bodies
   Recorder<TraceRow> trace_;
   Recorder<TrajectoryRow> trajectory_;
+  Recorder<ProbeRow> probes_;
   Recorder<EnergyRow> energy_;
   Recorder<FaultRecord> faults_;
   double record_interval_s_ = 0;

@@ -35,6 +35,13 @@ class ModelInstance {
   double elastic_energy(const double* positions) noexcept {
     return api_.elastic_energy ? api_.elastic_energy(instance_, positions) : 0.0;
   }
+  bool has_internal_forces() const noexcept { return api_.internal_forces != nullptr; }
+  // Elastic forces at these positions (3 per node, N); false when the model has no such entry.
+  bool internal_forces(const double* positions, double* forces) noexcept {
+    if (!api_.internal_forces) return false;
+    api_.internal_forces(instance_, positions, forces);
+    return true;
+  }
   bool has_stress() const noexcept { return api_.node_stress != nullptr; }
   void node_stress(const double* positions, double* von_mises) noexcept {
     if (api_.node_stress) api_.node_stress(instance_, positions, von_mises);

@@ -24,6 +24,12 @@ struct TrajectoryRow {  // one per recorded node per record interval (trajectory
   double x[3], v[3];
 };
 
+struct ProbeRow {  // one per probe per record interval (probes.csv)
+  double time_s;
+  uint32_t body, probe;
+  double x[3];  // m
+};
+
 struct EnergyRow {  // one per body per frame (energy.csv)
   double time_s;
   uint32_t body;

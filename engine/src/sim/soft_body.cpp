@@ -30,12 +30,6 @@ tacta_material make_material(const MaterialDesc& d) {
           d.rayleigh_stiffness};
 }
 
-bool inside(const std::array<Vec3, 2>& box, const double* p) {
-  for (int a = 0; a < 3; ++a)
-    if (p[a] < box[0][a] || p[a] > box[1][a]) return false;
-  return true;
-}
-
 void check_node(uint32_t node, size_t count, const SourceLocation& where, const char* what) {
   if (node >= count)
     throw InputError(where, std::string(what) + ": node " + std::to_string(node) +
@@ -62,6 +56,14 @@ std::vector<uint32_t> recorded_nodes(const BodyDesc& desc, const SceneDesc& scen
   if (nodes.empty() && count <= 16)
     for (uint32_t n = 0; n < count; ++n) nodes.push_back(n);
   return nodes;
+}
+
+// Nodes with free axes are advanced against the model's internal forces (BoundaryMotion).
+void require_internal_forces(const SoftBody& body, const ModelInstance& model, const SourceLocation& where) {
+  if (body.boundary && body.boundary->needs_internal_forces() && !model.has_internal_forces())
+    throw InputError(where, std::string("model '") + model.name() +
+                                "' gives no internal forces, which per-axis constraints and plates need "
+                                "(use a model that does, e.g. corotational_fem)");
 }
 
 }  // namespace
@@ -106,19 +108,11 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   topo.fixed.assign(n, 0);
 
   const std::vector<double>& rest = topo.mesh.positions;
-  for (const FixedRegionDesc& region : desc.fixed) {
-    size_t matched = 0;
-    if (region.box)
-      for (size_t i = 0; i < n; ++i)
-        if (inside(*region.box, &rest[3 * i])) topo.fixed[i] = 1, ++matched;
-    for (uint32_t node : region.indices) {
-      check_node(node, n, desc.where, "fixed");
-      topo.fixed[node] = 1;
-      ++matched;
-    }
-    if (matched == 0)
-      throw InputError(desc.where, "fixed: a region holds no node of the mesh (check its box against the mesh bounds)");
-  }
+  for (const FixedRegionDesc& region : desc.fixed)
+    for (uint32_t node : select_nodes(region, topo.mesh, desc.where, "fixed")) topo.fixed[node] = 1;
+
+  body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
+  body.probes = locate_probes(desc.probes, topo.mesh, desc.where);
 
   body.positions = rest;
   body.velocities.assign(3 * n, 0.0);
@@ -133,6 +127,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
     check_node(v.node, n, desc.where, "initial.velocity");
     for (int a = 0; a < 3; ++a) body.velocities[3 * v.node + a] = v.value[a];
   }
+  if (body.boundary) body.boundary->place(body.positions, body.velocities, 0.0);
   body.external_forces.assign(3 * n, 0.0);
   body.contact_forces.assign(3 * n, 0.0);
   body.saved_positions = body.positions;
@@ -148,11 +143,13 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.own_thread = desc.own_thread;
   body.local_contact_yielding = desc.local_contact_yielding;
   body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
+  require_internal_forces(body, *body.model, desc.where);
   body.initial_model = desc.model;
   body.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
     body.swaps.push_back({swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
+    require_internal_forces(body, *body.swaps.back().model, desc.where);
   }
   std::stable_sort(body.swaps.begin(), body.swaps.end(),
                    [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });

@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "boundary_motion.hpp"
 #include "plugin_instance.hpp"
+#include "probes.hpp"
 #include "tacta/embedded_surface.hpp"
 #include "tacta/mesh.hpp"
 #include "tacta/model_api.h"
@@ -80,6 +82,8 @@ struct SoftBody {
   double max_displacement_m = 0;  // over the whole run
   std::optional<uint32_t> probe_node;
   std::vector<uint32_t> recorded_nodes;  // nodes whose trajectory is recorded
+  std::vector<Probe> probes;             // rest points followed through their tets (probes.csv)
+  std::unique_ptr<BoundaryMotion> boundary;  // prescribed motion and plates; null when none
   double step_period_s = 0;     // s; 0: every haptic tick
   double next_step_time_s = 0;  // s; when a slower body steps next
   bool own_thread = false;      // steps on a BodyWorker thread, not the haptic one

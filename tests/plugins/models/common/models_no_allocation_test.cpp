@@ -12,51 +12,7 @@
 #include "tacta/models/test_meshes.hpp"
 #include "tensor_mass_model.hpp"
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define TACTA_COUNT_ALLOCATIONS 0
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TACTA_COUNT_ALLOCATIONS 0
-#endif
-#endif
-#ifndef TACTA_COUNT_ALLOCATIONS
-#define TACTA_COUNT_ALLOCATIONS 1
-#endif
-
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-
-#if TACTA_COUNT_ALLOCATIONS
-extern "C" {
-void* __libc_malloc(size_t);
-void* __libc_calloc(size_t, size_t);
-void* __libc_realloc(void*, size_t);
-void* __libc_memalign(size_t, size_t);
-void* malloc(size_t size) {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) {
-  if (g_counting) ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* pointer, size_t size) {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(pointer, size);
-}
-int posix_memalign(void** out, size_t alignment, size_t size) {
-  if (g_counting) ++g_allocations;
-  *out = __libc_memalign(alignment, size);
-  return *out ? 0 : 12;  // ENOMEM
-}
-void* aligned_alloc(size_t alignment, size_t size) {
-  if (g_counting) ++g_allocations;
-  return __libc_memalign(alignment, size);
-}
-}
-#endif
+#include "allocation_counter.hpp"
 
 using namespace tacta::models;
 
