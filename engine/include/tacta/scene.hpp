@@ -150,12 +150,24 @@ struct SwapDesc {
   ParamSet params;
 };
 
+// The longest run, in haptic ticks (1 h at 1 kHz): per-tick records (trace rows, tick timings,
+// ~150 bytes a tick) are reserved before the run so the haptic path never allocates.
+constexpr uint64_t kMaxRunTicks = 3'600'000;
+
 struct ClockDesc {
   enum class Mode { Lockstep, Realtime } mode = Mode::Lockstep;
   double haptic_rate_hz = 1000;
   double render_rate_hz = 60;
   double duration_s = 1.0;
+  // Realtime only (docs/SCENES.md, clock): the haptic thread's scheduling and placement.
+  int haptic_priority = 80;  // SCHED_FIFO priority 1..99; 0: stay SCHED_OTHER
+  int haptic_cpu = -1;       // pin the haptic thread to this CPU, others off it; -1: no pinning
+  bool lock_memory = true;   // mlockall for the run
+  double spin_us = 50;       // us before each deadline spun instead of slept
 };
+
+// Empty when `duration_s` at `haptic_rate_hz` fits kMaxRunTicks, else why not (for messages).
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz);
 
 struct OutputDesc {
   bool frames = false;               // PNG frames from the render task

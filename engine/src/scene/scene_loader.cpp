@@ -1,6 +1,10 @@
 // The scene loader's entry points and top level: clock, outputs, and the sections in order.
 #include "tacta/scene_loader.hpp"
 
+#include <unistd.h>
+
+#include <fmt/format.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -10,11 +14,22 @@
 
 namespace tacta {
 
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz) {
+  const double ticks = duration_s * haptic_rate_hz;
+  if (ticks <= static_cast<double>(kMaxRunTicks)) return {};
+  return fmt::format(
+      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks; at most {} ticks are allowed ({:g} s at this rate), "
+      "because the run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it starts "
+      "so that the haptic loop never allocates",
+      duration_s, haptic_rate_hz, ticks, kMaxRunTicks, static_cast<double>(kMaxRunTicks) / haptic_rate_hz);
+}
+
 namespace scene_detail {
 
 ClockDesc read_clock(const Field& field) {
-  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s}");
-  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s"});
+  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
+  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority", "haptic_cpu",
+                    "lock_memory", "spin_us"});
   ClockDesc clock;
   if (auto f = field.get("mode"))
     clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
@@ -27,7 +42,19 @@ ClockDesc read_clock(const Field& field) {
       f->fail_expected("a render rate <= the haptic rate (" + std::to_string(clock.haptic_rate_hz) +
                        " Hz): frames are taken between haptic ticks");
   }
-  if (auto f = field.get("duration_s")) clock.duration_s = f->real(Range::positive());
+  if (auto f = field.get("duration_s")) {
+    clock.duration_s = f->real(Range::positive());
+    if (const std::string problem = duration_limit_problem(clock.duration_s, clock.haptic_rate_hz); !problem.empty())
+      f->fail(problem);
+  }
+  if (auto f = field.get("haptic_priority")) clock.haptic_priority = static_cast<int>(f->integer(0, 99));
+  if (auto f = field.get("haptic_cpu")) {
+    const long cpus = sysconf(_SC_NPROCESSORS_CONF);
+    clock.haptic_cpu = static_cast<int>(f->integer(-1, cpus > 0 ? cpus - 1 : 1023));
+  }
+  if (auto f = field.get("lock_memory")) clock.lock_memory = f->boolean();
+  // 1 ms: a whole 1 kHz period; a longer spin would only burn the CPU.
+  if (auto f = field.get("spin_us")) clock.spin_us = f->real(Range::closed(0, 1000));
   return clock;
 }
 

@@ -61,6 +61,7 @@ struct RunResult {
   std::vector<BodyResult> bodies;
   std::vector<DeviceResult> devices;
   size_t faults = 0;
+  std::vector<std::string> fault_messages;  // one per fault: who, when (s), why
   std::vector<std::string> outputs;  // files written
   int exit_code = 0;                 // 0 ok, 1 runtime fault
 };
