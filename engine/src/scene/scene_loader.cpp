@@ -68,8 +68,17 @@ OutputDesc read_output(const Field& field) {
   if (auto f = field.get("frame_size")) {
     const std::vector<Field> items = f->items("a list [width, height] in pixels");
     if (items.size() != 2) f->fail_expected("a list [width, height] in pixels");
-    output.frame_width = static_cast<int>(items[0].integer(1, 16384));
-    output.frame_height = static_cast<int>(items[1].integer(1, 16384));
+    // Bounded here as the renderer bounds it, so a scene is not refused only when its first frame is drawn.
+    const auto side = [](const Field& item) {
+      const int64_t pixels = item.integer(1, INT32_MAX);
+      if (pixels > kMaxFrameSide)
+        item.fail_expected(fmt::format("pixels in [1, {}] (the off-screen renderer's largest framebuffer; "
+                                       "an 8192 x 8192 picture is already 256 MB)",
+                                       kMaxFrameSide));
+      return static_cast<int>(pixels);
+    };
+    output.frame_width = side(items[0]);
+    output.frame_height = side(items[1]);
   }
   if (auto f = field.get("vtk")) output.vtk = f->boolean();
   if (auto f = field.get("vtk_interval_s")) output.vtk_interval_s = f->real(Range::positive());

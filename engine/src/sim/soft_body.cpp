@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh_file_check.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {
@@ -90,13 +91,8 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.name = desc.name;
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
-  try {
-    topo.mesh = load_body_mesh(desc.mesh);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InputError(desc.where, std::string("mesh: ") + e.what());
-  }
+  if (desc.mesh.kind == MeshSourceDesc::Kind::File) require_mesh_file(desc.mesh.path, desc.mesh.where);
+  topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh); });
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
   if (topo.mesh.embedding) body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
@@ -119,6 +115,11 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
     if (matched == 0)
       throw InputError(desc.where, "fixed: a region holds no node of the mesh (check its box against the mesh bounds)");
   }
+  if (n > 0 && std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
+    throw InputError(desc.fixed_where,
+                     "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
+                         "', so it can never move: fix fewer nodes (a box around one face, or a list of nodes); "
+                         "for something that must not move at all, an `obstacles` entry costs nothing per tick");
 
   body.positions = rest;
   body.velocities.assign(3 * n, 0.0);
