@@ -105,14 +105,14 @@ void write_devices(JsonWriter& j, const World& world) {
   j.end_array();
 }
 
-// Resident memory around the loop (both modes), and in realtime what the kernel granted.
+// Resident memory around the loop, and what the kernel granted the haptic thread (in lockstep
+// nothing is asked for, and the note says so).
 void write_realtime(JsonWriter& j, const RunResult& result) {
   const ScheduleResult& s = result.schedule;
   j.key("memory_kb").begin_object();
   j.field("rss_start", s.memory_start.rss_kb).field("rss_after_1s", s.memory_warm.rss_kb);
   j.field("rss_end", s.memory_end.rss_kb).field("peak", s.memory_end.peak_kb);
   j.end_object();
-  if (result.mode != "realtime") return;
   const RealtimeGrant& g = s.realtime;
   j.key("realtime").begin_object();
   j.field("scheduler", g.scheduler).field("priority", g.priority).field("nice", g.nice);

@@ -17,9 +17,24 @@
 #include <string>
 #include <vector>
 
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define TACTA_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define TACTA_SANITIZED 1
+#endif
+#endif
+
 namespace tacta {
 
 namespace {
+
+#ifdef TACTA_SANITIZED
+// A sanitizer's shadow memory is terabytes of reserved address space: mlockall would fault it in.
+constexpr bool kCanLockMemory = false;
+#else
+constexpr bool kCanLockMemory = true;
+#endif
 
 // Helper threads (render, rasteriser, I/O) run this much nicer than the default 0; body worker
 // threads keep their priority, their steps are simulation work with a deadline of their own.
@@ -78,7 +93,9 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
   pthread_setname_np(pthread_self(), "tacta-haptic");
   grant_.spin_us = options.spin_us;
 
-  if (options.lock_memory) {
+  if (options.lock_memory && !kCanLockMemory) {
+    grant_.memory_note = "not locked: a sanitizer build (its shadow memory cannot be locked)";
+  } else if (options.lock_memory) {
     // Locks what is mapped and what will be: the record buffers reserved before the run are
     // faulted in now, not one page at a time inside ticks.
     if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) grant_.memory_locked = true;

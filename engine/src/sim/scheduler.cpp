@@ -52,6 +52,7 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
   const auto run_start = SteadyClock::now();
   auto last_progress = run_start;
   result.memory_start = resident_memory();
+  result.realtime.scheduler_note = "lockstep: no real-time scheduling asked for";
   haptic.publish(0.0);
   render.frame(0.0);
   ++result.frames;
