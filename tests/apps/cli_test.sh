@@ -33,6 +33,23 @@ expect_output() {
 }
 expect_file() { [ -s "$1" ] || fail "missing or empty: $1"; }
 
+# Explicit Euler on a stiff square at 25 Hz: the amplitude grows every step until the body
+# passes ten body sizes of displacement and is frozen.
+write_diverging_scene() {
+  cat >diverges.yaml <<'YAML'
+name: diverges
+gravity: [0, 0, 0]
+clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 20}
+bodies:
+  - name: square
+    mesh: unit_square
+    material: {lame_lambda: 100.0, lame_mu: 100.0, density: 1.0}
+    model: {name: fd_debunne, integrator: explicit_euler}
+    initial:
+      displacement: [{node: 3, value: [-0.05, -0.05, 0]}]
+YAML
+}
+
 case "$case_name" in
   help)
     run 0 --help
@@ -84,20 +101,7 @@ YAML
     expect_output 'no_such_scene\.yaml' "the absent file's name"
     ;;
   diverging_scene)
-    # Explicit Euler on a stiff square at 25 Hz: the amplitude grows every step until the body
-    # passes ten body sizes of displacement and is frozen.
-    cat >diverges.yaml <<'YAML'
-name: diverges
-gravity: [0, 0, 0]
-clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 20}
-bodies:
-  - name: square
-    mesh: unit_square
-    material: {lame_lambda: 100.0, lame_mu: 100.0, density: 1.0}
-    model: {name: fd_debunne, integrator: explicit_euler}
-    initial:
-      displacement: [{node: 3, value: [-0.05, -0.05, 0]}]
-YAML
+    write_diverging_scene
     run 1 run diverges.yaml --out out
     expect_file out/report.json
     grep -q '"faults"' out/report.json || fail "report.json lists no faults"
@@ -154,18 +158,7 @@ YAML
     ;;
   quiet_fault)
     # The diverging square of diverging_scene, with -q: the fault is still an error on stderr.
-    cat >diverges.yaml <<'YAML'
-name: diverges
-gravity: [0, 0, 0]
-clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 20}
-bodies:
-  - name: square
-    mesh: unit_square
-    material: {lame_lambda: 100.0, lame_mu: 100.0, density: 1.0}
-    model: {name: fd_debunne, integrator: explicit_euler}
-    initial:
-      displacement: [{node: 3, value: [-0.05, -0.05, 0]}]
-YAML
+    write_diverging_scene
     "$tacta" run diverges.yaml -q >stdout.txt 2>"$work/out.txt"
     [ $? -eq 1 ] || fail "a fault under -q did not exit 1"
     [ -s stdout.txt ] && fail "-q printed to stdout"
