@@ -170,8 +170,9 @@ struct ClockDesc {
   double spin_us = 50;       // us before each deadline spun instead of slept
 };
 
-// Empty when `duration_s` at `haptic_rate_hz` fits kMaxRunTicks, else why not (for messages).
-std::string duration_limit_problem(double duration_s, double haptic_rate_hz);
+// Empty when `duration_s` at `haptic_rate_hz` fits kMaxRunTicks trace rows (one a tick per
+// device, at least one), else why not (for messages).
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz, size_t devices = 1);
 
 // The largest picture side, pixels: the off-screen renderer's framebuffer limit (llvmpipe's), and
 // an 8192 x 8192 RGBA picture is already 256 MB.

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -14,14 +15,18 @@
 
 namespace tacta {
 
-std::string duration_limit_problem(double duration_s, double haptic_rate_hz) {
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz, size_t devices) {
+  const double rows_per_tick = static_cast<double>(std::max<size_t>(devices, 1));
   const double ticks = duration_s * haptic_rate_hz;
-  if (ticks <= static_cast<double>(kMaxRunTicks)) return {};
+  if (ticks * rows_per_tick <= static_cast<double>(kMaxRunTicks)) return {};
+  const double longest_s = static_cast<double>(kMaxRunTicks) / rows_per_tick / haptic_rate_hz;
   return fmt::format(
-      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks; at most {} ticks are allowed ({:g} s at this rate), "
-      "because the run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it starts "
-      "so that the haptic loop never allocates",
-      duration_s, haptic_rate_hz, ticks, kMaxRunTicks, static_cast<double>(kMaxRunTicks) / haptic_rate_hz);
+      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks{}; at most {} are allowed ({:g} s here), because the "
+      "run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it starts so that the "
+      "haptic loop never allocates",
+      duration_s, haptic_rate_hz, ticks,
+      devices > 1 ? fmt::format(" x {} devices = {:.3g} trace rows", devices, ticks * rows_per_tick) : std::string(),
+      devices > 1 ? "3600000 trace rows" : "3600000 ticks", longest_s);
 }
 
 namespace scene_detail {
@@ -144,6 +149,13 @@ SceneDesc read_scene(const Field& root) {
     }
     check_unique(items, names, "obstacle");
   }
+  if (scene.devices.size() > 1)  // one trace row per device per tick: the bound tightens
+    if (auto clock = root.get("clock"))
+      if (auto f = clock->get("duration_s"))
+        if (const std::string problem = duration_limit_problem(scene.clock.duration_s, scene.clock.haptic_rate_hz,
+                                                               scene.devices.size());
+            !problem.empty())
+          f->fail(problem);
   if (auto f = root.get("collision")) scene.collision = read_collision(*f);
   if (auto f = root.get("swaps"))
     for (const Field& item : f->items("a list of swaps {time, body, model}"))

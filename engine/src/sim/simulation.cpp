@@ -157,7 +157,8 @@ RunResult Simulation::run(const RunOptions& options) {
   // before the record buffers are sized from it.
   if (!(schedule.duration_s > 0))
     throw InputError({"--duration", 0, 0, ""}, "expected a duration in s > 0, found " + std::to_string(schedule.duration_s));
-  if (const std::string problem = duration_limit_problem(schedule.duration_s, schedule.haptic_rate_hz); !problem.empty())
+  if (const std::string problem = duration_limit_problem(schedule.duration_s, schedule.haptic_rate_hz, scene.devices.size());
+      !problem.empty())
     throw InputError({"--duration", 0, 0, ""}, problem + " (" + scene.path + " sets clock.haptic_rate_hz)");
   schedule.realtime.priority = scene.clock.haptic_priority;
   schedule.realtime.cpu = scene.clock.haptic_cpu;

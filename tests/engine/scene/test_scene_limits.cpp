@@ -22,13 +22,21 @@ void expect_at(const InputError& e, int line, const std::string& key_path,
 TEST(SceneLimits, DurationBoundedByTheTicksTheRecordsHold) {
   // 1e9 s at 1 kHz used to reach std::bad_alloc when the recorders reserved for it.
   expect_at(load_error(yaml(kMinimalScene) + "clock: {duration_s: 1e9}\n"), 6, "clock.duration_s",
-            {"1e+12 haptic ticks", "at most 3600000 ticks", "reserved before it starts"});
+            {"1e+12 haptic ticks", "at most 3600000 ticks are allowed (3600 s here)", "reserved before it starts"});
   // The bound is in ticks: at 25 Hz the same ticks last 40 times longer.
   EXPECT_EQ(load(yaml(kMinimalScene) + "clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 100000}\n")
                 .clock.duration_s, 100000);
   // A --set of the duration (how `tacta run --duration` passes it) replaces the file's value first.
   EXPECT_EQ(load(yaml(kMinimalScene) + "clock: {duration_s: 1e9}\n", {"clock.duration_s=0.02"}).clock.duration_s,
             0.02);
+}
+
+TEST(SceneLimits, EveryDeviceAddsATraceRowATick) {
+  const std::string two_devices = yaml(kMinimalScene) +
+                                  "devices: [{name: a, plugin: sim_stylus}, {name: b, plugin: sim_stylus}]\n";
+  EXPECT_EQ(load(two_devices + "clock: {duration_s: 1800}\n").devices.size(), 2u);
+  expect_at(load_error(two_devices + "clock: {duration_s: 2000}\n"), 7, "clock.duration_s",
+            {"x 2 devices = 4e+06 trace rows", "at most 3600000 trace rows are allowed (1800 s here)"});
 }
 
 TEST(SceneLimits, GridNodesNamedAtTheirCells) {
