@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -153,13 +154,14 @@ RunResult Simulation::run(const RunOptions& options) {
   schedule.haptic_rate_hz = scene.clock.haptic_rate_hz;
   schedule.render_rate_hz = scene.clock.render_rate_hz;
   schedule.duration_s = options.duration_s.value_or(scene.clock.duration_s);
-  // The scene's own duration was checked at load; a duration given here (--duration) is checked now,
-  // before the record buffers are sized from it.
-  if (!(schedule.duration_s > 0))
-    throw InputError({"--duration", 0, 0, ""}, "expected a duration in s > 0, found " + std::to_string(schedule.duration_s));
+  // The scene's own duration was checked at load; one given here (tacta compare --duration,
+  // tacta snapshot --at, the viewer) is checked now, before the record buffers are sized from it.
+  const SourceLocation run_duration{scene.path, 0, 0, "the run's duration (overriding clock.duration_s)"};
+  if (!std::isfinite(schedule.duration_s) || schedule.duration_s < 0)
+    throw InputError(run_duration, "expected a duration in s >= 0, found " + std::to_string(schedule.duration_s));
   if (const std::string problem = duration_limit_problem(schedule.duration_s, schedule.haptic_rate_hz, scene.devices.size());
       !problem.empty())
-    throw InputError({"--duration", 0, 0, ""}, problem + " (" + scene.path + " sets clock.haptic_rate_hz)");
+    throw InputError(run_duration, problem);
   schedule.realtime.priority = scene.clock.haptic_priority;
   schedule.realtime.cpu = scene.clock.haptic_cpu;
   schedule.realtime.lock_memory = scene.clock.lock_memory;
