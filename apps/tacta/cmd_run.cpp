@@ -63,6 +63,8 @@ int run_scene(const RunArgs& args) {
   }
   SceneDesc scene = load_scene(args.scene, schemas, overrides);
   Simulation simulation(scene, plugins);
+  if (!args.quiet)
+    for (const std::string& warning : simulation.load_warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   RunOptions options;
   options.out_dir = args.out;
   if (args.realtime) options.realtime = true;

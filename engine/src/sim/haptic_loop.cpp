@@ -32,6 +32,7 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
       200'000'000 / sizeof(TrajectoryRow));
   trajectory_.reserve(trajectory_rows);
   // From the run's duration (--duration may differ from the scene's), bounded with it at load.
+  if (duration_s < 0) duration_s = static_cast<double>(expected_ticks) / scene.clock.haptic_rate_hz;
   const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
   energy_.reserve(frames * world.body_count() + 16);
   faults_.reserve(64 + world.body_count() + devices);

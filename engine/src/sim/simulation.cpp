@@ -140,6 +140,12 @@ const std::string& Simulation::device_plugin(size_t device) const { return impl_
 
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
 size_t Simulation::body_count() const { return impl_->world.body_count(); }
+std::vector<std::string> Simulation::load_warnings() const {
+  std::vector<std::string> warnings;
+  for (size_t i = 0; i < impl_->world.body_count(); ++i)
+    if (!impl_->world.body(i).load_warning.empty()) warnings.push_back(impl_->world.body(i).load_warning);
+  return warnings;
+}
 const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }
 const std::string& Simulation::body_model(size_t body) const { return impl_->requested_models.at(body); }
 

@@ -116,10 +116,12 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
       throw InputError(desc.where, "fixed: a region holds no node of the mesh (check its box against the mesh bounds)");
   }
   if (n > 0 && std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
-    throw InputError(desc.fixed_where,
-                     "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
-                         "', so it can never move: fix fewer nodes (a box around one face, or a list of nodes); "
-                         "for something that must not move at all, an `obstacles` entry costs nothing per tick");
+    body.load_warning = InputError(desc.fixed_where,
+                                   "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
+                                       "', so it never moves (a device still touches it, as a rigid surface): to "
+                                       "make it deform, fix fewer nodes (a box around one face, or a list of nodes); "
+                                       "for a static thing no device touches, an `obstacles` entry costs nothing per tick")
+                            .what();
 
   body.positions = rest;
   body.velocities.assign(3 * n, 0.0);

@@ -101,8 +101,7 @@ class LoopHarness {
  public:
   explicit LoopHarness(const SceneDesc& scene, size_t ticks)
       : world(scene, plugins()), collision(world, plugins()), haptics(world, collision),
-        snapshots(HapticLoop::make_prototype(world)),
-        loop(world, snapshots, ticks, static_cast<double>(ticks) / scene.clock.haptic_rate_hz),
+        snapshots(HapticLoop::make_prototype(world)), loop(world, snapshots, ticks),
         dt(1.0 / scene.clock.haptic_rate_hz) {
     for (size_t i = 0; i < world.body_count(); ++i) {
       SoftBody& b = world.body(i);
