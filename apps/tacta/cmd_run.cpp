@@ -3,6 +3,7 @@
 // 2 bad input (scene, mesh, plugin).
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -28,13 +29,33 @@ struct RunArgs {
   std::string replay;
   bool frames = false;
   bool quiet = false;
+  int haptic_cpu = -2;  // -2: as the scene says
 };
+
+// CLI11's PositiveNumber prints the whole double range as its bound; say what a duration is.
+const CLI::Validator kDurationSeconds(
+    [](const std::string& text) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || !(value > 0))
+        return "expected a duration in s > 0 (at most " + std::to_string(kMaxRunTicks) +
+               " haptic ticks, 1 h at 1 kHz), found '" + text + "'";
+      return {};
+    },
+    "SECONDS > 0");
 
 int run_scene(const RunArgs& args) {
   PluginRegistry plugins;
   plugins.load();
   RegistrySchemas schemas(plugins);
   std::vector<std::string> overrides = args.overrides;
+  // --duration replaces clock.duration_s before the scene is checked, so a scene's own (perhaps
+  // too long) duration does not matter and the bound is checked on the one that runs.
+  if (args.duration > 0) {
+    char text[64];
+    std::snprintf(text, sizeof text, "clock.duration_s=%.17g", args.duration);
+    overrides.push_back(text);
+  }
+  if (args.haptic_cpu >= -1) overrides.push_back("clock.haptic_cpu=" + std::to_string(args.haptic_cpu));
   if (!args.replay.empty()) {
     // The scene's device is replaced by a replay of the log, keeping its tool and coupling.
     overrides.push_back("devices.*.plugin=replay");
@@ -42,9 +63,10 @@ int run_scene(const RunArgs& args) {
   }
   SceneDesc scene = load_scene(args.scene, schemas, overrides);
   Simulation simulation(scene, plugins);
+  if (!args.quiet)
+    for (const std::string& warning : simulation.load_warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   RunOptions options;
   options.out_dir = args.out;
-  if (args.duration > 0) options.duration_s = args.duration;
   if (args.realtime) options.realtime = true;
   if (args.lockstep) options.realtime = false;
   options.record_log = args.record;
@@ -57,6 +79,8 @@ int run_scene(const RunArgs& args) {
     options.observers.push_back(frames.get());
   }
   const RunResult result = simulation.run(options);
+  // A fault is an error: printed even with --quiet, on stderr, with the exit code 1.
+  for (const std::string& fault : result.fault_messages) std::fprintf(stderr, "error: runtime fault: %s\n", fault.c_str());
 
   if (!args.quiet) {
     std::printf("%s: %s, %llu ticks, %.3f s simulated in %.3f s, tick p50 %.3f ms p99 %.3f ms max %.3f ms",
@@ -82,13 +106,16 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", args->scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out,-o", args->out, "Output folder for report.json, trace.csv, plots and frames");
   cmd->add_option("--duration", args->duration, "Simulated duration, s (overrides clock.duration_s)")
-      ->check(CLI::PositiveNumber);
+      ->check(kDurationSeconds);
   cmd->add_flag("--realtime", args->realtime, "Run on the wall clock: haptic thread at 1 kHz, render thread at 60 Hz");
   cmd->add_flag("--lockstep", args->lockstep, "Run on simulated time, as fast as possible (deterministic)");
   cmd->add_option("--set", args->overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
   cmd->add_option("--record", args->record, "Write the first device's session log (CSV) here");
   cmd->add_option("--replay", args->replay, "Replace the scene's device by a replay of this log")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--haptic-cpu", args->haptic_cpu,
+                  "Realtime: pin the haptic thread to this CPU and move other threads off it (clock.haptic_cpu)")
+      ->check(CLI::Range(-1, 1023));
   cmd->add_flag("--frames", args->frames, "Write PNG frames from the render task");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
   cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return run_scene(*args); }); });

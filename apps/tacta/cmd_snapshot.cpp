@@ -22,9 +22,6 @@
 namespace tacta::cli {
 namespace {
 
-// Same bounds as the scene's output.frame_size, pixels.
-constexpr int kMaxPictureSide = 16384;
-
 struct SnapshotArgs {
   std::string scene;
   double at = -1;  // s of simulated time
@@ -38,8 +35,9 @@ void check_args(const SnapshotArgs& args) {
   if (!std::isfinite(args.at) || args.at < 0)
     throw InputError({"--at", 0, 0, ""}, "expected a simulated time >= 0 s, found " + std::to_string(args.at));
   for (const auto& [name, side] : {std::pair{"--width", args.width}, std::pair{"--height", args.height}})
-    if (side && (*side < 1 || *side > kMaxPictureSide))
-      throw InputError({name, 0, 0, ""}, "expected pixels in [1, 16384], found " + std::to_string(*side));
+    if (side && (*side < 1 || *side > kMaxFrameSide))  // the scene's output.frame_size bounds
+      throw InputError({name, 0, 0, ""}, "expected pixels in [1, " + std::to_string(kMaxFrameSide) +
+                                             "] (the off-screen renderer's limit), found " + std::to_string(*side));
   if (args.out.empty()) throw InputError({"--out", 0, 0, ""}, "expected a PNG file name, found nothing");
 }
 

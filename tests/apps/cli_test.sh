@@ -33,6 +33,23 @@ expect_output() {
 }
 expect_file() { [ -s "$1" ] || fail "missing or empty: $1"; }
 
+# Explicit Euler on a stiff square at 25 Hz: the amplitude grows every step until the body
+# passes ten body sizes of displacement and is frozen.
+write_diverging_scene() {
+  cat >diverges.yaml <<'YAML'
+name: diverges
+gravity: [0, 0, 0]
+clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 20}
+bodies:
+  - name: square
+    mesh: unit_square
+    material: {lame_lambda: 100.0, lame_mu: 100.0, density: 1.0}
+    model: {name: fd_debunne, integrator: explicit_euler}
+    initial:
+      displacement: [{node: 3, value: [-0.05, -0.05, 0]}]
+YAML
+}
+
 case "$case_name" in
   help)
     run 0 --help
@@ -84,20 +101,7 @@ YAML
     expect_output 'no_such_scene\.yaml' "the absent file's name"
     ;;
   diverging_scene)
-    # Explicit Euler on a stiff square at 25 Hz: the amplitude grows every step until the body
-    # passes ten body sizes of displacement and is frozen.
-    cat >diverges.yaml <<'YAML'
-name: diverges
-gravity: [0, 0, 0]
-clock: {haptic_rate_hz: 25, render_rate_hz: 5, duration_s: 20}
-bodies:
-  - name: square
-    mesh: unit_square
-    material: {lame_lambda: 100.0, lame_mu: 100.0, density: 1.0}
-    model: {name: fd_debunne, integrator: explicit_euler}
-    initial:
-      displacement: [{node: 3, value: [-0.05, -0.05, 0]}]
-YAML
+    write_diverging_scene
     run 1 run diverges.yaml --out out
     expect_file out/report.json
     grep -q '"faults"' out/report.json || fail "report.json lists no faults"
@@ -113,6 +117,62 @@ YAML
     [ "$(head -c 8 out/phase_portrait.png | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
       fail "phase_portrait.png is not a PNG"
     grep -q '"ticks": 9472' out/report.json || fail "report.json does not give the paper's 9472 iterations"
+    ;;
+  duration_limits)
+    # --duration 0 printed the whole double range (309 digits) as its bound.
+    run 2 run "$src/scenes/examples/soft_drop.yaml" --duration 0
+    expect_output 'expected a duration in s > 0' "what a duration is"
+    grep -q '[0-9]\{40\}' "$work/out.txt" && fail "a bound printed with 40 digits or more"
+    # 1e7 s reached std::bad_alloc (exit 1) when the recorders reserved for it.
+    run 2 run "$src/scenes/examples/soft_drop.yaml" --duration 1e7
+    expect_output 'clock\.duration_s: .*at most 3600000 ticks' "the key and the bound"
+    sed 's/duration_s: 1.0/duration_s: 1e9/' "$src/scenes/examples/soft_drop.yaml" >long.yaml
+    run 2 run long.yaml
+    expect_output 'long\.yaml:[0-9]+:[0-9]+: clock\.duration_s: .*reserved before it starts' "file:line, key and why"
+    # --duration replaces the file's duration before anything is sized from it.
+    run 0 run long.yaml --duration 0.02 --out out
+    grep -q '"ticks": 20,' out/report.json || fail "the run did not last the 20 ticks of --duration 0.02"
+    ;;
+  load_limits)
+    cp "$src/scenes/examples/soft_drop.yaml" drop.yaml
+    # A margin of 1000 m cost ~0.6 s of CPU a tick in edge-edge CCD.
+    sed 's/thickness: 1.0e-4/thickness: 1000/' drop.yaml >thick.yaml
+    run 2 run thick.yaml
+    expect_output 'thick\.yaml:[0-9]+:[0-9]+: collision\.thickness: .*too thick for body .block.: at most 0\.5 of its mean surface edge' "the bound"
+    # Every node fixed is legal (a held body is still touched, as a rigid surface) but said.
+    run 0 run drop.yaml --duration 0.01 --set 'bodies.0.fixed=[{box: {min: [-1, -1, -1], max: [1, 1, 1]}}]'
+    expect_output '^warning: --set bodies.0.fixed=.*: bodies\[0\]\.fixed: the fixed regions hold all 75 nodes .*never moves.*fix fewer nodes' "what to do"
+    mkdir -p a_folder
+    cat >folder_mesh.yaml <<'YAML'
+name: folder_mesh
+bodies:
+  - name: b
+    mesh: {file: a_folder}
+    material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}
+    model: tensor_mass
+YAML
+    run 2 run folder_mesh.yaml
+    expect_output 'folder_mesh\.yaml:4:18: bodies\[0\]\.mesh\.file: .*a_folder is a directory' "a folder, at the scene's line"
+    sed 's/file: a_folder/file: gone.obj/' folder_mesh.yaml >missing_mesh.yaml
+    run 2 run missing_mesh.yaml
+    expect_output 'missing_mesh\.yaml:4:18: bodies\[0\]\.mesh\.file: no such file: .*gone\.obj' "the scene's line"
+    ;;
+  quiet_fault)
+    # The diverging square of diverging_scene, with -q: the fault is still an error on stderr.
+    write_diverging_scene
+    "$tacta" run diverges.yaml -q >stdout.txt 2>"$work/out.txt"
+    [ $? -eq 1 ] || fail "a fault under -q did not exit 1"
+    [ -s stdout.txt ] && fail "-q printed to stdout"
+    expect_output '^error: runtime fault: body square at t = [0-9.]+ s: .*frozen' "the fault on stderr"
+    ;;
+  realtime_report)
+    # What the kernel granted the haptic thread, and the resident memory around the loop.
+    run 0 run "$src/scenes/examples/soft_drop.yaml" --realtime --duration 0.2 --haptic-cpu 0 --out out
+    for key in '"realtime": \{' '"scheduler": "SCHED_' '"memory_locked": ' '"haptic_cpu": ' '"rss_start": [1-9]' '"rss_end": [1-9]'; do
+      grep -Eq "$key" out/report.json || fail "report.json has no /$key/"
+    done
+    run 2 run "$src/scenes/examples/soft_drop.yaml" --realtime --duration 0.2 --set clock.haptic_cpu=99999
+    expect_output 'clock\.haptic_cpu: expected an integer in \[-1, ' "the CPU range"
     ;;
   *)
     fail "unknown case"

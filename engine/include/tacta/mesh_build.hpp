@@ -11,6 +11,10 @@
 
 namespace tacta {
 
+// The most nodes a built-in grid may have: 4 million nodes is far past what a haptic loop steps
+// (the 1 kHz demos have hundreds to a few thousand), and keeps a typo from eating the memory.
+constexpr int64_t kMaxGridNodes = 4'000'000;
+
 // A box [origin, origin + size] cut into cells[0] x cells[1] x cells[2] hexahedra, each split into
 // 6 tets around its diagonal from the (min x, min y, min z) corner to the opposite one, so that
 // neighbouring cells share their face diagonals (a conforming mesh). Node index:

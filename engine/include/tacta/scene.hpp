@@ -73,6 +73,7 @@ struct MeshSourceDesc {
   // empty: a voxelised surface file is its own embedded surface, other meshes show their tets.
   std::string surface_path;
   bool surface_tet_boundary = false;  // `surface: tet_boundary`: draw and touch the tets' boundary
+  SourceLocation where;             // the scene's `file` key (or the primitive's), for messages
 };
 
 struct FixedRegionDesc {
@@ -120,6 +121,7 @@ struct BodyDesc {
   std::string model;  // model plugin name
   ParamSet model_params;
   std::vector<FixedRegionDesc> fixed;
+  SourceLocation fixed_where;  // the scene's `fixed` key, for messages
   // Initial state: per-node displacement/velocity overrides, and uniform ones.
   struct NodeVector { uint32_t node; Vec3 value; };
   std::vector<NodeVector> initial_displacement;  // m
@@ -147,6 +149,7 @@ struct ShapeDesc {
   Vec3 normal{0, 1, 0};        // Plane
   double offset = 0;           // Plane: n . x = offset, m
   std::string path;            // Mesh: convex hull of this file
+  SourceLocation path_where;   // Mesh: the scene's `file` key, for messages
   Vec3 position{0, 0, 0};      // m
 };
 
@@ -177,6 +180,7 @@ struct CollisionDesc {
   double friction = 0.3;            // Coulomb coefficient, body-body and body-obstacle
   bool self_collision = false;
   double thickness = 1e-4;          // m, contact margin
+  SourceLocation thickness_where;   // the scene's `thickness` key, for the bound checked on the meshes
 };
 
 struct SwapDesc {
@@ -186,12 +190,29 @@ struct SwapDesc {
   ParamSet params;
 };
 
+// The longest run, in haptic ticks (1 h at 1 kHz): per-tick records (trace rows, tick timings,
+// ~150 bytes a tick) are reserved before the run so the haptic path never allocates.
+constexpr uint64_t kMaxRunTicks = 3'600'000;
+
 struct ClockDesc {
   enum class Mode { Lockstep, Realtime } mode = Mode::Lockstep;
   double haptic_rate_hz = 1000;
   double render_rate_hz = 60;
   double duration_s = 1.0;
+  // Realtime only (docs/SCENES.md, clock): the haptic thread's scheduling and placement.
+  int haptic_priority = 80;  // SCHED_FIFO priority 1..99; 0: stay SCHED_OTHER
+  int haptic_cpu = -1;       // pin the haptic thread to this CPU, others off it; -1: no pinning
+  bool lock_memory = true;   // mlockall for the run
+  double spin_us = 50;       // us before each deadline spun instead of slept
 };
+
+// Empty when `duration_s` at `haptic_rate_hz` fits kMaxRunTicks trace rows (one a tick per
+// device, at least one), else why not (for messages).
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz, size_t devices = 1);
+
+// The largest picture side, pixels: the off-screen renderer's framebuffer limit (llvmpipe's), and
+// an 8192 x 8192 RGBA picture is already 256 MB.
+constexpr int kMaxFrameSide = 8192;
 
 struct OutputDesc {
   bool frames = false;               // PNG frames from the render task

@@ -10,8 +10,6 @@ namespace tacta {
 
 namespace {
 
-constexpr int64_t kMaxGridNodes = 4'000'000;  // keeps a typo in a scene from eating the memory
-
 void check_grid(const char* name, const Vec3& size, const std::array<int, 3>& cells, int axes) {
   int64_t nodes = 1;
   for (int a = 0; a < axes; ++a) {
@@ -20,7 +18,7 @@ void check_grid(const char* name, const Vec3& size, const std::array<int, 3>& ce
     }
     if (cells[static_cast<size_t>(a)] < 1) throw InputError({name, 0, 0, ""}, "cells must be at least 1 on every axis");
     nodes *= cells[static_cast<size_t>(a)] + 1;
-    if (nodes > kMaxGridNodes) throw InputError({name, 0, 0, ""}, "more than 4 million grid nodes");
+    if (nodes > kMaxGridNodes) throw InputError({name, 0, 0, ""}, "more than " + std::to_string(kMaxGridNodes) + " grid nodes");
   }
 }
 

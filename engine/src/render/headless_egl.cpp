@@ -10,6 +10,7 @@
 #include "gl.hpp"
 #include "tacta/render/headless.hpp"
 #include "tacta/render/renderer.hpp"
+#include "tacta/scene.hpp"
 
 namespace tacta::render {
 
@@ -95,9 +96,10 @@ struct HeadlessRenderer::State {
 HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.options = options;
-  if (options.width <= 0 || options.height <= 0 || options.width > 8192 || options.height > 8192)
+  if (options.width <= 0 || options.height <= 0 || options.width > kMaxFrameSide || options.height > kMaxFrameSide)
     throw std::invalid_argument("headless render: size " + std::to_string(options.width) + "x" +
-                                std::to_string(options.height) + " is outside 1..8192 pixels");
+                                std::to_string(options.height) + " is outside 1.." + std::to_string(kMaxFrameSide) +
+                                " pixels");
   if (options.deterministic) {
     // Before the driver loads: Mesa reads these once.
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);

@@ -119,6 +119,24 @@ void write_devices(JsonWriter& j, const World& world) {
   j.end_array();
 }
 
+// Resident memory around the loop, and what the kernel granted the haptic thread (in lockstep
+// nothing is asked for, and the note says so).
+void write_realtime(JsonWriter& j, const RunResult& result) {
+  const ScheduleResult& s = result.schedule;
+  j.key("memory_kb").begin_object();
+  j.field("rss_start", s.memory_start.rss_kb).field("rss_after_1s", s.memory_warm.rss_kb);
+  j.field("rss_end", s.memory_end.rss_kb).field("peak", s.memory_end.peak_kb);
+  j.end_object();
+  const RealtimeGrant& g = s.realtime;
+  j.key("realtime").begin_object();
+  j.field("scheduler", g.scheduler).field("priority", g.priority).field("nice", g.nice);
+  j.field("scheduler_note", g.scheduler_note);
+  j.field("memory_locked", g.memory_locked).field("memory_note", g.memory_note);
+  j.field("haptic_cpu", g.cpu).field("cpu_note", g.cpu_note);
+  j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered)).field("spin_us", g.spin_us);
+  j.end_object();
+}
+
 }  // namespace
 
 void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result) {
@@ -145,6 +163,7 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   j.field("deadline_misses", result.schedule.deadline_misses);
   j.field("max_start_jitter_ms", result.schedule.max_start_jitter_ms);
   j.field("stopped_early", result.schedule.stopped_early);
+  write_realtime(j, result);
   write_bodies(j, world, result);
   write_devices(j, world);
   j.key("faults").begin_array();

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "scene/plugin_params.hpp"
+#include "tacta/mesh_build.hpp"
 #include "scene/readers.hpp"
 
 namespace tacta::scene_detail {
@@ -29,7 +30,16 @@ void read_grid(const Field& field, MeshSourceDesc& mesh, size_t axes) {
   field.check_keys({"size", "cells", "origin"});
   const std::vector<double> size = field.require("size").reals(axes, Range::positive());
   mesh.size = {size[0], size[1], axes == 3 ? size[2] : 0.0};  // a planar grid has no thickness
-  mesh.cells = read_cells(field.require("cells"), axes);
+  const Field cells = field.require("cells");
+  mesh.cells = read_cells(cells, axes);
+  uint64_t nodes = 1;
+  for (size_t a = 0; a < axes; ++a) nodes *= static_cast<uint64_t>(mesh.cells[a]) + 1;
+  if (nodes > static_cast<uint64_t>(kMaxGridNodes))
+    cells.fail(fmt::format("{} cells give {} grid nodes; at most {} are allowed (far past what a haptic loop "
+                           "steps, and a typo here would allocate gigabytes before the run)",
+                           axes == 3 ? fmt::format("{} x {} x {}", mesh.cells[0], mesh.cells[1], mesh.cells[2])
+                                     : fmt::format("{} x {}", mesh.cells[0], mesh.cells[1]),
+                           nodes, kMaxGridNodes));
   if (auto origin = field.get("origin")) mesh.origin = origin->vec3();
 }
 
@@ -130,6 +140,7 @@ MeshSourceDesc read_mesh_source(const Field& field) {
   MeshSourceDesc mesh;
   if (field.is_scalar() && field.yaml().Scalar() == "unit_square") {
     make_unit_square(mesh);
+    mesh.where = field.where();
     return mesh;
   }
   field.expect_map("a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
@@ -144,6 +155,7 @@ MeshSourceDesc read_mesh_source(const Field& field) {
         f->fail(std::string("'") + file_only + "' applies to a mesh `file` only, not to " + source);
   }
   const Field value = field.require(source);
+  mesh.where = value.where();
   if (source == "file") {
     mesh.kind = MeshSourceDesc::Kind::File;
     mesh.path = value.file_path();
@@ -196,9 +208,11 @@ BodyDesc read_body(const Field& field) {
   body.model = std::move(model.name);
   body.model_params = std::move(model.params);
   const std::optional<uint64_t> node_count = grid_node_count(body.mesh);
-  if (auto f = field.get("fixed"))
+  if (auto f = field.get("fixed")) {
+    body.fixed_where = f->where();
     for (const Field& item : f->items("a list of fixed regions ({box: ...} or {nodes: ...})"))
       body.fixed.push_back(read_fixed_region(item, node_count));
+  }
   if (auto f = field.get("initial")) read_initial(*f, body, node_count);
   if (auto f = field.get("probe_node")) body.probe_node = read_node(*f, node_count);
   read_boundary(field, body, node_count);

@@ -1,6 +1,8 @@
 // Materials: E, nu or Lamé lambda, mu (the other pair derived), density and Rayleigh damping.
 #include <string>
 
+#include <fmt/format.h>
+
 #include "scene/readers.hpp"
 #include "tacta/scene_loader.hpp"
 
@@ -19,6 +21,21 @@ EngineeringConstants engineering_from_lame(double lambda, double mu) {
 
 namespace tacta::scene_detail {
 
+namespace {
+
+// Past nu = 0.499 (lambda = 499 mu) linear tetrahedra lock and the stiffness grows as
+// 1 / (1 - 2 nu): the corotational liver demo diverges within 0.1 s at nu = 0.4999.
+constexpr double kMaxPoissonRatio = 0.499;
+
+std::string too_incompressible(double nu) {
+  return fmt::format(
+      "a Poisson ratio of {:.9g} is closer to 0.5 than the models handle: at most {} (lambda = 499 mu); nearer "
+      "to 0.5 linear tetrahedra lock and the step diverges. For nearly incompressible tissue use 0.45 to 0.49",
+      nu, kMaxPoissonRatio);
+}
+
+}  // namespace
+
 MaterialDesc read_material(const Field& field) {
   field.expect_map("a map {youngs_modulus, poisson_ratio, density, ...}");
   field.check_keys({"youngs_modulus", "poisson_ratio", "lame_lambda", "lame_mu", "density",
@@ -36,17 +53,20 @@ MaterialDesc read_material(const Field& field) {
   if (engineering) {
     material.youngs_modulus = field.require("youngs_modulus").real(Range::positive());
     // nu = 0.5 is incompressible (lambda infinite); below -1 the material is unstable.
-    material.poisson_ratio = field.require("poisson_ratio").real(Range::open(-1.0, 0.5));
+    const Field nu = field.require("poisson_ratio");
+    material.poisson_ratio = nu.real(Range::open(-1.0, 0.5));
+    if (material.poisson_ratio > kMaxPoissonRatio) nu.fail(too_incompressible(material.poisson_ratio));
     const LameParameters l = lame_from_engineering(material.youngs_modulus, material.poisson_ratio);
     material.lame_lambda = l.lambda;
     material.lame_mu = l.mu;
   } else {
     material.lame_mu = field.require("lame_mu").real(Range::positive());
     // A positive bulk modulus K = lambda + 2 mu / 3 keeps E > 0 and nu in (-1, 0.5).
-    material.lame_lambda = field.require("lame_lambda")
-                               .real(Range{-2.0 * material.lame_mu / 3.0,
-                                           std::numeric_limits<double>::infinity(), true, false});
+    const Field lambda = field.require("lame_lambda");
+    material.lame_lambda =
+        lambda.real(Range{-2.0 * material.lame_mu / 3.0, std::numeric_limits<double>::infinity(), true, false});
     const EngineeringConstants c = engineering_from_lame(material.lame_lambda, material.lame_mu);
+    if (c.poisson_ratio > kMaxPoissonRatio) lambda.fail(too_incompressible(c.poisson_ratio));
     material.youngs_modulus = c.youngs_modulus;
     material.poisson_ratio = c.poisson_ratio;
   }

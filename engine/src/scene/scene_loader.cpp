@@ -1,6 +1,11 @@
 // The scene loader's entry points and top level: clock, outputs, and the sections in order.
 #include "tacta/scene_loader.hpp"
 
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -10,11 +15,26 @@
 
 namespace tacta {
 
+std::string duration_limit_problem(double duration_s, double haptic_rate_hz, size_t devices) {
+  const double rows_per_tick = static_cast<double>(std::max<size_t>(devices, 1));
+  const double ticks = duration_s * haptic_rate_hz;
+  if (ticks * rows_per_tick <= static_cast<double>(kMaxRunTicks)) return {};
+  const double longest_s = static_cast<double>(kMaxRunTicks) / rows_per_tick / haptic_rate_hz;
+  return fmt::format(
+      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks{}; at most {} are allowed ({:g} s here), because the "
+      "run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it starts so that the "
+      "haptic loop never allocates",
+      duration_s, haptic_rate_hz, ticks,
+      devices > 1 ? fmt::format(" x {} devices = {:.3g} trace rows", devices, ticks * rows_per_tick) : std::string(),
+      devices > 1 ? "3600000 trace rows" : "3600000 ticks", longest_s);
+}
+
 namespace scene_detail {
 
 ClockDesc read_clock(const Field& field) {
-  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s}");
-  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s"});
+  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
+  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority", "haptic_cpu",
+                    "lock_memory", "spin_us"});
   ClockDesc clock;
   if (auto f = field.get("mode"))
     clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
@@ -27,7 +47,19 @@ ClockDesc read_clock(const Field& field) {
       f->fail_expected("a render rate <= the haptic rate (" + std::to_string(clock.haptic_rate_hz) +
                        " Hz): frames are taken between haptic ticks");
   }
-  if (auto f = field.get("duration_s")) clock.duration_s = f->real(Range::positive());
+  if (auto f = field.get("duration_s")) {
+    clock.duration_s = f->real(Range::positive());
+    if (const std::string problem = duration_limit_problem(clock.duration_s, clock.haptic_rate_hz); !problem.empty())
+      f->fail(problem);
+  }
+  if (auto f = field.get("haptic_priority")) clock.haptic_priority = static_cast<int>(f->integer(0, 99));
+  if (auto f = field.get("haptic_cpu")) {
+    const long cpus = sysconf(_SC_NPROCESSORS_CONF);
+    clock.haptic_cpu = static_cast<int>(f->integer(-1, cpus > 0 ? cpus - 1 : 1023));
+  }
+  if (auto f = field.get("lock_memory")) clock.lock_memory = f->boolean();
+  // 1 ms: a whole 1 kHz period; a longer spin would only burn the CPU.
+  if (auto f = field.get("spin_us")) clock.spin_us = f->real(Range::closed(0, 1000));
   return clock;
 }
 
@@ -41,8 +73,17 @@ OutputDesc read_output(const Field& field) {
   if (auto f = field.get("frame_size")) {
     const std::vector<Field> items = f->items("a list [width, height] in pixels");
     if (items.size() != 2) f->fail_expected("a list [width, height] in pixels");
-    output.frame_width = static_cast<int>(items[0].integer(1, 16384));
-    output.frame_height = static_cast<int>(items[1].integer(1, 16384));
+    // Bounded here as the renderer bounds it, so a scene is not refused only when its first frame is drawn.
+    const auto side = [](const Field& item) {
+      const int64_t pixels = item.integer(1, INT32_MAX);
+      if (pixels > kMaxFrameSide)
+        item.fail_expected(fmt::format("pixels in [1, {}] (the off-screen renderer's largest framebuffer; "
+                                       "an 8192 x 8192 picture is already 256 MB)",
+                                       kMaxFrameSide));
+      return static_cast<int>(pixels);
+    };
+    output.frame_width = side(items[0]);
+    output.frame_height = side(items[1]);
   }
   if (auto f = field.get("vtk")) output.vtk = f->boolean();
   if (auto f = field.get("vtk_interval_s")) output.vtk_interval_s = f->real(Range::positive());
@@ -108,6 +149,13 @@ SceneDesc read_scene(const Field& root) {
     }
     check_unique(items, names, "obstacle");
   }
+  if (scene.devices.size() > 1)  // one trace row per device per tick: the bound tightens
+    if (auto clock = root.get("clock"))
+      if (auto f = clock->get("duration_s"))
+        if (const std::string problem = duration_limit_problem(scene.clock.duration_s, scene.clock.haptic_rate_hz,
+                                                               scene.devices.size());
+            !problem.empty())
+          f->fail(problem);
   if (auto f = root.get("collision")) scene.collision = read_collision(*f);
   if (auto f = root.get("swaps"))
     for (const Field& item : f->items("a list of swaps {time, body, model}"))

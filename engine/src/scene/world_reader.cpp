@@ -72,7 +72,9 @@ ShapeDesc read_shape(const Field& field) {
     shape.kind = ShapeDesc::Kind::Mesh;
     body.expect_map("a map {file, position}");
     body.check_keys({"file", "position"});
-    shape.path = body.require("file").file_path();
+    const Field file = body.require("file");
+    shape.path = file.file_path();
+    shape.path_where = file.where();
   }
   if (kind != "plane") read_position(body, shape);
   return shape;
@@ -135,7 +137,12 @@ CollisionDesc read_collision(const Field& field) {
   stage("convex", collision.convex, collision.convex_params);
   if (auto f = field.get("friction")) collision.friction = f->real(Range::non_negative());
   if (auto f = field.get("self_collision")) collision.self_collision = f->boolean();
-  if (auto f = field.get("thickness")) collision.thickness = f->real(Range::non_negative());
+  collision.thickness_where = field.where();
+  collision.thickness_where.key_path = child_path(field.path(), "thickness");
+  if (auto f = field.get("thickness")) {
+    collision.thickness = f->real(Range::non_negative());
+    collision.thickness_where = f->where();
+  }
   return collision;
 }
 

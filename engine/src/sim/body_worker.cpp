@@ -1,5 +1,7 @@
 #include "body_worker.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -31,6 +33,8 @@ void BodyWorker::start() {
   if (has_stress_) body_.model->node_stress(positions_.data(), von_mises_.data());
   quit_.store(false, std::memory_order_relaxed);
   thread_ = std::thread([this] { run(); });
+  // The name lets a realtime run tell body workers (simulation work) from helper threads.
+  pthread_setname_np(thread_.native_handle(), "tacta-body");
 }
 
 void BodyWorker::stop() noexcept {

@@ -14,7 +14,7 @@ double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2
 
 }  // namespace
 
-HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks)
+HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks, double duration_s)
     : world_(world), snapshots_(snapshots) {
   const SceneDesc& scene = world.scene();
   record_interval_s_ = scene.output.record_interval_s;
@@ -32,9 +32,11 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
       static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) * recorded_nodes,
       200'000'000 / sizeof(TrajectoryRow));
   trajectory_.reserve(trajectory_rows);
+  // From the run's duration (--duration may differ from the scene's), bounded with it at load.
+  if (duration_s < 0) duration_s = static_cast<double>(expected_ticks) / scene.clock.haptic_rate_hz;
   const size_t records = static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
   probes_.reserve(std::min<size_t>(records * probes, 200'000'000 / sizeof(ProbeRow)));
-  const size_t frames = static_cast<size_t>(scene.clock.duration_s * scene.clock.render_rate_hz) + 4;
+  const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
   energy_.reserve(frames * world.body_count() + 16);
   faults_.reserve(64 + world.body_count() + devices);
   for (TickRecorder& r : stages_) r.reserve(expected_ticks);

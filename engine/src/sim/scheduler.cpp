@@ -1,11 +1,13 @@
 // Lockstep and realtime scheduling of the haptic and render tasks (see scheduler.hpp).
 #include "tacta/sim/scheduler.hpp"
 
+#include <pthread.h>
 #include <time.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 namespace tacta {
@@ -35,6 +37,8 @@ struct FrameClock {
   }
 };
 
+constexpr double kWarmUpS = 1.0;  // s into the run when memory_warm is taken
+
 bool stop_requested(const ScheduleOptions& o) {
   return o.stop != nullptr && o.stop->load(std::memory_order_relaxed);
 }
@@ -47,6 +51,8 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
   FrameClock frames{1.0 / o.render_rate_hz};
   const auto run_start = SteadyClock::now();
   auto last_progress = run_start;
+  result.memory_start = resident_memory();
+  result.realtime.scheduler_note = "lockstep: no real-time scheduling asked for";
   haptic.publish(0.0);
   render.frame(0.0);
   ++result.frames;
@@ -63,6 +69,7 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
       haptic.publish(end_time);
       render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
       ++result.frames;
+      if (result.memory_warm.rss_kb == 0 && end_time >= kWarmUpS) result.memory_warm = resident_memory();
     }
     if (o.on_progress && ms_between(last_progress, t1) > 100) {
       last_progress = t1;
@@ -73,15 +80,10 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
       break;
     }
   }
+  result.memory_end = resident_memory();
   result.wall_time_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
   result.tick = recorder.summary();
   return result;
-}
-
-// Absolute-deadline sleep on the monotonic clock, so the 1 kHz period does not accumulate drift.
-void sleep_until(const timespec& deadline) {
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) != 0) {
-  }
 }
 
 timespec add_ns(timespec t, int64_t ns) {
@@ -90,12 +92,29 @@ timespec add_ns(timespec t, int64_t ns) {
   if (t.tv_nsec >= 1000000000) {
     t.tv_nsec -= 1000000000;
     ++t.tv_sec;
+  } else if (t.tv_nsec < 0) {
+    t.tv_nsec += 1000000000;
+    --t.tv_sec;
   }
   return t;
 }
 
 double ms_after(const timespec& a, const timespec& b) {  // b - a in ms
   return static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 + static_cast<double>(b.tv_nsec - a.tv_nsec) * 1e-6;
+}
+
+// Absolute-deadline wait on the monotonic clock (so the period does not drift): sleeps to
+// `spin_ns` before the deadline, then spins, since a sleep's wake-up is late by the timer slack
+// and the scheduler's latency (tens of microseconds to milliseconds on a loaded machine).
+void wait_until(const timespec& deadline, int64_t spin_ns) {
+  const timespec wake = add_ns(deadline, -spin_ns);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) != 0) {
+  }
+  if (spin_ns <= 0) return;
+  timespec now{};
+  do {
+    clock_gettime(CLOCK_MONOTONIC, &now);
+  } while (ms_after(now, deadline) > 0);
 }
 
 ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const ScheduleOptions& o) {
@@ -112,11 +131,14 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
 
   // The render thread: draws the newest snapshot at the render rate until the haptic task ends.
   std::thread render_thread([&] {
+    pthread_setname_np(pthread_self(), "tacta-render");
     const auto frame_period = std::chrono::duration<double>(1.0 / o.render_rate_hz);
     auto next = SteadyClock::now();
     while (!haptic_done.load(std::memory_order_acquire)) {
-      render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
+      const double wall_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
+      render.frame(wall_s);
       frames.fetch_add(1, std::memory_order_relaxed);
+      if (result.memory_warm.rss_kb == 0 && wall_s >= kWarmUpS) result.memory_warm = resident_memory();
       // Progress is printed from here, never from the haptic thread (stdout takes a lock).
       if (o.on_progress)
         o.on_progress(static_cast<double>(ticks_done.load(std::memory_order_relaxed)) /
@@ -128,13 +150,18 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     frames.fetch_add(1, std::memory_order_relaxed);
   });
 
-  // The haptic loop runs on this thread: tick k is due at start + k * period.
+  // The haptic loop runs on this thread: tick k is due at start + k * period. The session is
+  // entered after the render thread exists, so that thread is lowered and kept off the haptic CPU.
+  std::optional<RealtimeSession> session(std::in_place, o.realtime);
+  result.realtime = session->grant();
+  const auto spin_ns = static_cast<int64_t>(std::llround(std::clamp(o.realtime.spin_us, 0.0, 1e6) * 1e3));
+  result.memory_start = resident_memory();
   FrameClock frame_clock{1.0 / o.render_rate_hz};
   timespec start{};
   clock_gettime(CLOCK_MONOTONIC, &start);
   for (uint64_t k = 0; k < ticks; ++k) {
     const timespec due = add_ns(start, static_cast<int64_t>(k) * period_ns);
-    sleep_until(due);
+    wait_until(due, spin_ns);
     timespec begin{};
     clock_gettime(CLOCK_MONOTONIC, &begin);
     result.max_start_jitter_ms = std::max(result.max_start_jitter_ms, ms_after(due, begin));
@@ -153,6 +180,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
       break;
     }
   }
+  result.memory_end = resident_memory();
+  session.reset();  // back to the thread's own policy before the render thread's last frame
   haptic_done.store(true, std::memory_order_release);
   render_thread.join();
   result.frames = frames.load();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -139,6 +140,12 @@ const std::string& Simulation::device_plugin(size_t device) const { return impl_
 
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
 size_t Simulation::body_count() const { return impl_->world.body_count(); }
+std::vector<std::string> Simulation::load_warnings() const {
+  std::vector<std::string> warnings;
+  for (size_t i = 0; i < impl_->world.body_count(); ++i)
+    if (!impl_->world.body(i).load_warning.empty()) warnings.push_back(impl_->world.body(i).load_warning);
+  return warnings;
+}
 const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }
 const std::string& Simulation::body_model(size_t body) const { return impl_->requested_models.at(body); }
 
@@ -153,6 +160,18 @@ RunResult Simulation::run(const RunOptions& options) {
   schedule.haptic_rate_hz = scene.clock.haptic_rate_hz;
   schedule.render_rate_hz = scene.clock.render_rate_hz;
   schedule.duration_s = options.duration_s.value_or(scene.clock.duration_s);
+  // The scene's own duration was checked at load; one given here (tacta compare --duration,
+  // tacta snapshot --at, the viewer) is checked now, before the record buffers are sized from it.
+  const SourceLocation run_duration{scene.path, 0, 0, "the run's duration (overriding clock.duration_s)"};
+  if (!std::isfinite(schedule.duration_s) || schedule.duration_s < 0)
+    throw InputError(run_duration, "expected a duration in s >= 0, found " + std::to_string(schedule.duration_s));
+  if (const std::string problem = duration_limit_problem(schedule.duration_s, schedule.haptic_rate_hz, scene.devices.size());
+      !problem.empty())
+    throw InputError(run_duration, problem);
+  schedule.realtime.priority = scene.clock.haptic_priority;
+  schedule.realtime.cpu = scene.clock.haptic_cpu;
+  schedule.realtime.lock_memory = scene.clock.lock_memory;
+  schedule.realtime.spin_us = scene.clock.spin_us;
   if (options.progress) schedule.on_progress = print_progress;
   schedule.stop = &impl_->stop;
 
@@ -170,7 +189,7 @@ RunResult Simulation::run(const RunOptions& options) {
 
   const auto expected_ticks = static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);
   TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
-  HapticLoop loop(world, snapshots, expected_ticks);
+  HapticLoop loop(world, snapshots, expected_ticks, schedule.duration_s);
   if (!options.record_log.empty()) {
     if (world.device_count() == 0) throw InputError({scene.path, 0, 0, "devices"}, "--record: the scene has no device to record");
     loop.enable_device_log(expected_ticks);
@@ -227,6 +246,14 @@ RunResult Simulation::run(const RunOptions& options) {
                               slot.stats.contact_ticks, slot.stats.reconnections, slot.device->counters()});
   }
   result.faults = loop.faults().rows().size();
+  for (const FaultRecord& f : loop.faults().rows()) {
+    const std::string who = f.body >= 0   ? "body " + world.body(static_cast<size_t>(f.body)).name
+                            : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).name
+                                            : std::string("run");
+    char time[32];
+    std::snprintf(time, sizeof time, "%.3f", f.time_s);
+    result.fault_messages.push_back(who + " at t = " + time + " s: " + f.reason.data());
+  }
   result.exit_code = result.faults > 0 ? 1 : 0;
 
   for (FrameObserver* o : observers)

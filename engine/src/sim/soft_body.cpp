@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh_file_check.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {
@@ -92,13 +93,8 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.name = desc.name;
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
-  try {
-    topo.mesh = load_body_mesh(desc.mesh);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InputError(desc.where, std::string("mesh: ") + e.what());
-  }
+  if (desc.mesh.kind == MeshSourceDesc::Kind::File) require_mesh_file(desc.mesh.path, desc.mesh.where);
+  topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh); });
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
   if (topo.mesh.embedding) body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
@@ -110,6 +106,13 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   const std::vector<double>& rest = topo.mesh.positions;
   for (const FixedRegionDesc& region : desc.fixed)
     for (uint32_t node : select_nodes(region, topo.mesh, desc.where, "fixed")) topo.fixed[node] = 1;
+  if (n > 0 && std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
+    body.load_warning = InputError(desc.fixed_where,
+                                   "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
+                                       "', so it never moves (a device still touches it, as a rigid surface): to "
+                                       "make it deform, fix fewer nodes (a box around one face, or a list of nodes); "
+                                       "for a static thing no device touches, an `obstacles` entry costs nothing per tick")
+                            .what();
 
   body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
   body.probes = locate_probes(desc.probes, topo.mesh, desc.where);

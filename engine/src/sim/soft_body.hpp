@@ -62,6 +62,7 @@ struct BodyFault {
 
 struct SoftBody {
   std::string name;
+  std::string load_warning;  // something odd but legal in the scene (every node fixed); empty: none
   std::unique_ptr<BodyTopology> topology;
   // The surface the body is drawn, touched and collided through when it came from a surface file
   // or was given `surface:`; null: the boundary triangles of its tets. Heap-held: views point in.

@@ -125,10 +125,15 @@ Point HandScript::palpation_target(double time) const noexcept {
   const double block = travel + 2.0 * press + settings_.dwell_duration;
   auto point = [&](size_t i) { return Point{points_[3 * i], points_[3 * i + 1], points_[3 * i + 2]}; };
   if (time <= 0.0) return above(point(0));
+  // Repeating, each cycle after the first starts with the travel from the last point back to the first.
+  const double cycle = static_cast<double>(count) * block;
+  const bool wrapped = settings_.palpation_repeat && time >= cycle;
+  if (settings_.palpation_repeat) time = std::fmod(time, cycle);
   const size_t i = std::min(static_cast<size_t>(time / block), count - 1);
   const Point p = point(i);
   double local = time - static_cast<double>(i) * block;
-  if (local < travel) return lerp(above(point(i == 0 ? 0 : i - 1)), above(p), smooth(local / travel));
+  const size_t from = i > 0 ? i - 1 : (wrapped ? count - 1 : 0);
+  if (local < travel) return lerp(above(point(from)), above(p), smooth(local / travel));
   local -= travel;
   if (local < press) return lerp(above(p), below(p), smooth(local / press));
   local -= press;

@@ -29,6 +29,7 @@ struct ScriptSettings {
   double travel_duration = 0.5;              // s between points, at approach height
   double press_duration = 0.3;               // s to go down (and again to come up)
   double dwell_duration = 0.5;               // s held at depth
+  bool palpation_repeat = false;             // after the last point, back to the first, forever
 };
 
 class HandScript {

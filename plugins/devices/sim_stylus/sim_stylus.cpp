@@ -64,7 +64,7 @@ class SimStylus {
       "Simulated Phantom Omni class stylus moved by a scripted hand impedance (closed loop)";
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
-  static constexpr std::array<tacta_param_spec, 21> kParams{{
+  static constexpr std::array<tacta_param_spec, 22> kParams{{
       sdk::vector_param("workspace_origin", "m", 3, "0 0 0", -kBig, kBig, "centre of the device workspace in the world"),
       sdk::choice_param("pattern", "waypoints|tap|stroke|palpation", 0, "what the scripted hand does"),
       sdk::vector_param("waypoints", "s, m", 4, "", -kBig, kBig, "t x y z per waypoint (world), linear between, held after the last; none: rest at workspace_origin"),
@@ -86,6 +86,7 @@ class SimStylus {
       sdk::real_param("encoder_resolution", "m", 0.0, 0.0, 0.01, "position quantisation step; 0 = off"),
       sdk::real_param("noise_std", "m", 0.0, 0.0, 0.01, "position noise standard deviation, seeded by the scene seed"),
       sdk::bool_param("limit_to_workspace", true, "the stylus stops at the workspace box, as at a mechanical limit"),
+      sdk::bool_param("palpation_repeat", false, "palpation: after the last point, travel back to the first and start over"),
   }};
 
   explicit SimStylus(const tacta_device_setup& setup)
@@ -162,6 +163,7 @@ class SimStylus {
     s.travel_duration = params_.real("travel_duration");
     s.press_duration = params_.real("press_duration");
     s.dwell_duration = params_.real("dwell_duration");
+    s.palpation_repeat = params_.flag("palpation_repeat");
     return s;
   }
 

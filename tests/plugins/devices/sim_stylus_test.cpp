@@ -162,6 +162,31 @@ TEST_F(SimStylusTest, PalpationPressesEachPointToDepth) {
   }
 }
 
+TEST_F(SimStylusTest, RepeatedPalpationStartsOverAtTheFirstPoint) {
+  // Two points, 1.5 s each: the cycle is 3 s. Repeating, the second cycle travels from the last
+  // point back to the first and presses it again; without repeat the hand stays above the last.
+  for (const bool repeat : {true, false}) {
+    params.number("pattern", 3)
+        .vector("palpation_points", {0.0, 0.0, 0.0, 0.02, 0.0, 0.01})
+        .number("depth", 0.004).number("approach_height", 0.01)
+        .number("travel_duration", 0.4).number("press_duration", 0.3).number("dwell_duration", 0.5)
+        .number("palpation_repeat", repeat ? 1 : 0);
+    DeviceInstance device(api, params.setup());
+    ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
+    tacta_device_sample s{};
+    for (int n = 0; n <= 4100; ++n) {
+      device.read(n * kTick, s);
+      if (n == 3200) {  // half way back: between the two points, above them
+        // Travelling back to the first point, or staying at the last.
+        EXPECT_NEAR(s.position[0], repeat ? 0.01 : 0.02, repeat ? 5e-3 : 1e-4) << repeat;
+      }
+    }
+    // 4.1 s is the end of the first point's second dwell.
+    EXPECT_NEAR(s.position[0], repeat ? 0.0 : 0.02, 1e-4) << repeat;
+    EXPECT_NEAR(s.position[1], repeat ? -0.004 : 0.01, 1e-4) << repeat;
+  }
+}
+
 TEST_F(SimStylusTest, TapAndStrokePatternsReachTheirPoints) {
   // Tap: top of the stroke at each period start, deepest at half period (raised cosine).
   params.number("pattern", 1).vector("tap_point", {0.01, 0.0, 0.0}).number("tap_period", 0.5)

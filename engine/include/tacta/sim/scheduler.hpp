@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "tacta/sim/realtime.hpp"
 #include "tacta/sim/tick_stats.hpp"
 
 namespace tacta {
@@ -38,6 +39,7 @@ struct ScheduleOptions {
   double duration_s = 1;
   std::atomic<bool>* stop = nullptr;                  // set from outside to end the run early
   std::function<void(double fraction)> on_progress;   // called from the scheduling thread, ~10 Hz
+  RealtimeOptions realtime;                           // realtime: scheduling, memory, CPU, wait
 };
 
 struct ScheduleResult {
@@ -48,6 +50,10 @@ struct ScheduleResult {
   double wall_time_s = 0;
   bool stopped_early = false;
   TickSummary tick;
+  RealtimeGrant realtime;                  // realtime: what the kernel granted the haptic thread
+  // Before the first tick, at the first frame 1 s into the run (after the renderer and the
+  // records have warmed up: growth after this is what a leak would show), after the last tick.
+  ResidentMemory memory_start, memory_warm, memory_end;
 };
 
 ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render, const ScheduleOptions& options);

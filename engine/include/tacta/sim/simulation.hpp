@@ -61,6 +61,7 @@ struct RunResult {
   std::vector<BodyResult> bodies;
   std::vector<DeviceResult> devices;
   size_t faults = 0;
+  std::vector<std::string> fault_messages;  // one per fault: who, when (s), why
   std::vector<std::string> outputs;  // files written
   int exit_code = 0;                 // 0 ok, 1 runtime fault
 };
@@ -91,6 +92,9 @@ class Simulation {
   size_t device_count() const;
   const std::string& device_plugin(size_t device) const;  // the plugin's name, e.g. "mouse"
   size_t body_count() const;
+  // What the scene asks for that is legal but likely a mistake (a body with every node fixed),
+  // each naming the file, line and key; the caller prints them as warnings.
+  std::vector<std::string> load_warnings() const;
   const std::string& body_name(size_t body) const;
   const std::string& body_model(size_t body) const;  // the model asked for last
 

@@ -1,0 +1,67 @@
+// Real-time hygiene for the realtime clock, as haptic servo loops do it on Linux: the haptic
+// thread asks for SCHED_FIFO (falling back to a raised nice value, then to nothing), memory is
+// locked (mlockall) so no page fault lands in a tick, the haptic thread may be pinned to a CPU
+// with every other thread of the process moved off it, the render and helper threads run at a
+// lower priority, and each tick's deadline is met by sleeping to just before it and spinning
+// the last microseconds. What was asked and what the kernel granted is reported, never assumed.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tacta {
+
+struct RealtimeOptions {
+  int priority = 80;          // SCHED_FIFO priority, 1..99; 0: do not ask for SCHED_FIFO
+  int cpu = -1;               // CPU the haptic thread is pinned to; -1: no pinning
+  bool lock_memory = true;    // mlockall(MCL_CURRENT | MCL_FUTURE) for the run
+  double spin_us = 50;        // the last microseconds before a deadline are spun, not slept
+};
+
+// What the kernel granted (report.json "realtime").
+struct RealtimeGrant {
+  std::string scheduler = "SCHED_OTHER";  // the haptic thread's policy during the run
+  int priority = 0;                       // SCHED_FIFO priority granted (0 with SCHED_OTHER)
+  int nice = 0;                           // the haptic thread's nice value with SCHED_OTHER
+  std::string scheduler_note;             // why SCHED_FIFO was not granted, and the fallback
+  bool memory_locked = false;
+  std::string memory_note;                // why mlockall failed, when it did
+  int cpu = -1;                           // the haptic thread's CPU; -1: not pinned
+  std::string cpu_note;                   // why pinning failed, when it did
+  uint32_t helper_threads_lowered = 0;    // other threads moved to a lower priority (and off `cpu`)
+  double spin_us = 0;
+};
+
+// Resident memory of this process, kB (VmRSS), and its peak (VmHWM); 0 when /proc is not there.
+struct ResidentMemory {
+  uint64_t rss_kb = 0, peak_kb = 0;
+};
+ResidentMemory resident_memory() noexcept;
+
+// Applies `options` to the calling (haptic) thread and lowers every other thread of the process;
+// `leave` restores what `enter` changed. Not for the 1 kHz path: called once around the loop.
+class RealtimeSession {
+ public:
+  explicit RealtimeSession(const RealtimeOptions& options);
+  ~RealtimeSession();
+  RealtimeSession(const RealtimeSession&) = delete;
+  RealtimeSession& operator=(const RealtimeSession&) = delete;
+
+  const RealtimeGrant& grant() const noexcept { return grant_; }
+  // Lowers the calling thread (a render or I/O thread started after the session began).
+  void lower_this_thread() noexcept;
+
+ private:
+  RealtimeOptions options_;
+  RealtimeGrant grant_;
+  int old_policy_ = 0, old_priority_ = 0, old_nice_ = 0;
+  std::string old_name_;
+  std::vector<int> original_cpus_;  // the haptic thread's CPUs before pinning; empty: not pinned
+  struct LoweredThread {
+    int tid, nice;  // a helper thread and its nice value before the run
+  };
+  std::vector<LoweredThread> lowered_;
+};
+
+}  // namespace tacta

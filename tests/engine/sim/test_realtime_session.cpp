@@ -1,0 +1,127 @@
+// The realtime session: what it reports is what the kernel says the thread has, helper threads are
+// lowered (and moved off a pinned CPU), and everything is restored when the session ends.
+#include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "tacta/sim/realtime.hpp"
+
+namespace {
+
+using tacta::RealtimeOptions;
+using tacta::RealtimeSession;
+
+int policy_of_this_thread(int* priority = nullptr) {
+  int policy = 0;
+  sched_param p{};
+  pthread_getschedparam(pthread_self(), &policy, &p);
+  if (priority != nullptr) *priority = p.sched_priority;
+  return policy;
+}
+
+uint64_t locked_kb() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmLck:", 0) == 0) return std::stoull(line.substr(6));
+  return 0;
+}
+
+// A helper thread that parks until told to go, and reports its nice value and CPUs on request.
+struct Helper {
+  std::atomic<int> tid{0};
+  std::atomic<bool> quit{false};
+  std::thread thread{[this] {
+    tid.store(static_cast<int>(syscall(SYS_gettid)));
+    while (!quit.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }};
+  Helper() {
+    while (tid.load() == 0) std::this_thread::yield();
+  }
+  ~Helper() {
+    quit.store(true);
+    thread.join();
+  }
+  int nice() const { return getpriority(PRIO_PROCESS, static_cast<id_t>(tid.load())); }
+  bool may_run_on(int cpu) const {
+    cpu_set_t set;
+    sched_getaffinity(tid.load(), sizeof set, &set);
+    return CPU_ISSET(cpu, &set);
+  }
+};
+
+TEST(RealtimeSession, ReportsWhatTheKernelGrantedAndRestoresIt) {
+  const int policy_before = policy_of_this_thread();
+  const int helper_nice_before = [] {
+    errno = 0;
+    return getpriority(PRIO_PROCESS, 0);
+  }();
+  Helper helper;
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  {
+    RealtimeOptions options;
+    options.priority = 80;
+    options.cpu = 0;
+    RealtimeSession session(options);
+    const tacta::RealtimeGrant& g = session.grant();
+    int priority = 0;
+    const int policy = policy_of_this_thread(&priority);
+    if (g.scheduler == "SCHED_FIFO") {
+      EXPECT_EQ(policy, SCHED_FIFO);
+      EXPECT_EQ(priority, 80);
+      EXPECT_TRUE(g.scheduler_note.empty()) << g.scheduler_note;
+    } else {
+      // Refused (no CAP_SYS_NICE here): still SCHED_OTHER, and the report says why and what instead.
+      EXPECT_EQ(policy, SCHED_OTHER);
+      EXPECT_NE(g.scheduler_note.find("fallback"), std::string::npos) << g.scheduler_note;
+    }
+    if (g.memory_locked) {
+      EXPECT_GT(locked_kb(), 0u);
+    } else {
+      EXPECT_FALSE(g.memory_note.empty());
+    }
+    if (g.cpu == 0) {
+      cpu_set_t mine;
+      pthread_getaffinity_np(pthread_self(), sizeof mine, &mine);
+      EXPECT_EQ(CPU_COUNT(&mine), 1);
+      EXPECT_TRUE(CPU_ISSET(0, &mine));
+      if (cpus > 1) {
+        EXPECT_FALSE(helper.may_run_on(0)) << "a helper thread was left on the haptic CPU";
+      }
+    } else {
+      EXPECT_FALSE(g.cpu_note.empty());
+    }
+    EXPECT_GE(g.helper_threads_lowered, 1u);
+    EXPECT_EQ(helper.nice(), 5);
+  }
+  EXPECT_EQ(policy_of_this_thread(), policy_before);
+  EXPECT_EQ(helper.nice(), helper_nice_before);
+  EXPECT_TRUE(helper.may_run_on(0));
+  EXPECT_EQ(locked_kb(), 0u) << "memory still locked after the session";
+}
+
+TEST(RealtimeSession, PriorityZeroStaysOrdinary) {
+  RealtimeOptions options;
+  options.priority = 0;
+  options.lock_memory = false;
+  RealtimeSession session(options);
+  EXPECT_EQ(session.grant().scheduler, "SCHED_OTHER");
+  EXPECT_EQ(policy_of_this_thread(), SCHED_OTHER);
+  EXPECT_NE(session.grant().scheduler_note.find("not requested"), std::string::npos);
+  EXPECT_FALSE(session.grant().memory_locked);
+}
+
+TEST(RealtimeSession, ResidentMemoryIsRead) {
+  const tacta::ResidentMemory m = tacta::resident_memory();
+  EXPECT_GT(m.rss_kb, 0u);
+  EXPECT_GE(m.peak_kb, m.rss_kb);
+}
+
+}  // namespace
