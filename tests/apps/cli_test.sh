@@ -95,6 +95,22 @@ bodies:
 YAML
     run 2 run uses_truncated.yaml --out out
     expect_output 'truncated\.msh' "the mesh file's name"
+    # Inputs that crashed (PLY face index out of range), hung (a PLY header line 'x end_header')
+    # or loaded silently (an OBJ vertex 'v 0 0 abc') before issue 15.
+    run 2 mesh-info "$src/tests/data/meshes/fuzz/ply_binary_index_postprocess.ply"
+    expect_output 'ply_binary_index_postprocess\.ply: .*vertex index 33554432 is out of range' "the bad index"
+    run 2 mesh-info "$src/tests/data/meshes/broken_ply_header.ply"
+    expect_output 'broken_ply_header\.ply:9:' "the file and line"
+    run 2 mesh-info "$src/tests/data/meshes/broken_obj_number.obj"
+    expect_output "broken_obj_number\\.obj:4: .*found 'abc'" "the file, line and token"
+    ;;
+  broken_device_log)
+    # A replayed sample at px = 1e30 once ran and reported 1.3e29 J of injected energy.
+    printf '%s\n' "time_s,px,py,pz,qw,qx,qy,qz,vx,vy,vz,buttons,fx,fy,fz" \
+      "0,0,0.1,0,1,0,0,0,0,0,0,0,0,0,0" "0.001,1e30,0.1,0,1,0,0,0,0,0,0,0,0,0,0" >far.csv
+    run 2 run "$src/scenes/examples/stylus_poke.yaml" --duration 0.01 --replay far.csv --out out
+    expect_output 'far\.csv:3: column 2 \(px\) = 1e\+30' "the log's line and column"
+    [ -e out/report.json ] && fail "a run with a refused device log wrote a report"
     ;;
   absent_scene)
     run 2 run no_such_scene.yaml --out out

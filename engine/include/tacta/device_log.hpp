@@ -13,8 +13,9 @@
 //     fx fy fz     N, the force sent to the device for this tick (after limiting)
 // Numbers are written with %.17g, which round-trips every finite double exactly, so a replay
 // returns the recorded samples bit for bit. The reader validates every line (15 columns, finite
-// numbers, integer buttons, non-decreasing time) and throws tacta::InputError naming file:line
-// and what was expected; it never crashes on truncated or malformed input.
+// numbers within the bounds below, a unit quaternion, integer buttons, non-decreasing time) and
+// throws tacta::InputError naming file:line and what was expected; it never crashes on
+// truncated or malformed input.
 //
 // Allocation policy for the 1 kHz path: DeviceLogRecorder preallocates its whole capacity at
 // construction; record() only copies a sample into that ring (no allocation, no lock, no I/O) and
@@ -50,6 +51,13 @@ struct DeviceLogSample {
 inline constexpr const char* kDeviceLogHeader =
     "time_s,px,py,pz,qw,qx,qy,qz,vx,vy,vz,buttons,fx,fy,fz";
 inline constexpr int kDeviceLogColumns = 15;
+// Values no haptic device produces, refused as a corrupt log (a sample at px = 1e30 once replayed
+// as 1.3e29 J of injected energy). The replay device also checks positions against its workspace.
+inline constexpr double kDeviceLogMaxTime = 1e9;        // s, |time_s| (about 32 years)
+inline constexpr double kDeviceLogMaxPosition = 1e3;    // m, |px|, |py|, |pz| from the world origin
+inline constexpr double kDeviceLogMaxSpeed = 100.0;     // m/s, |vx|, |vy|, |vz|; a hand moves a few m/s
+inline constexpr double kDeviceLogMaxForce = 1e4;       // N, |fx|, |fy|, |fz|; desk devices give a few N
+inline constexpr double kDeviceLogQuaternionSlack = 0.01;  // |q| must lie within 1 +- this
 // Longest row: 14 numbers of at most 24 characters, a 10-digit integer, 14 commas, '\n', NUL.
 inline constexpr size_t kDeviceLogRowCapacity = 14 * 24 + 10 + 14 + 2;
 
@@ -130,6 +138,42 @@ inline const char* column_name(int index) {
   return names[index];
 }
 
+// The bound of column `index` (see kDeviceLog*) and its unit.
+struct ColumnBound {
+  double bound;
+  const char* unit;
+};
+inline ColumnBound column_bound(int index) {
+  if (index == 0) return {kDeviceLogMaxTime, "s"};
+  if (index <= 3) return {kDeviceLogMaxPosition, "m"};
+  if (index <= 7) return {1.0 + kDeviceLogQuaternionSlack, ""};
+  if (index <= 10) return {kDeviceLogMaxSpeed, "m/s"};
+  return {kDeviceLogMaxForce, "N"};
+}
+
+// What is implausible in a parsed sample, or an empty string.
+inline std::string implausible(const DeviceLogSample& s) {
+  const double values[kDeviceLogColumns] = {
+      s.time,           s.position[0],    s.position[1],    s.position[2],    s.orientation[0],
+      s.orientation[1], s.orientation[2], s.orientation[3], s.velocity[0],    s.velocity[1],
+      s.velocity[2],    0.0,              s.force[0],       s.force[1],       s.force[2]};
+  char text[200];
+  for (int i = 0; i < kDeviceLogColumns; ++i) {
+    const ColumnBound limit = column_bound(i);
+    if (std::abs(values[i]) <= limit.bound) continue;
+    std::snprintf(text, sizeof text, "column %d (%s) = %.9g is beyond %g %s: no haptic device gives that (corrupt log?)",
+                  i + 1, column_name(i), values[i], limit.bound, limit.unit);
+    return text;
+  }
+  const double norm = std::sqrt(s.orientation[0] * s.orientation[0] + s.orientation[1] * s.orientation[1] +
+                                s.orientation[2] * s.orientation[2] + s.orientation[3] * s.orientation[3]);
+  if (std::abs(norm - 1.0) > kDeviceLogQuaternionSlack) {
+    std::snprintf(text, sizeof text, "the orientation (qw qx qy qz) has norm %.9g; expected a unit quaternion", norm);
+    return text;
+  }
+  return {};
+}
+
 // Parses one data line into sample; returns an empty string or what was wrong.
 inline std::string parse_row(std::string_view line, DeviceLogSample& s) {
   double* targets[kDeviceLogColumns] = {
@@ -169,7 +213,7 @@ inline std::string parse_row(std::string_view line, DeviceLogSample& s) {
   if (column != kDeviceLogColumns)
     return "expected " + std::to_string(kDeviceLogColumns) + " columns, found " +
            std::to_string(column) + " (truncated line?)";
-  return {};
+  return implausible(s);
 }
 
 }  // namespace device_log_detail

@@ -34,7 +34,8 @@ enum class MeshFormat { GmshV1, GmshV2, GmshV4, VtkLegacy, VtkXml, Other };
 MeshFormat detect_mesh_format(const std::string& path);
 const char* mesh_format_name(MeshFormat format);
 
-// A triangle surface through assimp (OBJ, STL, PLY, glTF/glb, ...): every sub-mesh merged with
+// A triangle surface from .ply or .obj (our own readers), .stl (checked, then read by assimp),
+// .gltf or .glb (assimp); other extensions are refused. Every sub-mesh merged with
 // its node transform applied, identical positions welded, degenerate triangles dropped and counted.
 SurfaceMesh load_surface(const std::string& path, LoadReport* report = nullptr);
 

@@ -32,6 +32,7 @@ struct GmshMesh {
   std::vector<int64_t> tet_tags;                     // 4 per tet, node tags as in the file
   std::vector<int> tet_lines;                        // file line of each tet, for messages
   std::vector<int64_t> tet_ids;                      // element tag of each tet
+  std::unordered_map<int64_t, int> element_lines;    // element tag -> its line, to refuse a tag given twice
   size_t skipped = 0;
   bool has_nodes = false, has_elements = false;
 };
@@ -52,6 +53,11 @@ void read_node_line(TextReader& in, GmshMesh& mesh) {
 
 // Reads the node tags of one element, all on the element's own line.
 void read_element_nodes(TextReader& in, GmshMesh& mesh, int64_t element, int64_t type, int count, int line) {
+  auto [first, inserted] = mesh.element_lines.emplace(element, line);
+  if (!inserted) {
+    in.fail_at(line, "element " + std::to_string(element) + " is defined twice (first on line " +
+                         std::to_string(first->second) + ")");
+  }
   int64_t tags[4] = {0, 0, 0, 0};
   for (int i = 0; i < count; ++i) {
     int64_t tag = in.next_int("an element node number");

@@ -1,5 +1,6 @@
 #include "mesh/text_reader.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -120,6 +121,35 @@ void TextReader::fail(const std::string& message) const { fail_at(token_line_, m
 
 void TextReader::fail_at(int line, const std::string& message) const {
   throw InputError({path_, line, 0, ""}, message);
+}
+
+bool LineWords::next() {
+  if (pos_ >= bytes_.size()) return false;
+  size_t end = bytes_.find('\n', pos_);
+  if (end == std::string::npos) end = bytes_.size();
+  std::string_view line(bytes_.data() + pos_, end - pos_);
+  pos_ = end + 1;
+  ++number_;
+  words_.clear();
+  size_t p = 0;
+  while ((p = line.find_first_not_of(" \t\r\f\v", p)) != std::string_view::npos) {
+    const size_t stop = std::min(line.find_first_of(" \t\r\f\v", p), line.size());
+    words_.push_back(line.substr(p, stop - p));
+    p = stop;
+  }
+  return true;
+}
+
+void LineWords::fail(const std::string& message) const { throw InputError({path_, number_, 0, ""}, message); }
+
+void LineWords::expect_numbers(size_t first, size_t last, const char* what, double* out) const {
+  for (size_t i = first; i < last; ++i) {
+    double value = 0;
+    if (!parse_double(words_[i], value) || !std::isfinite(value)) {
+      fail(std::string("expected ") + what + " (a finite number), found " + quoted(words_[i]));
+    }
+    if (out != nullptr) out[i - first] = value;
+  }
 }
 
 }  // namespace tacta::mesh_detail

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "tacta/error.hpp"
 
@@ -47,6 +48,26 @@ class TextReader {
   size_t pos_ = 0;
   int line_ = 1;        // line of pos_
   int token_line_ = 1;  // line of the last token returned
+};
+
+// A line-oriented text file (OBJ, ASCII STL): each next() moves to the following line and splits
+// it into whitespace-separated words; fail() names the file and that line.
+class LineWords {
+ public:
+  LineWords(const std::string& path, const std::string& bytes) : path_(path), bytes_(bytes) {}
+  bool next();
+  const std::vector<std::string_view>& words() const { return words_; }
+  int line() const { return number_; }
+  [[noreturn]] void fail(const std::string& message) const;
+  // Words [first, last) must be finite numbers; returns them in out when it is given.
+  void expect_numbers(size_t first, size_t last, const char* what, double* out = nullptr) const;
+
+ private:
+  const std::string& path_;
+  const std::string& bytes_;
+  size_t pos_ = 0;
+  int number_ = 0;
+  std::vector<std::string_view> words_;
 };
 
 // Parsing of one token, for callers that hold their own tokens (XML arrays); the error says what.

@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "interpolation.hpp"
 #include "tacta/sdk/device.hpp"
+#include "tacta_devices/omni_profile.hpp"
 
 namespace tacta::replay {
 
@@ -22,10 +24,14 @@ class ReplayDevice {
   static constexpr const char* kName = "replay";
   static constexpr const char* kDescription = "Plays a recorded device log (CSV) at its timestamps";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 3> kParams{{
+  static constexpr double kBig = 1e3;  // m: the log reader refuses positions beyond this anyway
+  static constexpr std::array<tacta_param_spec, 6> kParams{{
       sdk::text_param("log", "", "device log (CSV) to play; relative to the scene's folder"),
       sdk::real_param("time_offset", "s", 0.0, -1e6, 1e6, "engine time = log time + time_offset"),
       sdk::bool_param("loop", false, "start again from the first sample after the last"),
+      sdk::vector_param("workspace_size", "m", 3, "0.16 0.12 0.07", 1e-3, kBig, "x y z extent of the recorded device's workspace (Omni class)"),
+      sdk::vector_param("workspace_origin", "m", 3, "", -kBig, kBig, "centre of that workspace in the world; none: wherever the samples are"),
+      sdk::real_param("workspace_tolerance", "m", 0.01, 0.0, kBig, "how far a sample may lie outside the workspace"),
   }};
 
   explicit ReplayDevice(const tacta_device_setup& setup) {
@@ -43,6 +49,7 @@ class ReplayDevice {
     }
     if (samples_.empty())
       throw std::invalid_argument("replay: " + path_ + ":2: expected at least one sample after the header");
+    check_workspace(params);
     offset_ = params.real("time_offset");
     loop_ = params.flag("loop");
     capabilities_ = compute_capabilities();
@@ -94,6 +101,36 @@ class ReplayDevice {
   }
 
  private:
+  // A sample outside the workspace of the device that recorded it is a corrupt log, not a motion:
+  // refused with its line (sample i is on line i + 2: the header is line 1 and the reader allows
+  // no blank line between samples). Without an origin, the samples' span must fit the workspace.
+  void check_workspace(const sdk::Params& params) const {
+    const std::span<const double> size = params.vector("workspace_size");
+    const std::span<const double> origin = params.vector("workspace_origin");
+    const double tolerance = params.real("workspace_tolerance");
+    double low[3], high[3];
+    for (int i = 0; i < 3; ++i) low[i] = high[i] = samples_.front().position[i];
+    for (size_t n = 0; n < samples_.size(); ++n) {
+      for (int i = 0; i < 3; ++i) {
+        const double p = samples_[n].position[i];
+        const double half = 0.5 * size[static_cast<size_t>(i)];
+        low[i] = std::min(low[i], p);
+        high[i] = std::max(high[i], p);
+        const bool outside = origin.size() == 3 ? std::abs(p - origin[static_cast<size_t>(i)]) > half + tolerance
+                                                : high[i] - low[i] > 2 * half + 2 * tolerance;
+        if (!outside) continue;
+        static constexpr const char* kColumn[3] = {"px", "py", "pz"};
+        char message[512];
+        std::snprintf(message, sizeof message,
+                      "replay: %s:%zu: %s = %.9g m is outside the device's workspace (%.9g m along it, %s, "
+                      "tolerance %.9g m; see workspace_size, workspace_origin, workspace_tolerance)",
+                      path_.c_str(), n + 2, kColumn[i], p, size[static_cast<size_t>(i)],
+                      origin.size() == 3 ? "centred on workspace_origin" : "placed where the samples are", tolerance);
+        throw std::invalid_argument(message);
+      }
+    }
+  }
+
   tacta_device_capabilities compute_capabilities() const {
     // A replay has no hardware: it reports the box its samples span and the Omni-class force
     // numbers (peak 3.3 N, /work/shared/data/README.md) so the engine limits forces the same way.
@@ -105,9 +142,9 @@ class ReplayDevice {
         c.workspace_max[i] = std::max(c.workspace_max[i], s.position[i]);
       }
     }
-    c.peak_force = 3.3;
-    c.continuous_force = 0.88;
-    c.usable_stiffness = 1000.0;
+    c.peak_force = devices::kOmniPeakForce;
+    c.continuous_force = devices::kOmniContinuousForce;
+    c.usable_stiffness = devices::kOmniUsableStiffness;
     c.nominal_rate = 1000.0;
     c.dof_in = 6;
     c.dof_out = 3;

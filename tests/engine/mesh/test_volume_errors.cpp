@@ -1,5 +1,5 @@
-// Broken volume files: each gives an InputError that names the file, the line when there is one,
-// and what was wrong.
+// Broken mesh files (volume and surface): each gives an InputError that names the file, the line
+// when there is one, and what was wrong. Files under fuzz/ are inputs the fuzzers found.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -17,6 +17,7 @@ struct BrokenCase {
   const char* file;
   int line;              // expected line, 0 when the error has none
   const char* fragment;  // a piece of the message
+  bool surface = false;  // load_surface instead of load_volume
 };
 
 class BrokenVolume : public ::testing::TestWithParam<BrokenCase> {};
@@ -25,7 +26,11 @@ TEST_P(BrokenVolume, GivesAClearInputError) {
   const BrokenCase& c = GetParam();
   const std::string path = test_mesh(c.file);
   try {
-    load_volume(path);
+    if (c.surface) {
+      load_surface(path);
+    } else {
+      load_volume(path);
+    }
     FAIL() << c.file << " loaded without an error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, path);
@@ -52,7 +57,21 @@ INSTANTIATE_TEST_SUITE_P(
                       BrokenCase{"broken_base64.vtu", 6, "base64"},
                       BrokenCase{"broken_header.vtu", 6, "header"},
                       BrokenCase{"broken_mesh_format.msh", 2, "version 3.0"},
-                      BrokenCase{"does_not_exist.msh", 0, "cannot open"}),
+                      BrokenCase{"does_not_exist.msh", 0, "cannot open"},
+                      BrokenCase{"broken_duplicate_element.msh", 21, "element 3 is defined twice (first on line 20)"},
+                      BrokenCase{"broken_ply_index.ply", 16, "vertex index 7 is out of range", true},
+                      BrokenCase{"broken_ply_empty_face.ply", 15, "at least 3 vertex indices, found 0", true},
+                      BrokenCase{"broken_ply_header.ply", 9, "expected a PLY header line", true},
+                      BrokenCase{"broken_ply_count.ply", 3, "declares 1000000000 items", true},
+                      BrokenCase{"broken_ply_number.ply", 13, "found 'abc'", true},
+                      BrokenCase{"fuzz/ply_binary_index_postprocess.ply", 0, "item 3: vertex index 33554432 is out of range", true},
+                      BrokenCase{"broken_obj_number.obj", 4, "found 'abc'", true},
+                      BrokenCase{"broken_obj_inf.obj", 4, "found '.inf'", true},
+                      BrokenCase{"broken_obj_index.obj", 7, "vertex index 9 is out of range", true},
+                      BrokenCase{"broken_stl_number.stl", 13, "found '1e'", true},
+                      BrokenCase{"broken_surface.dae", 0, "unsupported surface format '.dae'", true},
+                      BrokenCase{"broken_obj_named_gltf.gltf", 0, "the glTF JSON does not parse", true},
+                      BrokenCase{"fuzz/gltf_strip_without_positions.gltf", 0, "primitive 0 has no POSITION attribute", true}),
     [](const ::testing::TestParamInfo<BrokenCase>& param_info) {
       std::string name = param_info.param.file;
       for (char& ch : name)

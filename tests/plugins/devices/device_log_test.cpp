@@ -70,6 +70,23 @@ TEST(DeviceLog, MalformedLinesNameFileLineAndWhatWasExpected) {
   EXPECT_EQ(error_of(header + good + "\r\n"), "no error");  // CRLF and a trailing blank line are fine
 }
 
+TEST(DeviceLog, ImplausibleValuesAreRefusedWithTheLine) {
+  const std::string header = std::string(kDeviceLogHeader) + "\n";
+  const std::string good = "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n";
+  // The sample that once replayed as 1.3e29 J of injected energy.
+  EXPECT_NE(error_of(header + good + "0.001,1e30,0,0,1,0,0,0,0,0,0,0,0,0,0\n")
+                .find("session.csv:3: column 2 (px) = 1e+30 is beyond 1000 m"),
+            std::string::npos) << error_of(header + good + "0.001,1e30,0,0,1,0,0,0,0,0,0,0,0,0,0\n");
+  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,1e300,0,0,0,0\n").find("session.csv:2: column 11 (vz)"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,0,0,-2e4,0\n").find("session.csv:2: column 14 (fy)"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "1e12,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n").find("session.csv:2: column 1 (time_s)"),
+            std::string::npos);
+  EXPECT_NE(error_of(header + "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n").find("session.csv:2: the orientation (qw qx qy qz) has norm 0"),
+            std::string::npos);
+}
+
 TEST(DeviceLog, MissingFileIsAnInputError) {
   EXPECT_THROW(read_device_log("/nonexistent/tacta/session.csv"), InputError);
 }

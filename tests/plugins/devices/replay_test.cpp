@@ -149,6 +149,24 @@ TEST_F(ReplayTest, TruncatedOrMalformedLogIsRefusedAtCreateWithTheLine) {
     EXPECT_EQ(device.create_status(), TACTA_ERR_INVALID_ARGUMENT);
     EXPECT_NE(device.message().find(c.expected), std::string::npos) << device.message();
   }
+  // Outside the recorded device's workspace: the samples span 0.3 m in x, an Omni 0.16 m.
+  write_text("wide.csv", header + good + "0.001,0.3,0,0,1,0,0,0,0,0,0,0,0,0,0\n");
+  params.text("log", "wide.csv");
+  DeviceInstance wide(api, params.setup(1, dir));
+  EXPECT_EQ(wide.create_status(), TACTA_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(wide.message().find("wide.csv:3: px = 0.3 m is outside the device's workspace"), std::string::npos)
+      << wide.message();
+  // With the workspace placed, a sample off it by more than the tolerance is refused ...
+  write_text("off.csv", header + good + "0.001,0,0.075,0,1,0,0,0,0,0,0,0,0,0,0\n");
+  params.text("log", "off.csv");
+  params.vector("workspace_origin", {0, 0, 0});
+  DeviceInstance off(api, params.setup(1, dir));
+  EXPECT_EQ(off.create_status(), TACTA_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(off.message().find("off.csv:3: py = 0.075 m"), std::string::npos) << off.message();
+  // ... and one within it is played.
+  params.number("workspace_tolerance", 0.02);
+  DeviceInstance within(api, params.setup(1, dir));
+  EXPECT_EQ(within.create_status(), TACTA_OK) << within.message();
   params.text("log", "missing.csv");
   DeviceInstance missing(api, params.setup(1, dir));
   EXPECT_NE(missing.create_status(), TACTA_OK);
