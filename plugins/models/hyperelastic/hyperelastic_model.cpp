@@ -15,6 +15,13 @@ namespace tacta::models::hyperelastic {
 namespace {
 constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+
+// The matrix pattern beyond the tets' own pairs: the nodal volumes' 1-ring coupling.
+std::vector<uint32_t> extra_pairs(const tacta_mesh_view& mesh, const Options& options) {
+  if (options.volumetric == Volumetric::kElement) return {};
+  return NodalVolumeTerm::coupled_pairs(
+      mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count}));
+}
 }  // namespace
 
 HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_material& material,
@@ -24,9 +31,12 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
       masses_(masses.begin(), masses.end()),
       fixed_(fixed.begin(), fixed.end()),
       options_(options),
+      element_material_(options.material),
       guard_(mesh),
-      matrix_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})),
-      damping_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})),
+      matrix_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count}),
+              extra_pairs(mesh, options)),
+      damping_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count}),
+               extra_pairs(mesh, options)),
       rayleigh_mass_(material.rayleigh_mass),
       rayleigh_stiffness_(material.rayleigh_stiffness) {
   // The moduli arrive in options.material (the plugin derives them from E, nu or its keys).
@@ -43,6 +53,14 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
   for (uint32_t e = 0; e < mesh.tet_count; ++e)
     elements_.push_back(
         checked_tet_rest("hyperelastic", mesh.rest_positions, node_count_, mesh.tets, e));
+  if (options_.volumetric == Volumetric::kNodalAverage) {
+    if (!has_volumetric_term(options_.material.law))
+      throw std::invalid_argument("hyperelastic: volumetric: nodal_average needs a law with a "
+                                  "volumetric term U(J) (neo_hookean or mooney_rivlin), not stvk");
+    element_material_ = without_volumetric_term(options_.material);
+    nodal_ = std::make_unique<NodalVolumeTerm>(node_count_, elements_, options_.material);
+    nodal_->bind(matrix_);
+  }
   const size_t n = 3 * static_cast<size_t>(node_count_);
   for (auto* buffer : {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
                        &equilibrium_loads_, &scratch_, &product_, &last_correction_})
@@ -55,9 +73,14 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
 HyperelasticModel::~HyperelasticModel() = default;
 
 double HyperelasticModel::element_pass(const double* x, double* forces, double scale) noexcept {
-  const MaterialConstants& material = options_.material;
+  const MaterialConstants& material = element_material_;
   double energy = 0.0;
   inverted_ = false;
+  if (nodal_) {
+    energy += nodal_->evaluate(x);
+    if (forces != nullptr) nodal_->add_forces(forces);
+    if (scale != 0.0) nodal_->add_tangent(matrix_, scale, options_.project_tangent);
+  }
   for (uint32_t e = 0; e < elements_.size(); ++e) {
     const Element& element = elements_[e];
     Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
@@ -121,7 +144,7 @@ void HyperelasticModel::node_stress(const double* positions, double* von_mises) 
       deformation.noalias() += node_position(positions, element.nodes[a]) *
                                Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
     const StretchFrame frame = rotation_variant_svd(deformation);
-    const StretchDerivatives psi = clamped_stretch_derivatives(options_.material, frame.sigma);
+    const StretchDerivatives psi = clamped_stretch_derivatives(element_material_, frame.sigma);
     // Cauchy stress sigma = P F^T / J, in the principal frame: g_i s_i / J.
     const double j = std::max(std::abs(frame.sigma.prod()), 1e-12);
     const Eigen::Vector3d s = psi.gradient.cwiseProduct(frame.sigma) / j;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "block_sparse.hpp"
+#include "nodal_volume.hpp"
 #include "safe_solver.hpp"
 #include "stretch_energy.hpp"
 #include "tacta/model_api.h"
@@ -27,10 +28,14 @@
 namespace tacta::models::hyperelastic {
 
 enum class SolveMode { kDynamic = 0, kStatic = 1 };
+// Where the volumetric energy is evaluated: per element (locks near nu 0.5), or on nodally
+// averaged volumes (nodal_volume.hpp; neo_hookean and mooney_rivlin).
+enum class Volumetric { kElement = 0, kNodalAverage = 1 };
 
 struct Options {
   MaterialConstants material;
   bool project_tangent = true;   // false: the exact tangent (may be indefinite; tests)
+  Volumetric volumetric = Volumetric::kElement;
   SolveMode mode = SolveMode::kDynamic;
   int newton_iterations = 3;       // dynamic: per step, at most
   double newton_tolerance = 1e-3;  // dynamic: stop when |r| <= this * |r_0| (residual in N s^2)
@@ -101,6 +106,8 @@ class HyperelasticModel {
   std::vector<double> masses_;
   std::vector<uint8_t> fixed_;
   Options options_;
+  MaterialConstants element_material_;  // the law, less its volumetric term when that is nodal
+  std::unique_ptr<NodalVolumeTerm> nodal_;  // null: the volumetric term stays per element
   DivergenceGuard guard_;
   sparse::BlockSparseMatrix matrix_, damping_;
   std::unique_ptr<sparse::SafeSolver> solver_;

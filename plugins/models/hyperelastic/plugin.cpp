@@ -11,6 +11,17 @@
 namespace tacta::models::hyperelastic {
 namespace {
 
+// Nodal averaging costs a wider matrix (a node couples with its 1-ring's 1-ring); below
+// nu 0.45 per-element volumes lock little (VALIDATION.md), so auto keeps them there.
+constexpr double kNodalAverageFromPoisson = 0.45;
+Volumetric volumetric_choice(int choice, MaterialLaw law, double poisson_ratio) {
+  if (choice == 1) return Volumetric::kElement;
+  if (choice == 2) return Volumetric::kNodalAverage;
+  return has_volumetric_term(law) && poisson_ratio >= kNodalAverageFromPoisson
+             ? Volumetric::kNodalAverage
+             : Volumetric::kElement;
+}
+
 class HyperelasticPlugin {
  public:
   static constexpr const char* kName = "hyperelastic";
@@ -18,7 +29,7 @@ class HyperelasticPlugin {
       "Hyperelastic tetrahedral FEM (Neo-Hookean, St Venant-Kirchhoff, Mooney-Rivlin), "
       "projected tangents, implicit Newton steps with line search, or static equilibrium";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 17> kParams = {
+  static constexpr std::array<tacta_param_spec, 18> kParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
                         "energy: compressible Neo-Hookean, St Venant-Kirchhoff, or compressible "
                         "Mooney-Rivlin (C10, C01, bulk modulus)"),
@@ -30,6 +41,10 @@ class HyperelasticPlugin {
       sdk::real_param("min_stretch", "", 0.1, 0.01, 0.9,
                       "principal stretches below this (and inverted ones) use the energy's "
                       "Taylor continuation"),
+      sdk::choice_param("volumetric", "auto|element|nodal_average", 0,
+                        "volumetric energy per element (locks as nu nears 0.5) or on nodally "
+                        "averaged volumes (no locking; wider matrix); auto: nodal_average when "
+                        "nu >= 0.45 and the law is neo_hookean or mooney_rivlin"),
       sdk::choice_param("tangent", "projected|exact", 0,
                         "projected: negative tangent eigenvalues set to 0 (robust); exact"),
       sdk::choice_param("solve", "dynamic|static", 0,
@@ -77,6 +92,8 @@ class HyperelasticPlugin {
     if (m.law == MaterialLaw::kMooneyRivlin && !(m.c10 + m.c01 > 0.0 && m.bulk > 0.0))
       throw std::invalid_argument("hyperelastic: mooney_rivlin needs c10 + c01 > 0 and a "
                                   "positive bulk modulus");
+    options.volumetric = volumetric_choice(params.choice("volumetric"), m.law,
+                                           material.poisson_ratio);
     options.project_tangent = params.choice("tangent") == 0;
     options.mode = static_cast<SolveMode>(params.choice("solve"));
     options.newton_iterations = params.integer("newton_iterations");

@@ -7,7 +7,8 @@
 
 namespace tacta::models::sparse {
 
-BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets)
+BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets,
+                                     std::span<const uint32_t> extra_pairs)
     : node_count_(node_count) {
   std::vector<std::vector<uint32_t>> upper(node_count);  // columns j >= i of row i
   for (uint32_t i = 0; i < node_count; ++i) upper[i].push_back(i);
@@ -15,6 +16,10 @@ BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
         if (tets[e + a] < tets[e + b]) upper[tets[e + a]].push_back(tets[e + b]);
+  for (size_t p = 0; p + 1 < extra_pairs.size(); p += 2) {
+    const uint32_t i = std::min(extra_pairs[p], extra_pairs[p + 1]);
+    upper[i].push_back(std::max(extra_pairs[p], extra_pairs[p + 1]));
+  }
   row_starts_.resize(node_count + 1, 0);
   for (uint32_t i = 0; i < node_count; ++i) {
     auto& list = upper[i];

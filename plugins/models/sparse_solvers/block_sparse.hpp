@@ -13,8 +13,10 @@ namespace tacta::models::sparse {
 
 class BlockSparseMatrix {
  public:
-  // tets: 4 node indices per element. Builds the pattern of all node pairs that share a tet.
-  BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets);
+  // tets: 4 node indices per element. Builds the pattern of all node pairs that share a tet,
+  // plus extra_pairs (2 node indices each; terms that couple nodes beyond one element).
+  BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets,
+                    std::span<const uint32_t> extra_pairs = {});
 
   uint32_t node_count() const { return node_count_; }
   uint32_t block_count() const { return static_cast<uint32_t>(columns_.size()); }

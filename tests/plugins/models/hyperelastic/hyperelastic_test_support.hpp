@@ -3,12 +3,18 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "hyperelastic_model.hpp"
 #include "tacta/models/test_meshes.hpp"
+#include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models::hyperelastic::testing {
 
@@ -56,6 +62,104 @@ inline Eigen::MatrixXd dense(const sparse::BlockSparseMatrix& a) {
           m(3 * columns[k] + c, 3 * i + r) = a.block(k)[3 * r + c];
         }
   return m;
+}
+
+struct Body {  // the arrays the engine would own
+  std::vector<double> x, v, f;
+  tacta_body_state state{};
+  explicit Body(const TestMesh& mesh) : x(mesh.positions), v(x.size(), 0.0), f(x.size(), 0.0) {
+    state = {mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
+  }
+};
+
+// Compressible Neo-Hookean under uniaxial stress: principal stretches (s, t, t) with zero
+// lateral stress, mu t + (lambda ln J - mu) / t = 0, J = s t^2. Returns t and the nominal
+// (first Piola-Kirchhoff) axial stress P = mu s + (lambda ln J - mu) / s, Pa.
+inline std::pair<double, double> neo_hookean_uniaxial(double mu, double lambda, double s) {
+  double t = 1.0;
+  for (int i = 0; i < 50; ++i) {  // Newton on the lateral equation
+    const double log_j = std::log(s * t * t);
+    const double g = mu * t + (lambda * log_j - mu) / t;
+    const double dg = mu + (2.0 * lambda - lambda * log_j + mu) / (t * t);
+    t -= g / dg;
+  }
+  return {t, mu * s + (lambda * std::log(s * t * t) - mu) / s};
+}
+
+struct UniaxialResult {
+  double lateral = 0.0, nominal_stress = 0.0;  // analytic lateral stretch; P, Pa
+  double worst_axial = 0.0, worst_lateral = 0.0;  // m: largest node error against them
+  uint32_t status = 0;
+  uint64_t newton_iterations = 0, load_cuts = 0;
+};
+
+// A 0.1 m Neo-Hookean cube (E 1e4 Pa, 2x2x4 cells) stretched by `stretch` along z in a static
+// solve: the base held at the analytic lateral contraction about the corner (0, 0, 0), the
+// analytic nominal stress on the top face as consistent nodal forces (a third of each
+// triangle's area per node). Linear tets represent this homogeneous field exactly.
+inline UniaxialResult neo_hookean_uniaxial_patch(double nu, double stretch, Volumetric volumetric,
+                                                 double static_tolerance = 1e-6) {
+  const double side = 0.1, e = 1e4;
+  const MaterialConstants m = material_for(MaterialLaw::kNeoHookean, e, nu);
+  UniaxialResult result;
+  std::tie(result.lateral, result.nominal_stress) = neo_hookean_uniaxial(m.mu, m.lambda, stretch);
+  TestMesh mesh = box_tet_mesh({2, 2, 4}, {side, side, side}, 1000.0);
+  mesh.fix_plane(2, 0.0);
+  Options options;
+  options.mode = SolveMode::kStatic;
+  options.volumetric = volumetric;
+  options.static_tolerance = static_tolerance;
+  options.solver.solver = sparse::LinearSolver::kCholesky;
+  auto model = make_model(mesh, MaterialLaw::kNeoHookean, e, nu, true, options);
+  Body body(mesh);
+  for (uint32_t i = 0; i < mesh.node_count(); ++i)
+    if (mesh.fixed[i])
+      for (int c = 0; c < 2; ++c) body.x[3 * i + c] *= result.lateral;
+  for (size_t t = 0; t < mesh.triangles.size(); t += 3) {
+    const uint32_t* tri = &mesh.triangles[t];
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && mesh.positions[3 * tri[k] + 2] > side - 1e-12;
+    if (!top) continue;
+    const Eigen::Vector3d a = node_position(mesh.positions.data(), tri[0]);
+    const Eigen::Vector3d b = node_position(mesh.positions.data(), tri[1]);
+    const Eigen::Vector3d c = node_position(mesh.positions.data(), tri[2]);
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    for (int k = 0; k < 3; ++k) body.f[3 * tri[k] + 2] += result.nominal_stress * area / 3.0;
+  }
+  model->begin(body.state, 1.0);
+  result.status = model->step(body.state, 1.0);
+  for (uint32_t i = 0; i < mesh.node_count(); ++i) {
+    result.worst_axial = std::max(
+        result.worst_axial, std::abs(body.x[3 * i + 2] - stretch * mesh.positions[3 * i + 2]));
+    for (int c = 0; c < 2; ++c)
+      result.worst_lateral = std::max(
+          result.worst_lateral,
+          std::abs(body.x[3 * i + c] - result.lateral * mesh.positions[3 * i + c]));
+  }
+  result.newton_iterations = model->counters().newton_iterations;
+  result.load_cuts = model->counters().load_cuts;
+  return result;
+}
+
+// SOFA's cantilever (0.02 x 0.02 x 0.2 m, E 2e6 Pa, rho 1100, g 9.81 along -y) solved for
+// equilibrium: the mean tip deflection (m) and the step's status.
+inline std::pair<double, uint32_t> static_cantilever_tip(std::array<uint32_t, 3> cells,
+                                                         MaterialLaw law, double nu,
+                                                         Volumetric volumetric,
+                                                         uint64_t* newton_iterations = nullptr) {
+  TestMesh mesh = box_tet_mesh(cells, {0.02, 0.02, 0.2}, 1100.0);
+  mesh.fix_plane(2, 0.0);
+  Options options;
+  options.mode = SolveMode::kStatic;
+  options.volumetric = volumetric;
+  options.solver.solver = sparse::LinearSolver::kCholesky;
+  auto model = make_model(mesh, law, 2e6, nu, true, options);
+  Body body(mesh);
+  for (uint32_t i = 0; i < mesh.node_count(); ++i) body.f[3 * i + 1] = -9.81 * mesh.masses[i];
+  model->begin(body.state, 1.0);
+  const uint32_t status = model->step(body.state, 1.0);
+  if (newton_iterations != nullptr) *newton_iterations = model->counters().newton_iterations;
+  return {-mesh.mean_displacement_on_plane(body.x.data(), 2, 0.2, 1), status};
 }
 
 }  // namespace tacta::models::hyperelastic::testing
