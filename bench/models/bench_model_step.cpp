@@ -31,6 +31,8 @@ const std::vector<ModelCase>& model_cases() {
        {{"newton_iterations", 1, nullptr}}, 12},
       {"hyperelastic_cg_1e-5", "tacta_hyperelastic.so", "hyperelastic",
        {{"tolerance", 1e-5, nullptr}}, 12},
+      {"hyperelastic_nodal_average", "tacta_hyperelastic.so", "hyperelastic",
+       {{"volumetric", 2, "nodal_average"}}, 12},
       {"bullet_softbody", "tacta_bullet_softbody.so", "bullet_softbody", {}, 20},
       {"mass_spring", "tacta_mass_spring.so", "mass_spring", {}, 20},
       {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
