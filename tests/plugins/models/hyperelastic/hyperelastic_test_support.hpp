@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <memory>
+#include <random>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -62,6 +65,89 @@ inline Eigen::MatrixXd dense(const sparse::BlockSparseMatrix& a) {
           m(3 * columns[k] + c, 3 * i + r) = a.block(k)[3 * r + c];
         }
   return m;
+}
+
+// A cube's nodes scaled by 1.1 and moved randomly by up to `amount` (m): no inversion.
+inline std::vector<double> deformed_cube(const TestMesh& mesh, unsigned seed, double amount) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-amount, amount);
+  std::vector<double> x = mesh.positions;
+  for (double& c : x) c = 1.1 * c + uniform(random);
+  return x;
+}
+
+// The largest difference between the forces and -dW/dx by central differences, as a share of
+// the largest force.
+inline double force_gradient_error(HyperelasticModel& model, std::vector<double> x) {
+  std::vector<double> f(x.size());
+  model.internal_forces(x.data(), f.data());
+  double scale = 0.0, worst = 0.0;
+  for (const double v : f) scale = std::max(scale, std::abs(v));
+  const double h = 1e-7;
+  for (size_t k = 0; k < x.size(); ++k) {
+    const double saved = x[k];
+    x[k] = saved + h;
+    const double up = model.elastic_energy(x.data());
+    x[k] = saved - h;
+    const double down = model.elastic_energy(x.data());
+    x[k] = saved;
+    worst = std::max(worst, std::abs(-(up - down) / (2 * h) - f[k]));
+  }
+  return worst / scale;
+}
+
+// The largest difference between the assembled tangent (returned in tangent) and -df/dx by
+// central differences, as a share of the tangent's largest entry.
+inline double tangent_jacobian_error(HyperelasticModel& model, std::vector<double> x,
+                                     Eigen::MatrixXd& tangent) {
+  tangent = dense(model.assemble_stiffness(x.data()));
+  const size_t n = x.size();
+  std::vector<double> up(n), down(n);
+  const double h = 1e-7;
+  double worst = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    const double saved = x[j];
+    x[j] = saved + h;
+    model.internal_forces(x.data(), up.data());
+    x[j] = saved - h;
+    model.internal_forces(x.data(), down.data());
+    x[j] = saved;
+    for (size_t i = 0; i < n; ++i)
+      worst = std::max(worst, std::abs(-(up[i] - down[i]) / (2 * h) - tangent(i, j)));
+  }
+  return worst / tangent.cwiseAbs().maxCoeff();
+}
+
+// The rest positions turned by 1.1 rad about (1, 2, 3) and shifted: a rigid motion.
+inline std::vector<double> rigidly_moved(const TestMesh& mesh) {
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<double> x = mesh.positions;
+  for (size_t i = 0; i < x.size(); i += 3) {
+    const Eigen::Vector3d p = r * Eigen::Vector3d(x[i], x[i + 1], x[i + 2]) + Eigen::Vector3d(0.3, -1, 2);
+    for (int c = 0; c < 3; ++c) x[i + c] = p[c];
+  }
+  return x;
+}
+
+struct InvertedCorner {
+  double lowest_eigenvalue_share = 0.0;  // the tangent's lowest eigenvalue / its largest
+  bool finite = true;                    // every force component
+  double corner_force = 0.0;             // N, along +z on the pushed corner
+};
+// A 1-cell cube's top corner pushed through to below its base (several tets invert): the
+// projected tangent's spectrum and the forces there.
+inline InvertedCorner push_corner_through(HyperelasticModel& model, const TestMesh& mesh) {
+  std::vector<double> x = mesh.positions, f(x.size());
+  const uint32_t top = mesh.node_count() - 1;
+  x[3 * top + 2] = -0.05;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(dense(model.assemble_stiffness(x.data())));
+  InvertedCorner result;
+  result.lowest_eigenvalue_share = eigen.eigenvalues().minCoeff() / eigen.eigenvalues().maxCoeff();
+  model.internal_forces(x.data(), f.data());
+  for (const double v : f) result.finite = result.finite && std::isfinite(v);
+  result.corner_force = f[3 * top + 2];
+  return result;
 }
 
 struct Body {  // the arrays the engine would own
