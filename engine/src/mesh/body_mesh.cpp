@@ -83,6 +83,7 @@ VolumeMesh load_tets(const MeshSourceDesc& desc, LoadReport& r) {
     return mesh;
   }
   SurfaceMesh surface = load_placed_surface(desc.path, desc, r);
+  if (desc.tetrahedralize) return tetrahedralize(surface, *desc.tetrahedralize, &r);
   double voxel = desc.voxel_size;
   if (!std::isfinite(voxel) || voxel < 0) throw InputError({desc.path, 0, 0, ""}, "voxel_size must be 0 (automatic) or positive");
   if (voxel == 0) voxel = bounding_diagonal(surface) / kAutoVoxelsPerDiagonal;

@@ -235,7 +235,7 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
           corner[c] = id;
         }
         first_tet[static_cast<size_t>(g.cell(i, j, k))] = static_cast<uint32_t>(mesh.tet_count());
-        mesh_detail::append_cell_tets(corner, mesh.tets);
+        mesh_detail::append_cell_tets(corner, mesh.tets, mesh_detail::alternating_mirror(i, j, k));
       }
     }
   }
@@ -259,7 +259,9 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
       for (int a = 0; a < 3; ++a) {
         in_cell[a] = (p[static_cast<size_t>(a)] - g.origin[static_cast<size_t>(a)]) / g.h - static_cast<double>(at[a]);
       }
-      tet = first_tet[static_cast<size_t>(cell)] + static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2]));
+      const unsigned mirror = mesh_detail::alternating_mirror(at[0], at[1], at[2]);
+      tet = first_tet[static_cast<size_t>(cell)] +
+            static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2], mirror));
       const uint32_t* n = &mesh.tets[4 * size_t{tet}];
       weights = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
                                          point(mesh.positions, n[2]), point(mesh.positions, n[3]));

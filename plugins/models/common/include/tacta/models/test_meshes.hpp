@@ -37,8 +37,8 @@ tacta_material make_material(double youngs_modulus, double poisson_ratio, double
 // Material from the Lamé coefficients directly (the paper gives lambda and mu).
 tacta_material make_material_lame(double lambda, double mu, double density);
 
-// nx*ny*nz cubes of size (sx/nx, sy/ny, sz/nz), each split into 6 tets around its main
-// diagonal (Kuhn/Freudenthal; conforming across cubes). Origin at (0,0,0). Node index:
+// nx*ny*nz cubes of size (sx/nx, sy/ny, sz/nz), each split into 6 tets around a diagonal
+// (Kuhn/Freudenthal), each cube the mirror image of its neighbours (symmetric, conforming). Origin at (0,0,0). Node index:
 // i + (nx+1) * (j + (ny+1) * k).
 TestMesh box_tet_mesh(std::array<uint32_t, 3> cells, std::array<double, 3> size, double density);
 
