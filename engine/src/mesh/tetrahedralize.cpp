@@ -1,9 +1,9 @@
 // A closed surface filled with conforming tetrahedra by Gmsh (GPL-2.0-or-later, Debian's
 // libgmsh-dev): the surface triangles are kept as they are (the tets' boundary is exactly the
-// user's surface) and the inside is meshed by Gmsh's HXT Delaunay, then optimised by Gmsh.
+// user's surface) and the inside is meshed by Gmsh's 3D Delaunay, then optimised by Gmsh.
 // The input is checked here first, so that Gmsh only ever sees a closed, outward, manifold shell.
 #include <cmath>
-#include <mutex>
+#include <stdexcept>
 #include <numbers>
 #include <string>
 #include <unordered_map>
@@ -12,17 +12,17 @@
 #include <fmt/format.h>
 #include <gmsh.h>
 
+#include "mesh/isolated_call.hpp"
 #include "tacta/mesh_build.hpp"
 
 namespace tacta {
 
 namespace {
 
-// Gmsh keeps one global model: one caller at a time, and one initialize/finalize per call.
-std::mutex& gmsh_mutex() {
-  static std::mutex m;
-  return m;
-}
+// Every Gmsh call runs in a child process (call_isolated): Gmsh keeps state that outlives
+// gmsh::finalize and gmsh::clear (the same surface meshed a second time in one process gave other
+// tets), and a child that crashes on a bad surface is an error here, not a crash.
+constexpr double kMesherTimeout = 600;  // s: far past any surface a haptic body can use
 
 class GmshSession {
  public:
@@ -30,6 +30,7 @@ class GmshSession {
     gmsh::initialize(0, nullptr, false);  // no user config files: the same result on every machine
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::option::setNumber("General.Verbosity", 1);
+    gmsh::option::setNumber("General.NumThreads", 1);  // one thread: the same mesh on every run
     gmsh::model::add("tacta");
   }
   ~GmshSession() { gmsh::finalize(); }
@@ -76,8 +77,8 @@ void check_options(const TetrahedralizeDesc& o, const std::string& source) {
   if (!(o.min_radius_ratio >= 0 && o.min_radius_ratio < 1)) throw InputError({source, 0, 0, ""}, "tetrahedralize.min_radius_ratio must be in [0, 1)");
 }
 
-// The tets Gmsh holds now, as a finalized VolumeMesh (nodes renumbered from Gmsh's tags).
-VolumeMesh read_gmsh_tets(const std::string& source, LoadReport& r) {
+// The tets Gmsh holds now, as raw positions and 0-based tets (Gmsh's node tags renumbered).
+VolumeMesh gmsh_tets(const std::string& source) {
   std::vector<std::size_t> node_tags, element_tags, tet_nodes;
   std::vector<double> coords, parametric;
   gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
@@ -89,20 +90,19 @@ VolumeMesh read_gmsh_tets(const std::string& source, LoadReport& r) {
   for (size_t i = 0; i < node_tags.size(); ++i) index[node_tags[i]] = static_cast<uint32_t>(i);
   mesh.tets.reserve(tet_nodes.size());
   for (std::size_t tag : tet_nodes) mesh.tets.push_back(index.at(tag));
-  if (mesh.tets.empty()) throw InputError({source, 0, 0, ""}, "Gmsh made no tetrahedra of this surface");
-  finalize(mesh, &r);
+  if (mesh.tets.empty()) throw std::runtime_error("Gmsh made no tetrahedra of this surface");
   return mesh;
 }
 
-}  // namespace
+bool reaches(const VolumeMesh& raw, const TetrahedralizeDesc& o) {
+  VolumeMesh mesh = raw;
+  finalize(mesh);
+  const MeshQuality q = mesh_quality(mesh);
+  return q.min_dihedral_deg >= o.min_dihedral_deg && q.min_radius_ratio >= o.min_radius_ratio;
+}
 
-VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options, LoadReport* report) {
-  LoadReport local;
-  LoadReport& r = report ? *report : local;
-  SurfaceMesh s = closed;
-  check_options(options, s.source);
-  check_surface(s, r);
-  std::lock_guard<std::mutex> lock(gmsh_mutex());
+// In the child: the surface into Gmsh, tets out, as bytes (positions then tets).
+std::string mesh_in_gmsh(const SurfaceMesh& s, const TetrahedralizeDesc& options) {
   GmshSession session;
   VolumeMesh mesh;
   try {
@@ -127,28 +127,46 @@ VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& o
     const int shell = gmsh::model::geo::addSurfaceLoop(shell_surfaces);
     gmsh::model::geo::addVolume({shell});
     gmsh::model::geo::synchronize();
-    gmsh::option::setNumber("Mesh.Algorithm3D", 10);  // HXT Delaunay: keeps the boundary triangles, fewest slivers
-    gmsh::option::setNumber("General.NumThreads", 1);  // one thread: the same mesh on every run
+    // Delaunay: keeps the boundary triangles and gives the same tets every run (HXT, with fewer
+    // slivers, gave other tets from one run to the next even on one thread).
+    gmsh::option::setNumber("Mesh.Algorithm3D", 1);
     gmsh::option::setNumber("Mesh.Optimize", options.optimize ? 1 : 0);
     gmsh::model::mesh::generate(3);
-    mesh = read_gmsh_tets(s.source, r);
+    mesh = gmsh_tets(s.source);
     // Asked-for quality not reached yet: more passes of Gmsh's optimiser, then of node relocation
     // (Debian's Gmsh is built without Netgen).
-    for (int pass = 0; pass < 3 && options.optimize; ++pass) {
-      const MeshQuality q = mesh_quality(mesh);
-      if (q.min_dihedral_deg >= options.min_dihedral_deg && q.min_radius_ratio >= options.min_radius_ratio) break;
+    for (int pass = 0; pass < 3 && options.optimize && !reaches(mesh, options); ++pass) {
       gmsh::model::mesh::optimize("");
       gmsh::model::mesh::optimize("Relocate3D");
-      LoadReport pass_report;
-      mesh = read_gmsh_tets(s.source, pass_report);
+      mesh = gmsh_tets(s.source);
     }
-  } catch (const InputError&) {
-    throw;
   } catch (const std::exception& e) {
-    throw InputError({s.source, 0, 0, ""}, kGmshFailed + gmsh_error(&e));
+    throw std::runtime_error(kGmshFailed + gmsh_error(&e));
   } catch (...) {
-    throw InputError({s.source, 0, 0, ""}, kGmshFailed + gmsh_error(nullptr));
+    throw std::runtime_error(kGmshFailed + gmsh_error(nullptr));
   }
+  std::string bytes;
+  mesh_detail::append_array(bytes, mesh.positions);
+  mesh_detail::append_array(bytes, mesh.tets);
+  return bytes;
+}
+
+}  // namespace
+
+VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options, LoadReport* report) {
+  LoadReport local;
+  LoadReport& r = report ? *report : local;
+  SurfaceMesh s = closed;
+  check_options(options, s.source);
+  check_surface(s, r);
+  const std::string bytes = mesh_detail::call_isolated([&] { return mesh_in_gmsh(s, options); }, s.source, kMesherTimeout);
+  VolumeMesh mesh;
+  mesh.source = s.source + " (tetrahedralized)";
+  size_t at = 0;
+  mesh.positions = mesh_detail::take_array<double>(bytes, at);
+  mesh.tets = mesh_detail::take_array<uint32_t>(bytes, at);
+  if (mesh.tets.empty() || at != bytes.size()) throw InputError({s.source, 0, 0, ""}, "the mesher's answer was cut short");
+  finalize(mesh, &r);
   const MeshQuality q = mesh_quality(mesh);
   if (q.min_dihedral_deg < options.min_dihedral_deg || q.min_radius_ratio < options.min_radius_ratio) {
     throw InputError({s.source, 0, 0, ""},
@@ -162,23 +180,25 @@ VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& o
 }
 
 void write_gmsh(const VolumeMesh& mesh, const std::string& path) {
-  std::lock_guard<std::mutex> lock(gmsh_mutex());
-  GmshSession session;
-  try {
-    const int volume = gmsh::model::addDiscreteEntity(3);
-    std::vector<std::size_t> node_tags(mesh.node_count()), tet_nodes(mesh.tets.size());
-    for (size_t i = 0; i < node_tags.size(); ++i) node_tags[i] = i + 1;
-    for (size_t i = 0; i < tet_nodes.size(); ++i) tet_nodes[i] = std::size_t{mesh.tets[i]} + 1;
-    gmsh::model::mesh::addNodes(3, volume, node_tags, mesh.positions);
-    gmsh::model::mesh::addElementsByType(volume, 4, {}, tet_nodes);
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 0);
-    gmsh::write(path);
-  } catch (const std::exception& e) {
-    throw InputError({path, 0, 0, ""}, "cannot write the mesh: " + gmsh_error(&e));
-  } catch (...) {
-    throw InputError({path, 0, 0, ""}, "cannot write the mesh: " + gmsh_error(nullptr));
-  }
+  mesh_detail::call_isolated(
+      [&] {
+        GmshSession session;
+        try {
+          const int volume = gmsh::model::addDiscreteEntity(3);
+          std::vector<std::size_t> node_tags(mesh.node_count()), tet_nodes(mesh.tets.size());
+          for (size_t i = 0; i < node_tags.size(); ++i) node_tags[i] = i + 1;
+          for (size_t i = 0; i < tet_nodes.size(); ++i) tet_nodes[i] = std::size_t{mesh.tets[i]} + 1;
+          gmsh::model::mesh::addNodes(3, volume, node_tags, mesh.positions);
+          gmsh::model::mesh::addElementsByType(volume, 4, {}, tet_nodes);
+          gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+          gmsh::option::setNumber("Mesh.Binary", 0);
+          gmsh::write(path);
+        } catch (const std::exception& e) {
+          throw std::runtime_error("cannot write the mesh: " + gmsh_error(&e));
+        }
+        return std::string();
+      },
+      path, kMesherTimeout);
 }
 
 }  // namespace tacta
