@@ -141,6 +141,24 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   return q;
 }
 
+std::vector<double> piece_volumes(const VolumeMesh& mesh) {
+  std::vector<uint32_t> parent(mesh.node_count());
+  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto root = [&](uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (size_t t = 0; t < mesh.tet_count(); ++t)
+    for (size_t k = 1; k < 4; ++k) parent[root(mesh.tets[4 * t + k])] = root(mesh.tets[4 * t]);
+  std::vector<double> volume_of_root(mesh.node_count(), 0.0);
+  for (size_t t = 0; t < mesh.tet_count(); ++t) volume_of_root[root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
+  std::vector<double> pieces;
+  for (double v : volume_of_root)
+    if (v > 0) pieces.push_back(v);
+  std::sort(pieces.rbegin(), pieces.rend());
+  return pieces;
+}
+
 double enclosed_volume(const SurfaceMesh& surface) {
   double six_volume = 0;
   for (size_t t = 0; t < surface.triangle_count(); ++t) {

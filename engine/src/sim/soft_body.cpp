@@ -91,7 +91,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
   try {
-    topo.mesh = load_body_mesh(desc.mesh);
+    topo.mesh = load_body_mesh(desc.mesh, &topo.load);
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
