@@ -53,6 +53,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     j.end_array();
     j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
     write_mesh_origin(j, b, body.topology->load);
+    j.field("model_notes", body.model->describe());
     j.field("max_displacement_m", b.max_displacement_m);
     j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
     j.field("initial_energy_J", b.initial_energy_J);

@@ -43,6 +43,13 @@ class ModelInstance {
   // The model's own counters (solver fallbacks, Newton iterations); empty when it keeps none.
   // Allocates: not from the 1 kHz path.
   std::vector<std::pair<std::string, double>> counters();
+  // What the instance says it chose for this body (empty when the plugin says nothing).
+  std::string describe() const {
+    if (!api_.describe) return {};
+    char text[512] = {};
+    api_.describe(instance_, text, sizeof text);
+    return text;
+  }
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;
