@@ -3,6 +3,7 @@
 // are thin, noexcept forwards into the C function table.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,7 +46,8 @@ class ModelInstance {
   std::vector<std::pair<std::string, double>> counters();
   // What the instance says it chose for this body (empty when the plugin says nothing).
   std::string describe() const {
-    if (!api_.describe) return {};
+    // A plugin built before `describe` existed has a shorter table: the entry is absent.
+    if (descriptor_.api_size < offsetof(tacta_model_api, describe) + sizeof(api_.describe) || !api_.describe) return {};
     char text[512] = {};
     api_.describe(instance_, text, sizeof text);
     return text;
