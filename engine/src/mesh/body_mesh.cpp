@@ -127,6 +127,7 @@ VolumeMesh load_tets(const MeshSourceDesc& desc, LoadReport& r) {
       transform(mesh.positions, desc);
       finalize(mesh, &r);  // a mirroring scale turns every tet inside out: re-orient
     }
+    note_pieces(mesh, r);
     return mesh;
   }
   if (detect_mesh_format(desc.path) != MeshFormat::Other) {
@@ -193,8 +194,9 @@ VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
 }
 
 std::string describe_body_mesh(const VolumeMesh& mesh, const LoadReport& r) {
-  std::string text = fmt::format("{} nodes, {} tets", mesh.node_count(), mesh.tet_count());
-  if (r.voxel_size == 0) text += fmt::format(", {} piece(s)", r.piece_volumes.size());
+  std::string text = mesh.dimension == 2 ? fmt::format("{} nodes, {} quads", mesh.node_count(), mesh.quads.size() / 4)
+                                          : fmt::format("{} nodes, {} tets", mesh.node_count(), mesh.tet_count());
+  if (r.voxel_size == 0 && !r.piece_volumes.empty()) text += fmt::format(", {} piece(s)", r.piece_volumes.size());
   if (r.voxel_size > 0) {
     text = fmt::format("voxelised: voxel {:.4g} m, {} cells, {}, volume {:.4g} m^3 = {:.1f}% of the {:.4g} m^3 enclosed, "
                        "{} piece(s) from {} surface shell(s)",
