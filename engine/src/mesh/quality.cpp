@@ -142,16 +142,10 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
 }
 
 std::vector<double> piece_volumes(const VolumeMesh& mesh) {
-  std::vector<uint32_t> parent(mesh.node_count());
-  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  auto root = [&](uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (size_t t = 0; t < mesh.tet_count(); ++t)
-    for (size_t k = 1; k < 4; ++k) parent[root(mesh.tets[4 * t + k])] = root(mesh.tets[4 * t]);
+  mesh_detail::NodeUnion pieces_of(mesh.node_count());
+  pieces_of.join_elements(mesh.tets, 4);
   std::vector<double> volume_of_root(mesh.node_count(), 0.0);
-  for (size_t t = 0; t < mesh.tet_count(); ++t) volume_of_root[root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
+  for (size_t t = 0; t < mesh.tet_count(); ++t) volume_of_root[pieces_of.root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
   std::vector<double> pieces;
   for (double v : volume_of_root)
     if (v > 0) pieces.push_back(v);

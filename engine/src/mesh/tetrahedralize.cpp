@@ -49,6 +49,18 @@ const std::string kGmshFailed =
     "Gmsh could not tetrahedralize the surface (are triangles crossing or touching? repair it in a mesh "
     "editor, or fill it with voxel_size instead): ";
 
+// Gmsh numbers nodes from 1: tags 1..n for the nodes, and each element's node tags.
+std::vector<std::size_t> gmsh_node_tags(size_t nodes) {
+  std::vector<std::size_t> tags(nodes);
+  for (size_t i = 0; i < nodes; ++i) tags[i] = i + 1;
+  return tags;
+}
+std::vector<std::size_t> gmsh_element_nodes(const std::vector<uint32_t>& indices) {
+  std::vector<std::size_t> tags(indices.size());
+  for (size_t i = 0; i < indices.size(); ++i) tags[i] = std::size_t{indices[i]} + 1;
+  return tags;
+}
+
 // Edge of the regular tet of volume v: v = a^3 / (6 sqrt 2).
 double regular_edge(double volume) { return std::cbrt(6.0 * std::numbers::sqrt2 * volume); }
 
@@ -107,11 +119,8 @@ std::string mesh_in_gmsh(const SurfaceMesh& s, const TetrahedralizeDesc& options
   VolumeMesh mesh;
   try {
     const int surface = gmsh::model::addDiscreteEntity(2);
-    std::vector<std::size_t> node_tags(s.vertex_count()), triangle_nodes(s.triangles.size());
-    for (size_t i = 0; i < node_tags.size(); ++i) node_tags[i] = i + 1;
-    for (size_t i = 0; i < triangle_nodes.size(); ++i) triangle_nodes[i] = std::size_t{s.triangles[i]} + 1;
-    gmsh::model::mesh::addNodes(2, surface, node_tags, s.positions);
-    gmsh::model::mesh::addElementsByType(surface, 2, {}, triangle_nodes);  // 2: 3-node triangles
+    gmsh::model::mesh::addNodes(2, surface, gmsh_node_tags(s.vertex_count()), s.positions);
+    gmsh::model::mesh::addElementsByType(surface, 2, {}, gmsh_element_nodes(s.triangles));  // 2: 3-node triangles
     std::vector<int> shell_surfaces{surface};
     if (options.max_volume > 0) {
       // A size inside asks for a new surface mesh too: the surface is split into patches at 40
@@ -185,11 +194,8 @@ void write_gmsh(const VolumeMesh& mesh, const std::string& path) {
         GmshSession session;
         try {
           const int volume = gmsh::model::addDiscreteEntity(3);
-          std::vector<std::size_t> node_tags(mesh.node_count()), tet_nodes(mesh.tets.size());
-          for (size_t i = 0; i < node_tags.size(); ++i) node_tags[i] = i + 1;
-          for (size_t i = 0; i < tet_nodes.size(); ++i) tet_nodes[i] = std::size_t{mesh.tets[i]} + 1;
-          gmsh::model::mesh::addNodes(3, volume, node_tags, mesh.positions);
-          gmsh::model::mesh::addElementsByType(volume, 4, {}, tet_nodes);
+          gmsh::model::mesh::addNodes(3, volume, gmsh_node_tags(mesh.node_count()), mesh.positions);
+          gmsh::model::mesh::addElementsByType(volume, 4, {}, gmsh_element_nodes(mesh.tets));  // 4: 4-node tets
           gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
           gmsh::option::setNumber("Mesh.Binary", 0);
           gmsh::write(path);

@@ -172,22 +172,15 @@ int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet,
   return best;
 }
 
-// Connected pieces of the surface: triangles joined through shared vertices (union-find).
+// Connected pieces of the surface: triangles joined through shared vertices.
 size_t count_shells(const SurfaceMesh& s) {
-  std::vector<uint32_t> parent(s.vertex_count());
-  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  auto root = [&](uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (size_t t = 0; t < s.triangle_count(); ++t)
-    for (size_t k = 1; k < 3; ++k) parent[root(s.triangles[3 * t + k])] = root(s.triangles[3 * t]);
-  std::vector<char> used(s.vertex_count(), 0), is_root(s.vertex_count(), 0);
-  for (uint32_t v : s.triangles) used[v] = 1;
+  mesh_detail::NodeUnion shells_of(s.vertex_count());
+  shells_of.join_elements(s.triangles, 3);
+  std::vector<char> is_root(s.vertex_count(), 0);
   size_t shells = 0;
-  for (uint32_t v = 0; v < used.size(); ++v)
-    if (used[v] && !is_root[root(v)]) {
-      is_root[root(v)] = 1;
+  for (uint32_t v : s.triangles)
+    if (!is_root[shells_of.root(v)]) {
+      is_root[shells_of.root(v)] = 1;
       ++shells;
     }
   return shells;
