@@ -194,13 +194,13 @@ TEST(SceneErrors, TetrahedralizeKeys) {
   EXPECT_FALSE(ok.bodies[0].mesh.tetrahedralize->optimize);
   EXPECT_TRUE(load(with_mesh("{file: organ.stl, tetrahedralize: true}")).bodies[0].mesh.tetrahedralize.has_value());
   EXPECT_FALSE(load(with_mesh("{file: organ.stl}")).bodies[0].mesh.tetrahedralize.has_value());
-  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {min_dihedral: 80}}")), 3, 58,
+  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {min_dihedral: 80}}")), 3, 60,
                "bodies[0].mesh.tetrahedralize.min_dihedral", {"in [0, 60]"});
-  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volum: 1}}")), 3, 44,
+  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volum: 1}}")), 3, 46,
                "bodies[0].mesh.tetrahedralize.max_volum", {"did you mean 'max_volume'?"});
-  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, tetrahedralize: true}")), 3, 64,
+  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, tetrahedralize: true}")), 3, 63,
                "bodies[0].mesh.tetrahedralize", {"not both"});
-  expect_error(load_error(with_mesh("{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, tetrahedralize: true}")), 3, 68,
+  expect_error(load_error(with_mesh("{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, tetrahedralize: true}")), 3, 75,
                "bodies[0].mesh.tetrahedralize", {"mesh `file` only"});
 }
 
