@@ -3,6 +3,7 @@
 // DIR/compare.png and prints a table. Every scene and model is loaded and built before anything
 // runs, so bad input stops with exit 2 and no partial results. Exit 0 when every model ran without
 // a fault, 1 when any faulted (its row is still written), 2 bad input.
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +30,7 @@ struct CompareArgs {
   double duration = -1;  // s; <= 0 keeps the scene's clock.duration_s
   std::vector<std::string> overrides;
   bool quiet = false;
+  std::string reference;  // a --models label: the other rows are measured against it
 };
 
 // One entry of --models: a plugin name, optionally with parameters, "fd_debunne:symmetric=true".
@@ -127,11 +129,16 @@ int compare_models(const CompareArgs& args) {
   plugins.load();
   RegistrySchemas schemas(plugins);
   const std::vector<ModelChoice> models = parse_model_choices(args.models, plugins);
+  if (!args.reference.empty() && std::none_of(models.begin(), models.end(), [&](const ModelChoice& m) {
+        return m.label == args.reference;
+      }))
+    throw InputError({"--reference", 0, 0, args.reference}, "expected one of the --models entries, found '" + args.reference + "'");
   std::vector<ModelRun> runs = build_runs(args, models, plugins, schemas);
 
   CompareSummary summary;
   summary.scene = args.scene;
   summary.duration_s = args.duration > 0 ? args.duration : runs.front().scene.clock.duration_s;
+  summary.reference = args.reference;
   std::filesystem::create_directories(args.out);
   for (ModelRun& run : runs) {
     if (!args.quiet) std::fprintf(stderr, "running %s ...\n", run.model.label.c_str());
@@ -139,6 +146,7 @@ int compare_models(const CompareArgs& args) {
     run.simulation.reset();  // free the model's memory before the next one runs
   }
 
+  compare_with_reference(summary);
   const std::filesystem::path out(args.out);
   write_compare_json((out / "compare.json").string(), summary);
   write_compare_csv((out / "compare.csv").string(), summary);
@@ -174,6 +182,8 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--duration", args->duration, "Simulated duration, s (overrides clock.duration_s)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--set", args->overrides, "Override a scene key for every run: key.path=value");
+  cmd->add_option("--reference", args->reference,
+                  "A --models entry to measure the others against: max displacement ratio and RMS node distance at the end");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
   cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return compare_models(*args); }); });
 }

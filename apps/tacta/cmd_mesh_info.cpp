@@ -23,6 +23,8 @@ struct Summary {
   double volume = 0;  // m^3: sum of tet volumes, or the surface's enclosed volume
   tacta::MeshQuality quality;
   tacta::LoadReport report;
+  std::string as_body;  // a surface: what a scene body made of it becomes (automatic voxels)
+  tacta::LoadReport body_report;
 };
 
 Summary summarize(const std::string& path) {
@@ -47,6 +49,15 @@ Summary summarize(const std::string& path) {
   tacta::VolumeMesh points_only;  // bounds come from the positions alone
   points_only.positions = surface.positions;
   s.quality = tacta::mesh_quality(points_only);
+  // What `mesh: {file: ...}` makes of it in a scene: the automatic voxelisation, or why it fails.
+  tacta::MeshSourceDesc as_body;
+  as_body.path = path;
+  try {
+    const tacta::VolumeMesh body = tacta::load_body_mesh(as_body, &s.body_report);
+    s.as_body = tacta::describe_body_mesh(body, s.body_report);
+  } catch (const tacta::InputError& e) {
+    s.as_body = std::string("refused: ") + e.what();
+  }
   s.quality.min_edge = std::numeric_limits<double>::infinity();
   for (size_t t = 0; t < surface.triangle_count(); ++t) {
     for (size_t k = 0; k < 3; ++k) {
@@ -70,7 +81,10 @@ void print_text(const std::string& path, const Summary& s) {
               << "\n  unused nodes removed: " << s.report.removed_nodes << "\n  volume: " << s.volume << " m^3"
               << "\n  tet volume: min " << q.min_volume << ", max " << q.max_volume << " m^3"
               << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
-              << "\n  worst aspect ratio: " << q.worst_aspect_ratio << " (1 = regular tet)\n";
+              << "\n  worst aspect ratio: " << q.worst_aspect_ratio << " (1 = regular tet)"
+              << "\n  dihedral angle: min " << q.min_dihedral_deg << ", max " << q.max_dihedral_deg << " degrees"
+              << "\n  radius ratio (3 r_in / r_circ, 1 regular): min " << q.min_radius_ratio << ", mean "
+              << q.mean_radius_ratio << "\n";
   } else {
     std::cout << "  vertices: " << s.nodes << "\n  triangles: " << s.triangles
               << "\n  welded vertices: " << s.report.welded_vertices
@@ -78,7 +92,9 @@ void print_text(const std::string& path, const Summary& s) {
               << "\n  closed: " << (s.report.closed() ? "yes" : "no") << " (" << s.report.boundary_edges
               << " open edges, " << s.report.nonmanifold_edges << " non-manifold edges)"
               << "\n  enclosed volume: " << s.volume << " m^3"
-              << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m\n";
+              << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
+              << "\n  as a scene body: " << s.as_body << "\n";
+    for (const std::string& w : s.body_report.warnings) std::cout << "  as a scene body, warning: " << w << "\n";
   }
   std::cout << "  bounds: [" << q.bounds_min[0] << ", " << q.bounds_min[1] << ", " << q.bounds_min[2] << "] .. ["
             << q.bounds_max[0] << ", " << q.bounds_max[1] << ", " << q.bounds_max[2] << "] m\n";
@@ -102,6 +118,8 @@ void print_json(const std::string& path, const Summary& s) {
     json.field("min_tet_volume_m3", q.min_volume).field("max_tet_volume_m3", q.max_volume);
     json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
     json.field("worst_aspect_ratio", q.worst_aspect_ratio);
+    json.field("min_dihedral_deg", q.min_dihedral_deg).field("max_dihedral_deg", q.max_dihedral_deg);
+    json.field("min_radius_ratio", q.min_radius_ratio).field("mean_radius_ratio", q.mean_radius_ratio);
     json.end_object();
   } else {
     json.field("welded_vertices", static_cast<uint64_t>(s.report.welded_vertices));
@@ -111,6 +129,15 @@ void print_json(const std::string& path, const Summary& s) {
     json.field("nonmanifold_edges", static_cast<uint64_t>(s.report.nonmanifold_edges));
     json.field("enclosed_volume_m3", s.volume);
     json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
+    json.key("as_body").begin_object().field("summary", s.as_body);
+    json.field("voxel_size_m", s.body_report.voxel_size).field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
+    json.field("volume_m3", s.body_report.mesh_volume);
+    json.key("piece_volumes_m3").begin_array();
+    for (double v : s.body_report.piece_volumes) json.value(v);
+    json.end_array();
+    json.key("warnings").begin_array();
+    for (const std::string& w : s.body_report.warnings) json.value(w);
+    json.end_array().end_object();
   }
   json.key("bounds_min_m").begin_array().value(q.bounds_min[0]).value(q.bounds_min[1]).value(q.bounds_min[2]).end_array();
   json.key("bounds_max_m").begin_array().value(q.bounds_max[0]).value(q.bounds_max[1]).value(q.bounds_max[2]).end_array();

@@ -94,6 +94,10 @@ int run_scene(const RunArgs& args) {
       std::printf("  body %s (%s): %zu nodes (%zu fixed), %zu elements, max displacement %.6g m%s%s\n", b.name.c_str(),
                   b.model.c_str(), b.nodes, b.fixed_nodes, b.elements, b.max_displacement_m, b.frozen ? ", FROZEN: " : "",
                   b.fault.c_str());
+    for (const BodyResult& b : result.bodies) {
+      std::printf("  body %s mesh: %s\n", b.name.c_str(), b.mesh.c_str());
+      for (const std::string& w : b.mesh_warnings) std::printf("  body %s mesh warning: %s\n", b.name.c_str(), w.c_str());
+    }
     for (const std::string& f : result.outputs) std::printf("  wrote %s\n", f.c_str());
     std::printf("  state hash %s\n", result.state_hash.c_str());
   }

@@ -74,6 +74,9 @@ CompareRow make_compare_row(const std::string& model, const SceneDesc& scene, co
     row.probe_displacement_m = node_displacement(final_state, i, *scene.bodies[i].probe_node);
     break;
   }
+  if (final_state.has_frame())
+    for (const auto& body : final_state.last().bodies)
+      row.final_positions.insert(row.final_positions.end(), body.positions.begin(), body.positions.end());
   row.faults = result.faults;
   row.state_hash = result.state_hash;
   if (row.faults > 0 && row.fault_reason.empty()) row.fault_reason = "fault reported (see report.json)";
@@ -90,12 +93,32 @@ CompareRow make_failed_row(const std::string& model, const std::string& reason) 
   return row;
 }
 
+void compare_with_reference(CompareSummary& summary) {
+  const auto reference = std::find_if(summary.rows.begin(), summary.rows.end(),
+                                      [&](const CompareRow& r) { return r.model == summary.reference; });
+  if (summary.reference.empty() || reference == summary.rows.end()) return;
+  const CompareRow ref = *reference;
+  for (CompareRow& r : summary.rows) {
+    if (std::isfinite(r.max_displacement_m) && ref.max_displacement_m > 0)
+      r.displacement_ratio = r.max_displacement_m / ref.max_displacement_m;
+    const std::vector<double>& a = r.final_positions;
+    const std::vector<double>& b = ref.final_positions;
+    if (a.empty() || a.size() != b.size()) continue;
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+    r.difference_from_reference_m = std::sqrt(sum / static_cast<double>(a.size() / 3));
+  }
+}
+
 void write_compare_json(const std::string& path, const CompareSummary& summary) {
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
   JsonWriter json(file);
   json.begin_object();
   json.field("scene", summary.scene).field("duration_s", summary.duration_s);
+  json.key("reference");
+  if (summary.reference.empty()) json.null();
+  else json.value(summary.reference);
   json.key("models").begin_array();
   for (const CompareRow& r : summary.rows) {
     json.begin_object();
@@ -116,6 +139,12 @@ void write_compare_json(const std::string& path, const CompareSummary& summary) 
     if (r.fault_reason.empty()) json.null();
     else json.value(r.fault_reason);
     json.field("out_dir", r.out_dir);
+    json.key("displacement_ratio");
+    if (r.displacement_ratio) json.value(*r.displacement_ratio);
+    else json.null();
+    json.key("difference_from_reference_m");
+    if (r.difference_from_reference_m) json.value(*r.difference_from_reference_m);
+    else json.null();
     json.end_object();
   }
   json.end_array();
@@ -127,12 +156,13 @@ void write_compare_csv(const std::string& path, const CompareSummary& summary, b
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
   file << "model,tick_p50_ms,tick_p99_ms,max_displacement_m,energy_drift,probe_displacement_m,faults,state_hash,"
-          "energy_start_J,energy_end_J\n";
+          "energy_start_J,energy_end_J,displacement_ratio,difference_from_reference_m\n";
   for (const CompareRow& r : summary.rows)
     file << csv_text(label_faults && r.faults > 0 ? r.model + " (fault)" : r.model) << ',' << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
          << csv_number(r.max_displacement_m) << ',' << csv_number(r.energy_drift) << ','
          << csv_number(r.probe_displacement_m) << ',' << r.faults << ',' << r.state_hash << ','
-         << csv_number(r.energy_start_J) << ',' << csv_number(r.energy_end_J) << '\n';
+         << csv_number(r.energy_start_J) << ',' << csv_number(r.energy_end_J) << ','
+         << csv_number(r.displacement_ratio) << ',' << csv_number(r.difference_from_reference_m) << '\n';
   if (!file) throw std::runtime_error("cannot write " + path);
 }
 
@@ -140,14 +170,21 @@ void print_compare_table(std::FILE* out, const CompareSummary& summary) {
   std::fprintf(out, "%s, %.6g s simulated per model (lockstep)\n", summary.scene.c_str(), summary.duration_s);
   int width = 18;  // characters of the model column: the longest label
   for (const CompareRow& r : summary.rows) width = std::max(width, static_cast<int>(r.model.size()));
-  std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6s  %s\n", width, "model", "p50 ms", "p99 ms", "max disp m",
-               "energy drift", "probe disp m", "faults", "state hash");
+  const bool against = !summary.reference.empty();
+  if (against) std::fprintf(out, "reference model: %s (disp ratio: max displacement / its; diff: RMS node distance at the end)\n", summary.reference.c_str());
+  std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6s  %s%s\n", width, "model", "p50 ms", "p99 ms", "max disp m",
+               "energy drift", "probe disp m", "faults", "state hash        ", against ? "  disp ratio   diff m" : "");
   for (const CompareRow& r : summary.rows) {
-    std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6zu  %s\n", width, r.model.c_str(),
+    std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6zu  %-18s", width, r.model.c_str(),
                  table_number(r.tick_p50_ms, Style::Fixed4).c_str(), table_number(r.tick_p99_ms, Style::Fixed4).c_str(),
                  table_number(r.max_displacement_m, Style::Significant6).c_str(), table_number(r.energy_drift, Style::Significant6).c_str(),
                  table_number(r.probe_displacement_m, Style::Significant6).c_str(), r.faults,
                  r.state_hash.empty() ? "-" : r.state_hash.c_str());
+    if (against) {
+      std::fprintf(out, "  %10s %8s", table_number(r.displacement_ratio, Style::Significant6).c_str(),
+                   table_number(r.difference_from_reference_m, Style::Significant6).c_str());
+    }
+    std::fprintf(out, "\n");
     if (!r.fault_reason.empty()) std::fprintf(out, "  %s: %s\n", r.model.c_str(), r.fault_reason.c_str());
   }
 }

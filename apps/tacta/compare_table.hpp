@@ -29,6 +29,10 @@ struct CompareRow {
   std::string state_hash;
   std::string fault_reason;  // first frozen body's reason, or a run error; empty when none
   std::string out_dir;       // the run's subfolder of --out
+  std::vector<double> final_positions;  // m, every body's nodes at the end, in body order
+  // Against the --reference model (empty without one, or when either run has no final state):
+  std::optional<double> displacement_ratio;           // max_displacement_m / the reference's
+  std::optional<double> difference_from_reference_m;  // m, RMS over nodes of |x - x_reference| at the end
 };
 
 // Fills a row from a finished run. `scene` is the loaded scene (probe_node), `final_state` the
@@ -42,8 +46,14 @@ CompareRow make_failed_row(const std::string& model, const std::string& reason);
 struct CompareSummary {
   std::string scene;
   double duration_s = 0;  // s of simulated time each model ran
+  std::string reference;  // the --reference model's label; empty when none
   std::vector<CompareRow> rows;
 };
+
+// Fills displacement_ratio and difference_from_reference_m of every row against the row whose
+// model is summary.reference (nothing when it is empty). The runs share the mesh, so node i of
+// one is node i of the other.
+void compare_with_reference(CompareSummary& summary);
 
 // Throw std::runtime_error naming the file when it cannot be written.
 void write_compare_json(const std::string& path, const CompareSummary& summary);

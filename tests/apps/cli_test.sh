@@ -190,6 +190,35 @@ YAML
     run 2 run "$src/scenes/examples/soft_drop.yaml" --realtime --duration 0.2 --set clock.haptic_cpu=99999
     expect_output 'clock\.haptic_cpu: expected an integer in \[-1, ' "the CPU range"
     ;;
+  mesh_tetrahedralize)
+    # A closed surface into conforming tets (Gmsh), a scene body made the same way, and the refusals.
+    run 0 mesh tetrahedralize "$src/assets/meshes/Bunny.stl" bunny.msh
+    expect_output 'tets: [0-9]+' "the tet count"
+    expect_output 'dihedral angle: min [0-9.]+' "the smallest dihedral angle"
+    expect_output 'radius ratio.*min [0-9.]+' "the radius ratio"
+    expect_file bunny.msh
+    run 0 mesh-info bunny.msh
+    expect_output 'format: gmsh-4.1' "the written file read back"
+    expect_output 'dihedral angle: min' "the quality of a tet mesh"
+    run 2 mesh tetrahedralize "$src/assets/meshes/stylus.obj" stylus.msh
+    expect_output 'stylus\.obj.*4 open edges' "the open surface refused, with its hole count"
+    [ -e stylus.msh ] && fail "an open surface wrote a mesh"
+    run 2 mesh tetrahedralize "$src/assets/meshes/liver.obj" liver.msh --min-dihedral 40
+    expect_output 'short of the 40' "the quality asked for and not reached"
+    cp "$src/assets/meshes/liver.obj" .
+    cat >tets.yaml <<'YAML'
+name: tets
+clock: {duration_s: 0.05}
+bodies:
+  - name: liver
+    mesh: {file: liver.obj, scale: 0.01, tetrahedralize: {max_volume: 1.0e-7}}
+    material: {youngs_modulus: 3.0e3, poisson_ratio: 0.4, density: 1000}
+    model: corotational_fem
+    fixed: [{box: {min: [-1, 0.04, -1], max: [1, 1, 1]}}]
+YAML
+    run 0 run tets.yaml --out out
+    expect_output 'tetrahedralized' "what the body became"
+    ;;
   *)
     fail "unknown case"
     ;;

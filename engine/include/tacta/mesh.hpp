@@ -50,6 +50,10 @@ struct MeshQuality {
   double min_edge = 0;            // m
   double max_edge = 0;
   double worst_aspect_ratio = 0;  // longest edge / shortest altitude-ish measure, 1 is best
+  double min_dihedral_deg = 0;    // tets: smallest dihedral angle, degrees (70.5 regular; slivers near 0)
+  double max_dihedral_deg = 0;    // tets: largest dihedral angle, degrees (near 180: a flat tet)
+  double min_radius_ratio = 0;    // tets: smallest 3 r_in / r_circ (1 regular, 0 flat)
+  double mean_radius_ratio = 0;   // tets: mean of 3 r_in / r_circ
   double bounds_min[3] = {0, 0, 0};
   double bounds_max[3] = {0, 0, 0};
 };

@@ -27,7 +27,19 @@ struct LoadReport {
   size_t boundary_edges = 0;           // surface edges used by one triangle (0 when closed)
   size_t nonmanifold_edges = 0;        // surface edges used by three triangles or more
   bool closed() const { return boundary_edges == 0 && nonmanifold_edges == 0; }
+  // What a surface became (voxel_size > 0: voxelised; format "gmsh-tetrahedralize": Gmsh tets).
+  double voxel_size = 0;               // m; 0 when the body was not voxelised
+  size_t voxel_cells = 0;              // kept cubes, 6 tets each
+  size_t shells = 0;                   // connected pieces of the input surface
+  double enclosed_volume = 0;          // m^3, inside the input surface
+  double mesh_volume = 0;              // m^3, of the tets made from it
+  std::vector<double> piece_volumes;   // m^3, one per connected piece of the tets (face-connected)
+  size_t split_pieces = 0;             // > 0: the inside cells fell into this many pieces, joined by the crossed cells
 };
+
+// One line a person reads: what a surface-made body became (voxel size, counts, volume kept,
+// pieces), or the file's format and counts; the warnings are separate (report.warnings).
+std::string describe_body_mesh(const VolumeMesh& mesh, const LoadReport& report);
 
 // Which reader a file needs, found from its first bytes (never from its extension).
 enum class MeshFormat { GmshV1, GmshV2, GmshV4, VtkLegacy, VtkXml, Other };
@@ -56,11 +68,15 @@ MeshQuality mesh_quality(const VolumeMesh& mesh);
 // Counts surface edges used by one triangle (holes) or by more than two (non-manifold) into report.
 void check_closed(const SurfaceMesh& surface, LoadReport& report);
 
+// Volumes (m^3) of the mesh's connected pieces, largest first: tets joined through shared nodes.
+std::vector<double> piece_volumes(const VolumeMesh& mesh);
+
 // Volume enclosed by a closed surface (divergence theorem), m^3; signed: positive when outward.
 double enclosed_volume(const SurfaceMesh& surface);
 
 // The mesh a scene body asks for: a primitive, a volume file, or a surface file voxelised with
-// desc.voxel_size (0 = automatic: bounding-box diagonal / 20). Applies desc.scale, then
+// desc.voxel_size (0 = automatic: the smaller of the bounding-box diagonal / 20 and the surface's
+// volume / area, about two cells across a slab and four across a rod) or tetrahedralized. Applies desc.scale, then
 // desc.translate (to surface files before voxelising, so voxel_size is in metres), then finalizes.
 VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report = nullptr);
 

@@ -105,6 +105,10 @@ typedef struct tacta_model_api {
    * writes at most capacity of them into out and returns how many it has. Not from the 1 kHz
    * path. */
   uint32_t (*counters)(void* instance, tacta_model_counter* out, uint32_t capacity);
+  /* optional: one sentence on what the instance chose for this body that its parameters did not
+   * say (an integrator picked for stability at dt, sub-steps), written into text (NUL-ended,
+   * truncated to capacity); the engine puts it into report.json. Not from the 1 kHz path. */
+  void (*describe)(void* instance, char* text, size_t capacity);
 } tacta_model_api;
 
 #define TACTA_MODEL_API_FIELD(member, required) \
@@ -116,6 +120,7 @@ static const tacta_api_field tacta_model_api_fields[] = {
     TACTA_MODEL_API_FIELD(elastic_energy, 0),  TACTA_MODEL_API_FIELD(internal_forces, 0),
     TACTA_MODEL_API_FIELD(set_param, 0),       TACTA_MODEL_API_FIELD(node_stress, 0),
     TACTA_MODEL_API_FIELD(counters, 0),
+    TACTA_MODEL_API_FIELD(describe, 0),
 };
 
 #ifdef __cplusplus

@@ -57,6 +57,14 @@ struct MaterialDesc {
   double rayleigh_stiffness = 0;  // beta, s
 };
 
+// A closed surface filled with conforming quality tetrahedra by Gmsh (mesh.tetrahedralize).
+struct TetrahedralizeDesc {
+  double max_volume = 0;        // m^3, largest tet (0: sized from the surface triangles)
+  double min_dihedral_deg = 0;  // degrees: the worst tet's smallest dihedral angle must reach this
+  double min_radius_ratio = 0;  // 3 r_in / r_circ (1 regular): the worst tet must reach this
+  bool optimize = true;         // Gmsh's tet optimiser after meshing
+};
+
 // Where the body's mesh comes from: a file or a built-in primitive.
 struct MeshSourceDesc {
   enum class Kind { File, BoxGrid, BeamGrid, QuadGrid, Sphere } kind = Kind::File;
@@ -67,6 +75,7 @@ struct MeshSourceDesc {
   double radius = 0.05;             // Sphere, m
   int subdivisions = 2;             // Sphere resolution
   double voxel_size = 0;            // File with a surface only: tet grid cell, m (0 = automatic)
+  std::optional<TetrahedralizeDesc> tetrahedralize;  // File with a surface only: Gmsh instead of voxels
   Vec3 scale{1, 1, 1};              // applied to file coordinates (e.g. mm -> m: 0.001)
   Vec3 translate{0, 0, 0};          // applied after scale, m
   // `surface:` a finer surface file bound to the tets (scale and translate apply to it too);

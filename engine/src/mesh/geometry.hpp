@@ -38,4 +38,24 @@ inline std::array<double, 4> barycentric(const P3& p, const P3& a, const P3& b, 
   return {1.0 - wb - wc - wd, wb, wc, wd};
 }
 
+// Elements joined through shared nodes: union-find over node indices (path halving).
+class NodeUnion {
+ public:
+  explicit NodeUnion(size_t nodes) : parent_(nodes) {
+    for (uint32_t i = 0; i < parent_.size(); ++i) parent_[i] = i;
+  }
+  uint32_t root(uint32_t v) {
+    while (parent_[v] != v) v = parent_[v] = parent_[parent_[v]];
+    return v;
+  }
+  // Joins the `per` nodes of every element of a flat index array (tets: 4, triangles: 3).
+  void join_elements(const std::vector<uint32_t>& elements, size_t per) {
+    for (size_t e = 0; e + per <= elements.size(); e += per)
+      for (size_t k = 1; k < per; ++k) parent_[root(elements[e + k])] = root(elements[e]);
+  }
+
+ private:
+  std::vector<uint32_t> parent_;
+};
+
 }  // namespace tacta::mesh_detail

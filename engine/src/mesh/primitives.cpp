@@ -48,7 +48,7 @@ VolumeMesh hex_grid(const char* name, const Vec3& size, const std::array<int, 3>
       for (uint32_t i = 0; i < nx; ++i) {
         uint32_t corner[8];
         for (uint32_t c = 0; c < 8; ++c) corner[c] = node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-        unsigned mirror = 0;
+        unsigned mirror = mesh_detail::alternating_mirror(i, j, k);
         if (mirror_about_centre) {
           mirror = (2 * i < nx ? 1u : 0u) | (2 * j < ny ? 2u : 0u) | (2 * k < nz ? 4u : 0u);
         }

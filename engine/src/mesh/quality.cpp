@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,36 @@ double tet_aspect(const VolumeMesh& mesh, size_t t) {
   return longest / shortest_altitude * std::sqrt(2.0 / 3.0);
 }
 
+// Radius ratio 3 r_in / r_circ (1 for the regular tet), r_in = 3V / area, and the tet's six
+// dihedral angles (radians) from the outward face normals: pi minus the angle between two of them.
+double tet_shape(const VolumeMesh& mesh, size_t t, double& min_dihedral, double& max_dihedral) {
+  const uint32_t* v = &mesh.tets[4 * t];
+  const P3 o = point(mesh.positions, v[0]);
+  const P3 a = point(mesh.positions, v[1]) - o, b = point(mesh.positions, v[2]) - o, c = point(mesh.positions, v[3]) - o;
+  const double six_volume = mesh_detail::triple(a, b, c);
+  const P3 centre_times = dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
+  const double circumradius = norm(centre_times) / (2.0 * std::abs(six_volume));
+  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // opposite vertex k
+  P3 normal[4];
+  double area = 0;
+  for (int f = 0; f < 4; ++f) {
+    const P3 p0 = point(mesh.positions, v[kFace[f][0]]);
+    const P3 n = cross(point(mesh.positions, v[kFace[f][1]]) - p0, point(mesh.positions, v[kFace[f][2]]) - p0);
+    area += 0.5 * norm(n);
+    normal[f] = (1.0 / norm(n)) * n;
+  }
+  min_dihedral = std::numbers::pi;
+  max_dihedral = 0;
+  for (int f = 0; f < 4; ++f)
+    for (int g = f + 1; g < 4; ++g) {
+      const double angle = std::acos(std::clamp(-dot(normal[f], normal[g]), -1.0, 1.0));
+      min_dihedral = std::min(min_dihedral, angle);
+      max_dihedral = std::max(max_dihedral, angle);
+    }
+  const double inradius = 3.0 * (std::abs(six_volume) / 6.0) / area;
+  return 3.0 * inradius / circumradius;
+}
+
 }  // namespace
 
 MeshQuality mesh_quality(const VolumeMesh& mesh) {
@@ -68,6 +99,22 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   };
   if (mesh.dimension == 3) {
     for (size_t t = 0; t < mesh.tet_count(); ++t) take(tet_volume(mesh, t), tet_aspect(mesh, t));
+    constexpr double kDegrees = 180.0 / std::numbers::pi;
+    double min_ratio = std::numeric_limits<double>::infinity(), sum_ratio = 0, lo = std::numbers::pi, hi = 0;
+    for (size_t t = 0; t < mesh.tet_count(); ++t) {
+      double tet_lo = 0, tet_hi = 0;
+      const double ratio = tet_shape(mesh, t, tet_lo, tet_hi);
+      min_ratio = std::min(min_ratio, ratio);
+      sum_ratio += ratio;
+      lo = std::min(lo, tet_lo);
+      hi = std::max(hi, tet_hi);
+    }
+    if (mesh.tet_count() > 0) {
+      q.min_radius_ratio = min_ratio;
+      q.mean_radius_ratio = sum_ratio / static_cast<double>(mesh.tet_count());
+      q.min_dihedral_deg = lo * kDegrees;
+      q.max_dihedral_deg = hi * kDegrees;
+    }
   } else {
     // Planar: area, and longest edge^2 / area (1 for a square; the right-angled half of one scores 2).
     bool quads = !mesh.quads.empty();
@@ -92,6 +139,18 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   q.min_edge = std::isfinite(min_e) ? min_e : 0;
   q.max_edge = max_e;
   return q;
+}
+
+std::vector<double> piece_volumes(const VolumeMesh& mesh) {
+  mesh_detail::NodeUnion pieces_of(mesh.node_count());
+  pieces_of.join_elements(mesh.tets, 4);
+  std::vector<double> volume_of_root(mesh.node_count(), 0.0);
+  for (size_t t = 0; t < mesh.tet_count(); ++t) volume_of_root[pieces_of.root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
+  std::vector<double> pieces;
+  for (double v : volume_of_root)
+    if (v > 0) pieces.push_back(v);
+  std::sort(pieces.rbegin(), pieces.rend());
+  return pieces;
 }
 
 double enclosed_volume(const SurfaceMesh& surface) {

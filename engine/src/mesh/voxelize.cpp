@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "mesh/geometry.hpp"
 #include "mesh/grid_tets.hpp"
 #include "tacta/mesh_build.hpp"
@@ -170,6 +172,83 @@ int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet,
   return best;
 }
 
+// Connected pieces of the surface: triangles joined through shared vertices.
+size_t count_shells(const SurfaceMesh& s) {
+  mesh_detail::NodeUnion shells_of(s.vertex_count());
+  shells_of.join_elements(s.triangles, 3);
+  std::vector<char> is_root(s.vertex_count(), 0);
+  size_t shells = 0;
+  for (uint32_t v : s.triangles)
+    if (!is_root[shells_of.root(v)]) {
+      is_root[shells_of.root(v)] = 1;
+      ++shells;
+    }
+  return shells;
+}
+
+// Cells per face-connected piece of the kept cells (tets of cells that meet only at an edge or a
+// corner hinge there: counted apart), largest first.
+std::vector<size_t> piece_sizes(const Grid& g, const std::vector<char>& active) {
+  std::vector<char> seen(active.size(), 0);
+  std::vector<int64_t> stack;
+  std::vector<size_t> sizes;
+  for (int64_t start = 0; start < static_cast<int64_t>(active.size()); ++start) {
+    if (!active[static_cast<size_t>(start)] || seen[static_cast<size_t>(start)]) continue;
+    size_t count = 0;
+    stack.assign(1, start);
+    seen[static_cast<size_t>(start)] = 1;
+    while (!stack.empty()) {
+      const int64_t c = stack.back();
+      stack.pop_back();
+      ++count;
+      const int64_t at[3] = {c % g.n[0], (c / g.n[0]) % g.n[1], c / (g.n[0] * g.n[1])};
+      for (int axis = 0; axis < 3; ++axis)
+        for (int64_t step : {-1, 1}) {
+          int64_t next[3] = {at[0], at[1], at[2]};
+          next[axis] += step;
+          if (next[axis] < 0 || next[axis] >= g.n[axis]) continue;
+          const auto n = static_cast<size_t>(g.cell(next[0], next[1], next[2]));
+          if (active[n] && !seen[n]) {
+            seen[n] = 1;
+            stack.push_back(static_cast<int64_t>(n));
+          }
+        }
+    }
+    sizes.push_back(count);
+  }
+  std::sort(sizes.rbegin(), sizes.rend());
+  return sizes;
+}
+
+std::string volumes_text(const std::vector<double>& volumes) {
+  std::string text;
+  for (size_t i = 0; i < volumes.size() && i < 8; ++i) text += (i ? ", " : "") + fmt::format("{:.3g}", volumes[i]);
+  if (volumes.size() > 8) text += ", ...";
+  return text + " m^3";
+}
+
+// Majority can cut a shell where it is thinner than a cell (pieces that would fall apart) or drop
+// a thin part: the cells the surface crosses are then kept too, which joins every shell into one
+// piece (a connected surface crosses a face-connected run of cells) at the cost of some volume.
+void keep_one_piece_per_shell(const SurfaceMesh& s, const Grid& g, const std::vector<char>& touched,
+                              std::vector<char>& active, LoadReport& r) {
+  const size_t pieces_before = piece_sizes(g, active).size();
+  if (pieces_before <= r.shells) return;
+  r.split_pieces = pieces_before;
+  for (size_t c = 0; c < active.size(); ++c) active[c] = static_cast<char>(active[c] | touched[c]);
+  const size_t pieces_after = piece_sizes(g, active).size();
+  r.warnings.push_back(fmt::format("the voxels inside the surface fell into {} pieces for {} surface shell(s); the cells "
+                                   "the surface crosses were kept too, which joined them into {}",
+                                   pieces_before, r.shells, pieces_after));
+  if (pieces_after > r.shells) {
+    std::vector<double> volumes;
+    for (size_t cells : piece_sizes(g, active)) volumes.push_back(static_cast<double>(cells) * g.h * g.h * g.h);
+    throw InputError({s.source, 0, 0, ""}, fmt::format("voxel size {:.4g} m cuts the body into {} pieces ({}), more than "
+                                                       "its {} surface shell(s); give a smaller voxel_size",
+                                                       g.h, volumes.size(), volumes_text(volumes), r.shells));
+  }
+}
+
 }  // namespace
 
 VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report, VoxelFill fill) {
@@ -208,7 +287,13 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
   mark_touched_cells(closed, g, touched);
   std::vector<char> active = touched;
   mark_inside_cells(closed, g, active);
-  if (fill == VoxelFill::Majority) keep_majority_cells(closed, g, touched, active);
+  r.shells = count_shells(closed);
+  r.voxel_size = g.h;
+  r.enclosed_volume = std::abs(enclosed_volume(closed));
+  if (fill == VoxelFill::Majority) {
+    keep_majority_cells(closed, g, touched, active);
+    keep_one_piece_per_shell(closed, g, touched, active, r);
+  }
   if (std::find(active.begin(), active.end(), 1) == active.end()) {
     throw InputError({source, 0, 0, ""}, "no voxel cell is mostly inside the surface; use a smaller voxel size");
   }
@@ -235,7 +320,7 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
           corner[c] = id;
         }
         first_tet[static_cast<size_t>(g.cell(i, j, k))] = static_cast<uint32_t>(mesh.tet_count());
-        mesh_detail::append_cell_tets(corner, mesh.tets);
+        mesh_detail::append_cell_tets(corner, mesh.tets, mesh_detail::alternating_mirror(i, j, k));
       }
     }
   }
@@ -259,7 +344,9 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
       for (int a = 0; a < 3; ++a) {
         in_cell[a] = (p[static_cast<size_t>(a)] - g.origin[static_cast<size_t>(a)]) / g.h - static_cast<double>(at[a]);
       }
-      tet = first_tet[static_cast<size_t>(cell)] + static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2]));
+      const unsigned mirror = mesh_detail::alternating_mirror(at[0], at[1], at[2]);
+      tet = first_tet[static_cast<size_t>(cell)] +
+            static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2], mirror));
       const uint32_t* n = &mesh.tets[4 * size_t{tet}];
       weights = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
                                          point(mesh.positions, n[2]), point(mesh.positions, n[3]));
@@ -288,6 +375,14 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
   }
   mesh.embedding = std::move(e);
   finalize(mesh, &r);
+  const double cell_volume = g.h * g.h * g.h;
+  r.voxel_cells = mesh.tet_count() / 6;
+  r.mesh_volume = static_cast<double>(r.voxel_cells) * cell_volume;
+  if (r.enclosed_volume > 0 && (r.mesh_volume < 0.8 * r.enclosed_volume || r.mesh_volume > 1.25 * r.enclosed_volume)) {
+    r.warnings.push_back(fmt::format("the voxels hold {:.0f}% of the volume the surface encloses; a smaller voxel_size "
+                                     "follows it closer",
+                                     100 * r.mesh_volume / r.enclosed_volume));
+  }
   return mesh;
 }
 

@@ -16,6 +16,25 @@ void write_ticks(JsonWriter& j, const ScheduleResult& s) {
   j.end_object();
 }
 
+// What the body's mesh source became: voxels (size, cells, volumes, pieces) or Gmsh tets, and
+// every loader warning.
+void write_mesh_origin(JsonWriter& j, const BodyResult& b, const LoadReport& load) {
+  j.key("mesh").begin_object();
+  j.field("summary", b.mesh).field("format", load.format);
+  if (load.voxel_size > 0) {
+    j.field("voxel_size_m", load.voxel_size).field("voxel_cells", static_cast<uint64_t>(load.voxel_cells));
+    j.field("surface_shells", static_cast<uint64_t>(load.shells));
+    j.field("enclosed_volume_m3", load.enclosed_volume).field("volume_m3", load.mesh_volume);
+    j.key("piece_volumes_m3").begin_array();
+    for (double v : load.piece_volumes) j.value(v);
+    j.end_array();
+  }
+  j.key("warnings").begin_array();
+  for (const std::string& w : b.mesh_warnings) j.value(w);
+  j.end_array();
+  j.end_object();
+}
+
 void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
   j.key("bodies").begin_array();
   for (size_t i = 0; i < result.bodies.size(); ++i) {
@@ -33,6 +52,8 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     for (const auto& [time, model] : runs) j.begin_object().field("time_s", time).field("model", model).end_object();
     j.end_array();
     j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
+    write_mesh_origin(j, b, body.topology->load);
+    j.field("model_notes", body.model->describe());
     j.field("max_displacement_m", b.max_displacement_m);
     j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
     j.field("initial_energy_J", b.initial_energy_J);

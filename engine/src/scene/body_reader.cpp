@@ -51,6 +51,21 @@ void read_sphere(const Field& field, MeshSourceDesc& mesh) {
   if (auto f = field.get("subdivisions")) mesh.subdivisions = static_cast<int>(f->integer(0, 6));
 }
 
+TetrahedralizeDesc read_tetrahedralize(const Field& field) {
+  TetrahedralizeDesc t;
+  if (field.is_scalar()) {  // `tetrahedralize: true` takes every default
+    if (!field.boolean()) field.fail("'tetrahedralize: false' is the same as leaving it out; remove it");
+    return t;
+  }
+  field.expect_map("true, or a map {max_volume, min_dihedral, min_radius_ratio, optimize}");
+  field.check_keys({"max_volume", "min_dihedral", "min_radius_ratio", "optimize"});
+  if (auto f = field.get("max_volume")) t.max_volume = f->real(Range::non_negative());
+  if (auto f = field.get("min_dihedral")) t.min_dihedral_deg = f->real(Range::closed(0, 60));
+  if (auto f = field.get("min_radius_ratio")) t.min_radius_ratio = f->real(Range::closed(0, 0.9));
+  if (auto f = field.get("optimize")) t.optimize = f->boolean();
+  return t;
+}
+
 void make_unit_square(MeshSourceDesc& mesh) {
   // The paper's 4-node unit square: one quad, 1 m x 1 m, at the origin.
   mesh.kind = MeshSourceDesc::Kind::QuadGrid;
@@ -145,12 +160,12 @@ MeshSourceDesc read_mesh_source(const Field& field) {
   }
   field.expect_map("a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
                    "unit_square, sphere), or 'unit_square'");
-  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "box_grid", "beam_grid",
+  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "tetrahedralize", "box_grid", "beam_grid",
                     "quad_grid", "unit_square", "sphere"});
   const std::string source =
       exactly_one_of(field, {"file", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
   if (source != "file") {
-    for (const char* file_only : {"scale", "translate", "voxel_size"})
+    for (const char* file_only : {"scale", "translate", "voxel_size", "tetrahedralize"})
       if (auto f = field.get(file_only))
         f->fail(std::string("'") + file_only + "' applies to a mesh `file` only, not to " + source);
   }
@@ -169,6 +184,10 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     }
     if (auto f = field.get("translate")) mesh.translate = f->vec3();
     if (auto f = field.get("voxel_size")) mesh.voxel_size = f->real(Range::non_negative());
+    if (auto f = field.get("tetrahedralize")) {
+      if (field.get("voxel_size")) f->fail("give `voxel_size` (voxel tets) or `tetrahedralize` (Gmsh), not both");
+      mesh.tetrahedralize = read_tetrahedralize(*f);
+    }
   } else if (source == "box_grid" || source == "beam_grid") {
     mesh.kind = source == "box_grid" ? MeshSourceDesc::Kind::BoxGrid : MeshSourceDesc::Kind::BeamGrid;
     read_grid(value, mesh, 3);

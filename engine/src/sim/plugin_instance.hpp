@@ -3,6 +3,7 @@
 // are thin, noexcept forwards into the C function table.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,6 +51,14 @@ class ModelInstance {
   // The model's own counters (solver fallbacks, Newton iterations); empty when it keeps none.
   // Allocates: not from the 1 kHz path.
   std::vector<std::pair<std::string, double>> counters();
+  // What the instance says it chose for this body (empty when the plugin says nothing).
+  std::string describe() const {
+    // A plugin built before `describe` existed has a shorter table: the entry is absent.
+    if (descriptor_.api_size < offsetof(tacta_model_api, describe) + sizeof(api_.describe) || !api_.describe) return {};
+    char text[512] = {};
+    api_.describe(instance_, text, sizeof text);
+    return text;
+  }
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;

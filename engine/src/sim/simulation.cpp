@@ -223,6 +223,8 @@ RunResult Simulation::run(const RunOptions& options) {
     br.nodes = b.node_count();
     br.fixed_nodes = static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
     br.elements = element_count(b.topology->mesh);
+    br.mesh = describe_body_mesh(b.topology->mesh, b.topology->load);
+    br.mesh_warnings = b.topology->load.warnings;
     br.max_displacement_m = b.max_displacement_m;
     br.kinetic_energy_J = b.kinetic_energy();
     br.elastic_energy_J = b.model->elastic_energy(b.positions.data());

@@ -94,7 +94,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
   if (desc.mesh.kind == MeshSourceDesc::Kind::File) require_mesh_file(desc.mesh.path, desc.mesh.where);
-  topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh); });
+  topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh, &topo.load); });
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
   if (topo.mesh.embedding) body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));

@@ -16,6 +16,7 @@
 #include "probes.hpp"
 #include "tacta/embedded_surface.hpp"
 #include "tacta/mesh.hpp"
+#include "tacta/mesh_io.hpp"
 #include "tacta/model_api.h"
 #include "tacta/scene.hpp"
 
@@ -29,6 +30,7 @@ struct BodyTopology {
   tacta_material material{};
   std::vector<double> masses;  // kg per node, lumped
   std::vector<uint8_t> fixed;  // 1 per node
+  LoadReport load;             // what the mesh file became (voxels, Gmsh tets) and its warnings
 };
 
 // A model change scheduled for a time, built at load time so the switch itself allocates nothing.

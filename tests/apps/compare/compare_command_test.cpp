@@ -132,6 +132,41 @@ TEST(CompareCommand, ProbeDisplacementIsTheProbeNodesFinalOffsetFromRest) {
   EXPECT_NE(read_text(dir / "cmp" / "compare.json").find("\"probe\": \"beam:35\""), std::string::npos);
 }
 
+// --reference: each row's max displacement over the reference's, and the RMS node distance of
+// the final states; the reference row itself is 1 and 0. Two fd_debunne integrators differ.
+TEST(CompareCommand, ReferenceColumnsMeasureEveryModelAgainstOne) {
+  const auto dir = fresh_dir("reference");
+  const CliResult r = run_tacta(with({"compare", kScene, "--models", "fd_debunne,fd_debunne:integrator=explicit_euler",
+                                      "--reference", "fd_debunne", "--out", (dir / "cmp").string()},
+                                     kShortRun),
+                                dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::vector<CsvRow> rows = read_csv(dir / "cmp" / "compare.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(std::stod(rows[0].at("displacement_ratio")), 1.0);
+  EXPECT_EQ(std::stod(rows[0].at("difference_from_reference_m")), 0.0);
+  const double ratio = std::stod(rows[1].at("displacement_ratio"));
+  EXPECT_NEAR(ratio, std::stod(rows[1].at("max_displacement_m")) / std::stod(rows[0].at("max_displacement_m")), 1e-6);
+  EXPECT_GT(std::stod(rows[1].at("difference_from_reference_m")), 0.0);
+  EXPECT_LT(std::stod(rows[1].at("difference_from_reference_m")), 1.0);
+  EXPECT_NE(read_text(dir / "cmp" / "compare.json").find("\"reference\": \"fd_debunne\""), std::string::npos);
+  EXPECT_NE(r.out.find("reference model: fd_debunne"), std::string::npos) << r.out;
+
+  // Without --reference the columns are empty; a reference that is not compared is bad input.
+  const CliResult plain = run_tacta(with({"compare", kScene, "--models", "fd_debunne", "--out", (dir / "plain").string()},
+                                         kShortRun),
+                                    dir);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(read_csv(dir / "plain" / "compare.csv")[0].at("displacement_ratio"), "");
+  const CliResult bad = run_tacta(with({"compare", kScene, "--models", "fd_debunne", "--reference", "tensor_mass",
+                                        "--out", (dir / "bad").string()},
+                                       kShortRun),
+                                  dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--reference"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+}
+
 TEST(CompareCommand, UnknownModelStopsBeforeAnythingRuns) {
   const auto dir = fresh_dir("unknown_model");
   const CliResult r = run_tacta(

@@ -1,7 +1,10 @@
 // Built-in bodies: volumes, node order, conformity, lumped masses, load_body_mesh dispatch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 #include <numbers>
 
 #include "mesh_test_support.hpp"
@@ -35,6 +38,34 @@ TEST(Primitives, BeamGridMatchesSofaCantileverCounts) {
   EXPECT_EQ(beam.node_count(), 750u);
   EXPECT_NEAR(test::total_volume(beam), 0.02 * 0.02 * 0.2, 1e-12 * 8e-5);
   EXPECT_EQ(beam.source, "beam_grid");
+}
+
+// The symmetric split: reflecting the grid through its mid-plane (x = size/2 with an even cell
+// count) maps every tet onto a tet of the grid, so a load in that plane bends it in that plane.
+TEST(Primitives, BeamGridSplitIsMirrorSymmetric) {
+  const std::array<int, 3> cells = {4, 4, 29};
+  VolumeMesh beam = make_beam_grid({0.02, 0.02, 0.2}, cells, {0, 0, 0});
+  auto reflected = [&](uint32_t node) {  // node (i, j, k) -> (nx - i, j, k)
+    const uint32_t nx = static_cast<uint32_t>(cells[0]) + 1;
+    return (nx - 1 - node % nx) + nx * (node / nx);
+  };
+  std::set<std::array<uint32_t, 4>> tets;
+  for (size_t t = 0; t < beam.tet_count(); ++t) {
+    std::array<uint32_t, 4> tet{beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]};
+    std::sort(tet.begin(), tet.end());
+    tets.insert(tet);
+  }
+  for (size_t t = 0; t < beam.tet_count(); ++t) {
+    std::array<uint32_t, 4> image{};
+    for (size_t c = 0; c < 4; ++c) image[c] = reflected(beam.tets[4 * t + c]);
+    std::sort(image.begin(), image.end());
+    ASSERT_TRUE(tets.count(image)) << "tet " << t << " has no mirror image";
+  }
+  LoadReport closedness;
+  check_closed(test::boundary_of(beam), closedness);
+  EXPECT_TRUE(closedness.closed());
+  EXPECT_EQ(beam.triangles.size() / 3, 2u * 2u * (4u * 4u + 2u * 4u * 29u));  // conforming
+  EXPECT_GT(mesh_quality(beam).min_volume, 0.0);
 }
 
 TEST(Primitives, UnitSquareNodeOrder) {

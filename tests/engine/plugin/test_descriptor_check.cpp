@@ -18,7 +18,7 @@ void fake_destroy(void*) {}
 uint32_t fake_step(void*, tacta_body_state*, double) { return 0; }
 
 const tacta_model_api kFullApi{&fake_create, &fake_destroy, &fake_step, nullptr,
-                               nullptr,      nullptr,       nullptr,    nullptr, nullptr};
+                               nullptr,      nullptr,       nullptr,    nullptr,   nullptr,   nullptr};
 
 tacta_descriptor make_model(const tacta_param_spec* params = nullptr, uint32_t count = 0) {
   return {sizeof(tacta_descriptor), TACTA_ABI_ID, TACTA_KIND_MODEL, "ok", 1, "fine",

@@ -179,6 +179,31 @@ TEST(SceneErrors, ShapesAndPrimitivesNeedExactlyOneKind) {
                "output.plots[0]", {"did you mean 'energy'?"});
 }
 
+// mesh.tetrahedralize: a map of known keys in range, on a mesh file only, not with voxel_size.
+TEST(SceneErrors, TetrahedralizeKeys) {
+  const std::string body = "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}\n    model: tensor_mass\n";
+  auto with_mesh = [&](const std::string& mesh) {
+    std::string text = body;
+    text.replace(text.find("MESH"), 4, mesh);
+    return text;
+  };
+  const SceneDesc ok = load(with_mesh("{file: organ.stl, tetrahedralize: {max_volume: 1.0e-6, min_dihedral: 5, optimize: false}}"));
+  ASSERT_TRUE(ok.bodies[0].mesh.tetrahedralize.has_value());
+  EXPECT_DOUBLE_EQ(ok.bodies[0].mesh.tetrahedralize->max_volume, 1e-6);
+  EXPECT_DOUBLE_EQ(ok.bodies[0].mesh.tetrahedralize->min_dihedral_deg, 5.0);
+  EXPECT_FALSE(ok.bodies[0].mesh.tetrahedralize->optimize);
+  EXPECT_TRUE(load(with_mesh("{file: organ.stl, tetrahedralize: true}")).bodies[0].mesh.tetrahedralize.has_value());
+  EXPECT_FALSE(load(with_mesh("{file: organ.stl}")).bodies[0].mesh.tetrahedralize.has_value());
+  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {min_dihedral: 80}}")), 3, 60,
+               "bodies[0].mesh.tetrahedralize.min_dihedral", {"in [0, 60]"});
+  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volum: 1}}")), 3, 46,
+               "bodies[0].mesh.tetrahedralize.max_volum", {"did you mean 'max_volume'?"});
+  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, tetrahedralize: true}")), 3, 63,
+               "bodies[0].mesh.tetrahedralize", {"not both"});
+  expect_error(load_error(with_mesh("{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, tetrahedralize: true}")), 3, 75,
+               "bodies[0].mesh.tetrahedralize", {"mesh `file` only"});
+}
+
 TEST(SceneErrors, DuplicateKey) {
   expect_error(load_error(yaml(kMinimalScene) + "seed: 1\nseed: 2\n"), 7, 1, "seed",
                {"duplicate key 'seed'"});

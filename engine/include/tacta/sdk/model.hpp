@@ -12,7 +12,11 @@
 //   void set_param(uint32_t index, const tacta_param_value&)   may throw
 //   void node_stress(const double* positions, double* von_mises) noexcept
 //   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept
+//   std::string describe() const          what the instance chose that its parameters did not say
 #pragma once
+
+#include <cstring>
+#include <string>
 
 #include "tacta/model_api.h"
 #include "tacta/sdk/common.hpp"
@@ -56,6 +60,17 @@ struct ModelAdapter {
     return static_cast<T*>(instance)->counters(out, capacity);
   }
 
+  static void describe(void* instance, char* text, size_t capacity) noexcept {
+    if (capacity == 0) return;
+    text[0] = '\0';
+    try {
+      const std::string said = static_cast<const T*>(instance)->describe();
+      std::strncpy(text, said.c_str(), capacity - 1);
+      text[capacity - 1] = '\0';
+    } catch (...) {
+    }
+  }
+
   static tacta_model_api table() {
     tacta_model_api api{};
     api.create = &create;
@@ -72,6 +87,7 @@ struct ModelAdapter {
       api.node_stress = &node_stress;
     if constexpr (requires(T& t, tacta_model_counter* c) { t.counters(c, 0u); })
       api.counters = &counters;
+    if constexpr (requires(const T& t) { t.describe(); }) api.describe = &describe;
     return api;
   }
 };

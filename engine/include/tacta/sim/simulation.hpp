@@ -34,6 +34,8 @@ struct BodyResult {
   double initial_energy_J = 0;  // kinetic + elastic at t = 0
   bool frozen = false;
   std::string fault;
+  std::string mesh;                        // what the mesh source became (describe_body_mesh)
+  std::vector<std::string> mesh_warnings;  // the mesh loader's warnings (surface not closed, pieces, ...)
   // A body with step_thread: own (its steps ran on a worker thread at step_rate_hz).
   bool own_thread = false;
   double step_rate_hz = 0;           // 0: stepped every haptic tick

@@ -106,22 +106,27 @@ std::vector<uint32_t> boundary_of_tets(const std::vector<uint32_t>& tets) {
   return out;
 }
 
-TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, double density) {
+TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, double density, GridSplit split) {
   TestMesh m;
   m.positions = grid_nodes(n, size);
   auto id = [&](uint32_t i, uint32_t j, uint32_t k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
-  // Six paths from corner 000 to 111, one axis step at a time: one tet each.
+  // Six paths across the cell's diagonal, one axis step at a time: one tet each. The symmetric
+  // split (as the engine's grids and SOFA's Hexa2Tetra with swapping): along each axis, odd cells
+  // start from the far side, so each cell mirrors its neighbours and no diagonal is preferred.
   static constexpr int kAxisOrder[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
                                            {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (uint32_t k = 0; k < n[2]; ++k)
     for (uint32_t j = 0; j < n[1]; ++j)
       for (uint32_t i = 0; i < n[0]; ++i)
         for (const auto& order : kAxisOrder) {
-          std::array<uint32_t, 3> c{i, j, k};
+          const uint32_t odd = split == GridSplit::kSymmetric ? 1u : 0u;  // mirror odd cells or none
+          const std::array<uint32_t, 3> cell{i & odd, j & odd, k & odd};
+          std::array<uint32_t, 3> c{i + cell[0], j + cell[1], k + cell[2]};
           std::array<uint32_t, 4> tet{};
           tet[0] = id(c[0], c[1], c[2]);
           for (int s = 0; s < 3; ++s) {
-            ++c[static_cast<size_t>(order[s])];
+            const auto axis = static_cast<size_t>(order[s]);
+            c[axis] = cell[axis] ? c[axis] - 1 : c[axis] + 1;
             tet[static_cast<size_t>(s) + 1] = id(c[0], c[1], c[2]);
           }
           const double* p = m.positions.data();

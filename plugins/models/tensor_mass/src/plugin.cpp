@@ -1,5 +1,6 @@
 // tensor_mass plugin: descriptor, parameter schema and the SDK adapter around TensorMassModel.
 #include <array>
+#include <string>
 
 #include "tacta/sdk/model.hpp"
 #include "tensor_mass_model.hpp"
@@ -16,9 +17,9 @@ class TensorMassPlugin {
       "Delingette et al.: linear tetrahedral FEM, K_ii per vertex and K_ij per edge";
   static constexpr uint32_t kVersion = 10000;
   static constexpr std::array<tacta_param_spec, 3> kParams = {
-      tacta::sdk::choice_param("integrator", "central_difference|implicit_euler", 0,
-                               "explicit central differences, or implicit Euler factorised at "
-                               "create for the setup dt"),
+      tacta::sdk::choice_param("integrator", "central_difference|implicit_euler|auto", 2,
+                               "explicit central differences, implicit Euler factorised at create "
+                               "for the setup dt, or auto: central differences where stable at dt"),
       tacta::sdk::real_param("damping", "N s/m", 0.0, 0.0, 1e6,
                              "viscous damping per node, added to the material's alpha * m"),
       tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
@@ -31,6 +32,7 @@ class TensorMassPlugin {
   uint32_t step(tacta_body_state& state, double dt) noexcept { return model_.step(state, dt); }
   double elastic_energy(const double* x) noexcept { return model_.elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_.internal_forces(x, f); }
+  std::string describe() const { return model_.note(); }
 
  private:
   static TensorMassOptions options(const tacta_model_setup& setup) {

@@ -19,6 +19,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tacta/model_api.h"
@@ -27,7 +28,8 @@
 namespace tacta::models {
 
 struct TensorMassOptions {
-  enum class Integrator { kCentralDifference = 0, kImplicitEuler = 1 };
+  // kAuto: central differences when they are stable at the setup dt, implicit Euler otherwise.
+  enum class Integrator { kCentralDifference = 0, kImplicitEuler = 1, kAuto = 2 };
   Integrator integrator = Integrator::kCentralDifference;
   double damping = 0.0;  // N s/m per node, added to the material's alpha * m
   double divergence_stretch = DivergenceGuard::kDefaultStretchLimit;
@@ -51,6 +53,12 @@ class TensorMassModel {
   void apply_stiffness(const double* u, double* y) const noexcept;
 
   uint32_t node_count() const { return node_count_; }
+  bool implicit() const { return implicit_ != nullptr; }
+  // Central differences' stability limit, s: 2 / omega_max, omega_max^2 bounded by Gershgorin
+  // (the largest row sum of |K| over free nodes divided by their mass); 0 when nothing is free.
+  double central_difference_limit() const;
+  // What the model chose for this body, for report.json (empty when the parameters said it).
+  const std::string& note() const { return note_; }
   const std::vector<Eigen::Matrix3d>& vertex_blocks() const { return vertex_block_; }
   const std::vector<Eigen::Matrix3d>& edge_blocks() const { return edge_block_; }
   const std::vector<uint32_t>& edges() const { return edges_; }
@@ -71,6 +79,7 @@ class TensorMassModel {
   bool has_history_ = false;
   std::unique_ptr<ImplicitEulerSolver> implicit_;
   DivergenceGuard guard_;
+  std::string note_;
 };
 
 }  // namespace tacta::models

@@ -66,8 +66,10 @@ TEST(BlockIncompleteCholesky, ExactWhenNothingIsDropped) {
   EXPECT_LT(relative_residual(a, z, r), 1e-12);
 }
 
+// On the one-diagonal lattice: IC(0) there has no pivot breakdown and halves the iterations; on
+// the symmetric split (issue 11) it replaced 7 pivots and took 88 iterations to block Jacobi's 167.
 struct BeamSystem {
-  TestMesh mesh = box_tet_mesh({3, 3, 12}, {0.03, 0.03, 0.3}, 1000.0);
+  TestMesh mesh = box_tet_mesh({3, 3, 12}, {0.03, 0.03, 0.3}, 1000.0, GridSplit::kOneDiagonal);
   BlockSparseMatrix matrix{0, {}};
   std::vector<double> rhs;
   BeamSystem() {

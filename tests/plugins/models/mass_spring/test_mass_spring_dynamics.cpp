@@ -35,7 +35,9 @@ TEST(MassSpringStatics, BarStretchGivesYoungsModulusWithinFivePercent) {
   // A 1 m bar of 20x3x3 cells fixed at x = 0, pulled at x = L by a uniform traction sigma;
   // the strain is read between x = L/4 and 3L/4, away from both ends.
   const double length = 1.0, side = 0.15, e_modulus = 1e5, sigma = 1e2;  // m, m, Pa, Pa
-  TestMesh mesh = box_tet_mesh({20, 3, 3}, {length, side, side}, 1000.0);
+  // The one-diagonal lattice the rule's +3.4% is derived on; the symmetric split, whose axis
+  // edges have other tet counts, measures +28.8% (docs/VALIDATION.md).
+  TestMesh mesh = box_tet_mesh({20, 3, 3}, {length, side, side}, 1000.0, GridSplit::kOneDiagonal);
   mesh.fix_plane(0, 0.0);
   MassSpringOptions options = with_integrator(Integrator::kImplicitEuler);
   // No physical damping: implicit Euler with steps near the period of the slowest (bending,

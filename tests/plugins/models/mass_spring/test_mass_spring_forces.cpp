@@ -54,7 +54,8 @@ TEST(MassSpring, StiffnessSymmetricPositiveSemidefiniteAtRest) {
 TEST(MassSpring, VanGelderStiffnessOnTheCubeLattice) {
   // Interior axis edge of the 6-tet lattice: 6 tets of h^3/6 each -> k = E h.
   const double e_modulus = 1e5, h = 0.1;
-  MsBody body(box_tet_mesh({2, 2, 2}, {2 * h, 2 * h, 2 * h}, 1000.0), make_material(e_modulus, 0.3, 1000.0));
+  MsBody body(box_tet_mesh({2, 2, 2}, {2 * h, 2 * h, 2 * h}, 1000.0, GridSplit::kOneDiagonal),
+              make_material(e_modulus, 0.3, 1000.0));
   const auto& springs = body.model->springs();
   // The edge from the centre node (1,1,1) = 13 to (2,1,1) = 14.
   bool found = false;

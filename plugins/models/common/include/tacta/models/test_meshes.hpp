@@ -37,10 +37,14 @@ tacta_material make_material(double youngs_modulus, double poisson_ratio, double
 // Material from the Lamé coefficients directly (the paper gives lambda and mu).
 tacta_material make_material_lame(double lambda, double mu, double density);
 
-// nx*ny*nz cubes of size (sx/nx, sy/ny, sz/nz), each split into 6 tets around its main
-// diagonal (Kuhn/Freudenthal; conforming across cubes). Origin at (0,0,0). Node index:
+// nx*ny*nz cubes of size (sx/nx, sy/ny, sz/nz), each split into 6 tets around a diagonal
+// (Kuhn/Freudenthal), each cube the mirror image of its neighbours (symmetric, conforming). Origin at (0,0,0). Node index:
 // i + (nx+1) * (j + (ny+1) * k).
-TestMesh box_tet_mesh(std::array<uint32_t, 3> cells, std::array<double, 3> size, double density);
+// kOneDiagonal: every cube split around the same diagonal (the lattice Van Gelder's rule is
+// analysed on; stiffer in bending and not mirror-symmetric).
+enum class GridSplit { kSymmetric, kOneDiagonal };
+TestMesh box_tet_mesh(std::array<uint32_t, 3> cells, std::array<double, 3> size, double density,
+                      GridSplit split = GridSplit::kSymmetric);
 
 // The same nodes joined only by the axis-aligned grid edges (no elements): the Cartesian edge
 // graph on which the finite-difference operators are exact. Masses: rho times the dual cell.
