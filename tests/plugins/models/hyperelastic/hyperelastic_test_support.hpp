@@ -232,8 +232,9 @@ inline UniaxialResult neo_hookean_uniaxial_patch(double nu, double stretch, Volu
 inline std::pair<double, uint32_t> static_cantilever_tip(std::array<uint32_t, 3> cells,
                                                          MaterialLaw law, double nu,
                                                          Volumetric volumetric,
-                                                         uint64_t* newton_iterations = nullptr) {
-  TestMesh mesh = box_tet_mesh(cells, {0.02, 0.02, 0.2}, 1100.0);
+                                                         uint64_t* newton_iterations = nullptr,
+                                                         GridSplit split = GridSplit::kSymmetric) {
+  TestMesh mesh = box_tet_mesh(cells, {0.02, 0.02, 0.2}, 1100.0, split);
   mesh.fix_plane(2, 0.0);
   Options options;
   options.mode = SolveMode::kStatic;
