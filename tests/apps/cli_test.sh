@@ -172,6 +172,11 @@ YAML
     sed 's/file: a_folder/file: gone.obj/' folder_mesh.yaml >missing_mesh.yaml
     run 2 run missing_mesh.yaml
     expect_output 'missing_mesh\.yaml:4:18: bodies\[0\]\.mesh\.file: no such file: .*gone\.obj' "the scene's line"
+    # A missing embedded surface (`mesh.surface`) is named at its own key too.
+    cp "$src/assets/meshes/liver.msh" .
+    sed 's/file: a_folder}/file: liver.msh, surface: gone_surface.obj}/' folder_mesh.yaml >missing_surface.yaml
+    run 2 run missing_surface.yaml
+    expect_output 'missing_surface\.yaml:4:[0-9]+: bodies\[0\]\.mesh\.surface: no such file: .*gone_surface\.obj' "the surface key's line"
     ;;
   quiet_fault)
     # The diverging square of diverging_scene, with -q: the fault is still an error on stderr.

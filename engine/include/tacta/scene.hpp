@@ -82,6 +82,7 @@ struct MeshSourceDesc {
   // empty: a voxelised surface file is its own embedded surface, other meshes show their tets.
   std::string surface_path;
   bool surface_tet_boundary = false;  // `surface: tet_boundary`: draw and touch the tets' boundary
+  SourceLocation surface_where;       // the scene's `surface` key, for messages
   SourceLocation where;             // the scene's `file` key (or the primitive's), for messages
 };
 

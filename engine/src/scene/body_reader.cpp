@@ -209,6 +209,7 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     if (mesh.kind == MeshSourceDesc::Kind::QuadGrid) f->fail("a surface can only be embedded in tetrahedra, not in a planar quad_grid");
     if (f->is_scalar() && f->yaml().Scalar() == "tet_boundary") mesh.surface_tet_boundary = true;
     else mesh.surface_path = f->file_path();
+    mesh.surface_where = f->where();
   }
   return mesh;
 }

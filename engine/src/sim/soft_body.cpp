@@ -94,6 +94,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
   if (desc.mesh.kind == MeshSourceDesc::Kind::File) require_mesh_file(desc.mesh.path, desc.mesh.where);
+  if (!desc.mesh.surface_path.empty()) require_mesh_file(desc.mesh.surface_path, desc.mesh.surface_where);
   topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh, &topo.load); });
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
