@@ -98,8 +98,12 @@ TEST(RealtimeSession, ReportsWhatTheKernelGrantedAndRestoresIt) {
     } else {
       EXPECT_FALSE(g.cpu_note.empty());
     }
-    EXPECT_GE(g.helper_threads_lowered, 1u);
-    EXPECT_EQ(helper.nice(), 5);
+    if (helper_nice_before < 5) {  // a test run under `nice` starts its threads at or past 5
+      EXPECT_GE(g.helper_threads_lowered, 1u);
+      EXPECT_EQ(helper.nice(), 5);
+    } else {
+      EXPECT_EQ(helper.nice(), helper_nice_before);  // never raised
+    }
   }
   EXPECT_EQ(policy_of_this_thread(), policy_before);
   EXPECT_EQ(helper.nice(), helper_nice_before);
