@@ -17,8 +17,14 @@ tacta_status fake_create(const tacta_model_setup*, void**, char*, size_t) { retu
 void fake_destroy(void*) {}
 uint32_t fake_step(void*, tacta_body_state*, double) { return 0; }
 
-const tacta_model_api kFullApi{&fake_create, &fake_destroy, &fake_step, nullptr,
-                               nullptr,      nullptr,       nullptr,    nullptr,   nullptr,   nullptr};
+// Value-initialised, then the required entries: entries appended to the API need no edit here.
+const tacta_model_api kFullApi = [] {
+  tacta_model_api api{};
+  api.create = &fake_create;
+  api.destroy = &fake_destroy;
+  api.step = &fake_step;
+  return api;
+}();
 
 tacta_descriptor make_model(const tacta_param_spec* params = nullptr, uint32_t count = 0) {
   return {sizeof(tacta_descriptor), TACTA_ABI_ID, TACTA_KIND_MODEL, "ok", 1, "fine",

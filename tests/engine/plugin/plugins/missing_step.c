@@ -11,7 +11,8 @@ static tacta_status create(const tacta_model_setup* setup, void** instance, char
 }
 static void destroy(void* instance) { (void)instance; }
 
-static const tacta_model_api api = {create, destroy, 0, 0, 0, 0, 0, 0, 0, 0};
+/* step left out on purpose; designated, so entries appended to the API need no edit here */
+static const tacta_model_api api = {.create = create, .destroy = destroy};
 
 TACTA_EXPORT tacta_status tacta_plugin_entry(uint64_t host_abi, const tacta_host* host,
                                              char* message, size_t capacity) {
