@@ -90,6 +90,12 @@ int run_scene(const RunArgs& args) {
     if (result.mode == "realtime")
       std::printf(", %llu deadline misses", static_cast<unsigned long long>(result.schedule.deadline_misses));
     std::printf("\n");
+    const RealtimeGrant& grant = result.schedule.realtime;
+    if (grant.demoted_at_tick >= 0)
+      std::printf("  warning: the haptic thread missed %u deadlines in a row at tick %lld and was dropped from "
+                  "SCHED_FIFO to SCHED_OTHER (nice %d) so it would not starve the machine; the scene's tick is "
+                  "too slow for clock.haptic_rate_hz here\n",
+                  kStarvingTicks, static_cast<long long>(grant.demoted_at_tick), grant.nice);
     for (const BodyResult& b : result.bodies)
       std::printf("  body %s (%s): %zu nodes (%zu fixed), %zu elements, max displacement %.6g m%s%s\n", b.name.c_str(),
                   b.model.c_str(), b.nodes, b.fixed_nodes, b.elements, b.max_displacement_m, b.frozen ? ", FROZEN: " : "",

@@ -152,6 +152,8 @@ void write_realtime(JsonWriter& j, const RunResult& result) {
   j.key("realtime").begin_object();
   j.field("scheduler", g.scheduler).field("priority", g.priority).field("nice", g.nice);
   j.field("scheduler_note", g.scheduler_note);
+  // A starving SCHED_FIFO thread is demoted mid-run (kStarvingTicks misses in a row).
+  j.field("demoted_at_tick", g.demoted_at_tick);
   j.field("memory_locked", g.memory_locked).field("memory_note", g.memory_note);
   j.field("haptic_cpu", g.cpu).field("cpu_note", g.cpu_note);
   j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered)).field("spin_us", g.spin_us);

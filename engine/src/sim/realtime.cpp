@@ -186,6 +186,16 @@ void RealtimeSession::lower_this_thread() noexcept {
   setpriority(PRIO_PROCESS, static_cast<id_t>(tid), kHelperNice);
 }
 
+bool RealtimeSession::demote(int64_t tick) noexcept {
+  if (grant_.scheduler != "SCHED_FIFO") return false;
+  sched_param normal{};
+  if (pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal) != 0) return false;
+  const bool niced = setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), kHapticFallbackNice) == 0;
+  grant_.demoted_at_tick = tick;
+  grant_.nice = niced ? kHapticFallbackNice : old_nice_;
+  return true;
+}
+
 RealtimeSession::~RealtimeSession() {
   sched_param old{};
   old.sched_priority = old_priority_;

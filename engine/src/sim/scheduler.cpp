@@ -159,6 +159,7 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
   FrameClock frame_clock{1.0 / o.render_rate_hz};
   timespec start{};
   clock_gettime(CLOCK_MONOTONIC, &start);
+  uint32_t misses_in_a_row = 0;
   for (uint64_t k = 0; k < ticks; ++k) {
     const timespec due = add_ns(start, static_cast<int64_t>(k) * period_ns);
     wait_until(due, spin_ns);
@@ -172,7 +173,12 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     timespec end{};
     clock_gettime(CLOCK_MONOTONIC, &end);
     recorder.record(ms_after(begin, end));
-    if (ms_after(add_ns(due, period_ns), end) > 0) ++result.deadline_misses;
+    if (ms_after(add_ns(due, period_ns), end) > 0) {
+      ++result.deadline_misses;
+      if (++misses_in_a_row == kStarvingTicks) session->demote(static_cast<int64_t>(k));
+    } else {
+      misses_in_a_row = 0;
+    }
     ++result.ticks;
     ticks_done.store(k + 1, std::memory_order_relaxed);
     if (!keep_going || stop_requested(o)) {
@@ -181,6 +187,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     }
   }
   result.memory_end = resident_memory();
+  result.realtime.demoted_at_tick = session->grant().demoted_at_tick;
+  result.realtime.nice = session->grant().nice;
   session.reset();  // back to the thread's own policy before the render thread's last frame
   haptic_done.store(true, std::memory_order_release);
   render_thread.join();

@@ -3,6 +3,9 @@
 // for 0.3 s: 300 ticks on absolute deadlines, measured durations, a render thread that took
 // several frames through a triple buffer. Also runs under ThreadSanitizer (preset tsan).
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
 
 #include <atomic>
 #include <cmath>
@@ -190,6 +193,49 @@ TEST(SchedulerRealtime, ThreeHundredMillisecondsOnDeadlines) {
   EXPECT_EQ(render.backwards, 0u);
   EXPECT_EQ(render.wall_backwards, 0u);
   EXPECT_EQ(render.last_tick, 300u) << "the render thread's last frame shows the final state";
+}
+
+// A tick that takes 1.5 periods: at SCHED_FIFO the thread would never sleep, so after
+// kStarvingTicks misses in a row it is dropped to SCHED_OTHER (when SCHED_FIFO was granted at all).
+class SlowTask final : public tacta::HapticTask {
+ public:
+  bool tick(uint64_t, double, double) noexcept override {
+    timespec until{};
+    clock_gettime(CLOCK_MONOTONIC, &until);
+    until.tv_nsec += 1500000;
+    if (until.tv_nsec >= 1000000000) {
+      until.tv_nsec -= 1000000000;
+      ++until.tv_sec;
+    }
+    timespec now{};
+    do clock_gettime(CLOCK_MONOTONIC, &now);
+    while (now.tv_sec < until.tv_sec || (now.tv_sec == until.tv_sec && now.tv_nsec < until.tv_nsec));
+    int policy = 0;
+    sched_param p{};
+    pthread_getschedparam(pthread_self(), &policy, &p);
+    last_policy = policy;
+    return true;
+  }
+  void publish(double) noexcept override {}
+  int last_policy = -1;
+};
+
+TEST(SchedulerRealtime, AHapticThreadThatMissesEveryDeadlineLeavesSchedFifo) {
+  SlowTask task;
+  CountingRender render;
+  ScheduleOptions o;
+  o.mode = ClockMode::Realtime;
+  o.duration_s = 0.15;
+  o.realtime.priority = 10;
+  o.realtime.lock_memory = false;
+  const ScheduleResult r = tacta::run_schedule(task, render, o);
+  EXPECT_EQ(r.deadline_misses, r.ticks);
+  if (r.realtime.scheduler == "SCHED_FIFO") {
+    EXPECT_EQ(r.realtime.demoted_at_tick, static_cast<int64_t>(tacta::kStarvingTicks) - 1);
+    EXPECT_EQ(task.last_policy, SCHED_OTHER);
+  } else {
+    EXPECT_EQ(r.realtime.demoted_at_tick, -1) << "only a SCHED_FIFO thread is demoted";
+  }
 }
 
 }  // namespace

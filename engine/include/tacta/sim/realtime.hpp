@@ -31,7 +31,14 @@ struct RealtimeGrant {
   std::string cpu_note;                   // why pinning failed, when it did
   uint32_t helper_threads_lowered = 0;    // other threads moved to a lower priority (and off `cpu`)
   double spin_us = 0;
+  // Tick at which a SCHED_FIFO haptic thread that missed every deadline for
+  // kStarvingTicks ticks was dropped to SCHED_OTHER; -1: never.
+  int64_t demoted_at_tick = -1;
 };
+
+// A SCHED_FIFO thread whose tick takes longer than its period never sleeps: after this many
+// deadline misses in a row it would starve its CPU (and any peer process on it), so it is demoted.
+constexpr uint32_t kStarvingTicks = 100;
 
 // Resident memory of this process, kB (VmRSS), and its peak (VmHWM); 0 when /proc is not there.
 struct ResidentMemory {
@@ -51,6 +58,9 @@ class RealtimeSession {
   const RealtimeGrant& grant() const noexcept { return grant_; }
   // Lowers the calling thread (a render or I/O thread started after the session began).
   void lower_this_thread() noexcept;
+  // Drops a SCHED_FIFO haptic thread to SCHED_OTHER at the fallback nice value and records the
+  // tick; returns false (and does nothing) when the thread is not SCHED_FIFO. Allocates nothing.
+  bool demote(int64_t tick) noexcept;
 
  private:
   RealtimeOptions options_;
