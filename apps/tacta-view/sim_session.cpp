@@ -1,5 +1,7 @@
 #include "sim_session.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 
 namespace tacta::view {
@@ -62,27 +64,36 @@ std::string SimSession::error() const {
 }
 
 void SimSession::work() {
+  // Frames reach the window from run() and step() alike; the clock is the Simulation's own.
+  try {
+    simulation_.attach(this);
+  } catch (const std::exception& e) {
+    std::lock_guard lock(command_mutex_);
+    error_ = e.what();
+  }
+  const auto frame_ticks = static_cast<uint64_t>(std::max(1.0, std::round(frame_period_s_ / simulation_.dt())));
   for (;;) {
     RunOptions options;
-    options.observers.push_back(this);
+    bool stepping = false;
     {
       std::unique_lock lock(command_mutex_);
       wake_.wait(lock, [this] { return mode_ != Mode::Paused || pending_steps_ > 0; });
-      if (mode_ == Mode::Quitting) return;
+      if (mode_ == Mode::Quitting) {
+        simulation_.detach(this);
+        return;
+      }
       if (mode_ == Mode::Playing) {
         options.realtime = true;
         options.duration_s = kSessionSeconds;
       } else {
         --pending_steps_;
-        options.realtime = false;
-        options.duration_s = frame_period_s_;
+        stepping = true;
       }
       running_.store(true, std::memory_order_release);
     }
     try {
-      const RunResult result = simulation_.run(options);
-      std::lock_guard lock(slot_mutex_);
-      time_offset_s_ += result.sim_time_s;
+      if (stepping) simulation_.step(frame_ticks);
+      else simulation_.run(options);
     } catch (const std::exception& e) {
       std::lock_guard lock(command_mutex_);
       error_ = e.what();
@@ -105,7 +116,6 @@ void SimSession::on_start(const SceneStatic& scene) {
 void SimSession::on_frame(const SceneStatic&, const Snapshot& snapshot) {
   std::lock_guard lock(slot_mutex_);
   slot_ = snapshot;  // assignment reuses the slot's buffers after the first frame
-  slot_.time_s += time_offset_s_;
   slot_new_ = true;
 }
 

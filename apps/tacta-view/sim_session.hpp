@@ -3,9 +3,8 @@
 // Play: realtime runs (haptic thread at 1 kHz, render task at the scene's frame rate) of
 // kSessionSeconds each, one after another while playing. Pause: request_stop() ends the run
 // after its current tick; the world keeps its state, so the picture stays and Play goes on from
-// it. Step (while paused): one lockstep run of one frame period. Each run starts its clock at 0,
-// so the session adds the time already run, and the GUI sees a continuous time; a scripted
-// device (sim_stylus) restarts its script at every Play.
+// it. Step (while paused): Simulation::step of one frame period, on this worker. Runs and steps
+// continue the Simulation's one clock, so the GUI sees a continuous time.
 //
 // The snapshot slot's mutex is shared by the render task's thread (or this worker, in lockstep)
 // and the GUI thread only: the haptic thread never sees it.
@@ -72,7 +71,6 @@ class SimSession final : public FrameObserver {
   bool slot_new_ = false;
   SceneStatic scene_;
   bool have_scene_ = false;
-  double time_offset_s_ = 0;  // s run by the finished runs
 
   std::thread worker_;  // last: started once everything above exists
 };

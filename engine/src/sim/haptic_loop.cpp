@@ -16,30 +16,37 @@ double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2
 
 HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks, double duration_s)
     : world_(world), snapshots_(snapshots) {
-  const SceneDesc& scene = world.scene();
-  record_interval_s_ = scene.output.record_interval_s;
-  const size_t devices = world.device_count();
-  trace_.reserve(expected_ticks * std::max<size_t>(devices, 1) + 16);
+  record_interval_s_ = world.scene().output.record_interval_s;
+  faults_.reserve(64 + world.body_count() + world.device_count());
+  reserve(expected_ticks, duration_s);
+}
+
+void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
+  // A session stepped on for hours stops growing its records at what the longest single run
+  // keeps (kMaxRunTicks trace rows and tick durations, ~200 MB of node and energy rows); past
+  // that, rows are dropped and counted and percentiles come from the ticks kept.
+  constexpr size_t kRecordBytes = 200'000'000;
+  constexpr size_t kTickDurations = kMaxRunTicks;
+  const SceneDesc& scene = world_.scene();
+  const size_t devices = world_.device_count();
+  trace_.grow(expected_ticks * std::max<size_t>(devices, 1) + 16, kMaxRunTicks);
   size_t recorded_nodes = 0, probes = 0;
-  for (size_t i = 0; i < world.body_count(); ++i) {
-    recorded_nodes += world.body(i).recorded_nodes.size();
-    probes += world.body(i).probes.size();
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    recorded_nodes += world_.body(i).recorded_nodes.size();
+    probes += world_.body(i).probes.size();
   }
   const double interval_ticks =
       record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
-  // Cap the trajectory at about 200 MB of rows; beyond it rows are dropped and counted.
-  const size_t trajectory_rows = std::min<size_t>(
+  trajectory_.grow(
       static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) * recorded_nodes,
-      200'000'000 / sizeof(TrajectoryRow));
-  trajectory_.reserve(trajectory_rows);
+      kRecordBytes / sizeof(TrajectoryRow));
   // From the run's duration (--duration may differ from the scene's), bounded with it at load.
   if (duration_s < 0) duration_s = static_cast<double>(expected_ticks) / scene.clock.haptic_rate_hz;
   const size_t records = static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
-  probes_.reserve(std::min<size_t>(records * probes, 200'000'000 / sizeof(ProbeRow)));
+  probes_.grow(records * probes, kRecordBytes / sizeof(ProbeRow));
   const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
-  energy_.reserve(frames * world.body_count() + 16);
-  faults_.reserve(64 + world.body_count() + devices);
-  for (TickRecorder& r : stages_) r.reserve(expected_ticks);
+  energy_.grow(frames * world_.body_count() + 16, kRecordBytes / sizeof(EnergyRow));
+  for (TickRecorder& r : stages_) r.grow(expected_ticks, kTickDurations);
 }
 
 const char* HapticLoop::stage_name(int stage) noexcept {
@@ -76,7 +83,9 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   const auto read_done = Clock::now();
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
-    std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
+    // Loads set from outside (the stepping API) start each tick's contact sum.
+    if (b.applied_forces.empty()) std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
+    else std::copy(b.applied_forces.begin(), b.applied_forces.end(), b.contact_forces.begin());
   }
   for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
   const auto haptics_done = Clock::now();

@@ -44,6 +44,8 @@ class HapticLoop final : public HapticTask {
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames
   // (negative: expected_ticks at the scene's haptic rate).
   HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks, double duration_s = -1);
+  // Grows the record buffers for `expected_ticks` (`duration_s` s of frames) more; allocates.
+  void reserve(size_t expected_ticks, double duration_s = -1);
   void add_interaction(Interaction* interaction) { interactions_.push_back(interaction); }
   // Keeps the first device's samples and sent forces (a replayable session log), `ticks` at most.
   void enable_device_log(size_t ticks) { device_log_ = std::make_unique<DeviceLogRecorder>(ticks); }

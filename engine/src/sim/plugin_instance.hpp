@@ -48,6 +48,19 @@ class ModelInstance {
     if (api_.node_stress) api_.node_stress(instance_, positions, von_mises);
   }
 
+  // Changes parameter `index` while the model is not stepping (the optional set_param entry);
+  // false with the plugin's reason in `why` when it has no such entry or refuses the change.
+  bool set_param(uint32_t index, const tacta_param_value& value, std::string& why) {
+    if (!api_.set_param) {
+      why = "the model has no set_param entry";
+      return false;
+    }
+    char message[256] = {};
+    if (api_.set_param(instance_, index, &value, message, sizeof message) == TACTA_OK) return true;
+    why = message;
+    return false;
+  }
+
   // The model's own counters (solver fallbacks, Newton iterations); empty when it keeps none.
   // Allocates: not from the 1 kHz path.
   std::vector<std::pair<std::string, double>> counters();

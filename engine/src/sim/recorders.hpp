@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +41,9 @@ template <class Row>
 class Recorder {
  public:
   void reserve(size_t rows) { rows_.reserve(rows); }
+  // Room for `more` rows past those kept (a persistent clock stepping on), `limit` rows in all
+  // (a session that plays for hours keeps its first rows and counts the rest); allocates.
+  void grow(size_t more, size_t limit) { rows_.reserve(std::min(rows_.size() + more, std::max(limit, rows_.capacity()))); }
   // Drops the row (and counts it) once the reserved capacity is full: never allocates.
   void push(const Row& row) noexcept {
     if (rows_.size() < rows_.capacity()) rows_.push_back(row);

@@ -74,6 +74,7 @@ struct SoftBody {
   std::vector<double> external_forces;  // 3 per node, N: gravity + contact + tool, rebuilt each tick
   std::vector<double> contact_forces;   // 3 per node, N: accumulated by collision/haptics this tick
   std::vector<double> saved_positions;  // start of the tick, restored when the body is frozen
+  std::vector<double> applied_forces;   // 3 per node, N, set through the stepping API; empty: none
   std::unique_ptr<ModelInstance> model;
   std::vector<ScheduledSwap> swaps;     // sorted by time
   size_t next_swap = 0;

@@ -1,14 +1,20 @@
-// One run of a scene: builds the world from a validated scene (bodies, models, devices,
-// interactions), runs it on the chosen clock, and writes the outputs (report.json, trace.csv,
-// trajectory.csv, energy.csv, plots, frames). The public face of the engine for apps and tests.
+// A scene loaded and running: builds the world from a validated scene (bodies, models, devices,
+// interactions) and advances it on one persistent clock, either a tick at a time from the caller
+// (step, advance_to: lockstep, on the calling thread) or in a batch on the chosen clock (run:
+// lockstep or realtime). Between steps the caller reads and writes node state and loads, swaps
+// models and changes parameters, and reads the report so far. Outputs (report.json, trace.csv,
+// trajectory.csv, energy.csv, plots, frames) cover everything run since open. The public face of
+// the engine for apps, the viewer, Python and tests.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "tacta/mesh.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
 #include "tacta/sim/scheduler.hpp"
@@ -68,6 +74,26 @@ struct RunResult {
   int exit_code = 0;                 // 0 ok, 1 runtime fault
 };
 
+// One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed
+// (bodies are never re-allocated after load). Write positions and velocities only between steps.
+struct BodyArrays {
+  size_t nodes = 0;
+  double* positions = nullptr;            // 3 per node, m
+  double* velocities = nullptr;           // 3 per node, m/s
+  const double* rest_positions = nullptr; // 3 per node, m
+  const uint8_t* fixed = nullptr;         // 1 per node: held at rest
+  const double* masses = nullptr;         // 1 per node, kg (lumped)
+};
+
+// A device's last sample and the force it was last sent, read between steps.
+struct DeviceReading {
+  double position[3] = {};  // m
+  double proxy[3] = {};     // m, the god-object position on the surface
+  double force[3] = {};     // N, last sent (zero after a fault)
+  int32_t state = 0;        // tacta_device_state
+  bool in_contact = false;
+};
+
 class Simulation {
  public:
   // Builds everything the scene names; throws InputError, never leaves a half-built world.
@@ -76,7 +102,53 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
+  // Runs `options.duration_s` (default: the scene's) more on the scene's clock (or the one
+  // asked for), from the current time: on a fresh Simulation, the scene from t = 0. Outputs
+  // written to options.out_dir cover everything since open.
   RunResult run(const RunOptions& options);
+
+  // Stepping (lockstep, on the calling thread, never while run() is running). step(n) advances n
+  // haptic ticks and returns how many ran (fewer when the run must end: every device finished).
+  uint64_t step(uint64_t ticks = 1);
+  // Steps whole ticks until time() reaches `time_s` (to within half a tick); returns the ticks.
+  uint64_t advance_to(double time_s);
+  double time() const noexcept;     // s, simulated: tick() * dt()
+  uint64_t tick() const noexcept;   // haptic ticks run since open
+  double dt() const noexcept;       // s, one haptic tick
+  // Frame observers for stepping (a window, a frame writer): told at each 1/render_rate of
+  // simulated time. Not owned; detach before destroying them.
+  void attach(FrameObserver* observer);
+  void detach(FrameObserver* observer);
+
+  // State between steps. Throws InputError for an index past body_count()/device_count().
+  BodyArrays body_arrays(size_t body);
+  // Tells the model that positions or velocities were written through body_arrays (its history,
+  // e.g. the previous position of central differences, restarts from them).
+  void state_written(size_t body);
+  const VolumeMesh& body_mesh(size_t body) const;  // rest mesh: tets, triangles (boundary), quads
+  // The triangles the body is drawn and touched through (its embedded surface, else the boundary)
+  // and their current vertex positions (3 per vertex, m).
+  const std::vector<uint32_t>& surface_triangles(size_t body) const;
+  std::vector<double> surface_positions(size_t body) const;
+  // A load (N) on `nodes`, added to gravity and contact for every step until cleared or replaced.
+  void set_applied_forces(size_t body, const std::vector<uint32_t>& nodes, const std::vector<double>& forces);
+  void clear_applied_forces(size_t body);
+  double kinetic_energy(size_t body) const;  // J
+  double elastic_energy(size_t body) const;  // J
+  // Changes one model parameter between steps: live when the model takes it without rebuilding
+  // (its set_param entry), else by a swap to the same model with the new value. Throws InputError.
+  // Returns true when the change was live, false when it took a swap (applied at the next tick).
+  bool set_param(size_t body, const std::string& name, double value);
+  const ParamSet& body_params(size_t body) const;  // the model's parameters as last asked for
+  DeviceReading device_reading(size_t device) const;
+  // The report so far: what run() returns, for everything since open.
+  RunResult report() const;
+  // Writes report.json, the CSV records and plots for everything since open into `dir`.
+  std::vector<std::string> write_outputs(const std::string& dir);
+  int body_index(const std::string& name) const;  // -1 when there is none
+  int device_index(const std::string& name) const;
+  const std::string& device_name(size_t device) const;
+  const SceneDesc& scene() const;
 
   // From any thread but the haptic one, before or during run(): body `body` takes model `model`
   // with `params` (validated against its schema; empty = the defaults) at the start of the next

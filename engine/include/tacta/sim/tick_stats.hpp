@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +19,10 @@ class TickRecorder {
   // capacity: ticks to keep; later ticks still count in max and mean, not in percentiles.
   explicit TickRecorder(size_t capacity = 0) { durations_ms_.reserve(capacity); }
   void reserve(size_t capacity) { durations_ms_.reserve(capacity); }
+  // Room for `more` durations past those kept, `limit` in all; later ticks count in max and mean.
+  void grow(size_t more, size_t limit) {
+    durations_ms_.reserve(std::min(durations_ms_.size() + more, std::max(limit, durations_ms_.capacity())));
+  }
 
   void record(double duration_ms) noexcept {
     ++count_;

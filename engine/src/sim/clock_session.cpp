@@ -1,0 +1,169 @@
+#include "clock_session.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "device_surface_feed.hpp"
+
+namespace tacta {
+
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+// run_schedule counts its ticks from 0; this puts them on the session's clock (tick `base` on).
+class OffsetTask final : public HapticTask {
+ public:
+  OffsetTask(HapticLoop& loop, uint64_t base, double dt) : loop_(loop), base_(base), dt_(dt) {}
+  bool tick(uint64_t index, double, double dt) noexcept override {
+    // Time from the tick index, not by accumulation, so long sessions do not drift.
+    return loop_.tick(base_ + index, static_cast<double>(base_ + index) * dt_, dt);
+  }
+  void publish(double time) noexcept override {
+    const auto index = static_cast<uint64_t>(std::llround(time / dt_));
+    loop_.publish(static_cast<double>(base_ + index) * dt_);
+  }
+
+ private:
+  HapticLoop& loop_;
+  uint64_t base_;
+  double dt_;
+};
+
+}  // namespace
+
+SceneStatic describe_scene(World& world) {
+  SceneStatic s;
+  s.name = world.scene().name;
+  s.haptic_rate_hz = world.scene().clock.haptic_rate_hz;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    const SoftBody& b = world.body(i);
+    const VolumeMesh& m = b.topology->mesh;
+    BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
+    if (b.surface) {
+      bs.surface_rest_positions = b.surface->rest_positions;
+      bs.surface_triangles = b.surface->triangles;
+    }
+    for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
+      if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
+    s.bodies.push_back(std::move(bs));
+  }
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& slot = world.device(d);
+    s.devices.push_back({slot.name, slot.desc.tool.radius, slot.device->capabilities().peak_force});
+  }
+  return s;
+}
+
+namespace {
+
+// Every model starts from its body's initial state; the energy at t = 0 is kept for the report.
+std::vector<double> begin_models(World& world) {
+  std::vector<double> energy;
+  const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    SoftBody& b = world.body(i);
+    energy.push_back(b.kinetic_energy() + b.model->elastic_energy(b.positions.data()));
+    const tacta_body_state state = b.state_view(0.0);
+    b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : haptic_dt);
+  }
+  return energy;
+}
+
+}  // namespace
+
+ClockSession::ClockSession(World& world, HapticInteraction* haptics, CollisionResponse* response)
+    : initial_energy_J(begin_models(world)),
+      world_(world),
+      dt_(1.0 / world.scene().clock.haptic_rate_hz),
+      scene_static_(describe_scene(world)),
+      snapshots_(HapticLoop::make_prototype(world)),
+      loop_(world, snapshots_, 0, 0.0),
+      render_(snapshots_, scene_static_),
+      surface_feed_(make_device_surface_feed(world)) {
+  if (haptics != nullptr) loop_.add_interaction(haptics);
+  if (response != nullptr) loop_.add_interaction(response);
+  if (surface_feed_) attach(surface_feed_.get());
+}
+
+ClockSession::~ClockSession() { loop_.stop_workers(); }
+
+void ClockSession::reserve(uint64_t ticks) {
+  loop_.reserve(ticks, static_cast<double>(ticks) * dt_);
+  step_ms_.grow(ticks, kMaxRunTicks);
+}
+
+void ClockSession::attach(FrameObserver* observer) {
+  if (std::find(render_.observers.begin(), render_.observers.end(), observer) != render_.observers.end()) return;
+  observer->on_start(scene_static_);
+  render_.observers.push_back(observer);
+}
+
+void ClockSession::detach(FrameObserver* observer) {
+  std::erase(render_.observers, observer);
+}
+
+void ClockSession::start_workers(bool lockstep, uint64_t ticks) {
+  const int mode = lockstep ? 1 : 0;
+  if (workers_mode_ == mode) return;
+  loop_.stop_workers();
+  loop_.start_workers(lockstep, ticks);
+  workers_mode_ = mode;
+}
+
+uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
+  reserve(ticks);
+  start_workers(true, ticks);
+  const double frame_period = 1.0 / world_.scene().clock.render_rate_hz;
+  if (tick_ == 0) {
+    loop_.publish(0.0);
+    render_.frame(0.0);
+    ++frames_;
+  }
+  uint64_t ran = 0;
+  for (; ran < ticks; ++ran) {
+    const auto t0 = SteadyClock::now();
+    const bool keep_going = loop_.tick(tick_, time(), dt_);
+    step_ms_.record(std::chrono::duration<double, std::milli>(SteadyClock::now() - t0).count());
+    ++tick_;
+    // A frame when simulated time crosses k / render_rate (1 ns tolerance against rounding).
+    if (time() + 1e-9 >= static_cast<double>(next_frame_) * frame_period || !keep_going) {
+      while (time() + 1e-9 >= static_cast<double>(next_frame_) * frame_period) ++next_frame_;
+      loop_.publish(time());
+      render_.frame(time());
+      ++frames_;
+    }
+    if (!keep_going || (stop != nullptr && stop->load(std::memory_order_relaxed))) {
+      ++ran;
+      break;
+    }
+  }
+  return ran;
+}
+
+ScheduleResult ClockSession::run(const ScheduleOptions& options) {
+  const auto ticks = static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
+  reserve(ticks + 1);
+  start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
+  OffsetTask task(loop_, tick_, dt_);
+  last_run_ = run_schedule(task, render_, options);
+  tick_ += last_run_.ticks;
+  frames_ += last_run_.frames;
+  // Stopping the workers finishes and keeps a step still in flight, so the run's final state
+  // (and its state hash) includes it; the next batch starts them again in its own mode.
+  loop_.stop_workers();
+  workers_mode_ = -1;
+  next_frame_ = static_cast<uint64_t>(time() * world_.scene().clock.render_rate_hz + 1e-9) + 1;
+  return last_run_;
+}
+
+ScheduleResult ClockSession::totals() const {
+  ScheduleResult r = last_run_;
+  r.ticks = tick_;
+  r.frames = frames_;
+  if (step_ms_.count() > 0 && last_run_.ticks == 0) r.tick = step_ms_.summary();
+  return r;
+}
+
+}  // namespace tacta

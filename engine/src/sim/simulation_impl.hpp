@@ -1,0 +1,55 @@
+// The inside of a Simulation, shared by its two source files: simulation.cpp (building, swaps,
+// batch runs) and simulation_state.cpp (stepping, state access, the report so far).
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "clock_session.hpp"
+#include "collision_context.hpp"
+#include "haptic_interaction.hpp"
+#include "haptic_loop.hpp"
+#include "param_defaults.hpp"
+#include "tacta/sim/simulation.hpp"
+#include "world.hpp"
+
+namespace tacta {
+
+struct Simulation::Impl {
+  Impl(const SceneDesc& scene, const PluginRegistry& registry) : world(scene, registry), plugins(registry) {
+    // Collision is needed for contact response, and for the haptic proxy's surface queries.
+    if (scene.collision.enabled || world.device_count() > 0) {
+      collision = std::make_unique<CollisionContext>(world, registry);
+      if (world.device_count() > 0) haptics = std::make_unique<HapticInteraction>(world, *collision);
+      if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
+    }
+  }
+  World world;
+  const PluginRegistry& plugins;
+  std::atomic<bool> stop{false};
+  std::vector<std::string> requested_models;  // per body, for body_model()
+  std::vector<ParamSet> requested_params;     // per body, for body_params() and set_param swaps
+  std::atomic<bool> running{false};           // run() is on: set_param cannot reach the model live
+  std::unique_ptr<CollisionContext> collision;
+  std::unique_ptr<HapticInteraction> haptics;
+  std::unique_ptr<CollisionResponse> response;
+  std::unique_ptr<ClockSession> clock;  // built at the first step or run
+
+  ClockSession& session() {
+    if (!clock) clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
+    return *clock;
+  }
+  RunResult collect(const ScheduleResult& schedule) const;
+  size_t check_body(size_t body) const {
+    if (body >= world.body_count())
+      throw InputError({world.scene().path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
+    return body;
+  }
+};
+
+// Writes report.json, the CSV records and the plots of everything since open into `dir`.
+void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result);
+
+}  // namespace tacta

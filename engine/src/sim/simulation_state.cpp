@@ -1,0 +1,242 @@
+// The stepping half of Simulation: step, advance_to, state and loads between steps, parameter
+// changes, and the report so far (see simulation.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "../report/run_outputs.hpp"
+#include "simulation_impl.hpp"
+
+namespace tacta {
+
+namespace {
+
+size_t element_count(const VolumeMesh& m) {
+  return m.tets.size() / 4 + m.quads.size() / 4 + (m.dimension == 2 && m.quads.empty() ? m.triangles.size() / 3 : 0);
+}
+
+}  // namespace
+
+void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result) {
+  std::filesystem::create_directories(dir);
+  write_csv_records(dir, loop, world, result);
+  std::vector<std::string> warnings;
+  write_plots(dir, world, result, warnings);
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  write_report_json(dir, loop, world, result);
+}
+
+RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
+  const ClockSession& session = *clock;
+  const HapticLoop& loop = session.loop();
+  RunResult result;
+  result.scene = world.scene().path;
+  result.mode = "lockstep";
+  result.schedule = schedule;
+  result.sim_time_s = session.time();
+  std::vector<const std::vector<double>*> arrays;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    const SoftBody& b = world.body(i);
+    BodyResult br;
+    br.initial_energy_J = session.initial_energy_J[i];
+    br.name = b.name;
+    br.model = b.model->name();
+    br.nodes = b.node_count();
+    br.fixed_nodes = static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
+    br.elements = element_count(b.topology->mesh);
+    br.mesh = describe_body_mesh(b.topology->mesh, b.topology->load);
+    br.mesh_warnings = b.topology->load.warnings;
+    br.max_displacement_m = b.max_displacement_m;
+    br.kinetic_energy_J = b.kinetic_energy();
+    br.elastic_energy_J = b.model->elastic_energy(b.positions.data());
+    br.model_counters = b.model->counters();
+    br.frozen = b.fault.frozen;
+    br.own_thread = b.own_thread;
+    br.step_rate_hz = b.step_period_s > 0 ? 1.0 / b.step_period_s : 0.0;
+    if (const BodyWorker* w = loop.worker(i)) {
+      br.worker_steps = w->stats().steps;
+      br.worker_step_ms = w->step_ms().summary();
+      br.late_boundaries = w->stats().late_boundaries;
+      br.max_lateness_s = w->stats().max_lateness_s;
+    }
+    if (b.fault.frozen) br.fault = b.fault.reason.data();
+    result.bodies.push_back(std::move(br));
+    arrays.push_back(&b.positions);
+  }
+  result.state_hash = hash_positions(arrays);
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot& slot = world.device(d);
+    result.devices.push_back({slot.name, slot.desc.plugin, slot.state, slot.stats.max_force_N,
+                              slot.stats.contact_ticks, slot.stats.reconnections, slot.device->counters()});
+  }
+  result.faults = loop.faults().rows().size();
+  for (const FaultRecord& f : loop.faults().rows()) {
+    const std::string who = f.body >= 0   ? "body " + world.body(static_cast<size_t>(f.body)).name
+                            : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).name
+                                            : std::string("run");
+    char time[32];
+    std::snprintf(time, sizeof time, "%.3f", f.time_s);
+    result.fault_messages.push_back(who + " at t = " + time + " s: " + f.reason.data());
+  }
+  result.exit_code = result.faults > 0 ? 1 : 0;
+  return result;
+}
+
+uint64_t Simulation::step(uint64_t ticks) { return impl_->session().step(ticks, &impl_->stop); }
+
+uint64_t Simulation::advance_to(double time_s) {
+  ClockSession& session = impl_->session();
+  if (!std::isfinite(time_s))
+    throw InputError({scene().path, 0, 0, "advance_to"}, "expected a finite time in s");
+  const double ticks = std::floor((time_s - session.time()) / session.dt() + 0.5);
+  return ticks > 0 ? session.step(static_cast<uint64_t>(ticks), &impl_->stop) : 0;
+}
+
+double Simulation::time() const noexcept {
+  return impl_->clock ? impl_->clock->time() : 0.0;
+}
+uint64_t Simulation::tick() const noexcept { return impl_->clock ? impl_->clock->tick() : 0; }
+double Simulation::dt() const noexcept { return 1.0 / impl_->world.scene().clock.haptic_rate_hz; }
+void Simulation::attach(FrameObserver* observer) { impl_->session().attach(observer); }
+void Simulation::detach(FrameObserver* observer) {
+  if (impl_->clock) impl_->clock->detach(observer);
+}
+
+BodyArrays Simulation::body_arrays(size_t body) {
+  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  return {b.node_count(),       b.positions.data(),          b.velocities.data(),
+          b.rest().data(),      b.topology->fixed.data(),    b.topology->masses.data()};
+}
+
+void Simulation::state_written(size_t body) {
+  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  // The model's history (previous positions, warm starts) no longer matches the state.
+  const tacta_body_state state = b.state_view(time());
+  const double haptic_dt = dt();
+  b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : haptic_dt);
+}
+
+const VolumeMesh& Simulation::body_mesh(size_t body) const {
+  return impl_->world.body(impl_->check_body(body)).topology->mesh;
+}
+
+const std::vector<uint32_t>& Simulation::surface_triangles(size_t body) const {
+  const SoftBody& b = impl_->world.body(impl_->check_body(body));
+  return b.surface ? b.surface->triangles : b.topology->mesh.triangles;
+}
+
+std::vector<double> Simulation::surface_positions(size_t body) const {
+  const SoftBody& b = impl_->world.body(impl_->check_body(body));
+  return b.surface ? b.surface->positions : b.positions;
+}
+
+void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,
+                                    const std::vector<double>& forces) {
+  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + " applied forces"};
+  if (forces.size() != 3 * nodes.size())
+    throw InputError(where, "expected 3 force components (N) per node, found " + std::to_string(forces.size()) +
+                                " for " + std::to_string(nodes.size()) + " nodes");
+  std::vector<double> applied(3 * b.node_count(), 0.0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i] >= b.node_count())
+      throw InputError(where, "node " + std::to_string(nodes[i]) + " is past the body's " +
+                                  std::to_string(b.node_count()) + " nodes");
+    for (size_t k = 0; k < 3; ++k) {
+      if (!std::isfinite(forces[3 * i + k])) throw InputError(where, "expected finite forces (N)");
+      applied[3 * nodes[i] + k] += forces[3 * i + k];
+    }
+  }
+  b.applied_forces = std::move(applied);
+}
+
+void Simulation::clear_applied_forces(size_t body) {
+  impl_->world.body(impl_->check_body(body)).applied_forces.clear();
+}
+
+double Simulation::kinetic_energy(size_t body) const {
+  return impl_->world.body(impl_->check_body(body)).kinetic_energy();
+}
+
+double Simulation::elastic_energy(size_t body) const {
+  const SoftBody& b = impl_->world.body(impl_->check_body(body));
+  return b.model->elastic_energy(b.positions.data());
+}
+
+bool Simulation::set_param(size_t body, const std::string& name, double value) {
+  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  // The model running now, or the one a pending swap brings in.
+  const bool pending = b.mailbox->incoming.load() != nullptr;
+  const std::string model = pending ? impl_->requested_models[body] : std::string(b.model->name());
+  // A scheduled swap (bodies.*.swaps) may have changed the model: its parameters start from defaults.
+  const ParamSet asked = model == impl_->requested_models[body] ? impl_->requested_params[body] : ParamSet{};
+  const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + ".params." + name};
+  const LoadedDescriptor* found = impl_->plugins.find(TACTA_KIND_MODEL, model);
+  if (found == nullptr) throw InputError(where, "no model plugin '" + model + "'");
+  const tacta_descriptor& d = *found->descriptor;
+  uint32_t index = 0;
+  while (index < d.param_count && name != d.params[index].name) ++index;
+  if (index == d.param_count) throw InputError(where, "model '" + std::string(d.name) + "' has no parameter '" + name + "'");
+  const tacta_param_spec& spec = d.params[index];
+  if (spec.type == TACTA_PARAM_TEXT || spec.type == TACTA_PARAM_CHOICE || spec.type == TACTA_PARAM_VECTOR)
+    throw InputError(where, "set_param takes numbers (REAL, INT, BOOL); change '" + name + "' with a model swap");
+  if (!std::isfinite(value) || value < spec.min_value || value > spec.max_value ||
+      (spec.type != TACTA_PARAM_REAL && value != std::floor(value)))
+    throw InputError(where, "expected " + std::string(spec.type == TACTA_PARAM_REAL ? "a number" : "an integer") +
+                                " in [" + std::to_string(spec.min_value) + ", " + std::to_string(spec.max_value) +
+                                "] " + spec.unit + ", found " + std::to_string(value));
+  ParamSet params = complete_params(d, asked);
+  params.set_number(name, value);
+  // Live only while nothing steps the model and no swap waits: between steps, on a haptic-thread body.
+  const bool quiet = !impl_->running.load() && !b.own_thread && !pending;
+  std::string why;
+  if (quiet && b.model->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {
+    impl_->requested_params[body] = std::move(params);
+    return true;
+  }
+  request_model_swap(body, model, params);
+  return false;
+}
+
+const ParamSet& Simulation::body_params(size_t body) const { return impl_->requested_params.at(impl_->check_body(body)); }
+
+DeviceReading Simulation::device_reading(size_t device) const {
+  const World& world = impl_->world;
+  if (device >= world.device_count())
+    throw InputError({world.scene().path, 0, 0, "devices"}, "no device with index " + std::to_string(device));
+  const DeviceSlot& slot = world.device(device);
+  DeviceReading r;
+  for (size_t k = 0; k < 3; ++k) {
+    r.position[k] = slot.sample.position[k];
+    r.proxy[k] = slot.proxy[k];
+    r.force[k] = slot.force[k];
+  }
+  r.state = slot.state;
+  r.in_contact = slot.in_contact;
+  return r;
+}
+
+RunResult Simulation::report() const {
+  if (!impl_->clock) impl_->session();
+  return impl_->collect(impl_->clock->totals());
+}
+
+std::vector<std::string> Simulation::write_outputs(const std::string& dir) {
+  RunResult result = report();
+  write_outputs_into(dir, impl_->clock->loop(), impl_->world, result);
+  return result.outputs;
+}
+
+int Simulation::body_index(const std::string& name) const { return impl_->world.body_index(name); }
+
+int Simulation::device_index(const std::string& name) const {
+  for (size_t d = 0; d < impl_->world.device_count(); ++d)
+    if (impl_->world.device(d).name == name) return static_cast<int>(d);
+  return -1;
+}
+
+const std::string& Simulation::device_name(size_t device) const { return impl_->world.device(device).name; }
+const SceneDesc& Simulation::scene() const { return impl_->world.scene(); }
+
+}  // namespace tacta

@@ -1,0 +1,136 @@
+// The stepping API (Simulation::step, advance_to, state access, loads, set_param, report):
+// stepping in any chunks gives the state run() gives, bit for bit; runs continue one clock; a
+// load moves the body; live parameters change without a swap, others by one; bad input throws.
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "sim_test_support.hpp"
+
+namespace tacta::simtest {
+namespace {
+
+const char* const kBeam = R"(
+name: beam_stepping
+gravity: [0, -9.81, 0]
+clock: {duration_s: 0.2}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1]}}
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 1.0}
+    model: corotational_fem
+    fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+)";
+
+SceneDesc beam() { return scene_from_text(kBeam, "beam_stepping"); }
+
+std::string run_hash(double duration_s) {
+  Simulation simulation(beam(), plugins());
+  RunOptions options;
+  options.duration_s = duration_s;
+  return simulation.run(options).state_hash;
+}
+
+TEST(SteppingApi, StepsInAnyChunksGiveTheStateRunGives) {
+  const std::string reference = run_hash(0.2);
+  Simulation one(beam(), plugins());
+  EXPECT_EQ(one.step(1), 1u);
+  EXPECT_EQ(one.step(199), 199u);
+  EXPECT_EQ(one.tick(), 200u);
+  EXPECT_EQ(one.report().state_hash, reference);
+
+  Simulation many(beam(), plugins());
+  for (int i = 0; i < 40; ++i) many.step(5);
+  EXPECT_EQ(many.report().state_hash, reference);
+  EXPECT_NE(run_hash(0.1), reference) << "the hash must see the state";
+}
+
+TEST(SteppingApi, RunsAndStepsContinueOneClock) {
+  const std::string reference = run_hash(0.2);
+  Simulation simulation(beam(), plugins());
+  RunOptions options;
+  options.duration_s = 0.1;
+  const RunResult first = simulation.run(options);
+  EXPECT_DOUBLE_EQ(first.sim_time_s, 0.1);
+  EXPECT_EQ(simulation.advance_to(0.15), 50u);
+  EXPECT_NEAR(simulation.time(), 0.15, 1e-12);
+  options.duration_s = 0.05;
+  const RunResult last = simulation.run(options);
+  EXPECT_NEAR(last.sim_time_s, 0.2, 1e-12);
+  EXPECT_EQ(last.state_hash, reference);
+  EXPECT_EQ(simulation.advance_to(0.1), 0u) << "the clock never goes back";
+}
+
+TEST(SteppingApi, AnAppliedLoadMovesTheBodyUntilCleared) {
+  Simulation loaded(beam(), plugins()), free(beam(), plugins());
+  const BodyArrays arrays = loaded.body_arrays(0);
+  // The tip nodes (x = 0.3 m) pulled up by 1 N in all.
+  std::vector<uint32_t> tip;
+  for (uint32_t n = 0; n < arrays.nodes; ++n)
+    if (arrays.rest_positions[3 * n] > 0.299) tip.push_back(n);
+  ASSERT_FALSE(tip.empty());
+  std::vector<double> forces;
+  for (size_t i = 0; i < tip.size(); ++i) forces.insert(forces.end(), {0.0, 1.0 / static_cast<double>(tip.size()), 0.0});
+  loaded.set_applied_forces(0, tip, forces);
+  loaded.step(100);
+  free.step(100);
+  const double y_loaded = loaded.body_arrays(0).positions[3 * tip[0] + 1];
+  const double y_free = free.body_arrays(0).positions[3 * tip[0] + 1];
+  EXPECT_GT(y_loaded - y_free, 1e-4) << "1 N up against the beam's weight (0.48 N)";
+  loaded.clear_applied_forces(0);
+  EXPECT_THROW(loaded.set_applied_forces(0, {100000}, {0, 1, 0}), InputError);
+  EXPECT_THROW(loaded.set_applied_forces(0, tip, {1.0}), InputError);
+}
+
+TEST(SteppingApi, LiveParametersChangeWithoutASwapOthersByOne) {
+  Simulation simulation(beam(), plugins());
+  simulation.step(10);
+  EXPECT_TRUE(simulation.set_param(0, "max_iterations", 50)) << "corotational_fem takes it live";
+  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50);
+  simulation.step(10);
+  const size_t before = simulation.report().schedule.ticks;
+  EXPECT_FALSE(simulation.set_param(0, "restart_factor", 4)) << "not live: a swap to the same model";
+  EXPECT_EQ(simulation.body_params(0).find("restart_factor")->number, 4);
+  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50) << "the swap keeps the live change";
+  EXPECT_THROW(simulation.set_param(0, "no_such_parameter", 1), InputError);
+  EXPECT_THROW(simulation.set_param(0, "max_iterations", -3), InputError);
+  EXPECT_THROW(simulation.set_param(0, "max_iterations", 2.5), InputError);
+  simulation.step(10);
+  EXPECT_EQ(simulation.report().schedule.ticks, before + 10);
+  EXPECT_EQ(simulation.report().faults, 0u);
+}
+
+TEST(SteppingApi, AWrittenStateIsWhatTheNextStepStartsFrom) {
+  Simulation simulation(beam(), plugins());
+  simulation.step(50);
+  const BodyArrays a = simulation.body_arrays(0);
+  for (size_t i = 0; i < 3 * a.nodes; ++i) {
+    a.positions[i] = a.rest_positions[i];
+    a.velocities[i] = 0.0;
+  }
+  simulation.state_written(0);
+  Simulation fresh(beam(), plugins());
+  simulation.step(10);
+  fresh.step(10);
+  const BodyArrays b = fresh.body_arrays(0);
+  double difference = 0;
+  for (size_t i = 0; i < 3 * a.nodes; ++i) difference = std::max(difference, std::fabs(a.positions[i] - b.positions[i]));
+  EXPECT_LT(difference, 1e-12) << "from rest at rest velocity, 10 steps match a fresh start";
+  EXPECT_GT(simulation.kinetic_energy(0), 0.0);
+}
+
+TEST(SteppingApi, WritesTheReportSoFar) {
+  Simulation simulation(beam(), plugins());
+  simulation.advance_to(0.05);
+  const std::string out = fresh_dir("stepping_outputs");
+  simulation.write_outputs(out);
+  std::ifstream in(out + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["state_hash"], simulation.report().state_hash);
+  EXPECT_THROW(simulation.body_arrays(3), InputError);
+  EXPECT_EQ(simulation.body_index("beam"), 0);
+  EXPECT_EQ(simulation.body_index("nope"), -1);
+}
+
+}  // namespace
+}  // namespace tacta::simtest
