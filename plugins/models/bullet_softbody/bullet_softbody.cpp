@@ -15,6 +15,14 @@
 
 namespace tacta::models::bullet {
 
+namespace {
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+}  // namespace
+
 struct BulletSoftBody::World {
   btSoftBodyRigidBodyCollisionConfiguration configuration;
   btCollisionDispatcher dispatcher{&configuration};
@@ -28,48 +36,25 @@ struct BulletSoftBody::World {
   }
 };
 
-namespace {
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-}  // namespace
-
-double linear_stiffness_from_young(const tacta_mesh_view& mesh, std::span<const double> masses,
-                                   double youngs_modulus, double dt, int position_iterations) {
-  // Volume share per edge: each tet gives a sixth of its volume to each of its six edges.
-  std::vector<double> share(mesh.edge_count, 0.0);
-  std::vector<std::pair<uint64_t, uint32_t>> keys(mesh.edge_count);
-  for (uint32_t e = 0; e < mesh.edge_count; ++e)
-    keys[e] = {(uint64_t{mesh.edges[2 * e]} << 32) | mesh.edges[2 * e + 1], e};
-  std::sort(keys.begin(), keys.end());
-  for (uint32_t t = 0; t < mesh.tet_count; ++t) {
-    const uint32_t* n = mesh.tets + 4 * t;
-    const double volume = tet_signed_volume(
-        node_position(mesh.rest_positions, n[0]), node_position(mesh.rest_positions, n[1]),
-        node_position(mesh.rest_positions, n[2]), node_position(mesh.rest_positions, n[3]));
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        const uint64_t key = (uint64_t{std::min(n[a], n[b])} << 32) | std::max(n[a], n[b]);
-        const auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(key, 0u));
-        if (it != keys.end() && it->first == key) share[it->second] += volume / 6.0;
-      }
-  }
-  std::vector<double> stiffness, reduced_mass;
+std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
+                                                std::span<const double> masses,
+                                                const tacta_material& material, StiffnessRule rule,
+                                                double dt, int position_iterations) {
+  const std::vector<double> spring = edge_stiffness("bullet_softbody", mesh, material, rule);  // N/m
+  std::vector<double> fraction(mesh.edge_count);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
-    const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
-    const double length2 = (node_position(mesh.rest_positions, i) -
-                            node_position(mesh.rest_positions, j)).squaredNorm();
-    stiffness.push_back(youngs_modulus * share[e] / length2);  // N/m
-    if (masses[i] > 0.0 && masses[j] > 0.0)
-      reduced_mass.push_back(masses[i] * masses[j] / (masses[i] + masses[j]));  // kg
+    const double inverse_mass_sum = (masses[mesh.edges[2 * e]] > 0 ? 1 / masses[mesh.edges[2 * e]] : 0) +
+                                    (masses[mesh.edges[2 * e + 1]] > 0 ? 1 / masses[mesh.edges[2 * e + 1]] : 0);
+    if (!(inverse_mass_sum > 0)) {  // both ends held: Bullet never moves it
+      fraction[e] = 1.0;
+      continue;
+    }
+    const double stiffness_dt2 = spring[e] * dt * dt * inverse_mass_sum;  // k dt^2 / m_reduced
+    const double closed_per_step = stiffness_dt2 / (1.0 + stiffness_dt2);
+    const double per_iteration = 1.0 - std::pow(1.0 - closed_per_step, 1.0 / position_iterations);
+    fraction[e] = std::clamp(per_iteration, 1e-6, 1.0);  // Bullet divides by kLST
   }
-  const double k = median(stiffness), m = median(reduced_mass);
-  if (!(m > 0.0)) return 1.0;
-  const double closed_per_step = k * dt * dt / (m + k * dt * dt);
-  const double per_iteration = 1.0 - std::pow(1.0 - closed_per_step, 1.0 / position_iterations);
-  return std::clamp(per_iteration, 1e-6, 1.0);
+  return fraction;
 }
 
 BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material& material,
@@ -104,26 +89,27 @@ BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material
   w.body = std::make_unique<btSoftBody>(&w.info, static_cast<int>(mesh.node_count), x.data(),
                                         m.data());
   body_ = w.body.get();
+  link_stiffness_ = options.stiffness_override > 0.0
+                       ? std::vector<double>(mesh.edge_count, options.stiffness_override)
+                       : link_stiffness_from_material(mesh, masses, material, options.stiffness_rule,
+                                                      dt, options.position_iterations);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
     if (i >= mesh.node_count || j >= mesh.node_count)
       throw std::invalid_argument("bullet_softbody: edge " + std::to_string(e) +
                                   " names a node past " + std::to_string(mesh.node_count));
-    body_->appendLink(static_cast<int>(i), static_cast<int>(j));
+    btSoftBody::Material* link_material = body_->appendMaterial();  // kLST is per material
+    link_material->m_kLST = link_material->m_kAST = link_material->m_kVST = link_stiffness_[e];
+    body_->appendLink(static_cast<int>(i), static_cast<int>(j), link_material);
   }
   for (uint32_t t = 0; t < mesh.tet_count; ++t) {
     const uint32_t* n = mesh.tets + 4 * t;
     body_->appendTetra(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]),
                        static_cast<int>(n[3]));
   }
-  linear_stiffness_ = options.stiffness_override > 0.0
-                          ? options.stiffness_override
-                          : linear_stiffness_from_young(mesh, masses, material.youngs_modulus, dt,
-                                                        options.position_iterations);
-  btSoftBody::Material* bullet_material = body_->m_materials[0];
-  bullet_material->m_kLST = linear_stiffness_;
-  bullet_material->m_kAST = linear_stiffness_;
-  bullet_material->m_kVST = linear_stiffness_;
+  btSoftBody::Material* bullet_material = body_->m_materials[0];  // bending links' material
+  bullet_material->m_kLST = bullet_material->m_kAST = bullet_material->m_kVST =
+      median(link_stiffness_);
   if (options.bending) body_->generateBendingConstraints(2, bullet_material);
   body_->m_cfg.piterations = options.position_iterations;
   body_->m_cfg.kDP = std::clamp(1.0 - std::exp(-alpha_ * dt), 0.0, 1.0);

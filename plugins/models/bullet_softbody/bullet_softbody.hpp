@@ -21,6 +21,7 @@
 
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/spring_stiffness.hpp"
 
 class btSoftBody;
 
@@ -30,11 +31,14 @@ struct Options {
   int position_iterations = 10;  // Bullet's m_cfg.piterations
   double stiffness_override = 0.0;  // kLST in (0, 1]; 0: derive it from E by the rule above
   bool bending = false;             // add Bullet's distance-2 bending links
+  StiffnessRule stiffness_rule = StiffnessRule::kVanGelder;  // spring constant per edge
 };
 
-// The kLST the rule above gives for this mesh and material at this dt.
-double linear_stiffness_from_young(const tacta_mesh_view& mesh, std::span<const double> masses,
-                                   double youngs_modulus, double dt, int position_iterations);
+// The kLST of every mesh edge's link (same order as mesh.edges) by the rule above.
+std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
+                                                std::span<const double> masses,
+                                                const tacta_material& material, StiffnessRule rule,
+                                                double dt, int position_iterations);
 
 class BulletSoftBody {
  public:
@@ -47,7 +51,8 @@ class BulletSoftBody {
 
   // Copies positions and velocities into Bullet, applies external forces, steps, copies back.
   uint32_t step(tacta_body_state& state, double dt) noexcept;
-  double linear_stiffness() const { return linear_stiffness_; }
+  // kLST of each link, in mesh.edges order.
+  const std::vector<double>& link_stiffness() const { return link_stiffness_; }
 
  private:
   struct World;
@@ -55,7 +60,7 @@ class BulletSoftBody {
   btSoftBody* body_ = nullptr;  // owned by world_
   std::vector<uint8_t> fixed_;
   std::vector<double> rest_;
-  double linear_stiffness_ = 0.0;
+  std::vector<double> link_stiffness_;
   double alpha_ = 0.0;  // Rayleigh mass damping, 1/s
   DivergenceGuard guard_;  // NaN and runaway edge stretch
 };

@@ -6,7 +6,7 @@
 
 #include "baraff_witkin.hpp"
 #include "desbrun.hpp"
-#include "tacta/models/edge_graph.hpp"
+#include "tacta/models/spring_stiffness.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models {
@@ -49,33 +49,12 @@ MassSpringModel::MassSpringModel(const tacta_model_setup& setup, const MassSprin
   for (uint32_t i = 0; i < node_count_; ++i)
     if (!(mass_[i] > 0) && !fixed_[i])
       throw std::invalid_argument("mass_spring: node " + std::to_string(i) + " has mass <= 0");
-  const EdgeGraph graph = EdgeGraph::from_mesh(mesh);
-  const double* rest = mesh.rest_positions;
-  std::vector<double> volume_sum(mesh.edge_count, 0.0);  // m^3: sum of V(T) over tets on the edge
-  for (uint32_t t = 0; t < mesh.tet_count; ++t) {
-    const uint32_t* tet = mesh.tets + 4 * static_cast<size_t>(t);
-    for (int k = 0; k < 4; ++k)
-      if (tet[k] >= node_count_)
-        throw std::invalid_argument("mass_spring: tet " + std::to_string(t) + " names node " +
-                                    std::to_string(tet[k]) + " of " + std::to_string(node_count_));
-    const double v = std::abs(tet_signed_volume(node_position(rest, tet[0]), node_position(rest, tet[1]),
-                                                node_position(rest, tet[2]), node_position(rest, tet[3])));
-    for (int p = 0; p < 4; ++p)
-      for (int q = p + 1; q < 4; ++q) {
-        const uint32_t e = graph.find_edge(tet[p], tet[q]);
-        if (e == UINT32_MAX)
-          throw std::invalid_argument("mass_spring: an edge of tet " + std::to_string(t) +
-                                      " is missing from mesh.edges");
-        volume_sum[e] += v;
-      }
-  }
+  const std::vector<double> stiffness = edge_stiffness("mass_spring", mesh, *setup.material, options.stiffness_rule);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const uint32_t a = mesh.edges[2 * e], b = mesh.edges[2 * e + 1];
-    const double length = (node_position(rest, a) - node_position(rest, b)).norm();
-    if (!(length > 0)) throw std::invalid_argument("mass_spring: edge " + std::to_string(e) + " has zero length");
     springs_.ends.insert(springs_.ends.end(), {a, b});
-    springs_.rest_length.push_back(length);
-    springs_.stiffness.push_back(setup.material->youngs_modulus * volume_sum[e] / (length * length));
+    springs_.rest_length.push_back((node_position(mesh.rest_positions, a) - node_position(mesh.rest_positions, b)).norm());
+    springs_.stiffness.push_back(stiffness[e]);
   }
   force_.assign(3 * static_cast<size_t>(node_count_), 0.0);
   guard_ = DivergenceGuard(mesh, options.divergence_stretch);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "tacta/model_api.h"
+#include "tacta/models/spring_stiffness.hpp"
 #include "tacta/models/divergence_guard.hpp"
 
 namespace tacta::models {
@@ -32,6 +33,7 @@ struct MassSpringOptions {
   double cg_tolerance = 1e-8;  // relative residual
   bool desbrun_correction = true;  // Desbrun: remove the angular momentum the linear filter adds
   double divergence_stretch = DivergenceGuard::kDefaultStretchLimit;
+  StiffnessRule stiffness_rule = StiffnessRule::kVanGelder;
 };
 
 // The springs and their forces; shared by the integrators.

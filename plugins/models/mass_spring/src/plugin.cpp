@@ -1,5 +1,7 @@
 // mass_spring plugin: descriptor, parameter schema and the SDK adapter around MassSpringModel.
+#include <algorithm>
 #include <array>
+#include <string>
 
 #include "mass_spring_model.hpp"
 #include "tacta/sdk/model.hpp"
@@ -16,7 +18,7 @@ class MassSpringPlugin {
       "Mass-spring on the mesh edges (Van Gelder stiffness): symplectic Euler, Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
-  static constexpr std::array<tacta_param_spec, 6> kParams = {
+  static constexpr std::array<tacta_param_spec, 7> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "
                                "step, CG); desbrun factorises its matrix for the setup dt"),
@@ -31,6 +33,9 @@ class MassSpringPlugin {
                              "(only when no node is fixed)"),
       tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
                              "fault when an edge grows past this multiple of its rest length"),
+      tacta::sdk::choice_param("stiffness_rule", "van_gelder|fem_projection", 0,
+                               "spring constants from E and nu: each tet's linear-FEM edge block "
+                               "projected on the spring, or Van Gelder's E V / L^2 (nu ignored)"),
   };
 
   explicit MassSpringPlugin(const tacta_model_setup& setup) : model_(setup, options(setup)) {}
@@ -38,6 +43,14 @@ class MassSpringPlugin {
   uint32_t step(tacta_body_state& state, double dt) noexcept { return model_.step(state, dt); }
   double elastic_energy(const double* x) noexcept { return model_.elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_.internal_forces(x, f); }
+  std::string describe() const {
+    const auto& k = model_.springs().stiffness;
+    const auto slack = std::count(k.begin(), k.end(), 0.0);
+    return std::string("spring constants by ") +
+           tacta::models::stiffness_rule_name(model_.options().stiffness_rule) + ": " +
+           tacta::models::median_and_range(k) + " N/m over " + std::to_string(k.size()) +
+           " edges" + (slack ? ", " + std::to_string(slack) + " of them 0 (obtuse tets)" : "");
+  }
 
  private:
   static MassSpringOptions options(const tacta_model_setup& setup) {
@@ -49,6 +62,7 @@ class MassSpringPlugin {
     o.cg_tolerance = p.real("cg_tolerance");
     o.desbrun_correction = p.flag("desbrun_correction");
     o.divergence_stretch = p.real("divergence_stretch");
+    o.stiffness_rule = static_cast<tacta::models::StiffnessRule>(p.choice("stiffness_rule"));
     return o;
   }
   MassSpringModel model_;

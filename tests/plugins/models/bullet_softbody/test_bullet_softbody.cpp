@@ -2,12 +2,14 @@
 // the documented E -> kLST rule behaves (in (0, 1], stiffer material gives a larger kLST).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "bullet_softbody.hpp"
 #include "plugin_fixture.hpp"
 #include "tacta/model_api.h"
+#include "tacta/models/spring_stiffness.hpp"
 #include "tacta/models/test_meshes.hpp"
 
 namespace {
@@ -34,10 +36,11 @@ struct PluginRun {
 TEST(BulletSoftBody, SchemaNamesItsParameters) {
   PluginRun run;
   ASSERT_EQ(run.descriptor.kind, TACTA_KIND_MODEL);
-  ASSERT_EQ(run.descriptor.param_count, 3u);
+  ASSERT_EQ(run.descriptor.param_count, 4u);
   EXPECT_STREQ(run.descriptor.params[0].name, "position_iterations");
   EXPECT_STREQ(run.descriptor.params[1].name, "stiffness_override");
   EXPECT_STREQ(run.descriptor.params[2].name, "bending");
+  EXPECT_STREQ(run.descriptor.params[3].name, "stiffness_rule");
 }
 
 TEST(BulletSoftBody, FreeBodyFallsUnderGravity) {
@@ -106,12 +109,38 @@ TEST(BulletSoftBody, RejectsFreeNodeWithoutMass) {
 TEST(BulletSoftBody, StiffnessRuleIsMonotoneAndBounded) {
   const TestMesh mesh = tacta::models::box_tet_mesh({3, 3, 3}, {0.1, 0.1, 0.1}, 1000.0);
   const tacta_mesh_view view = mesh.view();
-  double previous = 0.0;
-  for (double e : {1e2, 1e3, 1e4, 1e5, 1e6}) {
-    const double k = tacta::models::bullet::linear_stiffness_from_young(view, mesh.masses, e, 1e-3, 10);
-    EXPECT_GT(k, previous) << "E = " << e;
-    EXPECT_LE(k, 1.0);
-    previous = k;
+  using tacta::models::StiffnessRule;
+  for (StiffnessRule rule : {StiffnessRule::kVanGelder, StiffnessRule::kFemProjection}) {
+    std::vector<double> previous(mesh.edges.size() / 2, 0.0);
+    for (double e : {1e2, 1e3, 1e4, 1e5, 1e6}) {
+      const std::vector<double> k = tacta::models::bullet::link_stiffness_from_material(
+          view, mesh.masses, tacta::models::make_material(e, 0.3, 1000.0), rule, 1e-3, 10);
+      ASSERT_EQ(k.size(), previous.size());
+      for (size_t link = 0; link < k.size(); ++link) {
+        EXPECT_GT(k[link], previous[link]) << "E = " << e << ", link " << link;
+        EXPECT_LE(k[link], 1.0);
+      }
+      previous = k;
+    }
+  }
+}
+
+TEST(BulletSoftBody, LinkFractionClosesTheImplicitSpringsShareOverTheIterations) {
+  // n iterations of kLST close what one implicit step of the Van Gelder spring would:
+  // 1 - (1 - kLST)^n = k dt^2 / (m_reduced + k dt^2), link by link.
+  const TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 2}, {0.1, 0.1, 0.1}, 1000.0);
+  const tacta_mesh_view view = mesh.view();
+  const tacta_material material = tacta::models::make_material(1e5, 0.3, 1000.0);
+  const double dt = 1e-3;
+  const int iterations = 7;
+  const auto fraction = tacta::models::bullet::link_stiffness_from_material(
+      view, mesh.masses, material, tacta::models::StiffnessRule::kVanGelder, dt, iterations);
+  const auto spring = tacta::models::edge_stiffness("test", view, material,
+                                                    tacta::models::StiffnessRule::kVanGelder);
+  for (size_t e = 0; e < spring.size(); ++e) {
+    const double ma = mesh.masses[mesh.edges[2 * e]], mb = mesh.masses[mesh.edges[2 * e + 1]];
+    const double reduced = ma * mb / (ma + mb), kdt2 = spring[e] * dt * dt;
+    EXPECT_NEAR(1 - std::pow(1 - fraction[e], iterations), kdt2 / (reduced + kdt2), 1e-12) << e;
   }
 }
 
