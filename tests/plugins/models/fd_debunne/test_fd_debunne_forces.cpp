@@ -1,7 +1,9 @@
 // fd_debunne: static properties of the finite-difference forces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "fd_test_body.hpp"
 #include "tacta/models/model_checks.hpp"
@@ -99,4 +101,41 @@ TEST(FdDebunne, LinearModelIsNotRotationInvariant) {
   std::vector<double> f(x.size());
   body.model->internal_forces(x.data(), f.data());
   EXPECT_GT(sum_of_norms(f), 1.0);
+}
+
+TEST(FdDebunne, SurfaceNodesResistAnInfinitesimalRotation) {
+  // Why fd_debunne is far too stiff in bending (docs/VALIDATION.md, models that agree): its
+  // Laplacian sum_j (d_j - d_i) / ... has no boundary closure, so at a surface node, whose
+  // neighbours all lie on one side, a rotation by 1e-6 rad (zero strain: no force in elasticity)
+  // loads about as much as a stretch of strain 1e-6. The centre node of the one-diagonal lattice,
+  // whose neighbours are point-symmetric with equal weights, feels nothing.
+  FdDebunneOptions options;
+  options.symmetric = true;
+  const double angle = 1e-6;
+  FdBody body(box_tet_mesh({4, 4, 4}, {1, 1, 1}, 1000.0, GridSplit::kOneDiagonal),
+              make_material(1e5, 0.3, 1000.0), options);
+  const auto& rest = body.mesh.positions;
+  std::vector<double> rotated(rest.size()), stretched(rest), f_rotation(rest.size()), f_stretch(rest.size());
+  for (size_t i = 0; i < rest.size(); i += 3) {
+    rotated[i] = rest[i] - angle * rest[i + 1];  // d = angle z x x
+    rotated[i + 1] = rest[i + 1] + angle * rest[i];
+    rotated[i + 2] = rest[i + 2];
+    stretched[i] = rest[i] * (1 + angle);  // uniaxial strain 1e-6 along x
+  }
+  body.model->internal_forces(rotated.data(), f_rotation.data());
+  body.model->internal_forces(stretched.data(), f_stretch.data());
+  double surface_rotation = 0, surface_stretch = 0;
+  for (size_t i = 0; i < rest.size(); i += 3) {
+    const double r = std::hypot(f_rotation[i], f_rotation[i + 1], f_rotation[i + 2]);
+    const double s = std::hypot(f_stretch[i], f_stretch[i + 1], f_stretch[i + 2]);
+    bool surface = false;
+    for (int c = 0; c < 3; ++c) surface |= rest[i + c] < 1e-9 || rest[i + c] > 1 - 1e-9;
+    if (surface) surface_rotation = std::max(surface_rotation, r), surface_stretch = std::max(surface_stretch, s);
+  }
+  const size_t centre = 3 * (2 + 5 * (2 + 5 * 2));  // node (2, 2, 2) of the 5x5x5
+  const double interior_rotation = std::hypot(f_rotation[centre], f_rotation[centre + 1], f_rotation[centre + 2]);
+  std::printf("fd_debunne, 1e-6 rad rotation: largest surface force %.3g N (stretch 1e-6: %.3g N), "
+              "centre node %.3g N\n", surface_rotation, surface_stretch, interior_rotation);
+  EXPECT_GT(surface_rotation, 0.3 * surface_stretch);
+  EXPECT_LT(interior_rotation, 1e-6 * surface_rotation);
 }
