@@ -6,12 +6,12 @@
 // Gravity and contact come from the engine's external forces (Bullet's own gravity is zero).
 //
 // Material rule (Bullet's kLST is a per-iteration position-correction fraction in [0, 1], not
-// a modulus): each edge gets a spring stiffness k_e = E V_e / L_e^2 (V_e: a sixth of the volume
-// of every tet around the edge, L_e: rest length). An implicit spring of stiffness k between
-// masses of reduced mass m closes the fraction s = k dt^2 / (m + k dt^2) of its error in one
-// step; n position iterations of fraction f close 1 - (1 - f)^n. With the medians of k_e and m
-// over the edges, kLST = 1 - (1 - s)^(1/n). Damping: kDP = 1 - exp(-alpha dt) with alpha the
-// Rayleigh mass coefficient (Bullet's kDP removes that fraction of velocity per step).
+// a modulus): each link has its own Bullet material. Its spring constant k_e comes from E and nu
+// by the stiffness rule mass_spring uses (tacta/models/spring_stiffness.hpp). An implicit spring
+// of stiffness k between masses of reduced mass m closes the fraction s = k dt^2 / (m + k dt^2)
+// of its error in one step; n position iterations of fraction f close 1 - (1 - f)^n; so
+// kLST_e = 1 - (1 - s_e)^(1/n). Damping: kDP = 1 - exp(-alpha dt) with alpha the Rayleigh mass
+// coefficient (Bullet's kDP removes that fraction of velocity per step).
 #pragma once
 
 #include <cstdint>

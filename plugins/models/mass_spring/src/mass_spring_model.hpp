@@ -1,12 +1,9 @@
 // Mass-spring model (paper section 5). One spring per mesh edge: for tetrahedral meshes these
 // are the structural edges plus the tets' face and body diagonals, which resist shear; no
-// separate bending springs. Stiffness from Young's modulus by Van Gelder's rule (A. Van Gelder,
-// "Approximate simulation of elastic membranes by triangulated spring meshes", J. Graphics
-// Tools 3(2), 1998: k_e = E t sum_T area(T) / |e|^2 for triangles), in its volume form
-//     k_e = E * sum_{tets T containing e} V(T) / L_e^2          (N/m)
-// Poisson's ratio is not representable by edge springs and is ignored. On the 6-tet cube
-// lattice this rule gives a uniaxial modulus of 1.034 E in the bulk (energy minimisation over
-// lateral strain); the bar test measures the effective modulus of a whole bar.
+// separate bending springs. Spring constants from E and nu by the options' stiffness rule
+// (tacta/models/spring_stiffness.hpp): Van Gelder's E sum V / L^2 (default; nu ignored) or each
+// tet's linear-FEM edge block projected on the spring. Springs have Poisson's ratio 1/4 whatever
+// nu says (docs/VALIDATION.md, models that agree).
 //
 // Integrators: symplectic Euler (eqs. 26-27); Baraff-Witkin implicit Euler, one Newton step
 // (eqs. 32-36) solved by preconditioned CG; Desbrun et al. (1999): the constant linear part

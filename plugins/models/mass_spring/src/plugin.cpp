@@ -15,7 +15,7 @@ class MassSpringPlugin {
  public:
   static constexpr const char* kName = "mass_spring";
   static constexpr const char* kDescription =
-      "Mass-spring on the mesh edges (Van Gelder stiffness): symplectic Euler, Baraff-Witkin "
+      "Mass-spring on the mesh edges (spring constants from E, nu): symplectic Euler, Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
   static constexpr std::array<tacta_param_spec, 7> kParams = {
@@ -34,8 +34,8 @@ class MassSpringPlugin {
       tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
                              "fault when an edge grows past this multiple of its rest length"),
       tacta::sdk::choice_param("stiffness_rule", "van_gelder|fem_projection", 0,
-                               "spring constants from E and nu: each tet's linear-FEM edge block "
-                               "projected on the spring, or Van Gelder's E V / L^2 (nu ignored)"),
+                               "spring constants from E and nu: Van Gelder's E V / L^2 (nu ignored), "
+                               "or each tet's linear-FEM edge block projected on the spring"),
   };
 
   explicit MassSpringPlugin(const tacta_model_setup& setup) : model_(setup, options(setup)) {}
