@@ -15,7 +15,7 @@ namespace tacta::models {
 std::vector<double> edge_stiffness(const char* model, const tacta_mesh_view& mesh,
                                    const tacta_material& material, StiffnessRule rule) {
   const std::string name(model);
-  const EdgeGraph graph = EdgeGraph::from_mesh(mesh);
+  const EdgeGraph graph = EdgeGraph::from_mesh(mesh);  // refuses an edge naming a missing node
   const double* rest = mesh.rest_positions;
   std::vector<double> length(mesh.edge_count);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {

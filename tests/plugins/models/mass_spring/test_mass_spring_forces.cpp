@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "ms_test_body.hpp"
 #include "tacta/models/model_checks.hpp"
@@ -142,4 +144,19 @@ TEST(MassSpring, FemProjectionMatchesTheFemEdgeBlocksOnAJitteredBox) {
   }
   for (size_t s = 0; s < springs.size(); ++s)
     EXPECT_NEAR(springs.stiffness[s], std::max(expected[s], 0.0), 1e-9 * std::abs(expected[s]) + 1e-12) << s;
+}
+
+TEST(MassSpring, EdgeNamingAMissingNodeIsRefusedByName) {
+  TestMesh mesh = regular_tet(0.1);
+  mesh.edges.back() = 9;  // the mesh has 4 nodes
+  for (StiffnessRule rule : {StiffnessRule::kVanGelder, StiffnessRule::kFemProjection}) {
+    MassSpringOptions options;
+    options.stiffness_rule = rule;
+    try {
+      MsBody body(mesh, make_material(1e4, 0.3, 1000.0), options);
+      ADD_FAILURE() << "accepted an edge to node 9";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("edge 5 (2, 9) is invalid for 4 nodes"), std::string::npos) << e.what();
+    }
+  }
 }
