@@ -57,7 +57,7 @@ class PluginBody {
       for (int c = 0; c < 3; ++c) forces_[3 * i + c] = mesh_.masses[i] * gravity[c];
     const tacta_model_setup setup{sizeof(tacta_model_setup), &view_, &material_,
                                   mesh_.masses.data(), mesh_.fixed.data(), params_.data(),
-                                  d.param_count, dt};
+                                  d.param_count, dt, nullptr};
     char message[512] = {0};
     if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK)
       throw std::runtime_error(model + ": create failed: " + message);

@@ -42,6 +42,26 @@ typedef struct tacta_mesh_view {
   uint32_t dimension;    /* 3 for volume meshes; 2 for planar meshes (unit thickness, 1 m) */
 } tacta_mesh_view;
 
+/* Engine services handed to a model instance (Jolt's job-system model: the engine owns the
+ * threads and the memory, a plugin only asks). */
+typedef struct tacta_host_services {
+  uint32_t struct_size;
+  /* threads parallel_for runs on, the calling thread included; 1: it runs serially */
+  uint32_t worker_count;
+  /* Runs body(user, begin, end, worker) over [0, count) in chunks of `grain` indices, on the
+   * engine's workers and the calling thread (worker < worker_count), and returns when every
+   * chunk is done. Allocation- and lock-free: callable from step(). When another body is using
+   * the workers it runs serially on the caller (worker 0). Not re-entrant from inside body. */
+  void (*parallel_for)(void* jobs, uint32_t count, uint32_t grain,
+                       void (*body)(void* user, uint32_t begin, uint32_t end, uint32_t worker),
+                       void* user);
+  void* jobs;
+  /* Memory the engine owns for the instance's life (freed after destroy), 64-byte aligned and
+   * zeroed; only during create(). NULL when `bytes` is past what the engine grants. */
+  void* (*scratch)(void* arena, size_t bytes);
+  void* arena;
+} tacta_host_services;
+
 /* What create() receives. Everything is valid only during create() unless stated otherwise. */
 typedef struct tacta_model_setup {
   uint32_t struct_size;
@@ -52,6 +72,9 @@ typedef struct tacta_model_setup {
   const tacta_param_value* params; /* validated against the descriptor's schema, schema order */
   uint32_t param_count;
   double dt; /* the step the engine will use, s (the haptic tick unless the body runs slower) */
+  /* appended: engine services, valid for the instance's lifetime; NULL from an engine (or a
+   * test) that offers none, or when struct_size does not reach this field */
+  const tacta_host_services* host;
 } tacta_model_setup;
 
 /* The state a step advances, in place. The engine has already added gravity (m g), contact and

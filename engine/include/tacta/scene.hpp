@@ -250,6 +250,9 @@ struct SceneDesc {
   std::vector<SwapDesc> swaps;
   OutputDesc output;
   uint64_t seed = 1;
+  // Threads a model's parallel_for runs on (the stepping thread included); 1: serial. The
+  // result then depends on the ordering a model picks for parallel work, not on this number.
+  uint32_t threads = 1;
 };
 
 }  // namespace tacta

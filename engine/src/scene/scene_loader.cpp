@@ -112,13 +112,15 @@ void check_unique(const std::vector<Field>& items, const std::vector<std::string
 
 SceneDesc read_scene(const Field& root) {
   root.expect_map("a scene: a map with keys name, gravity, clock, bodies, ...");
-  root.check_keys({"name", "gravity", "seed", "clock", "bodies", "devices", "obstacles",
+  root.check_keys({"name", "gravity", "seed", "threads", "clock", "bodies", "devices", "obstacles",
                    "collision", "swaps", "output"});
   SceneDesc scene;
   scene.name = std::filesystem::path(root.context().file).stem().string();
   if (auto f = root.get("name")) scene.name = f->text();
   if (auto f = root.get("gravity")) scene.gravity = f->vec3();
   if (auto f = root.get("seed")) scene.seed = static_cast<uint64_t>(f->integer(0, INT64_MAX));
+  // 64: past any core count a workstation running a haptic loop has.
+  if (auto f = root.get("threads")) scene.threads = static_cast<uint32_t>(f->integer(1, 64));
   if (auto f = root.get("clock")) scene.clock = read_clock(*f);
 
   const Field bodies = root.require("bodies");

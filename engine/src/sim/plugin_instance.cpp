@@ -16,11 +16,25 @@ std::string plugin_failure(const tacta_descriptor& d, const char* what, const ch
   if (message[0] != '\0') text += ": " + std::string(message);
   return text;
 }
+
+// parallel_for without an engine pool (a model created alone, e.g. by a test): the caller does all.
+void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t), void* user) {
+  if (count > 0) body(user, 0, count, 0);
+}
 }  // namespace
 
-ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& setup,
-                             const SourceLocation& where)
+ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& given,
+                             const SourceLocation& where, JobPool* jobs)
     : descriptor_(descriptor), api_(*static_cast<const tacta_model_api*>(descriptor.api)) {
+  services_.struct_size = sizeof services_;
+  services_.worker_count = jobs != nullptr ? jobs->threads() : 1;
+  services_.parallel_for = jobs != nullptr ? &JobPool::parallel_for_entry : &serial_for;
+  services_.jobs = jobs;
+  services_.scratch = &ScratchArena::allocate_entry;
+  services_.arena = &arena_;
+  tacta_model_setup setup = given;
+  setup.struct_size = sizeof setup;
+  setup.host = &services_;
   char message[kMessageCapacity] = {0};
   if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK || instance_ == nullptr)
     throw InputError(where, plugin_failure(descriptor, "refused this body", message));

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "../services/job_pool.hpp"
 #include "tacta/device_api.h"
 #include "tacta/error.hpp"
 #include "tacta/model_api.h"
@@ -20,9 +21,10 @@ namespace tacta {
 
 class ModelInstance {
  public:
-  // Throws InputError (at `where`) when the plugin refuses the setup.
+  // Throws InputError (at `where`) when the plugin refuses the setup. The instance gets the host
+  // services (parallel_for on `jobs`, serial when null; a scratch arena of its own).
   ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& setup,
-                const SourceLocation& where);
+                const SourceLocation& where, JobPool* jobs = nullptr);
   ~ModelInstance();
   ModelInstance(const ModelInstance&) = delete;
   ModelInstance& operator=(const ModelInstance&) = delete;
@@ -75,10 +77,13 @@ class ModelInstance {
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;
+  size_t scratch_bytes() const noexcept { return arena_.bytes(); }  // host scratch granted
 
  private:
   const tacta_descriptor& descriptor_;
   const tacta_model_api& api_;
+  ScratchArena arena_;  // outlives the instance: freed after destroy()
+  tacta_host_services services_{};
   void* instance_ = nullptr;
 };
 

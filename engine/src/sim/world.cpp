@@ -8,7 +8,8 @@ namespace {
 constexpr double kSetupDt = 1e-3;  // s; only used for a default when a model is created alone
 }
 
-World::World(const SceneDesc& scene, const PluginRegistry& plugins) : scene_(scene), plugins_(plugins) {
+World::World(const SceneDesc& scene, const PluginRegistry& plugins)
+    : scene_(scene), plugins_(plugins), jobs_(std::make_unique<JobPool>(scene.threads)) {
   const ModelFactory factory = [this](const std::string& model, const ParamSet& params,
                                       const BodyTopology& topology, double dt,
                                       const SourceLocation& where) {
@@ -64,7 +65,7 @@ std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const
   setup.params = values.data();
   setup.param_count = values.size();
   setup.dt = dt > 0 ? dt : kSetupDt;
-  return std::make_unique<ModelInstance>(*found->descriptor, setup, where);
+  return std::make_unique<ModelInstance>(*found->descriptor, setup, where, jobs_.get());
 }
 
 }  // namespace tacta

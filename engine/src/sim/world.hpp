@@ -3,6 +3,7 @@
 // half-loaded.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "device_slot.hpp"
@@ -29,6 +30,7 @@ class World {
   const DeviceSlot& device(size_t i) const { return registry_.get<DeviceSlot>(devices_[i]); }
   int body_index(const std::string& name) const;
   ecs::Registry& registry() noexcept { return registry_; }
+  uint32_t threads() const noexcept { return jobs_->threads(); }
 
   // Builds a model instance for a body (load time, or a swap requested from a UI thread).
   std::unique_ptr<ModelInstance> make_model(const std::string& model, const ParamSet& params,
@@ -38,6 +40,7 @@ class World {
  private:
   SceneDesc scene_;
   const PluginRegistry& plugins_;
+  std::unique_ptr<JobPool> jobs_;  // plugins' parallel_for workers (scene key `threads`)
   ecs::Registry registry_;
   std::vector<ecs::Entity> bodies_;
   std::vector<ecs::Entity> devices_;

@@ -165,7 +165,7 @@ TEST(PluginRegistry, LoadedModelStepsAsSpecified) {
                                  {0.0, "semi_implicit", nullptr, 0},
                                  {0.0, nullptr, offset, 3},
                                  {1.0, nullptr, nullptr, 0}};
-  const tacta_model_setup setup{sizeof(tacta_model_setup), &mesh, &material, masses, fixed, params, 4, 1e-3};
+  const tacta_model_setup setup{sizeof(tacta_model_setup), &mesh, &material, masses, fixed, params, 4, 1e-3, nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

@@ -27,7 +27,7 @@ struct PluginRun {
 
   void* create(const TestMesh& mesh, const tacta_mesh_view& view, char* message, size_t size) {
     tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), descriptor.param_count, 1e-3};
+                            mesh.fixed.data(), params.data(), descriptor.param_count, 1e-3, nullptr};
     void* instance = nullptr;
     const tacta_status status = api.create(&setup, &instance, message, size);
     return status == TACTA_OK ? instance : nullptr;

@@ -22,7 +22,7 @@ TEST(MassSpringPlugin, LoadsCreatesAndStepsEachIntegrator) {
     auto params = tacta::testing::default_params(d);
     params[0].number = integrator;
     tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), d.param_count, 1e-4};
+                            mesh.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -39,7 +39,7 @@ TEST(MassSpringPlugin, LoadsCreatesAndStepsEachIntegrator) {
   const tacta_mesh_view bad = edges_only.view();
   auto params = tacta::testing::default_params(d);
   tacta_model_setup setup{sizeof(tacta_model_setup), &bad, &material, edges_only.masses.data(),
-                          edges_only.fixed.data(), params.data(), d.param_count, 1e-4};
+                          edges_only.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);

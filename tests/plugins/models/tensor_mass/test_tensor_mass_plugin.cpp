@@ -25,7 +25,7 @@ TEST(TensorMassPlugin, LoadsCreatesAndStepsBothIntegrators) {
     auto params = tacta::testing::default_params(d);
     params[0].number = integrator;
     tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), d.param_count, 1e-4};
+                            mesh.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -58,7 +58,7 @@ TEST(TensorMassPlugin, AutoIntegratorIsStableAtTheTickAndSaysWhy) {
     auto params = defaults;
     params[0].number = integrator;
     tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), d.param_count, dt};
+                            mesh.fixed.data(), params.data(), d.param_count, dt, nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -95,7 +95,7 @@ TEST(TensorMassPlugin, NaNInStateIsReportedNotThrown) {
   const tacta_material material = make_material(1e5, 0.3, 1000.0);
   auto params = tacta::testing::default_params(d);
   tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                          mesh.fixed.data(), params.data(), d.param_count, 1e-4};
+                          mesh.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

@@ -1,0 +1,117 @@
+#include "job_pool.hpp"
+
+#include <pthread.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+
+namespace tacta {
+
+namespace {
+constexpr int kSpinsBeforeWait = 2000;  // the caller's spins (~µs) before it sleeps on done_
+}
+
+JobPool::JobPool(uint32_t threads) {
+  const uint32_t workers = threads > 1 ? threads - 1 : 0;
+  workers_.reserve(workers);
+  for (uint32_t w = 0; w < workers; ++w)
+    workers_.emplace_back([this, w] {
+      // "tacta-body..." names keep their priority in a realtime session: this is simulation work.
+      pthread_setname_np(pthread_self(), ("tacta-body-job" + std::to_string(w + 1)).c_str());
+      work(w + 1);
+    });
+}
+
+JobPool::~JobPool() {
+  quit_.store(true, std::memory_order_release);
+  generation_.fetch_add(1, std::memory_order_acq_rel);
+  generation_.notify_all();
+  for (std::thread& t : workers_) t.join();
+}
+
+void JobPool::run_chunks(uint32_t job, uint32_t worker) noexcept {
+  for (;;) {
+    uint64_t ticket = ticket_.load();
+    if (static_cast<uint32_t>(ticket >> 32) != job) return;
+    const Body body = body_.load();
+    void* const user = user_.load();
+    const uint32_t count = count_.load(), grain = grain_.load();
+    const auto begin = static_cast<uint32_t>(ticket);
+    if (begin >= count) return;
+    const uint32_t end = begin + std::min(grain, count - begin);
+    if (!ticket_.compare_exchange_weak(ticket, (ticket & ~uint64_t{0xffffffff}) | end)) continue;
+    body(user, begin, end, worker);
+    if (done_.fetch_add(end - begin) + (end - begin) == count) done_.notify_one();
+  }
+}
+
+void JobPool::work(uint32_t worker) noexcept {
+  uint64_t seen = 0;
+  for (;;) {
+    generation_.wait(seen);
+    seen = generation_.load();
+    if (quit_.load()) return;
+    run_chunks(static_cast<uint32_t>(seen), worker);
+  }
+}
+
+void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user) noexcept {
+  if (count == 0) return;
+  grain = std::max<uint32_t>(grain, 1);
+  bool expected = false;
+  if (workers_.empty() || count <= grain || !busy_.compare_exchange_strong(expected, true)) {
+    body(user, 0, count, 0);
+    return;
+  }
+  const auto job = static_cast<uint32_t>(generation_.load() + 1);
+  // The ticket first: from here no late worker can take a chunk of the last job's numbering.
+  ticket_.store(uint64_t{job} << 32);
+  body_.store(body);
+  user_.store(user);
+  count_.store(count);
+  grain_.store(grain);
+  done_.store(0);
+  generation_.fetch_add(1);
+  generation_.notify_all();
+  run_chunks(job, 0);
+  for (int spin = 0; done_.load() != count; ++spin) {
+    if (spin < kSpinsBeforeWait) continue;
+    const uint32_t seen = done_.load();
+    if (seen != count) done_.wait(seen);
+  }
+  busy_.store(false);
+}
+
+void JobPool::parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body, void* user) {
+  static_cast<JobPool*>(jobs)->parallel_for(count, grain, body, user);
+}
+
+ScratchArena::~ScratchArena() {
+  for (void* b : blocks_) std::free(b);
+}
+
+void* ScratchArena::allocate(size_t bytes) noexcept {
+  constexpr size_t kAlign = 64;
+  const size_t rounded = (bytes + kAlign - 1) / kAlign * kAlign;
+  if (bytes == 0 || rounded > kMaxBytes - bytes_) return nullptr;
+  void* block = std::aligned_alloc(kAlign, rounded);
+  if (block == nullptr) return nullptr;
+  try {
+    blocks_.push_back(block);
+  } catch (...) {
+    std::free(block);
+    return nullptr;
+  }
+  std::memset(block, 0, rounded);
+  bytes_ += rounded;
+  return block;
+}
+
+void* ScratchArena::allocate_entry(void* arena, size_t bytes) {
+  return static_cast<ScratchArena*>(arena)->allocate(bytes);
+}
+
+}  // namespace tacta
