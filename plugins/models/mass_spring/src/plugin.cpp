@@ -16,6 +16,8 @@ class MassSpringPlugin {
       "Mass-spring on the mesh edges (Van Gelder stiffness): symplectic Euler, Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
+  // Forces depend on the deformation alone and sum to zero over each element.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   static constexpr std::array<tacta_param_spec, 6> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "
