@@ -27,9 +27,9 @@ template <class Shape>
 std::vector<double> forces_at(const tacta_descriptor& model, Shape&& shape, std::string& how,
                               double& scale) {
   const auto body = make_test_body(model, false);
-  ModelInstance instance(model, body->setup(), SourceLocation{});
+  const auto instance = create_model(model, *body);
   scale = body->force_scale();
-  return elastic_forces(instance, *body, shape(body->mesh.positions), how);
+  return elastic_forces(*instance, *body, shape(body->mesh.positions), how);
 }
 
 CheckResult largest_force(const char* name, const tacta_descriptor& model, double fraction,

@@ -22,7 +22,7 @@ struct Sagging {
 
   explicit Sagging(const tacta_descriptor& descriptor)
       : body(make_test_body(descriptor, true)),
-        model(std::make_unique<ModelInstance>(descriptor, body->setup(), SourceLocation{})),
+        model(create_model(descriptor, *body)),
         state(body->mesh.positions) {
     for (size_t i = 2; i < state.f.size(); i += 3) state.f[i] = -9.81 * body->masses[i / 3];
     const tacta_body_state view = state.view();
@@ -64,12 +64,12 @@ CheckResult check_step_allocations(const tacta_descriptor& model, const Allocati
 CheckResult check_nan_reported(const tacta_descriptor& model) {
   const char* name = "NaN input reported";
   const auto body = make_test_body(model, false);
-  ModelInstance instance(model, body->setup(), SourceLocation{});
+  const auto instance = create_model(model, *body);
   NodeState s(body->mesh.positions);
   s.x[3 * body->centre_node] = std::nan("");
   tacta_body_state view = s.view();
-  instance.begin(view, body->dt);
-  const uint32_t bits = instance.step(view, body->dt);
+  instance->begin(view, body->dt);
+  const uint32_t bits = instance->step(view, body->dt);
   if (bits & TACTA_STEP_FAULT_MASK)
     return {name, "step returned fault bits " + std::to_string(bits), Verdict::Pass};
   // The engine checks the state after every step (body_step.cpp), so a NaN passed on is caught.

@@ -34,6 +34,12 @@ std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool cla
   return body;
 }
 
+std::unique_ptr<ModelInstance> create_model(const tacta_descriptor& model, const TestBody& body) {
+  SourceLocation where;
+  where.file = "check-plugin's 2x2x2-cell test cube";
+  return std::make_unique<ModelInstance>(model, body.setup(), where);
+}
+
 std::vector<double> elastic_forces(ModelInstance& model, const TestBody& body,
                                    const std::vector<double>& positions, std::string& how) {
   std::vector<double> forces(positions.size(), 0.0);

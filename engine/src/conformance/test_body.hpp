@@ -33,6 +33,9 @@ struct TestBody {
 // clamped: the nodes of the z = 0 face are held (a cantilever under gravity, for the step checks).
 std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool clamped);
 
+// A model instance for the body; throws InputError naming the test cube when create() refuses.
+std::unique_ptr<ModelInstance> create_model(const tacta_descriptor& model, const TestBody& body);
+
 // Node state for one instance: positions, velocities, external forces (all 3 per node).
 struct NodeState {
   std::vector<double> x, v, f;
