@@ -102,6 +102,11 @@ typedef struct tacta_model_counter {
   double value;
 } tacta_model_counter;
 
+/* What a model guarantees about its internal forces (tacta_model_api.claims); `tacta check-plugin`
+ * tests each property a model claims and skips the others. */
+#define TACTA_MODEL_CLAIM_ROTATION_INVARIANT (1u << 0) /* no force under a rigid rotation */
+#define TACTA_MODEL_CLAIM_MOMENTUM (1u << 1) /* internal forces sum to zero at any shape */
+
 typedef struct tacta_model_api {
   /* required: build an instance for one body; may allocate. Writes a reason on failure. */
   tacta_status (*create)(const tacta_model_setup* setup, void** instance, char* message,
@@ -132,7 +137,15 @@ typedef struct tacta_model_api {
    * say (an integrator picked for stability at dt, sub-steps), written into text (NUL-ended,
    * truncated to capacity); the engine puts it into report.json. Not from the 1 kHz path. */
   void (*describe)(void* instance, char* text, size_t capacity);
+  /* optional, appended (0 when api_size does not reach it): TACTA_MODEL_CLAIM_* bits. A plain
+   * flag word, not an entry: an older host simply never reads it, so the ABI minor stays. */
+  uint32_t claims;
 } tacta_model_api;
+
+/* The claims of a model table whose plugin saw api_size bytes of it (0 for an older plugin). */
+static inline uint32_t tacta_model_claims(const tacta_model_api* api, uint32_t api_size) {
+  return api_size >= offsetof(tacta_model_api, claims) + sizeof(uint32_t) ? api->claims : 0u;
+}
 
 #define TACTA_MODEL_API_FIELD(member, required) \
   { #member, offsetof(tacta_model_api, member), required }

@@ -21,6 +21,8 @@ class CorotationalFemPlugin {
       "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
+  // Forces depend on the deformation alone and sum to zero over each element.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   static constexpr std::array<tacta_param_spec, 12> kParams = {
       sdk::choice_param("rotation", "polar|svd", 0,
                         "element rotation: polar (warm-started iteration) or svd (inversion-aware)"),

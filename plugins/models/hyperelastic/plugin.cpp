@@ -29,6 +29,8 @@ class HyperelasticPlugin {
       "Hyperelastic tetrahedral FEM (Neo-Hookean, St Venant-Kirchhoff, Mooney-Rivlin), "
       "projected tangents, implicit Newton steps with line search, or static equilibrium";
   static constexpr uint32_t kVersion = 10000;
+  // Forces depend on the deformation alone and sum to zero over each element.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   static constexpr std::array<tacta_param_spec, 18> kParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
                         "energy: compressible Neo-Hookean, St Venant-Kirchhoff, or compressible "

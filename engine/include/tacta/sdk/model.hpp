@@ -13,6 +13,7 @@
 //   void node_stress(const double* positions, double* von_mises) noexcept
 //   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept
 //   std::string describe() const          what the instance chose that its parameters did not say
+//   static constexpr uint32_t kClaims      TACTA_MODEL_CLAIM_* bits (checked by tacta check-plugin)
 #pragma once
 
 #include <cstring>
@@ -88,6 +89,7 @@ struct ModelAdapter {
     if constexpr (requires(T& t, tacta_model_counter* c) { t.counters(c, 0u); })
       api.counters = &counters;
     if constexpr (requires(const T& t) { t.describe(); }) api.describe = &describe;
+    if constexpr (requires { T::kClaims; }) api.claims = T::kClaims;
     return api;
   }
 };

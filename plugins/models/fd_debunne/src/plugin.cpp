@@ -15,6 +15,8 @@ class FdDebunnePlugin {
   static constexpr const char* kDescription =
       "Debunne et al.: finite differences of the Navier equation on the mesh edge graph, explicit";
   static constexpr uint32_t kVersion = 10000;
+  // Finite differences on the edge graph: neither rotation-invariant nor momentum-conserving.
+  static constexpr uint32_t kClaims = 0;
   static constexpr std::array<tacta_param_spec, 5> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|explicit_euler", 0,
                                "time integrator; explicit_euler is the paper's forward Euler"),

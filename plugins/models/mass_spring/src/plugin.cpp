@@ -18,6 +18,8 @@ class MassSpringPlugin {
       "Mass-spring on the mesh edges (spring constants from E, nu): symplectic Euler, Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
+  // Forces depend on the deformation alone and sum to zero over each element.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   static constexpr std::array<tacta_param_spec, 7> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "

@@ -1,0 +1,25 @@
+// The individual conformance checks. Each builds what it needs from the descriptor (a fresh
+// instance on a fresh body, so no check sees another's history) and may throw InputError when
+// the plugin refuses the body; suite.cpp turns that into a failed check.
+#pragma once
+
+#include "tacta/conformance.hpp"
+
+namespace tacta::conformance {
+
+CheckResult check_schema(const tacta_descriptor& model);
+
+CheckResult check_force_at_rest(const tacta_descriptor& model);
+CheckResult check_stretch_response(const tacta_descriptor& model);
+CheckResult check_rigid_translation(const tacta_descriptor& model);
+CheckResult check_rigid_rotation(const tacta_descriptor& model);
+CheckResult check_net_force(const tacta_descriptor& model);
+
+CheckResult check_step_allocations(const tacta_descriptor& model, const AllocationProbe& probe);
+CheckResult check_nan_reported(const tacta_descriptor& model);
+CheckResult check_worker_thread(const tacta_descriptor& model);
+
+// The descriptor's TACTA_MODEL_CLAIM_* bits.
+uint32_t claims_of(const tacta_descriptor& model);
+
+}  // namespace tacta::conformance
