@@ -10,7 +10,7 @@ namespace tacta::conformance {
 
 tacta_model_setup TestBody::setup() const {
   return {sizeof(tacta_model_setup), &view, &material, masses.data(), fixed.data(), params.data(),
-          params.size(), dt};
+          params.size(), dt, nullptr};
 }
 
 std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool clamped) {

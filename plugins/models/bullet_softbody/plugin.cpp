@@ -16,13 +16,9 @@ class BulletSoftBodyPlugin {
   static constexpr const char* kDescription =
       "Bullet's btSoftBody (links and tetras, position-based) as a reference peer; not for haptics";
   static constexpr uint32_t kVersion = 10000;
-<<<<<<< HEAD
-  static constexpr std::array<tacta_param_spec, 4> kParams = {
-=======
   // A reference peer (Bullet's position-based links): no claim about its forces.
   static constexpr uint32_t kClaims = 0;
-  static constexpr std::array<tacta_param_spec, 3> kParams = {
->>>>>>> check-plugin
+  static constexpr std::array<tacta_param_spec, 4> kParams = {
       sdk::int_param("position_iterations", 10, 1, 200,
                      "Bullet position-solver iterations per step (m_cfg.piterations)"),
       sdk::real_param("stiffness_override", "", 0.0, 0.0, 1.0,
