@@ -99,9 +99,17 @@ TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
   options.out_dir = out;
   options.realtime = true;
   options.duration_s = 0.5;
+  // The swap is posted once a frame shows the run under way (a sleep alone races a loaded machine).
+  struct Started final : FrameObserver {
+    std::atomic<bool> running{false};
+    void on_frame(const SceneStatic&, const Snapshot& s) override {
+      if (s.time_s > 0.02) running.store(true);
+    }
+  } started;
+  options.observers.push_back(&started);
   RunResult result;
   std::thread runner([&] { result = simulation.run(options); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  while (!started.running.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   const ParamSet params = schema_defaults(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
   simulation.request_model_swap(0, "corotational_fem", params);
   runner.join();
