@@ -63,6 +63,7 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   step_rotation_ = polar_guess_;
   step_turn_ = polar_guess_;
   build_batches();
+  colour_batches();
   const size_t n = 3 * static_cast<size_t>(node_count_);
   forces_.assign(n, 0.0);
   stiffness_velocity_.assign(n, 0.0);
@@ -166,9 +167,10 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   std::fill(forces_.begin(), forces_.end(), 0.0);
   const double stiffness_scale = h * beta_ + h * h;
   uint32_t e = 0;
-  if (options_.batch_elements && options_.rotation == RotationMethod::kPolar)
-    for (; e + kBatchLanes <= elements_.size(); e += kBatchLanes)
-      result |= step_batch(e / kBatchLanes, state.positions, stiffness_scale);
+  if (options_.batch_elements && options_.rotation == RotationMethod::kPolar) {
+    result |= batched_pass(state.positions, stiffness_scale);
+    e = static_cast<uint32_t>(batches_.size()) * kBatchLanes;
+  }
   for (; e < elements_.size(); ++e) {
     // Warm start extrapolated at constant angular velocity, R_n (R_n-1^T R_n): one Newton
     // step then usually suffices where the last rotation alone needed two.

@@ -55,6 +55,9 @@ struct Options {
   // step()'s element pass four tets at a time (element_batch.cpp; polar rotation only); false:
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
+  // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
+  // colour by colour (no two batches of a colour share a node), each colour in parallel.
+  const tacta_host_services* host = nullptr;
 };
 
 struct StaticCounters {
@@ -117,7 +120,12 @@ class CorotationalFem {
   void build_batches();
   // step()'s frame_of + accumulate for one batch, warm start and history included; returns
   // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
-  uint32_t step_batch(uint32_t batch, const double* positions, double scale) noexcept;
+  uint32_t step_batch(uint32_t batch, const double* positions, double scale,
+                      long& polar_iterations) noexcept;
+  // Colours the batches greedily (parallel pass); leaves colours_ empty when it would not pay.
+  void colour_batches();
+  // The batched pass over every batch: in order, or colour by colour on the host's workers.
+  uint32_t batched_pass(const double* positions, double scale) noexcept;
   // Static solve (corotational_static.cpp): Newton to equilibrium, load stepping.
   uint32_t solve_static(tacta_body_state& state) noexcept;
   // One increment's Newton iterations toward f_int(x) + loads_ = 0; true when converged.
@@ -149,6 +157,13 @@ class CorotationalFem {
   StaticCounters static_counters_;
   std::vector<double> loads_, equilibrium_loads_, static_start_;  // static solve, 3 per node
   long polar_iterations_ = 0;
+  // Parallel pass: batch indices grouped by colour, colour c at [colour_start_[c], [c + 1]).
+  std::vector<uint32_t> colour_batches_, colour_start_;
+  struct alignas(64) WorkerTally {  // one cache line per worker: no false sharing
+    uint32_t bits = 0;
+    long polar_iterations = 0;
+  };
+  std::vector<WorkerTally> tallies_;
 };
 
 }  // namespace tacta::models::corotational

@@ -52,7 +52,7 @@ void CorotationalFem::build_batches() {
 }
 
 TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double* positions,
-                                                    double scale) noexcept {
+                                                    double scale, long& polar_iterations) noexcept {
   const ElementBatch& rest = batches_[batch];
   const uint32_t first = kLanes * batch;
   // Deformation gradient F = sum_a x_a grad_a^T, row-major.
@@ -131,12 +131,12 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
   }
   uint32_t result = TACTA_STEP_OK;
   for (int l = 0; l < kLanes; ++l) {
-    polar_iterations_ += stepped[l] ? 1 : 0;
+    polar_iterations += stepped[l] ? 1 : 0;
     if (!finished[l]) {  // rare: far from the answer, the scalar iteration carries on
       Eigen::Quaterniond q(qw[l], qx[l], qy[l], qz[l]);
       Eigen::Matrix3d deformation;
       for (int i = 0; i < 9; ++i) deformation(i / 3, i % 3) = f[i][l];
-      polar_iterations_ += polar_rotation(deformation, q, kPolarMaxIterations - 1);
+      polar_iterations += polar_rotation(deformation, q, kPolarMaxIterations - 1);
       qw[l] = q.w();
       qx[l] = q.x();
       qy[l] = q.y();

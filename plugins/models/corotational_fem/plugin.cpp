@@ -1,4 +1,5 @@
 // corotational_fem plugin: descriptor, parameter schema and the SDK glue around CorotationalFem.
+#include <cstddef>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -55,6 +56,8 @@ class CorotationalFemPlugin {
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);
     Options options;
+    // An engine older than the host services passes a shorter setup: no workers then.
+    if (setup.struct_size >= offsetof(tacta_model_setup, host) + sizeof setup.host) options.host = setup.host;
     options.rotation = static_cast<RotationMethod>(params.choice("rotation"));
     options.solver = static_cast<LinearSolver>(params.choice("solver"));
     options.preconditioner = static_cast<Preconditioner>(params.choice("preconditioner"));

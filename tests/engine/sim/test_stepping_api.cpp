@@ -134,3 +134,42 @@ TEST(SteppingApi, WritesTheReportSoFar) {
 
 }  // namespace
 }  // namespace tacta::simtest
+
+namespace tacta::simtest {
+namespace {
+
+// SOFA's beam (1,824 tets: 456 batches of four) with `threads` workers for its element pass.
+std::vector<double> beam_after(uint32_t threads, uint64_t ticks) {
+  const std::string text = R"(
+name: threaded_beam
+threads: )" + std::to_string(threads) + R"(
+gravity: [0, -9, 0]
+clock: {haptic_rate_hz: 100}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [10, 10, 40], cells: [4, 4, 19]}}
+    material: {youngs_modulus: 1000, poisson_ratio: 0.4, density: 0.2, rayleigh_mass: 0.1, rayleigh_stiffness: 0.1}
+    model: corotational_fem
+    fixed: [{box: {min: [-100, -100, -1], max: [100, 100, 0.1]}}]
+)";
+  Simulation simulation(scene_from_text(text, "threaded_beam"), plugins());
+  simulation.step(ticks);
+  const BodyArrays a = simulation.body_arrays(0);
+  return {a.positions, a.positions + 3 * a.nodes};
+}
+
+TEST(HostServices, TwoWorkersGiveTheSerialPassToRoundingAndRepeat) {
+  const std::vector<double> serial = beam_after(1, 50), parallel = beam_after(2, 50);
+  ASSERT_EQ(serial.size(), parallel.size());
+  double difference = 0, largest = 0;
+  for (size_t i = 0; i < serial.size(); ++i) {
+    difference = std::max(difference, std::fabs(serial[i] - parallel[i]));
+    largest = std::max(largest, std::fabs(serial[i]));
+  }
+  EXPECT_LT(difference, 1e-9 * largest) << "the coloured pass only reorders sums";
+  EXPECT_GT(difference, 0.0) << "reordered sums differ in the last bits: the coloured pass ran";
+  EXPECT_EQ(beam_after(2, 50), parallel) << "a thread count gives one result, run after run";
+}
+
+}  // namespace
+}  // namespace tacta::simtest
