@@ -228,6 +228,13 @@ std::vector<std::string> Simulation::write_outputs(const std::string& dir) {
   return result.outputs;
 }
 
+std::string Simulation::write_report(const std::string& dir) {
+  RunResult result = report();
+  std::filesystem::create_directories(dir);
+  write_report_json(dir, impl_->clock->loop(), impl_->world, result);
+  return dir + "/report.json";
+}
+
 int Simulation::body_index(const std::string& name) const { return impl_->world.body_index(name); }
 
 int Simulation::device_index(const std::string& name) const {

@@ -145,6 +145,8 @@ class Simulation {
   RunResult report() const;
   // Writes report.json, the CSV records and plots for everything since open into `dir`.
   std::vector<std::string> write_outputs(const std::string& dir);
+  // Writes only report.json (no CSV records, no plots) into `dir`; returns its path.
+  std::string write_report(const std::string& dir);
   int body_index(const std::string& name) const;  // -1 when there is none
   int device_index(const std::string& name) const;
   const std::string& device_name(size_t device) const;

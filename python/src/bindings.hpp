@@ -1,0 +1,53 @@
+// Shared pieces of the `tacta` Python module: the simulation holder every view keeps alive, the
+// scene-error translation, and the per-concern registration functions (one .cpp each).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tacta/error.hpp"
+#include "tacta/plugin_registry.hpp"
+#include "tacta/sim/simulation.hpp"
+
+namespace tacta::python {
+
+namespace py = pybind11;
+
+// A Python device attached to one engine device: obj.read() -> target (m) fed through the
+// plugin's lock-free input, obj.write(force) with the force last sent (N). Called with the GIL
+// held between chunks of `every_ticks` haptic ticks, never inside one.
+struct PythonDevice {
+  size_t device = 0;
+  uint64_t every_ticks = 1;
+  py::object object;
+};
+
+// One loaded scene. Bodies, devices and NumPy views hold a shared_ptr to it, so the engine
+// arrays they point into live as long as any of them does. The registry is declared first so it
+// outlives the Simulation (plugin libraries stay open while instances exist).
+struct SimHolder {
+  std::shared_ptr<PluginRegistry> plugins;
+  std::unique_ptr<Simulation> sim;
+  std::vector<PythonDevice> python_devices;
+};
+using SimPtr = std::shared_ptr<SimHolder>;
+
+// The process-wide plugin registry, loaded on first use (searched folders: docs/PYTHON.md).
+std::shared_ptr<PluginRegistry> shared_plugins();
+
+// Raises tacta.SceneError (a ValueError) with file, line, column and key from an InputError.
+[[noreturn]] void raise_scene_error(const InputError& error);
+
+// Steps `ticks` haptic ticks with the GIL released, stopping at every Python device's boundary
+// to call it with the GIL held. Returns the ticks run.
+uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks);
+
+void register_errors(py::module_& m);
+void register_simulation(py::module_& m);
+void register_bodies(py::module_& m);
+void register_devices(py::module_& m);
+
+}  // namespace tacta::python

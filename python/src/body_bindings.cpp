@@ -1,0 +1,207 @@
+// tacta.Body: one body's node state as NumPy views onto the engine's own arrays (no copy), its
+// mesh, loads, model swaps, parameters and energies. sim.bodies maps names to them.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "tacta/plugin_registry.hpp"
+
+namespace tacta::python {
+namespace {
+
+struct Body {
+  SimPtr holder;
+  size_t index = 0;
+  Simulation& sim() const { return *holder->sim; }
+};
+
+// A (rows, columns) view of engine memory. Its base is a capsule owning a reference to the
+// simulation, so the array keeps the engine arrays alive however long Python holds it. The
+// engine never re-allocates a body's arrays after load (model swaps carry them over).
+template <typename T>
+py::array view(const SimPtr& holder, const T* data, size_t rows, size_t columns, bool writable) {
+  py::capsule owner(new SimPtr(holder), [](void* p) { delete static_cast<SimPtr*>(p); });
+  py::array_t<T> out(columns == 1 ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(rows)}
+                                  : std::vector<py::ssize_t>{static_cast<py::ssize_t>(rows),
+                                                             static_cast<py::ssize_t>(columns)},
+                     data, owner);
+  if (!writable) py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return out;
+}
+
+// Copies `values` (n, 3) into a state array and tells the model (its history restarts).
+void write_state(Body& b, double* target, const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+  const size_t n = b.sim().body_arrays(b.index).nodes;
+  if (values.ndim() != 2 || values.shape(0) != static_cast<py::ssize_t>(n) || values.shape(1) != 3)
+    throw py::value_error("expected an array of shape (" + std::to_string(n) + ", 3)");
+  std::copy(values.data(), values.data() + 3 * n, target);
+  b.sim().state_written(b.index);
+}
+
+py::object param_value(const tacta_param_value& v) {
+  if (v.values != nullptr) return py::cast(std::vector<double>(v.values, v.values + v.count));
+  if (v.text != nullptr) return py::str(v.text);
+  return py::float_(v.number);
+}
+
+// Same model: the current parameters with the given ones changed; another model: only the given
+// ones (the engine fills the rest with the model's defaults). Names are checked against the schema.
+ParamSet swap_params(const Body& b, const std::string& model, const py::kwargs& given) {
+  const auto schema = b.holder->plugins->schema(TACTA_KIND_MODEL, model);
+  if (!schema)
+    throw InputError({b.sim().scene().path, 0, 0, "bodies." + b.sim().body_name(b.index) + ".model"},
+                     b.holder->plugins->unknown_name_message(TACTA_KIND_MODEL, model));
+  ParamSet params = model == b.sim().body_model(b.index) ? b.sim().body_params(b.index) : ParamSet{};
+  for (const auto& [key, value] : given) {
+    const std::string name = py::str(key).cast<std::string>();
+    const tacta_param_spec* spec = nullptr;
+    std::string known;
+    for (const tacta_param_spec& s : *schema) {
+      if (name == s.name) spec = &s;
+      known += (known.empty() ? "" : ", ") + std::string(s.name);
+    }
+    if (spec == nullptr)
+      throw InputError({b.sim().scene().path, 0, 0, "bodies." + b.sim().body_name(b.index) + ".params." + name},
+                       "model '" + model + "' has no parameter '" + name + "'; it has: " + known);
+    if (spec->type == TACTA_PARAM_VECTOR) params.add_vector(name, value.cast<std::vector<double>>());
+    else if (py::isinstance<py::str>(value)) params.add_text(name, value.cast<std::string>());
+    else if (!params.set_number(name, value.cast<double>())) params.add_number(name, value.cast<double>());
+  }
+  return params;
+}
+
+py::list body_faults(const Body& b) {
+  py::list out;
+  const RunResult report = b.sim().report();
+  const BodyResult& r = report.bodies.at(b.index);
+  if (r.frozen || !r.fault.empty()) out.append(r.fault);
+  return out;
+}
+
+}  // namespace
+
+void register_bodies(py::module_& m) {
+  py::class_<Body>(m, "Body", "One body of a Simulation: sim.bodies['liver'].")
+      .def_property_readonly("name", [](const Body& b) { return b.sim().body_name(b.index); })
+      .def_property_readonly("index", [](const Body& b) { return b.index; })
+      .def_property_readonly("node_count", [](const Body& b) { return b.sim().body_arrays(b.index).nodes; })
+      .def_property(
+          "positions",
+          [](Body& b) {
+            const BodyArrays a = b.sim().body_arrays(b.index);
+            return view(b.holder, a.positions, a.nodes, 3, true);
+          },
+          [](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
+            write_state(b, b.sim().body_arrays(b.index).positions, v);
+          },
+          "(n, 3) float64 view of the node positions, m. Assigning copies in and calls state_written(); "
+          "after writing through the view, call state_written() before the next step.")
+      .def_property(
+          "velocities",
+          [](Body& b) {
+            const BodyArrays a = b.sim().body_arrays(b.index);
+            return view(b.holder, a.velocities, a.nodes, 3, true);
+          },
+          [](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
+            write_state(b, b.sim().body_arrays(b.index).velocities, v);
+          },
+          "(n, 3) float64 view of the node velocities, m/s; written like positions.")
+      .def_property_readonly(
+          "rest_positions",
+          [](Body& b) {
+            const BodyArrays a = b.sim().body_arrays(b.index);
+            return view(b.holder, a.rest_positions, a.nodes, 3, false);
+          },
+          "(n, 3) read-only view of the rest positions, m")
+      .def_property_readonly(
+          "fixed",
+          [](Body& b) {
+            const BodyArrays a = b.sim().body_arrays(b.index);
+            return view(b.holder, reinterpret_cast<const bool*>(a.fixed), a.nodes, 1, false);
+          },
+          "(n,) read-only bool view: nodes held at rest")
+      .def_property_readonly(
+          "masses",
+          [](Body& b) {
+            const BodyArrays a = b.sim().body_arrays(b.index);
+            return view(b.holder, a.masses, a.nodes, 1, false);
+          },
+          "(n,) read-only view of the lumped node masses, kg")
+      .def_property_readonly(
+          "elements",
+          [](Body& b) {
+            const VolumeMesh& mesh = b.sim().body_mesh(b.index);
+            return view(b.holder, mesh.tets.data(), mesh.tet_count(), 4, false);
+          },
+          "(m, 4) read-only uint32 view of the tetrahedra (node indices)")
+      .def_property_readonly(
+          "surface",
+          [](Body& b) {
+            const std::vector<uint32_t>& tris = b.sim().surface_triangles(b.index);
+            return view(b.holder, tris.data(), tris.size() / 3, 3, false);
+          },
+          "(k, 3) read-only uint32 view of the triangles drawn and touched (into surface_positions)")
+      .def_property_readonly(
+          "surface_positions",
+          [](Body& b) {
+            std::vector<double> p = b.sim().surface_positions(b.index);
+            py::array_t<double> out({static_cast<py::ssize_t>(p.size() / 3), py::ssize_t{3}});
+            std::copy(p.begin(), p.end(), out.mutable_data());
+            return out;
+          },
+          "(v, 3) copy of the surface's current vertex positions, m")
+      .def("state_written", [](Body& b) { b.sim().state_written(b.index); },
+           "Call after writing positions or velocities through their views (the model restarts its history).")
+      .def(
+          "apply_force",
+          [](Body& b, const std::vector<uint32_t>& nodes,
+             const py::array_t<double, py::array::c_style | py::array::forcecast>& forces) {
+            const std::vector<double> f(forces.data(), forces.data() + forces.size());
+            b.sim().set_applied_forces(b.index, nodes, f);
+          },
+          py::arg("nodes"), py::arg("forces"),
+          "A load (N) on `nodes`, forces shaped (len(nodes), 3); kept for every step until cleared or replaced.")
+      .def("clear_forces", [](Body& b) { b.sim().clear_applied_forces(b.index); })
+      .def_property_readonly("model", [](const Body& b) { return b.sim().body_model(b.index); },
+                             "the model asked for last (a swap applies at the next tick)")
+      .def_property_readonly(
+          "params",
+          [](const Body& b) {
+            const ParamSet& p = b.sim().body_params(b.index);
+            py::dict out;
+            for (size_t i = 0; i < p.names().size(); ++i) out[py::str(p.names()[i])] = param_value(p.data()[i]);
+            return out;
+          },
+          "the model's parameters as last asked for")
+      .def(
+          "swap_model",
+          [](Body& b, const std::string& model, const py::kwargs& params) {
+            b.sim().request_model_swap(b.index, model, swap_params(b, model, params));
+          },
+          py::arg("model"),
+          "Swaps to `model` with keyword parameters at the next tick; positions and velocities carry over "
+          "(the NumPy views stay valid). Raises tacta.SceneError when the model refuses the body.")
+      .def(
+          "set_param", [](Body& b, const std::string& name, double value) { return b.sim().set_param(b.index, name, value); },
+          py::arg("name"), py::arg("value"),
+          "Changes one model parameter; True when the model took it live, False when it took a swap.")
+      .def_property_readonly("kinetic_energy", [](const Body& b) { return b.sim().kinetic_energy(b.index); }, "J")
+      .def_property_readonly("elastic_energy", [](const Body& b) { return b.sim().elastic_energy(b.index); }, "J")
+      .def_property_readonly("faults", &body_faults, "why the body was frozen (diverged), if it was: a list of text")
+      .def("__repr__", [](const Body& b) {
+        return "<tacta.Body '" + b.sim().body_name(b.index) + "' " + b.sim().body_model(b.index) + ", " +
+               std::to_string(b.sim().body_arrays(b.index).nodes) + " nodes>";
+      });
+
+  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
+  simulation.def_property_readonly(
+      "bodies",
+      [](const SimPtr& h) {
+        py::dict out;
+        for (size_t i = 0; i < h->sim->body_count(); ++i) out[py::str(h->sim->body_name(i))] = Body{h, i};
+        return out;
+      },
+      "{name: Body}, in scene order");
+}
+
+}  // namespace tacta::python

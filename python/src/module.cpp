@@ -1,0 +1,92 @@
+// The `tacta` Python module (compiled part `tacta._tacta`): scene errors, the plugin list, and
+// the registration of simulations, bodies and devices. See docs/PYTHON.md.
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+
+namespace tacta::python {
+namespace {
+
+PyObject* scene_error_type = nullptr;  // tacta.SceneError, owned by the module for its life
+
+py::dict plugin_list() {
+  const std::shared_ptr<PluginRegistry> registry = shared_plugins();
+  py::list loaded, refused;
+  for (const LoadedDescriptor& d : registry->list()) {
+    py::dict row;
+    row["kind"] = tacta_kind_name(d.descriptor->kind);
+    row["name"] = d.descriptor->name;
+    row["file"] = d.file;
+    loaded.append(row);
+  }
+  for (const RefusedPlugin& r : registry->refused()) {
+    py::dict row;
+    row["file"] = r.file;
+    row["reason"] = r.reason;
+    refused.append(row);
+  }
+  py::dict out;
+  out["loaded"] = loaded;
+  out["refused"] = refused;
+  out["search_paths"] = registry->search_paths();
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<PluginRegistry> shared_plugins() {
+  // Loaded once with the GIL held; read-only afterwards, so simulations on several threads share it.
+  static std::shared_ptr<PluginRegistry> registry;
+  if (!registry) {
+    auto loading = std::make_shared<PluginRegistry>();
+    loading->load();
+    registry = std::move(loading);
+  }
+  return registry;
+}
+
+void raise_scene_error(const InputError& error) {
+  const SourceLocation& where = error.where();
+  py::object type = py::reinterpret_borrow<py::object>(scene_error_type);
+  py::object instance = type(error.what());
+  instance.attr("file") = where.file;
+  instance.attr("line") = where.line;
+  instance.attr("column") = where.column;
+  instance.attr("key") = where.key_path;
+  PyErr_SetObject(scene_error_type, instance.ptr());
+  throw py::error_already_set();
+}
+
+void register_errors(py::module_& m) {
+  scene_error_type = PyErr_NewExceptionWithDoc(
+      "tacta.SceneError",
+      "Bad input: a scene, override, mesh, plugin name or parameter. Attributes: file, line, "
+      "column (1-based, 0 when unknown) and key (the key path, e.g. 'bodies[0].material.E').",
+      PyExc_ValueError, nullptr);
+  m.attr("SceneError") = py::reinterpret_borrow<py::object>(scene_error_type);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const InputError& error) {
+      try {
+        raise_scene_error(error);
+      } catch (py::error_already_set& set) {
+        set.restore();  // the translator leaves the Python error set
+      }
+    }
+  });
+}
+
+}  // namespace tacta::python
+
+PYBIND11_MODULE(_tacta, m) {
+  using namespace tacta::python;
+  m.doc() = "Tacta: real-time elastic bodies with force feedback (compiled part; import tacta)";
+  register_errors(m);
+  register_simulation(m);
+  register_bodies(m);
+  register_devices(m);
+  m.def("plugins", &plugin_list,
+        "What the plugin loader found: {'loaded': [{kind, name, file}], 'refused': [{file, reason}], "
+        "'search_paths': [...]}");
+}
