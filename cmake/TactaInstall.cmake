@@ -3,6 +3,7 @@
 #   lib/libtacta_engine.a             the engine (static)
 #   bin/tacta                         the command line (installed by apps/tacta)
 #   lib/tacta/plugins/*.so            plugins (installed by tacta_add_plugin)
+#   lib/python3/dist-packages/tacta/  the Python module (installed by python/CMakeLists.txt)
 #   lib/cmake/Tacta/                  TactaConfig.cmake, TactaConfigVersion.cmake, TactaTargets.cmake
 # find_package(Tacta) gives tacta::plugin_api, tacta::engine (when its dependencies are all
 # packages find_dependency can find) and tacta_add_plugin() for out-of-tree plugins.
