@@ -35,6 +35,13 @@ struct SimHolder {
 };
 using SimPtr = std::shared_ptr<SimHolder>;
 
+// One body or device of a simulation, by index; holding it keeps the simulation alive.
+struct EntityHandle {
+  SimPtr holder;
+  size_t index = 0;
+  Simulation& sim() const { return *holder->sim; }
+};
+
 // The process-wide plugin registry, loaded on first use (searched folders: docs/PYTHON.md).
 std::shared_ptr<PluginRegistry> shared_plugins();
 
@@ -44,6 +51,21 @@ std::shared_ptr<PluginRegistry> shared_plugins();
 // Steps `ticks` haptic ticks with the GIL released, stopping at every Python device's boundary
 // to call it with the GIL held. Returns the ticks run.
 uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks);
+
+// Adds Simulation.<property>: a dict {name: Item{holder, index}} over count() items, in scene order.
+template <typename Item>
+void def_by_name(py::module_& m, const char* property, size_t (Simulation::*count)() const,
+                 const std::string& (Simulation::*name)(size_t) const, const char* doc) {
+  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
+  simulation.def_property_readonly(
+      property,
+      [count, name](const SimPtr& h) {
+        py::dict out;
+        for (size_t i = 0; i < ((*h->sim).*count)(); ++i) out[py::str(((*h->sim).*name)(i))] = Item{{h, i}};
+        return out;
+      },
+      doc);
+}
 
 void register_errors(py::module_& m);
 void register_simulation(py::module_& m);

@@ -9,11 +9,7 @@
 namespace tacta::python {
 namespace {
 
-struct Body {
-  SimPtr holder;
-  size_t index = 0;
-  Simulation& sim() const { return *holder->sim; }
-};
+struct Body : EntityHandle {};
 
 // A (rows, columns) view of engine memory. Its base is a capsule owning a reference to the
 // simulation, so the array keeps the engine arrays alive however long Python holds it. The
@@ -36,6 +32,21 @@ void write_state(Body& b, double* target, const py::array_t<double, py::array::c
     throw py::value_error("expected an array of shape (" + std::to_string(n) + ", 3)");
   std::copy(values.data(), values.data() + 3 * n, target);
   b.sim().state_written(b.index);
+}
+
+// A property getter: a view of one of the body's node arrays, `columns` values per node.
+template <typename Pointer>
+auto node_array(Pointer BodyArrays::*member, size_t columns, bool writable) {
+  return [member, columns, writable](Body& b) {
+    const BodyArrays a = b.sim().body_arrays(b.index);
+    return view(b.holder, a.*member, a.nodes, columns, writable);
+  };
+}
+
+auto node_setter(double* BodyArrays::*member) {
+  return [member](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+    write_state(b, b.sim().body_arrays(b.index).*member, values);
+  };
 }
 
 py::object param_value(const tacta_param_value& v) {
@@ -85,34 +96,13 @@ void register_bodies(py::module_& m) {
       .def_property_readonly("name", [](const Body& b) { return b.sim().body_name(b.index); })
       .def_property_readonly("index", [](const Body& b) { return b.index; })
       .def_property_readonly("node_count", [](const Body& b) { return b.sim().body_arrays(b.index).nodes; })
-      .def_property(
-          "positions",
-          [](Body& b) {
-            const BodyArrays a = b.sim().body_arrays(b.index);
-            return view(b.holder, a.positions, a.nodes, 3, true);
-          },
-          [](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
-            write_state(b, b.sim().body_arrays(b.index).positions, v);
-          },
-          "(n, 3) float64 view of the node positions, m. Assigning copies in and calls state_written(); "
-          "after writing through the view, call state_written() before the next step.")
-      .def_property(
-          "velocities",
-          [](Body& b) {
-            const BodyArrays a = b.sim().body_arrays(b.index);
-            return view(b.holder, a.velocities, a.nodes, 3, true);
-          },
-          [](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& v) {
-            write_state(b, b.sim().body_arrays(b.index).velocities, v);
-          },
-          "(n, 3) float64 view of the node velocities, m/s; written like positions.")
-      .def_property_readonly(
-          "rest_positions",
-          [](Body& b) {
-            const BodyArrays a = b.sim().body_arrays(b.index);
-            return view(b.holder, a.rest_positions, a.nodes, 3, false);
-          },
-          "(n, 3) read-only view of the rest positions, m")
+      .def_property("positions", node_array(&BodyArrays::positions, 3, true), node_setter(&BodyArrays::positions),
+                    "(n, 3) float64 view of the node positions, m. Assigning copies in and calls state_written(); "
+                    "after writing through the view, call state_written() before the next step.")
+      .def_property("velocities", node_array(&BodyArrays::velocities, 3, true), node_setter(&BodyArrays::velocities),
+                    "(n, 3) float64 view of the node velocities, m/s; written like positions.")
+      .def_property_readonly("rest_positions", node_array(&BodyArrays::rest_positions, 3, false),
+                             "(n, 3) read-only view of the rest positions, m")
       .def_property_readonly(
           "fixed",
           [](Body& b) {
@@ -120,13 +110,8 @@ void register_bodies(py::module_& m) {
             return view(b.holder, reinterpret_cast<const bool*>(a.fixed), a.nodes, 1, false);
           },
           "(n,) read-only bool view: nodes held at rest")
-      .def_property_readonly(
-          "masses",
-          [](Body& b) {
-            const BodyArrays a = b.sim().body_arrays(b.index);
-            return view(b.holder, a.masses, a.nodes, 1, false);
-          },
-          "(n,) read-only view of the lumped node masses, kg")
+      .def_property_readonly("masses", node_array(&BodyArrays::masses, 1, false),
+                             "(n,) read-only view of the lumped node masses, kg")
       .def_property_readonly(
           "elements",
           [](Body& b) {
@@ -193,15 +178,7 @@ void register_bodies(py::module_& m) {
                std::to_string(b.sim().body_arrays(b.index).nodes) + " nodes>";
       });
 
-  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
-  simulation.def_property_readonly(
-      "bodies",
-      [](const SimPtr& h) {
-        py::dict out;
-        for (size_t i = 0; i < h->sim->body_count(); ++i) out[py::str(h->sim->body_name(i))] = Body{h, i};
-        return out;
-      },
-      "{name: Body}, in scene order");
+  def_by_name<Body>(m, "bodies", &Simulation::body_count, &Simulation::body_name, "{name: Body}, in scene order");
 }
 
 }  // namespace tacta::python

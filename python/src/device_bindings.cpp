@@ -13,11 +13,7 @@
 namespace tacta::python {
 namespace {
 
-struct Device {
-  SimPtr holder;
-  size_t index = 0;
-  Simulation& sim() const { return *holder->sim; }
-};
+struct Device : EntityHandle {};
 
 const char* state_name(int32_t state) {
   switch (state) {
@@ -119,15 +115,8 @@ void register_devices(py::module_& m) {
         return "<tacta.Device '" + d.sim().device_name(d.index) + "' " + d.sim().device_plugin(d.index) + ">";
       });
 
-  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
-  simulation.def_property_readonly(
-      "devices",
-      [](const SimPtr& h) {
-        py::dict out;
-        for (size_t i = 0; i < h->sim->device_count(); ++i) out[py::str(h->sim->device_name(i))] = Device{h, i};
-        return out;
-      },
-      "{name: Device}, in scene order");
+  def_by_name<Device>(m, "devices", &Simulation::device_count, &Simulation::device_name,
+                      "{name: Device}, in scene order");
 }
 
 }  // namespace tacta::python
