@@ -62,6 +62,23 @@ TEST(RunStatus, CleanRunReportsNoStatus) {
   EXPECT_EQ(r.status.errors + r.status.warnings, 0u) << (r.status.lines.empty() ? "" : r.status.lines[0]);
 }
 
+TEST(RunStatus, RunEndsWhenNothingIsLeftToStep) {
+  // No device and the only body frozen at step 10: the tick says so and the run ends there.
+  const std::string text = R"(
+name: lone_cube
+clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 0.4}
+bodies:
+  - name: cube
+    mesh: {box_grid: {size: [0.1, 0.1, 0.1], cells: [2, 2, 2]}}
+    material: {youngs_modulus: 2.0e4, poisson_ratio: 0.4, density: 1000}
+    model: {name: test_fault_model, fault_kind: diverged, fault_step: 10}
+    fixed: [{box: {min: [-1, -0.001, -1], max: [1, 0.001, 1]}}]
+)";
+  const RunResult r = run_scene(scene_from_text(text, "lone_cube"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.schedule.ticks, 11u) << "ticks 0 to 10, the last one faulting";
+}
+
 TEST(RunStatus, BitTableHasOneEntryPerBitEachWithARemedy) {
   std::set<std::pair<int, uint32_t>> seen;
   for (const StatusBitInfo& e : status_bit_table()) {
