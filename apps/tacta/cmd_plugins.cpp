@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "tacta/collision_api.h"
 #include "tacta/error.hpp"
 #include "tacta/json.hpp"
 #include "tacta/plugin_registry.hpp"
@@ -44,6 +45,16 @@ std::vector<std::string> split_choices(const char* choices) {
   }
   out.push_back(current);
   return out;
+}
+
+// "broad_phase, proxy" for a collision descriptor, "(guessed from its entries)" when it declares none.
+std::string collision_roles_text(const tacta_descriptor& d) {
+  int guessed = 0;
+  const uint32_t roles = tacta_collision_roles(&d, &guessed);
+  std::string text;
+  for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+    if (roles & (1u << r)) text += (text.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
+  return (text.empty() ? std::string("none") : text) + (guessed ? " (guessed from its entries)" : "");
 }
 
 std::string short_number(double v) {
@@ -92,6 +103,7 @@ void print_text(const tacta::PluginRegistry& registry) {
     const tacta_descriptor& d = *e.descriptor;
     std::cout << "\n" << tacta_kind_name(d.kind) << " " << d.name << " " << version_text(d.version)
               << ": " << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
+    if (d.kind == TACTA_KIND_COLLISION) std::cout << "  roles: " << collision_roles_text(d) << "\n";
     if (d.param_count == 0) std::cout << "  parameters: none\n";
     for (uint32_t i = 0; i < d.param_count; ++i) std::cout << "  - " << describe_param(d.params[i]) << "\n";
   }
@@ -144,6 +156,14 @@ void print_json(const tacta::PluginRegistry& registry) {
     json.field("kind", tacta_kind_name(d.kind)).field("name", d.name);
     json.field("version", version_text(d.version)).field("description", d.description);
     json.field("file", e.file);
+    if (d.kind == TACTA_KIND_COLLISION) {
+      int guessed = 0;
+      const uint32_t roles = tacta_collision_roles(&d, &guessed);
+      json.key("roles").begin_array();
+      for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+        if (roles & (1u << r)) json.value(tacta_collision_role_name(1u << r));
+      json.end_array().field("roles_guessed", guessed != 0);
+    }
     json.key("parameters").begin_array();
     for (uint32_t i = 0; i < d.param_count; ++i) write_param(json, d.params[i]);
     json.end_array();

@@ -81,6 +81,8 @@ int run_scene(const RunArgs& args) {
   const RunResult result = simulation.run(options);
   // A fault is an error: printed even with --quiet, on stderr, with the exit code 1.
   for (const std::string& fault : result.fault_messages) std::fprintf(stderr, "error: runtime fault: %s\n", fault.c_str());
+  // One line per status bit kind seen (who x bit), warnings included, with its remedy.
+  for (const std::string& line : result.status.lines) std::fprintf(stderr, "%s\n", line.c_str());
 
   if (!args.quiet) {
     std::printf("%s: %s, %llu ticks, %.3f s simulated in %.3f s, tick p50 %.3f ms p99 %.3f ms max %.3f ms",

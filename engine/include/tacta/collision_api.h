@@ -1,7 +1,7 @@
 /* Collision plugins (kind TACTA_KIND_COLLISION): the function table and the data it sees.
  *
- * One table serves four roles; a plugin fills the entries of its role and leaves the others
- * NULL (the descriptor's description names the role):
+ * One table serves four roles; a plugin fills the entries of its roles, leaves the others NULL
+ * and declares its roles in `roles` (TACTA_COLLISION_ROLE_* bits, the last member):
  *   broad phase  (bvh):    update (refit or rebuild) + find_pairs, overlap_shape, and the haptic
  *                          proxy queries sphere_cast and closest_point;
  *   narrow phase (ccd):    detect (exact continuous test on candidate pairs) and the primitive
@@ -154,6 +154,14 @@ typedef struct tacta_surface_hit {
 #define TACTA_COLLIDE_REBUILT (1u << 4)    /* info: the hierarchy was rebuilt, not refit */
 #define TACTA_COLLIDE_UNRESOLVED (1u << 5) /* respond: some contact could not be resolved */
 
+/* Roles a collision plugin serves (tacta_collision_api.roles). The engine picks one plugin per
+ * role (a scene may name it: collision.plugins) and refuses a named plugin lacking the role. */
+#define TACTA_COLLISION_ROLE_BROAD_PHASE (1u << 0)  /* update + find_pairs (+ overlap_shape) */
+#define TACTA_COLLISION_ROLE_PROXY (1u << 1)        /* sphere_cast + closest_point (haptic proxy) */
+#define TACTA_COLLISION_ROLE_NARROW_PHASE (1u << 2) /* detect on the broad phase's pairs */
+#define TACTA_COLLISION_ROLE_RESPONSE (1u << 3)     /* respond */
+#define TACTA_COLLISION_ROLE_COUNT 4u
+
 /* What create() receives; valid only during create(). */
 typedef struct tacta_collision_setup {
   uint32_t struct_size;
@@ -217,6 +225,12 @@ typedef struct tacta_collision_api {
    * penetrates beyond the thickness after the tick; writes each contact's force. */
   uint32_t (*respond)(void* instance, tacta_collision_world* world, tacta_contact* contacts,
                       uint32_t contact_count);
+
+  /* TACTA_COLLISION_ROLE_* bits. Last on purpose: a plugin built against a header without it
+   * has a shorter table (descriptor api_size) or leaves it 0, and the engine then guesses its
+   * roles from the non-NULL entries (find_pairs: broad phase; sphere_cast and closest_point:
+   * proxy; detect: narrow phase; respond: response), as it did before roles existed. */
+  uint32_t roles;
 } tacta_collision_api;
 
 #define TACTA_COLLISION_API_FIELD(member, required) \
@@ -231,6 +245,38 @@ static const tacta_api_field tacta_collision_api_fields[] = {
     TACTA_COLLISION_API_FIELD(edge_edge, 0),     TACTA_COLLISION_API_FIELD(shape_query, 0),
     TACTA_COLLISION_API_FIELD(respond, 0),
 };
+
+static inline const char* tacta_collision_role_name(uint32_t role) {
+  switch (role) {
+    case TACTA_COLLISION_ROLE_BROAD_PHASE: return "broad_phase";
+    case TACTA_COLLISION_ROLE_PROXY: return "proxy";
+    case TACTA_COLLISION_ROLE_NARROW_PHASE: return "narrow_phase";
+    case TACTA_COLLISION_ROLE_RESPONSE: return "response";
+    default: return "unknown";
+  }
+}
+
+/* The roles a collision descriptor serves: its declared `roles`, or (a table without the member,
+ * or 0) the roles its non-NULL entries imply; *guessed says which. */
+static inline uint32_t tacta_collision_roles(const tacta_descriptor* d, int* guessed) {
+  const tacta_collision_api* api = (const tacta_collision_api*)d->api;
+  if (d->api_size >= offsetof(tacta_collision_api, roles) + sizeof(uint32_t) && api->roles != 0) {
+    if (guessed) *guessed = 0;
+    return api->roles;
+  }
+  if (guessed) *guessed = 1;
+  uint32_t roles = 0;
+  const size_t size = d->api_size;
+#define TACTA_COLLISION_HAS(member) \
+  (size >= offsetof(tacta_collision_api, member) + sizeof(void*) && api->member != NULL)
+  if (TACTA_COLLISION_HAS(find_pairs)) roles |= TACTA_COLLISION_ROLE_BROAD_PHASE;
+  if (TACTA_COLLISION_HAS(sphere_cast) && TACTA_COLLISION_HAS(closest_point))
+    roles |= TACTA_COLLISION_ROLE_PROXY;
+  if (TACTA_COLLISION_HAS(detect)) roles |= TACTA_COLLISION_ROLE_NARROW_PHASE;
+  if (TACTA_COLLISION_HAS(respond)) roles |= TACTA_COLLISION_ROLE_RESPONSE;
+#undef TACTA_COLLISION_HAS
+  return roles;
+}
 
 #ifdef __cplusplus
 }

@@ -187,6 +187,11 @@ struct CollisionDesc {
   std::string narrow_phase = "ccd";
   std::string convex = "convex";
   ParamSet broad_params, narrow_params, convex_params;
+  // collision.plugins: the plugin serving each role, by TACTA_COLLISION_ROLE_* bit index
+  // (broad_phase, proxy, narrow_phase, response); empty = the first loaded plugin declaring it.
+  std::array<std::string, 4> role_plugins;
+  std::array<ParamSet, 4> role_params;
+  std::array<SourceLocation, 4> role_where;
   double friction = 0.3;            // Coulomb coefficient, body-body and body-obstacle
   bool self_collision = false;
   double thickness = 1e-4;          // m, contact margin

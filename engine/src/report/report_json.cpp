@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "run_outputs.hpp"
+#include "tacta/collision_api.h"
 #include "tacta/json.hpp"
 
 namespace tacta {
@@ -32,6 +33,52 @@ void write_mesh_origin(JsonWriter& j, const BodyResult& b, const LoadReport& loa
   j.key("warnings").begin_array();
   for (const std::string& w : b.mesh_warnings) j.value(w);
   j.end_array();
+  j.end_object();
+}
+
+// The status bits seen (docs/REPORT.md): name, value, severity, ticks, first time, remedy.
+void write_status_bits(JsonWriter& j, const std::vector<StatusBitCount>& bits) {
+  j.key("status").begin_array();
+  for (const StatusBitCount& b : bits) {
+    j.begin_object().field("bit", b.name).field("value", static_cast<uint64_t>(b.bit));
+    j.field("severity", severity_name(b.severity)).field("ticks", b.ticks).field("first_time_s", b.first_time_s);
+    j.field("remedy", b.remedy).end_object();
+  }
+  j.end_array();
+}
+
+// Which plugin serves which role, each plugin's declared roles, and the buffers' use.
+void write_collision(JsonWriter& j, const RunStatus& s) {
+  const auto roles = [&](uint32_t mask) {
+    j.begin_array();
+    for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+      if (mask & (1u << r)) j.value(tacta_collision_role_name(1u << r));
+    j.end_array();
+  };
+  j.key("collision").begin_object();
+  j.key("roles").begin_object();
+  for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r) {
+    std::string served;
+    for (const CollisionPluginResult& p : s.collision_plugins)
+      if (p.serves & (1u << r)) served = p.name;
+    j.field(tacta_collision_role_name(1u << r), served);
+  }
+  j.end_object();
+  j.key("plugins").begin_array();
+  for (const CollisionPluginResult& p : s.collision_plugins) {
+    j.begin_object().field("name", p.name).key("declares");
+    roles(p.roles);
+    j.field("roles_guessed", p.roles_guessed).key("serves");
+    roles(p.serves);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("capacity").begin_object();
+  j.field("pairs", static_cast<uint64_t>(s.pairs_capacity)).field("pairs_max_used", static_cast<uint64_t>(s.pairs_high_water));
+  j.field("contacts", static_cast<uint64_t>(s.contacts_capacity));
+  j.field("contacts_max_used", static_cast<uint64_t>(s.contacts_high_water));
+  j.end_object();
+  write_status_bits(j, s.collision);
   j.end_object();
 }
 
@@ -94,6 +141,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
       j.end_array().end_object();
     }
     j.end_array();
+    if (i < result.status.bodies.size()) write_status_bits(j, result.status.bodies[i]);
     j.key("faults").begin_array();
     if (b.frozen) {
       j.begin_object();
@@ -107,7 +155,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
   j.end_array();
 }
 
-void write_devices(JsonWriter& j, const World& world) {
+void write_devices(JsonWriter& j, const World& world, const RunStatus& status) {
   j.key("devices").begin_array();
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot& s = world.device(d);
@@ -128,6 +176,7 @@ void write_devices(JsonWriter& j, const World& world) {
                                                             : "fault");
     if (s.status_time_s >= 0) j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
     j.field("reconnections", st.reconnections);
+    if (d < status.devices.size()) write_status_bits(j, status.devices[d]);
     // The plugin's own figures (network devices: packets, drops, watchdog trips, round trip).
     const auto counters = s.device->counters();
     if (!counters.empty()) {
@@ -188,7 +237,10 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   j.field("stopped_early", result.schedule.stopped_early);
   write_realtime(j, result);
   write_bodies(j, world, result);
-  write_devices(j, world);
+  write_devices(j, world, result.status);
+  write_collision(j, result.status);
+  j.field("status_errors", static_cast<uint64_t>(result.status.errors));
+  j.field("status_warnings", static_cast<uint64_t>(result.status.warnings));
   j.key("faults").begin_array();
   for (const FaultRecord& f : loop.faults().rows()) {
     j.begin_object();

@@ -115,7 +115,7 @@ ObstacleDesc read_obstacle(const Field& field) {
 
 CollisionDesc read_collision(const Field& field) {
   field.expect_map("a map {enabled, broad_phase, narrow_phase, convex, friction, ...}");
-  field.check_keys({"enabled", "broad_phase", "narrow_phase", "convex", "friction",
+  field.check_keys({"enabled", "broad_phase", "narrow_phase", "convex", "plugins", "friction",
                     "self_collision", "thickness"});
   CollisionDesc collision;
   collision.enabled = true;  // writing the section turns collision on unless it says otherwise
@@ -135,6 +135,21 @@ CollisionDesc read_collision(const Field& field) {
   stage("broad_phase", collision.broad_phase, collision.broad_params);
   stage("narrow_phase", collision.narrow_phase, collision.narrow_params);
   stage("convex", collision.convex, collision.convex_params);
+  if (auto f = field.get("plugins")) {
+    // Whether each plugin declares its role is checked when the pipeline is built (its roles are
+    // in the plugin's function table), at this key's file and line.
+    static constexpr const char* kRoles[] = {"broad_phase", "proxy", "narrow_phase", "response"};
+    f->expect_map("a map {broad_phase, proxy, narrow_phase, response} of collision plugin names");
+    f->check_keys({kRoles[0], kRoles[1], kRoles[2], kRoles[3]});
+    for (size_t r = 0; r < 4; ++r) {
+      if (auto role = f->get(kRoles[r])) {
+        PluginRef plugin = read_plugin(*role, TACTA_KIND_COLLISION, std::nullopt, collision.enabled);
+        collision.role_plugins[r] = std::move(plugin.name);
+        collision.role_params[r] = std::move(plugin.params);
+        collision.role_where[r] = role->where();
+      }
+    }
+  }
   if (auto f = field.get("friction")) collision.friction = f->real(Range::non_negative());
   if (auto f = field.get("self_collision")) collision.self_collision = f->boolean();
   collision.thickness_where = field.where();

@@ -25,6 +25,9 @@ class CollisionInstance {
       : descriptor(*found.descriptor), api(*static_cast<const tacta_collision_api*>(found.descriptor->api)) {
     tacta_collision_setup setup{sizeof(tacta_collision_setup), params.data(), params.size(), dt};
     char message[kMessageCapacity] = {0};
+    int guessed = 0;
+    roles = tacta_collision_roles(&descriptor, &guessed);
+    roles_guessed = guessed != 0;
     if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK || instance == nullptr)
       throw InputError(where, std::string("collision plugin '") + descriptor.name + "' could not be created: " + message);
   }
@@ -36,6 +39,8 @@ class CollisionInstance {
   const tacta_descriptor& descriptor;
   const tacta_collision_api& api;
   void* instance = nullptr;
+  uint32_t roles = 0;          // TACTA_COLLISION_ROLE_* it serves
+  bool roles_guessed = false;  // from its entries: built against a header without `roles`
 };
 
 // The proxy's view of the surfaces: the first instance that answers sphere casts and closest
@@ -227,24 +232,20 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
 
   // The plugins: the broad phase is needed for the proxy's queries even without contact response.
   const SourceLocation where{scene.path, 0, 0, "collision"};
-  auto add = [&](const std::string& name, ParamSet params) {
-    if (name.empty()) return;
+  auto add = [&](const std::string& name, ParamSet params, const SourceLocation& at) {
     const LoadedDescriptor* found = plugins.find(TACTA_KIND_COLLISION, name);
-    if (found == nullptr) throw InputError(where, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
+    if (found == nullptr) throw InputError(at, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
     // Collision off in the scene: the broad phase (the proxy's queries) gets its defaults.
     params = complete_params(*found->descriptor, params);
     // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
     params.set_number("friction", c.friction);
-    instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, where));
+    instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, at));
   };
   const bool needed = c.enabled || world.device_count() > 0;
-  if (needed) {
-    add(c.broad_phase, c.broad_params);
-    if (c.enabled) {
-      add(c.narrow_phase, c.narrow_params);
-      if (!obstacles_.empty() || !tools_.empty()) add(c.convex, c.convex_params);
-    }
-  }
+  if (needed && !c.broad_phase.empty()) add(c.broad_phase, c.broad_params, where);
+  if (c.enabled && !c.narrow_phase.empty()) add(c.narrow_phase, c.narrow_params, where);
+  if (c.enabled && !c.convex.empty() && (!obstacles_.empty() || !tools_.empty())) add(c.convex, c.convex_params, where);
+  pick_roles(c, needed, add);
   for (auto& inst : instances_) {
     if (inst->api.prepare == nullptr) continue;
     char message[kMessageCapacity] = {0};
@@ -255,10 +256,53 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   for (const auto& s : surfaces_) vertices += s.vertex_count;
   pairs_.resize(16384 + 16 * vertices);
   contacts_.resize(4096 + 4 * vertices);
-  const CollisionInstance* answerer = nullptr;
-  for (auto& inst : instances_)
-    if (answerer == nullptr && inst->api.sphere_cast != nullptr && inst->api.closest_point != nullptr) answerer = inst.get();
-  query_ = std::make_unique<Query>(*this, answerer);
+  query_ = std::make_unique<Query>(*this, served_[role_index(TACTA_COLLISION_ROLE_PROXY)]);
+}
+
+// The scene's collision.plugins first (a plugin no stage loaded is loaded for its role; one that
+// does not declare the role is refused at the key), then for each role left the first loaded
+// plugin declaring it. A proxy serves the haptic proxy even with contact response off.
+template <class Add>
+void CollisionContext::pick_roles(const CollisionDesc& c, bool needed, Add& add) {
+  for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r) {
+    const uint32_t role = 1u << r;
+    const std::string& name = c.role_plugins[r];
+    if (name.empty() || !(role == TACTA_COLLISION_ROLE_PROXY ? needed : c.enabled)) continue;
+    auto named = [&] {
+      for (auto& inst : instances_)
+        if (name == inst->descriptor.name) return inst.get();
+      return static_cast<CollisionInstance*>(nullptr);
+    };
+    if (named() == nullptr) add(name, c.role_params[r], c.role_where[r]);
+    CollisionInstance* inst = named();
+    if (!(inst->roles & role))
+      throw InputError(c.role_where[r],
+                       fmt::format("collision plugin '{}' does not declare the {} role (it declares: {}); "
+                                   "name a plugin that does (`tacta plugins` lists each plugin's roles)",
+                                   name, tacta_collision_role_name(role), role_names(inst->roles)));
+    served_[r] = inst;
+  }
+  for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+    for (auto& inst : instances_)
+      if (served_[r] == nullptr && (inst->roles & (1u << r))) served_[r] = inst.get();
+}
+
+std::string role_names(uint32_t roles) {
+  std::string out;
+  for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+    if (roles & (1u << r)) out += (out.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
+  return out.empty() ? "none" : out;
+}
+
+std::vector<CollisionPluginUse> CollisionContext::plugin_uses() const {
+  std::vector<CollisionPluginUse> uses;
+  for (const auto& inst : instances_) {
+    CollisionPluginUse u{inst->descriptor.name, inst->roles, inst->roles_guessed, 0};
+    for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
+      if (served_[r] == inst.get()) u.serves |= 1u << r;
+    uses.push_back(std::move(u));
+  }
+  return uses;
 }
 
 CollisionContext::~CollisionContext() = default;
@@ -298,15 +342,15 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   contact_count_ = 0;
   if (!response_enabled_) return TACTA_COLLIDE_OK;
   uint32_t bits = 0;
-  const CollisionInstance* broad = nullptr;
-  for (auto& inst : instances_)
-    if (broad == nullptr && inst->api.find_pairs != nullptr) broad = inst.get();
+  const CollisionInstance* broad = served_[role_index(TACTA_COLLISION_ROLE_BROAD_PHASE)];
+  const CollisionInstance* narrow = served_[role_index(TACTA_COLLISION_ROLE_NARROW_PHASE)];
+  const CollisionInstance* response = served_[role_index(TACTA_COLLISION_ROLE_RESPONSE)];
   const bool self_collision = world_.scene().collision.self_collision;
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
     // One surface and no self-collision: every pair the broad phase could find would be dropped.
-    if (broad != nullptr && (self_collision || view_.surface_count > 1))
+    if (broad != nullptr && broad->api.find_pairs != nullptr && (self_collision || view_.surface_count > 1))
       bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
     if (!self_collision) {  // the scene's collision.self_collision: drop pairs within one surface
       uint32_t kept = 0;
@@ -314,22 +358,22 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
         if (pairs_[p].surface_a != pairs_[p].surface_b) pairs_[kept++] = pairs_[p];
       pair_count = kept;
     }
+    pairs_high_water_ = std::max(pairs_high_water_, pair_count);
+    // Every narrow phase detects; the one serving the role gets the broad phase's pairs, the
+    // others (convex: surfaces against tools and obstacles) the whole world (pairs NULL).
     const uint32_t first = contact_count_;
     for (auto& inst : instances_) {
-      if (inst->api.detect == nullptr) continue;
+      if (inst->api.detect == nullptr || !(inst->roles & TACTA_COLLISION_ROLE_NARROW_PHASE)) continue;
       uint32_t found = 0;
-      const bool pairwise = inst.get() != broad && broad != nullptr && inst->api.vertex_face != nullptr;
+      const bool pairwise = inst.get() == narrow && broad != nullptr;
       bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
                                contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
       contact_count_ += found;
     }
     for (auto& e : embedded_)
       if (e) e->remember();
-    for (auto& inst : instances_) {
-      if (inst->api.respond == nullptr) continue;
-      bits |= inst->api.respond(inst->instance, &view_, contacts_.data() + first, contact_count_ - first);
-      break;
-    }
+    if (response != nullptr && response->api.respond != nullptr)
+      bits |= response->api.respond(response->instance, &view_, contacts_.data() + first, contact_count_ - first);
     for (auto& e : embedded_)
       if (e) e->apply_response();
     bool surface_contacts = false;
@@ -338,6 +382,7 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
                          contacts_[c].type == TACTA_CONTACT_EDGE_EDGE;
     if (!surface_contacts) break;
   }
+  contacts_high_water_ = std::max(contacts_high_water_, contact_count_);
   return bits;
 }
 

@@ -4,6 +4,7 @@
 // contacts, response. Buffers are sized at load time; the tick path allocates nothing.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,19 @@
 namespace tacta {
 
 class CollisionInstance;
+
+// One loaded collision plugin: the roles it declares (or, guessed, its entries imply) and the
+// roles the engine gave it (TACTA_COLLISION_ROLE_* bits).
+struct CollisionPluginUse {
+  std::string name;
+  uint32_t roles = 0;
+  bool roles_guessed = false;
+  uint32_t serves = 0;
+};
+
+// "broad_phase, response" for a TACTA_COLLISION_ROLE_* mask ("none" for 0).
+std::string role_names(uint32_t roles);
+constexpr uint32_t role_index(uint32_t role) { return static_cast<uint32_t>(__builtin_ctz(role)); }
 class EmbeddedCollisionSurface;
 
 class CollisionContext {
@@ -44,8 +58,17 @@ class CollisionContext {
   const haptics::SurfaceQuery& surface_query(int body) noexcept;
   tacta_collision_world& view() noexcept { return view_; }
 
+  std::vector<CollisionPluginUse> plugin_uses() const;
+  // The pair and contact buffers (sized from the surfaces at load) and the most a tick used.
+  uint32_t pairs_capacity() const noexcept { return static_cast<uint32_t>(pairs_.size()); }
+  uint32_t contacts_capacity() const noexcept { return static_cast<uint32_t>(contacts_.size()); }
+  uint32_t pairs_high_water() const noexcept { return pairs_high_water_; }
+  uint32_t contacts_high_water() const noexcept { return contacts_high_water_; }
+
  private:
   class Query;
+  template <class Add>
+  void pick_roles(const CollisionDesc& c, bool needed, Add& add);
   World& world_;
   tacta_collision_world view_{};
   std::vector<tacta_collision_surface> surfaces_;
@@ -62,6 +85,8 @@ class CollisionContext {
   std::vector<tacta_collision_pair> pairs_;
   std::vector<tacta_contact> contacts_;
   uint32_t contact_count_ = 0;
+  uint32_t pairs_high_water_ = 0, contacts_high_water_ = 0;
+  std::array<CollisionInstance*, TACTA_COLLISION_ROLE_COUNT> served_{};  // per role index
   bool response_enabled_ = false;
   std::unique_ptr<Query> query_;
 };

@@ -189,7 +189,8 @@ void HapticInteraction::after_write(World& world) noexcept {
 }
 
 void CollisionResponse::after_step(World&, double time, double dt) noexcept {
-  bits_ |= collision_.detect_and_respond(time, dt);
+  tick_bits_ = collision_.detect_and_respond(time, dt);
+  bits_ |= tick_bits_;
   contacts_total_ += collision_.contact_count();
 }
 

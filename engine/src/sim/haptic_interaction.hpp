@@ -59,14 +59,16 @@ class HapticInteraction final : public Interaction {
 class CollisionResponse final : public Interaction {
  public:
   explicit CollisionResponse(CollisionContext& collision) : collision_(collision) {}
-  void before_step(World&, double, double) noexcept override {}
+  void before_step(World&, double, double) noexcept override { tick_bits_ = 0; }
   void after_step(World& world, double time, double dt) noexcept override;
-  uint32_t bits() const noexcept { return bits_; }
+  uint32_t collision_bits() const noexcept override { return tick_bits_; }
+  uint32_t bits() const noexcept { return bits_; }  // every tick's, ORed
   uint64_t contacts_total() const noexcept { return contacts_total_; }
 
  private:
   CollisionContext& collision_;
   uint32_t bits_ = 0;
+  uint32_t tick_bits_ = 0;
   uint64_t contacts_total_ = 0;
 };
 

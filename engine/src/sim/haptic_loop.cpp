@@ -18,6 +18,8 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
     : world_(world), snapshots_(snapshots) {
   record_interval_s_ = world.scene().output.record_interval_s;
   faults_.reserve(64 + world.body_count() + world.device_count());
+  body_status_.resize(world.body_count());
+  device_status_.resize(world.device_count());
   reserve(expected_ticks, duration_s);
 }
 
@@ -78,6 +80,7 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   const auto start = Clock::now();
   tick_index_ = index;
   tick_time_ = time;
+  last_status_ = {};
   apply_swaps(time);
   read_devices(time);
   const auto read_done = Clock::now();
@@ -92,7 +95,11 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   const bool healthy = step_bodies(time, dt);
   const auto models_done = Clock::now();
   if (healthy)
-    for (Interaction* interaction : interactions_) interaction->after_step(world_, time, dt);
+    for (Interaction* interaction : interactions_) {
+      interaction->after_step(world_, time, dt);
+      last_status_.collision_bits |= interaction->collision_bits();
+    }
+  collision_status_.add(last_status_.collision_bits, time);
   const auto response_done = Clock::now();
   // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
   write_devices(time + dt, !healthy);
@@ -105,7 +112,31 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   stages_[kResponse].record(ms(models_done, response_done));
   stages_[kDeviceWrite].record(ms(response_done, end));
   last_tick_ms_ = ms(start, end);
-  return true;
+  last_status_.error = last_status_.error || has_error_bit(StatusSource::Collision, last_status_.collision_bits);
+  return should_continue();
+}
+
+bool HapticLoop::should_continue() const noexcept {
+  if (world_.body_count() == 0) return true;
+  for (size_t i = 0; i < world_.body_count(); ++i)
+    if (!world_.body(i).fault.frozen) return true;
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    const tacta_device_state s = world_.device(d).state;
+    if (s == TACTA_DEVICE_CONNECTED || s == TACTA_DEVICE_DISCONNECTED) return true;
+  }
+  return false;
+}
+
+void HapticLoop::count_model_bits(size_t body, uint32_t bits, double time) noexcept {
+  last_status_.model_bits |= bits;
+  last_status_.error = last_status_.error || has_error_bit(StatusSource::Model, bits);
+  body_status_[body].add(bits, time);
+}
+
+void HapticLoop::raise_device(size_t device, uint32_t bit) noexcept {
+  last_status_.device_bits |= bit;
+  last_status_.error = last_status_.error || has_error_bit(StatusSource::Device, bit);
+  device_status_[device].add(bit, tick_time_);
 }
 
 void HapticLoop::apply_swaps(double time) noexcept {
@@ -147,7 +178,10 @@ void HapticLoop::read_devices(double time) noexcept {
     tacta_device_sample sample = slot.sample;
     const tacta_device_state state = slot.device->read(time, sample);
     if (was_disconnected) {
-      if (state != TACTA_DEVICE_CONNECTED) continue;
+      if (state != TACTA_DEVICE_CONNECTED) {
+        raise_device(d, kDeviceDisconnected);
+        continue;
+      }
       slot.state = TACTA_DEVICE_CONNECTED;  // the interaction restarts its proxy at the new pose
       ++slot.stats.reconnections;
     }
@@ -159,6 +193,8 @@ void HapticLoop::read_devices(double time) noexcept {
       slot.status_time_s = time;
       if (!finite) std::snprintf(slot.status_reason.data(), slot.status_reason.size(), "device reported a non-finite position");
       else slot.device->status(slot.status_reason.data(), slot.status_reason.size());
+      if (slot.state == TACTA_DEVICE_FAULT) raise_device(d, kDeviceFault);
+      else if (slot.state == TACTA_DEVICE_DISCONNECTED) raise_device(d, kDeviceDisconnected);
       if (state != TACTA_DEVICE_FINISHED) {
         FaultRecord f{time, -1, static_cast<int>(d), static_cast<uint32_t>(slot.state), {}};
         std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(), slot.status_reason.data());
@@ -188,6 +224,7 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
     const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions, b.contact_forces};
     const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays, time, step_dt,
                                              b.boundary.get());
+    count_model_bits(i, out.bits, time);
     if (out.why != nullptr) {
       freeze(b, i, time, out.bits, out.why);
       healthy = false;
@@ -203,6 +240,7 @@ bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double
   if (time + 1e-12 < b.next_step_time_s) return true;
   if (!w.finish_step(time)) return true;  // realtime: still stepping, render on against the old state
   const StepOutcome& out = w.last_outcome();
+  count_model_bits(index, out.bits, time);
   if (out.why != nullptr) {
     // Detected on the tick the step is collected: the device force drops in this same tick.
     freeze(b, index, time, out.bits, out.why);
@@ -265,6 +303,7 @@ void HapticLoop::write_devices(double time, bool zero_force) noexcept {
     // A frozen body is a state that could not be trusted: a device touching it renders nothing,
     // from the faulting tick for as long as it stays frozen.
     const bool silent = zero_force || slot.state != TACTA_DEVICE_CONNECTED || touches_frozen_body(slot);
+    if (silent && slot.state == TACTA_DEVICE_CONNECTED) raise_device(d, kDeviceSilenced);
     if (silent) {
       slot.force = {0, 0, 0};
       ++st.zero_force_ticks;
@@ -275,6 +314,7 @@ void HapticLoop::write_devices(double time, bool zero_force) noexcept {
     if (peak > 0 && magnitude > peak) {
       for (double& f : slot.force) f *= peak / magnitude;
       ++st.clamped_ticks;
+      raise_device(d, kDeviceClamped);
     }
     const double sent = std::min(magnitude, peak > 0 ? peak : magnitude);
     st.max_force_N = std::max(st.max_force_N, sent);

@@ -8,6 +8,7 @@
 
 #include "body_worker.hpp"
 #include "recorders.hpp"
+#include "status_bits.hpp"
 #include "tacta/sim/tick_stats.hpp"
 #include "tacta/device_log.hpp"
 #include "tacta/sim/scheduler.hpp"
@@ -37,6 +38,16 @@ class Interaction {
   // After the devices were written: DeviceSlot::force is what each device really got (zeroed on
   // a fault, clamped to its peak), which may differ from what before_step asked for.
   virtual void after_write(World&) noexcept {}
+  // TACTA_COLLIDE_* bits of this tick (collision response), 0 for the others.
+  virtual uint32_t collision_bits() const noexcept { return 0; }
+};
+
+// What one tick raised: the OR of each source's bits, and whether any of them is an error.
+struct TickStatus {
+  uint32_t model_bits = 0;      // TACTA_STEP_* over every body stepped this tick
+  uint32_t collision_bits = 0;  // TACTA_COLLIDE_*
+  uint32_t device_bits = 0;     // kDevice* (status_bits.hpp) over every device
+  bool error = false;
 };
 
 class HapticLoop final : public HapticTask {
@@ -58,7 +69,14 @@ class HapticLoop final : public HapticTask {
   void stop_workers() noexcept;
   const BodyWorker* worker(size_t body) const { return body < workers_.size() ? workers_[body].get() : nullptr; }
 
+  // False only when the run should end: every body is frozen (nothing left to step) and no
+  // device is connected or waiting to reconnect (nobody holds a tool).
   bool tick(uint64_t index, double time, double dt) noexcept override;
+  const TickStatus& last_status() const noexcept { return last_status_; }
+  // Ticks each status bit was seen on, per body (model steps), per device, for collision.
+  const StatusCounter& body_status(size_t body) const { return body_status_[body]; }
+  const StatusCounter& device_status(size_t device) const { return device_status_[device]; }
+  const StatusCounter& collision_status() const { return collision_status_; }
   void publish(double time) noexcept override;
 
   const Recorder<TraceRow>& trace() const { return trace_; }
@@ -103,6 +121,12 @@ class HapticLoop final : public HapticTask {
   std::unique_ptr<DeviceLogRecorder> device_log_;
   TickRecorder stages_[kStageCount];
   double tick_time_ = 0;  // s, start of the current tick (when devices were read)
+  TickStatus last_status_;
+  std::vector<StatusCounter> body_status_, device_status_;  // sized at construction
+  StatusCounter collision_status_;
+  void count_model_bits(size_t body, uint32_t bits, double time) noexcept;
+  void raise_device(size_t device, uint32_t bit) noexcept;
+  bool should_continue() const noexcept;
 };
 
 }  // namespace tacta

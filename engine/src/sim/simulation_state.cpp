@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "../report/run_outputs.hpp"
+#include "run_status.hpp"
 #include "simulation_impl.hpp"
 
 namespace tacta {
@@ -79,7 +80,8 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     std::snprintf(time, sizeof time, "%.3f", f.time_s);
     result.fault_messages.push_back(who + " at t = " + time + " s: " + f.reason.data());
   }
-  result.exit_code = result.faults > 0 ? 1 : 0;
+  result.status = collect_run_status(loop, world, collision.get());
+  result.exit_code = result.faults > 0 || result.status.errors > 0 ? 1 : 0;
   return result;
 }
 

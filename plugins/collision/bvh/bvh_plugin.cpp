@@ -16,6 +16,7 @@ namespace tacta::collision {
 class BvhBroadPhase {
  public:
   static constexpr const char* kName = "bvh";
+  static constexpr uint32_t kRoles = TACTA_COLLISION_ROLE_BROAD_PHASE | TACTA_COLLISION_ROLE_PROXY;
   static constexpr const char* kDescription =
       "broad phase: AABB/OBB trees refit per tick, pairs, self-collision, haptic proxy queries";
   static constexpr uint32_t kVersion = 10000;

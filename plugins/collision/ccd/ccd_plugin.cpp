@@ -3,7 +3,7 @@
 // Parameter `method` picks the conservative inclusion test (default) or the plain Moore-Wilhelms
 // baseline (cubic roots then inside test, which can miss contacts).
 // It also answers `respond` for the whole pipeline (contact_response.hpp documents the method):
-// the engine calls respond on the first collision instance that has it.
+// the engine calls respond on the plugin serving the response role (this one by default).
 #include <array>
 
 #include "contact_response.hpp"
@@ -17,6 +17,7 @@ namespace tacta::collision {
 class CcdNarrowPhase {
  public:
   static constexpr const char* kName = "ccd";
+  static constexpr uint32_t kRoles = TACTA_COLLISION_ROLE_NARROW_PHASE | TACTA_COLLISION_ROLE_RESPONSE;
   static constexpr const char* kDescription =
       "narrow phase: conservative Moore-Wilhelms CCD, vertex-face and edge-edge (inclusion test); "
       "contact response: projection + inelastic impulses with Coulomb friction";

@@ -92,6 +92,8 @@ void center(const void* object, ccd_vec3_t* out) {
 class ConvexNarrowPhase {
  public:
   static constexpr const char* kName = "convex";
+  // Narrow phase of surfaces against tools and obstacles (it ignores the broad phase pairs).
+  static constexpr uint32_t kRoles = TACTA_COLLISION_ROLE_NARROW_PHASE;
   static constexpr const char* kDescription =
       "convex: libccd GJK/MPR depth, normal and distance for spheres, capsules, boxes, hulls";
   static constexpr uint32_t kVersion = 10000;

@@ -126,6 +126,7 @@ struct CollisionAdapter {
                     t.respond(w, c, 0u);
                   })
       api.respond = &respond;
+    if constexpr (requires { T::kRoles; }) api.roles = T::kRoles;  // TACTA_COLLISION_ROLE_* bits
     return api;
   }
 };

@@ -17,6 +17,7 @@
 #include "tacta/mesh.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
+#include "tacta/sim/run_status.hpp"
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
 
@@ -71,7 +72,8 @@ struct RunResult {
   size_t faults = 0;
   std::vector<std::string> fault_messages;  // one per fault: who, when (s), why
   std::vector<std::string> outputs;  // files written
-  int exit_code = 0;                 // 0 ok, 1 runtime fault
+  RunStatus status;                  // status bits seen, collision roles (docs/REPORT.md `status`)
+  int exit_code = 0;                 // 0 ok, 1 runtime fault or error bit
 };
 
 // One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed

@@ -2,7 +2,8 @@
 // a damped spring (semi-implicit Euler), so the body reacts to contact and gravity but stays
 // bounded; at step `fault_step` (0-based count of step() calls) it either writes NaN into the
 // first free node's position (fault_kind: nan) or returns TACTA_STEP_DIVERGED (fault_kind:
-// diverged), or never faults (fault_kind: none). It also counts its live instances, exported as
+// diverged), or never faults (fault_kind: none), or from that step on returns the warning
+// TACTA_STEP_SOLVER_NOT_CONVERGED (fault_kind: warn). It also counts its live instances, exported as
 // tacta_test_fault_model_live_instances(), so tests can check that a failed load destroyed every
 // instance it built.
 #include <array>
@@ -25,7 +26,7 @@ class FaultModel {
       tacta::sdk::real_param("stiffness", "N/m", 2000.0, 0.0, 1e9, "anchor spring stiffness per node"),
       tacta::sdk::real_param("damping", "N s/m", 5.0, 0.0, 1e9, "damper per node"),
       tacta::sdk::int_param("fault_step", 100, 0, 100000000, "step() call that faults"),
-      tacta::sdk::choice_param("fault_kind", "nan|diverged|none", 0, "what the faulting step does"),
+      tacta::sdk::choice_param("fault_kind", "nan|diverged|none|warn", 0, "what the faulting step does"),
   };
 
   explicit FaultModel(const tacta_model_setup& setup)
@@ -52,6 +53,7 @@ class FaultModel {
       state.velocities[i] += dt * force / masses_[i / 3];
       state.positions[i] += dt * state.velocities[i];
     }
+    if (fault_kind_ == 3) return call >= fault_step_ ? TACTA_STEP_SOLVER_NOT_CONVERGED : TACTA_STEP_OK;
     if (call != fault_step_) return TACTA_STEP_OK;
     if (fault_kind_ == 1) return TACTA_STEP_DIVERGED;
     if (fault_kind_ == 0) {

@@ -1,0 +1,44 @@
+// Run-time status as a run reports it: the warning and error bits seen per body (model steps),
+// per device and for the collision pipeline, each with the ticks it was seen on and a one-line
+// remedy, and which collision plugin served which role. Filled after the run (run_status.cpp in
+// engine/src/sim); report.json and `tacta run` print it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tacta {
+
+enum class StatusSeverity { Info, Warning, Error };
+
+struct StatusBitCount {
+  std::string name;     // e.g. "solver_not_converged"
+  uint32_t bit = 0;     // the bit's value in its source's bit set
+  StatusSeverity severity = StatusSeverity::Warning;
+  uint64_t ticks = 0;   // ticks (or steps) the bit was raised on
+  double first_time_s = 0;
+  std::string remedy;   // one line
+};
+
+struct CollisionPluginResult {
+  std::string name;
+  uint32_t roles = 0;          // TACTA_COLLISION_ROLE_* it declares
+  bool roles_guessed = false;  // no `roles` in its table: guessed from its entries
+  uint32_t serves = 0;         // the roles the engine gave it
+};
+
+struct RunStatus {
+  std::vector<std::vector<StatusBitCount>> bodies;   // per body, model step bits
+  std::vector<std::vector<StatusBitCount>> devices;  // per device
+  std::vector<StatusBitCount> collision;             // the collision pipeline (not per body)
+  std::vector<CollisionPluginResult> collision_plugins;
+  uint32_t pairs_capacity = 0, contacts_capacity = 0;  // collision buffers, sized at load
+  uint32_t pairs_high_water = 0, contacts_high_water = 0;
+  size_t errors = 0, warnings = 0;  // kinds (who x bit) seen
+  std::vector<std::string> lines;   // one per warning or error kind, for the console
+};
+
+const char* severity_name(StatusSeverity s) noexcept;
+
+}  // namespace tacta
