@@ -8,6 +8,7 @@
 
 #include "command.hpp"
 #include "tacta/error.hpp"
+#include "tacta/param_defaults.hpp"
 #include "tacta/json.hpp"
 #include "tacta/plugin_registry.hpp"
 
@@ -30,22 +31,6 @@ std::string version_text(uint32_t v) {
   return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
 }
 
-std::vector<std::string> split_choices(const char* choices) {
-  std::vector<std::string> out;
-  if (choices == nullptr) return out;
-  std::string current;
-  for (const char* c = choices; *c; ++c) {
-    if (*c == '|') {
-      out.push_back(current);
-      current.clear();
-    } else {
-      current += *c;
-    }
-  }
-  out.push_back(current);
-  return out;
-}
-
 std::string short_number(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", v);
@@ -65,7 +50,7 @@ std::string describe_param(const tacta_param_spec& p) {
       break;
     case TACTA_PARAM_BOOL: line += p.default_value != 0 ? " default true" : " default false"; break;
     case TACTA_PARAM_CHOICE: {
-      const auto choices = split_choices(p.choices);
+      const auto choices = tacta::choice_names(p);
       const auto index = static_cast<size_t>(p.default_value);
       line += " default " + (index < choices.size() ? choices[index] : std::string("?")) +
               ", one of " + (p.choices ? p.choices : "");
@@ -112,7 +97,7 @@ void write_param(tacta::JsonWriter& json, const tacta_param_spec& p) {
       break;
     case TACTA_PARAM_BOOL: json.field("default", p.default_value != 0); break;
     case TACTA_PARAM_CHOICE: {
-      const auto choices = split_choices(p.choices);
+      const auto choices = tacta::choice_names(p);
       const auto index = static_cast<size_t>(p.default_value);
       json.field("default", index < choices.size() ? choices[index] : std::string());
       json.key("choices").begin_array();
