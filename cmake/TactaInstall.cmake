@@ -2,11 +2,15 @@
 #   include/tacta/...                 public headers (plugin ABI, SDK, engine API)
 #   lib/libtacta_engine.a             the engine (static)
 #   bin/tacta                         the command line (installed by apps/tacta)
+#   include/tacta/models/...          model-plugin helpers' headers (plugins/models/common)
+#   lib/libtacta_models_common.a      model-plugin helpers (static)
 #   lib/tacta/plugins/*.so            plugins (installed by tacta_add_plugin)
 #   lib/python3/dist-packages/tacta/  the Python module (installed by python/CMakeLists.txt)
-#   lib/cmake/Tacta/                  TactaConfig.cmake, TactaConfigVersion.cmake, TactaTargets.cmake
+#   lib/cmake/Tacta/                  TactaConfig.cmake, TactaConfigVersion.cmake, TactaTargets.cmake,
+#                                     TactaPlugin.cmake and TactaWarnings.cmake (tacta_add_plugin)
 # find_package(Tacta) gives tacta::plugin_api, tacta::engine (when its dependencies are all
-# packages find_dependency can find) and tacta_add_plugin() for out-of-tree plugins.
+# packages find_dependency can find), tacta::models_common and tacta_add_plugin() for
+# out-of-tree plugins.
 include(CMakePackageConfigHelpers)
 
 set(TACTA_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Tacta)
@@ -50,6 +54,15 @@ endforeach()
 list(REMOVE_DUPLICATES tacta_engine_packages)
 
 set(tacta_exported_targets tacta_plugin_api)
+# The model helpers link only tacta::plugin_api and Eigen3 (found again by the config file).
+set(TACTA_PACKAGE_HAS_MODELS_COMMON OFF)
+if(TARGET tacta_models_common)
+  set(TACTA_PACKAGE_HAS_MODELS_COMMON ON)
+  list(APPEND tacta_exported_targets tacta_models_common)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/plugins/models/common/include/tacta
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+    FILES_MATCHING PATTERN "*.hpp")
+endif()
 if(tacta_export_engine)
   list(APPEND tacta_exported_targets tacta_engine)
 endif()
@@ -72,4 +85,6 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/TactaConfigVersion.
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/cmake/TactaConfig.cmake
               ${PROJECT_BINARY_DIR}/cmake/TactaConfigVersion.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/TactaPlugin.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/TactaWarnings.cmake
   DESTINATION ${TACTA_CMAKE_INSTALL_DIR})

@@ -1,4 +1,8 @@
-# tacta_set_warnings(target): the project's warning set, on every target it builds.
+# tacta_set_warnings(target): the project's warning set, on every target it builds (installed
+# with the package, so out-of-tree plugins get the same set; -Werror only with
+# TACTA_WARNINGS_AS_ERRORS).
+include_guard(GLOBAL)
+
 function(tacta_set_warnings target)
   target_compile_options(${target} PRIVATE
     $<$<COMPILE_LANGUAGE:CXX>:-Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast

@@ -2,19 +2,13 @@
 
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::view {
 namespace {
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d add_scaled(const Vec3d& a, const Vec3d& b, double s) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3d normalised(const Vec3d& v) {
-  const double n = std::sqrt(dot(v, v));
-  return n > 0 ? Vec3d{v[0] / n, v[1] / n, v[2] / n} : Vec3d{0, 0, -1};
-}
+// The camera's direction when eye and target coincide: down -z, as the default view looks.
+Vec3d normalised(const Vec3d& v) { return normalized(v, {0, 0, -1}); }
 
 struct Basis {
   Vec3d forward, right, up;

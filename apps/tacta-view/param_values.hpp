@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tacta/param_defaults.hpp"
 #include "tacta/plugin.h"
 #include "tacta/scene.hpp"
 
@@ -24,10 +25,8 @@ std::vector<ParamValue> param_values(std::span<const tacta_param_spec> schema, c
 // The ParamSet of these values; CHOICE entries carry their choice name and index.
 ParamSet to_param_set(const std::vector<ParamValue>& values);
 
-// The names of a CHOICE spec ("a|b|c" -> {a, b, c}).
-std::vector<std::string> choice_names(const tacta_param_spec& spec);
-
-// Numbers of a VECTOR default ("0 0.1 0" -> {0, 0.1, 0}).
-std::vector<double> parse_numbers(const char* text);
+// choice_names() and parse_numbers(): tacta/param_defaults.hpp.
+using tacta::choice_names;
+using tacta::parse_numbers;
 
 }  // namespace tacta::view

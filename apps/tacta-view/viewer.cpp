@@ -12,6 +12,7 @@
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "view_status.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::view {
 namespace {
@@ -175,7 +176,7 @@ int Viewer::run() {
       double force = 0;
       if (!snapshot_.devices.empty()) {
         const auto& f = snapshot_.devices[0].force;
-        force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        force = norm(f);
       }
       max_force_N_ = std::max(max_force_N_, force);
       force_plot_.push(static_cast<float>(force));

@@ -16,6 +16,7 @@
 #include "command.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
+#include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
 
 namespace {
@@ -133,14 +134,17 @@ Score score(const tacta_collision_api& api, void* instance, const std::vector<Qu
 }
 
 void* make_instance(const tacta::LoadedDescriptor& d, int method) {
-  std::vector<tacta_param_value> values(d.descriptor->param_count);
+  // The plugin's defaults, with `method` (a CHOICE) set to the method under test.
+  tacta::ParamSet values;
   for (uint32_t i = 0; i < d.descriptor->param_count; ++i) {
-    values[i].number = d.descriptor->params[i].default_value;
-    values[i].text = d.descriptor->params[i].default_text;
-    if (std::string(d.descriptor->params[i].name) == "method") values[i].number = method;
+    const tacta_param_spec& spec = d.descriptor->params[i];
+    if (std::string(spec.name) == "method")
+      values.add_text(spec.name, tacta::choice_name(spec, static_cast<size_t>(method)), method);
+    else
+      tacta::add_default(values, spec);
   }
-  const tacta_collision_setup setup{sizeof(tacta_collision_setup), values.data(),
-                                    static_cast<uint32_t>(values.size()), 0.001};
+  const tacta_collision_setup setup{sizeof(tacta_collision_setup), values.data(), values.size(),
+                                    0.001};
   void* instance = nullptr;
   char message[512] = {0};
   const auto& api = *static_cast<const tacta_collision_api*>(d.descriptor->api);

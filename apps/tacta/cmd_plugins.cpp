@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
+#include "tacta/param_defaults.hpp"
 #include "tacta/json.hpp"
 #include "tacta/plugin_registry.hpp"
 
@@ -29,22 +30,6 @@ const char* type_name(tacta_param_type type) {
 // major*10000 + minor*100 + patch -> "major.minor.patch"
 std::string version_text(uint32_t v) {
   return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
-}
-
-std::vector<std::string> split_choices(const char* choices) {
-  std::vector<std::string> out;
-  if (choices == nullptr) return out;
-  std::string current;
-  for (const char* c = choices; *c; ++c) {
-    if (*c == '|') {
-      out.push_back(current);
-      current.clear();
-    } else {
-      current += *c;
-    }
-  }
-  out.push_back(current);
-  return out;
 }
 
 // "broad_phase, proxy" for a collision descriptor, "(guessed from its entries)" when it declares none.
@@ -76,7 +61,7 @@ std::string describe_param(const tacta_param_spec& p) {
       break;
     case TACTA_PARAM_BOOL: line += p.default_value != 0 ? " default true" : " default false"; break;
     case TACTA_PARAM_CHOICE: {
-      const auto choices = split_choices(p.choices);
+      const auto choices = tacta::choice_names(p);
       const auto index = static_cast<size_t>(p.default_value);
       line += " default " + (index < choices.size() ? choices[index] : std::string("?")) +
               ", one of " + (p.choices ? p.choices : "");
@@ -124,7 +109,7 @@ void write_param(tacta::JsonWriter& json, const tacta_param_spec& p) {
       break;
     case TACTA_PARAM_BOOL: json.field("default", p.default_value != 0); break;
     case TACTA_PARAM_CHOICE: {
-      const auto choices = split_choices(p.choices);
+      const auto choices = tacta::choice_names(p);
       const auto index = static_cast<size_t>(p.default_value);
       json.field("default", index < choices.size() ? choices[index] : std::string());
       json.key("choices").begin_array();

@@ -83,7 +83,7 @@ class PluginBody {
   models::TestMesh mesh_;
   tacta_mesh_view view_;
   tacta_material material_;
-  std::vector<tacta_param_value> params_;
+  testing::DefaultParams params_;
   std::vector<double> positions_, velocities_, forces_;
   tacta_body_state state_{};
   void* instance_ = nullptr;

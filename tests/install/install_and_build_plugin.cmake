@@ -18,6 +18,8 @@ set(plugin_dir ${build}/plugins)
 
 run("install" ${CMAKE_COMMAND} --install ${TACTA_BUILD_DIR} --prefix ${prefix})
 foreach(f bin/tacta include/tacta/plugin.h include/tacta/sdk/model.hpp lib/libtacta_engine.a
+          include/tacta/models/divergence_guard.hpp lib/libtacta_models_common.a
+          lib/cmake/Tacta/TactaPlugin.cmake lib/cmake/Tacta/TactaWarnings.cmake
           lib/cmake/Tacta/TactaConfig.cmake lib/cmake/Tacta/TactaConfigVersion.cmake
           lib/cmake/Tacta/TactaTargets.cmake)
   if(NOT EXISTS ${prefix}/${f})
@@ -40,9 +42,17 @@ run("tacta plugins" ${prefix}/bin/tacta plugins --json --path ${plugin_dir})
 set(json "${run_output}")
 string(JSON count LENGTH "${json}" plugins)
 set(found OFF)
+set(found_model OFF)
 math(EXPR last "${count} - 1")
 foreach(i RANGE 0 ${last})
   string(JSON name GET "${json}" plugins ${i} name)
+  if(name STREQUAL "external_free_body")
+    string(JSON kind GET "${json}" plugins ${i} kind)
+    if(NOT kind STREQUAL "model")
+      message(FATAL_ERROR "external_free_body listed as kind '${kind}'")
+    endif()
+    set(found_model ON)
+  endif()
   if(name STREQUAL "external_demo")
     string(JSON file GET "${json}" plugins ${i} file)
     string(JSON param GET "${json}" plugins ${i} parameters 0 name)
@@ -52,8 +62,26 @@ foreach(i RANGE 0 ${last})
     set(found ON)
   endif()
 endforeach()
-if(NOT found)
-  message(FATAL_ERROR "tacta plugins did not list external_demo:\n${json}")
+if(NOT found OR NOT found_model)
+  message(FATAL_ERROR "tacta plugins did not list external_demo and external_free_body:\n${json}")
+endif()
+
+# The out-of-tree model runs a scene through the installed `tacta` (found via TACTA_PLUGIN_PATH).
+file(WRITE ${WORK_DIR}/free_body.yaml [=[
+name: external_free_body_drop
+gravity: [0, -9.81, 0]
+clock: {mode: lockstep, duration_s: 0.02}
+bodies:
+  - name: block
+    mesh: {beam_grid: {size: [0.1, 0.02, 0.02], cells: [2, 1, 1]}}
+    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 1000}
+    model: external_free_body
+]=])
+run("tacta run with the external model" ${CMAKE_COMMAND} -E env TACTA_PLUGIN_PATH=${plugin_dir}
+    ${prefix}/bin/tacta run ${WORK_DIR}/free_body.yaml -q -o ${WORK_DIR}/free_body_out)
+file(READ ${WORK_DIR}/free_body_out/report.json report)
+if(NOT report MATCHES "external_free_body")
+  message(FATAL_ERROR "report.json does not name the external model:\n${report}")
 endif()
 
 if(EXISTS ${build}/engine_user)
@@ -62,4 +90,4 @@ if(EXISTS ${build}/engine_user)
     message(FATAL_ERROR "engine_user printed: ${run_output}")
   endif()
 endif()
-message(STATUS "installed package OK: external_demo listed from ${plugin_dir}")
+message(STATUS "installed package OK: external_demo listed, external_free_body ran, from ${plugin_dir}")

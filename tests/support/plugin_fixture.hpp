@@ -4,10 +4,12 @@
 
 #include <dlfcn.h>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "tacta/param_defaults.hpp"
 #include "tacta/plugin.h"
 
 namespace tacta::testing {
@@ -55,13 +57,17 @@ class LoadedPlugin {
   std::vector<const tacta_descriptor*> descriptors_;
 };
 
-// Default parameter values from a schema, as the engine would pass them when a scene sets none.
-inline std::vector<tacta_param_value> default_params(const tacta_descriptor& d) {
-  std::vector<tacta_param_value> values(d.param_count);
-  for (uint32_t i = 0; i < d.param_count; ++i) {
-    values[i].number = d.params[i].default_value;
-    values[i].text = d.params[i].default_text;
-  }
+// Default parameter values from a schema (tacta::defaults_of), as the engine passes them when a
+// scene sets none, as a vector a test may edit in place. The C views point into a shared ParamSet,
+// so copies and moves of this value stay valid; keep it as DefaultParams (or auto), not as a plain
+// std::vector, or the CHOICE names and VECTOR values it points to go away with it.
+struct DefaultParams : std::vector<tacta_param_value> {
+  std::shared_ptr<const ParamSet> storage;
+};
+inline DefaultParams default_params(const tacta_descriptor& d) {
+  DefaultParams values;
+  values.storage = std::make_shared<const ParamSet>(defaults_of(d));
+  values.assign(values.storage->data(), values.storage->data() + values.storage->size());
   return values;
 }
 

@@ -9,43 +9,12 @@
 #include <vector>
 
 #include "tacta/error.hpp"
+#include "tacta/param_set.hpp"
 #include "tacta/plugin.h"
 
 namespace tacta {
 
 using Vec3 = std::array<double, 3>;
-
-// Plugin parameter values resolved against the plugin's schema (schema order, defaults filled),
-// owning the storage that the C views in `values` point into.
-class ParamSet {
- public:
-  ParamSet() = default;
-  ParamSet(const ParamSet& other) { *this = other; }
-  ParamSet& operator=(const ParamSet& other);
-  ParamSet(ParamSet&&) noexcept = default;
-  ParamSet& operator=(ParamSet&&) noexcept = default;
-
-  // Appends one value (in schema order); text and vector storage are copied in.
-  void add_number(const std::string& name, double number);
-  void add_text(const std::string& name, const std::string& text, double choice_index = 0);
-  void add_vector(const std::string& name, std::vector<double> values);
-
-  const tacta_param_value* data() const { return values_.data(); }
-  uint32_t size() const { return static_cast<uint32_t>(values_.size()); }
-  const std::vector<std::string>& names() const { return names_; }
-  const tacta_param_value* find(const std::string& name) const;
-  // Sets an existing number value (REAL/INT/BOOL); false when there is no value of that name.
-  bool set_number(const std::string& name, double number);
-
- private:
-  void relink();  // re-points the C views after a copy or a growth
-  std::vector<std::string> names_;
-  std::vector<tacta_param_value> values_;
-  enum class Kind { Number, Text, Vector };
-  std::vector<Kind> kinds_;
-  std::vector<std::string> texts_;           // 1 per value; used by TEXT and CHOICE
-  std::vector<std::vector<double>> vectors_;  // 1 per value; used by VECTOR
-};
 
 struct MaterialDesc {
   double youngs_modulus = 0;      // E, Pa

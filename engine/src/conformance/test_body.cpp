@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
-#include "sim/param_defaults.hpp"
 #include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
+#include "tacta/param_defaults.hpp"
 
 namespace tacta::conformance {
 
@@ -30,7 +30,7 @@ std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool cla
                 static_cast<uint32_t>(m.triangles.size() / 3), m.triangles.data(),
                 static_cast<uint32_t>(m.quads.size() / 4), m.quads.data(),
                 static_cast<uint32_t>(m.edges.size() / 2), m.edges.data(), m.dimension};
-  body->params = complete_params(model, ParamSet{});
+  body->params = defaults_of(model);
   return body;
 }
 

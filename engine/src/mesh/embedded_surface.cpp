@@ -8,6 +8,7 @@
 
 #include "mesh/geometry.hpp"
 #include "tacta/error.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta {
 
@@ -227,7 +228,7 @@ void update_embedded_surface(EmbeddedSurface& s, const double* node_positions) n
   }
   for (size_t v = 0; v < s.vertex_count(); ++v) {
     double* n = &s.normals[3 * v];
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double length = norm(n);
     if (length > 0) n[0] /= length, n[1] /= length, n[2] /= length;
   }
 }

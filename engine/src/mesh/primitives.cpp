@@ -5,6 +5,7 @@
 
 #include "mesh/grid_tets.hpp"
 #include "tacta/mesh_build.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta {
 
@@ -103,7 +104,7 @@ VolumeMesh make_sphere(double radius, const Vec3& centre, int subdivisions) {
   for (size_t i = 0; i < mesh.node_count(); ++i) {
     double* p = &mesh.positions[3 * i];
     double shell = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
-    double length = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    double length = norm(p);
     double factor = length > 0 ? radius * shell / length : 0;
     for (int k = 0; k < 3; ++k) p[k] = centre[static_cast<size_t>(k)] + factor * p[k];
   }

@@ -51,13 +51,13 @@ Bounds frame_bounds(const RenderFrame& frame) {
 
 void fit_camera(RenderFrame& frame, const Vec3d& view_direction) {
   const Bounds bounds = frame_bounds(frame);
-  const Vec3d centre = scale(add(bounds.min, bounds.max), 0.5);
-  const double radius = std::max(0.5 * length(sub(bounds.max, bounds.min)), 1e-4);
+  const Vec3d centre = scaled(add(bounds.min, bounds.max), 0.5);
+  const double radius = std::max(0.5 * norm(sub(bounds.max, bounds.min)), 1e-4);
   const double half_fov = std::clamp(frame.camera.vertical_fov_rad, 0.05, 3.0) / 2;
   const double distance = 1.05 * radius / std::sin(half_fov);  // the bounding sphere just fits
   const Vec3d direction = normalized(view_direction, {0, 0, 1});
   frame.camera.target = centre;
-  frame.camera.eye = add(centre, scale(direction, distance));
+  frame.camera.eye = add(centre, scaled(direction, distance));
   frame.camera.up = std::fabs(direction[1]) > 0.999 ? Vec3d{0, 0, -1} : Vec3d{0, 1, 0};
 }
 

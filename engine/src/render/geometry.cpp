@@ -110,7 +110,7 @@ void append_sphere(const Vec3d& centre, double radius_m, const Rgb& colour, Draw
       const int quad[6] = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from outside
       for (int k : quad) {
         const Vec3d& nk = n[k];
-        out.triangles.push_back({to_f(add(centre, scale(nk, radius_m))), to_f(nk), colour});
+        out.triangles.push_back({to_f(add(centre, scaled(nk, radius_m))), to_f(nk), colour});
       }
     }
 }
@@ -122,11 +122,11 @@ void append_cube(const Vec3d& centre, double half_size_m, const Rgb& colour, Dra
       n[static_cast<size_t>(axis)] = sign;
       const Vec3d u = perpendicular(n);
       const Vec3d v = cross(n, u);
-      const Vec3d c = add(centre, scale(n, half_size_m));
-      const Vec3d p[4] = {add(c, scale(add(u, v), -half_size_m)),
-                          add(c, scale(sub(u, v), half_size_m)),
-                          add(c, scale(add(u, v), half_size_m)),
-                          add(c, scale(sub(v, u), half_size_m))};
+      const Vec3d c = add(centre, scaled(n, half_size_m));
+      const Vec3d p[4] = {add(c, scaled(add(u, v), -half_size_m)),
+                          add(c, scaled(sub(u, v), half_size_m)),
+                          add(c, scaled(add(u, v), half_size_m)),
+                          add(c, scaled(sub(v, u), half_size_m))};
       push_triangle(out, p[0], p[1], p[2], colour);
       push_triangle(out, p[0], p[2], p[3], colour);
     }
@@ -134,25 +134,25 @@ void append_cube(const Vec3d& centre, double half_size_m, const Rgb& colour, Dra
 
 void append_arrow(const Vec3d& from, const Vec3d& vector, double shaft_radius_m, const Rgb& colour,
                   DrawLists& out) {
-  const double total = length(vector);
+  const double total = norm(vector);
   if (!(total > 4 * shaft_radius_m)) return;
-  const Vec3d axis = scale(vector, 1.0 / total);
+  const Vec3d axis = scaled(vector, 1.0 / total);
   const Vec3d u = perpendicular(axis);
   const Vec3d v = cross(axis, u);
   const double head_length = std::min(0.3 * total, 8 * shaft_radius_m);
   const double head_radius = 2.5 * shaft_radius_m;
-  const Vec3d neck = add(from, scale(axis, total - head_length));
+  const Vec3d neck = add(from, scaled(axis, total - head_length));
   const Vec3d tip = add(from, vector);
   auto ring = [&](int side) {
     const double a = 2 * std::numbers::pi * side / kArrowSides;
-    return add(scale(u, std::cos(a)), scale(v, std::sin(a)));
+    return add(scaled(u, std::cos(a)), scaled(v, std::sin(a)));
   };
   for (int side = 0; side < kArrowSides; ++side) {
     const Vec3d r0 = ring(side);
     const Vec3d r1 = ring(side + 1);
     // Shaft: two triangles with radial normals.
-    const Vec3d a0 = add(from, scale(r0, shaft_radius_m)), a1 = add(from, scale(r1, shaft_radius_m));
-    const Vec3d b0 = add(neck, scale(r0, shaft_radius_m)), b1 = add(neck, scale(r1, shaft_radius_m));
+    const Vec3d a0 = add(from, scaled(r0, shaft_radius_m)), a1 = add(from, scaled(r1, shaft_radius_m));
+    const Vec3d b0 = add(neck, scaled(r0, shaft_radius_m)), b1 = add(neck, scaled(r1, shaft_radius_m));
     out.triangles.push_back({to_f(a0), to_f(r0), colour});
     out.triangles.push_back({to_f(a1), to_f(r1), colour});
     out.triangles.push_back({to_f(b1), to_f(r1), colour});
@@ -160,7 +160,7 @@ void append_arrow(const Vec3d& from, const Vec3d& vector, double shaft_radius_m,
     out.triangles.push_back({to_f(b1), to_f(r1), colour});
     out.triangles.push_back({to_f(b0), to_f(r0), colour});
     // Head: cone side and its base disc.
-    const Vec3d h0 = add(neck, scale(r0, head_radius)), h1 = add(neck, scale(r1, head_radius));
+    const Vec3d h0 = add(neck, scaled(r0, head_radius)), h1 = add(neck, scaled(r1, head_radius));
     push_triangle(out, h0, h1, tip, colour);
     push_triangle(out, neck, h1, h0, colour);
   }

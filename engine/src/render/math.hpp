@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tacta/render/frame.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::render::detail {
 
@@ -14,17 +15,15 @@ using Mat4 = std::array<float, 16>;  // column-major
 inline Vec3f to_f(const Vec3d& v) {
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
 }
-inline Vec3d add(const Vec3d& a, const Vec3d& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec3d scale(const Vec3d& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-inline double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double length(const Vec3d& a) { return std::sqrt(dot(a, a)); }
+using tacta::add;
+using tacta::cross;
+using tacta::dot;
+using tacta::norm;
+using tacta::scaled;
+using tacta::sub;
+// Unit vector along a; `fallback` (up, +y) when a has no direction.
 inline Vec3d normalized(const Vec3d& a, const Vec3d& fallback = {0, 1, 0}) {
-  const double n = length(a);
-  return n > 1e-300 ? scale(a, 1.0 / n) : fallback;
+  return tacta::normalized(a, fallback, 1e-300);
 }
 
 // Any unit vector perpendicular to the unit vector n.
@@ -36,8 +35,8 @@ inline Vec3d perpendicular(const Vec3d& n) {
 // Rotates v by the unit quaternion q = (w, x, y, z).
 inline Vec3d rotate(const std::array<double, 4>& q, const Vec3d& v) {
   const Vec3d u{q[1], q[2], q[3]};
-  const Vec3d t = scale(cross(u, v), 2.0);
-  return add(add(v, scale(t, q[0])), cross(u, t));
+  const Vec3d t = scaled(cross(u, v), 2.0);
+  return add(add(v, scaled(t, q[0])), cross(u, t));
 }
 
 // q scaled to unit length; the identity when q is zero or not finite.

@@ -108,19 +108,19 @@ void set_matrix(GLuint program, const char* name, const Mat4& m) {
 
 void build_scene(const RenderFrame& frame, const Bounds& bounds, DrawLists& out) {
   out.clear();
-  const double diagonal = length(sub(bounds.max, bounds.min));
+  const double diagonal = norm(sub(bounds.max, bounds.min));
   const double marker = std::max(diagonal * 0.006, 1e-5);  // m, half-size of node markers
   for (size_t i = 0; i < frame.bodies.size(); ++i) append_body(frame.bodies[i], i, marker, out);
   append_tool(frame.tool, kToolColour, out);
   if (frame.proxy) append_sphere(*frame.proxy, std::max(frame.tool.radius * 0.6, marker), kProxyColour, out);
   for (const ContactDraw& contact : frame.contacts) {
     append_sphere(contact.point, marker * 1.2, kContactColour, out);
-    const Vec3d tip = add(contact.point, scale(normalized(contact.normal), diagonal * 0.06));
+    const Vec3d tip = add(contact.point, scaled(normalized(contact.normal), diagonal * 0.06));
     out.lines.push_back({to_f(contact.point), kContactColour});
     out.lines.push_back({to_f(tip), kContactColour});
   }
   if (frame.tool.present)
-    append_arrow(frame.tool.position, scale(frame.force, frame.force_arrow_scale), marker * 1.2,
+    append_arrow(frame.tool.position, scaled(frame.force, frame.force_arrow_scale), marker * 1.2,
                  kForceColour, out);
   if (frame.floor_height) append_floor_grid(*frame.floor_height, bounds, out);
   if (frame.axes) append_axes(std::max(diagonal * 0.25, 1e-3), out);
@@ -143,9 +143,9 @@ void Renderer::draw(const RenderFrame& frame, int width, int height) {
   glDisable(GL_BLEND);
 
   // Clip planes from the scene's extent as seen from the eye, grid margin included.
-  const Vec3d centre = scale(add(bounds.min, bounds.max), 0.5);
-  const double radius = std::max(0.5 * length(sub(bounds.max, bounds.min)), 1e-3);
-  const double distance = length(sub(frame.camera.eye, centre));
+  const Vec3d centre = scaled(add(bounds.min, bounds.max), 0.5);
+  const double radius = std::max(0.5 * norm(sub(bounds.max, bounds.min)), 1e-3);
+  const double distance = norm(sub(frame.camera.eye, centre));
   const double far_m = distance + 6 * radius;
   const double near_m = std::max({far_m * 1e-4, distance - 6 * radius, 1e-5});
   const Mat4 view = look_at(frame.camera.eye, frame.camera.target, frame.camera.up);

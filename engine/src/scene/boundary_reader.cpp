@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "scene/readers.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::scene_detail {
 
@@ -82,7 +83,7 @@ PlateDesc read_plate(const Field& field, std::optional<uint64_t> node_count, std
   plate.point = field.require("point").vec3();
   const Field normal_field = field.require("normal");
   const Vec3 n = normal_field.vec3();
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double length = norm(n);
   if (!(length > 1e-12)) normal_field.fail_expected("a non-zero normal (from the plate into the body)");
   plate.normal = {n[0] / length, n[1] / length, n[2] / length};
   plate.motion = field.has("motion") ? read_series(field.require("motion")) : TimeSeriesDesc{{0.0}, {Vec3{0, 0, 0}}};

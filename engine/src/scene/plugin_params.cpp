@@ -7,36 +7,12 @@
 #include <sstream>
 
 #include "scene/did_you_mean.hpp"
+#include "tacta/param_defaults.hpp"
 #include "tacta/scene_loader.hpp"
 
 namespace tacta::scene_detail {
 
 namespace {
-
-std::vector<std::string> split_choices(const char* choices) {
-  std::vector<std::string> out;
-  if (choices == nullptr) return out;
-  std::string item;
-  for (const char* c = choices;; ++c) {
-    if (*c == '|' || *c == '\0') {
-      out.push_back(item);
-      item.clear();
-      if (*c == '\0') break;
-    } else {
-      item += *c;
-    }
-  }
-  return out;
-}
-
-std::vector<double> parse_default_vector(const char* text) {
-  std::vector<double> out;
-  if (text == nullptr) return out;
-  std::istringstream in(text);
-  double value = 0;
-  while (in >> value) out.push_back(value);
-  return out;
-}
 
 int64_t clamp_to_int64(double x) {
   if (!(x > -9.0e18)) return -9'000'000'000'000'000'000LL;
@@ -55,7 +31,7 @@ void add_given(ParamSet& set, const tacta_param_spec& spec, const Field& value) 
       return;
     case TACTA_PARAM_BOOL: set.add_number(spec.name, value.boolean() ? 1.0 : 0.0); return;
     case TACTA_PARAM_CHOICE: {
-      const std::vector<std::string> choices = split_choices(spec.choices);
+      const std::vector<std::string> choices = choice_names(spec);
       const std::string chosen = value.choice(choices);
       for (size_t i = 0; i < choices.size(); ++i)
         if (choices[i] == chosen) set.add_text(spec.name, chosen, static_cast<double>(i));
@@ -77,23 +53,6 @@ void add_given(ParamSet& set, const tacta_param_spec& spec, const Field& value) 
     }
     default: value.fail("the plugin declares an unknown type for parameter '" +
                         std::string(spec.name) + "'");
-  }
-}
-
-void add_default(ParamSet& set, const tacta_param_spec& spec) {
-  switch (spec.type) {
-    case TACTA_PARAM_CHOICE: {
-      const std::vector<std::string> choices = split_choices(spec.choices);
-      const size_t index = static_cast<size_t>(spec.default_value);
-      set.add_text(spec.name, index < choices.size() ? choices[index] : std::string(),
-                   spec.default_value);
-      return;
-    }
-    case TACTA_PARAM_TEXT:
-      set.add_text(spec.name, spec.default_text ? spec.default_text : "");
-      return;
-    case TACTA_PARAM_VECTOR: set.add_vector(spec.name, parse_default_vector(spec.default_text)); return;
-    default: set.add_number(spec.name, spec.default_value); return;
   }
 }
 

@@ -6,6 +6,7 @@
 #include "scene/did_you_mean.hpp"
 #include "scene/plugin_params.hpp"
 #include "scene/readers.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::scene_detail {
 
@@ -63,7 +64,7 @@ ShapeDesc read_shape(const Field& field) {
     body.check_keys({"normal", "offset"});
     if (auto f = body.get("normal")) {
       const Vec3 n = f->vec3();
-      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double length = norm(n);
       if (!(length > 0)) f->fail_expected("a non-zero normal vector");
       shape.normal = {n[0] / length, n[1] / length, n[2] / length};  // stored unit length
     }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta {
 
 HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) : collision_(collision) {
@@ -121,7 +123,7 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
     // now running is driven by the mean of the ticks since (BodyWorker::post does the same sums).
     m.refreshes_seen = body.refreshes;
     m.felt = m.posted;
-    m.posted = m.impulse_time > 0 ? haptics::scaled(m.impulse, 1.0 / m.impulse_time) : Vec3{0, 0, 0};
+    m.posted = m.impulse_time > 0 ? scaled(m.impulse, 1.0 / m.impulse_time) : Vec3{0, 0, 0};
     m.impulse = {0, 0, 0};
     m.impulse_time = 0;
     if (m.pressing) {
@@ -129,12 +131,12 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
       // saved_positions): the proxy moves with it.
       const Vec3 before = point_on_triangle(body, body.saved_positions, m.triangle, m.barycentric);
       const Vec3 after = point_on_triangle(body, body.positions, m.triangle, m.barycentric);
-      ch.renderer.carry_proxy(haptics::sub(after, before));
+      ch.renderer.carry_proxy(sub(after, before));
       // Secant point stiffness: the normal force the state felt over how far the pressed material
       // point has gone in since the contact began; smoothed, since one step is not a static state.
       const Vec3 now = point_on_triangle(body, body.positions, m.onset_triangle, m.onset_barycentric);
-      const double depth = haptics::dot(haptics::sub(m.onset_point, now), m.onset_normal);  // m
-      const double force = haptics::dot(m.felt, m.onset_normal);                          // N
+      const double depth = dot(sub(m.onset_point, now), m.onset_normal);  // m
+      const double force = dot(m.felt, m.onset_normal);                          // N
       if (depth > 1e-4 && force > 0.02) {
         const double measured = force / depth;  // N/m
         m.stiffness = m.stiffness > 0 ? 0.5 * m.stiffness + 0.5 * measured : measured;
@@ -155,14 +157,14 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
   // tried as a safety margin: worse force error on the liver and the block, docs/BENCHMARKS.md.)
   c.stiffness = m.stiffness;
   c.normal = m.onset_normal;
-  c.reference_force = std::max(0.0, haptics::dot(m.felt, m.onset_normal));
+  c.reference_force = std::max(0.0, dot(m.felt, m.onset_normal));
   ch.renderer.set_local_compliance(c);
 }
 
 void HapticInteraction::follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out, double dt) noexcept {
   LocalModel& m = ch.local;
   if (m.body < 0) return;
-  m.impulse = haptics::add_scaled(m.impulse, out.device_force, dt);
+  m.impulse = add_scaled(m.impulse, out.device_force, dt);
   m.impulse_time += dt;
   if (!out.in_contact || out.contact.body != m.body || out.contact.triangle < 0) {
     m.pressing = false;

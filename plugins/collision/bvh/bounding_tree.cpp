@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::collision {
 namespace {
 
@@ -33,10 +35,6 @@ Obb as_obb(const Aabb& b) {
   return o;
 }
 
-double dot3(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 double area(const Aabb& b) {
   if (b.empty()) return 0.0;
   const double x = b.hi[0] - b.lo[0], y = b.hi[1] - b.lo[1], z = b.hi[2] - b.lo[2];
@@ -50,15 +48,15 @@ bool overlaps(const Obb& a, const Obb& b) noexcept {
                           b.center[2] - a.center[2]};
   // Projection radius of a box on an axis, then the separating test.
   auto separated = [&](const std::array<double, 3>& axis) {
-    const double len2 = dot3(axis, axis);
+    const double len2 = dot(axis, axis);
     if (len2 < 1e-24) return false;  // parallel edge pair: that axis is covered by face axes
     double ra = 0.0, rb = 0.0;
     for (int k = 0; k < 3; ++k) {
-      ra += a.half[k] * std::abs(dot3(a.axes[k], axis));
-      rb += b.half[k] * std::abs(dot3(b.axes[k], axis));
+      ra += a.half[k] * std::abs(dot(a.axes[k], axis));
+      rb += b.half[k] * std::abs(dot(b.axes[k], axis));
     }
     // A small relative slack keeps the test conservative under rounding.
-    return std::abs(dot3(d, axis)) > (ra + rb) * (1.0 + 1e-12) + 1e-300;
+    return std::abs(dot(d, axis)) > (ra + rb) * (1.0 + 1e-12) + 1e-300;
   };
   for (int k = 0; k < 3; ++k)
     if (separated(a.axes[k]) || separated(b.axes[k])) return false;
@@ -189,7 +187,7 @@ void BoundingTree::refit(const ElementView& /*view*/) noexcept {
           for (int j = 0; j < 3; ++j) p[j] += s * child->volume.axes[k][j];
         }
         for (int k = 0; k < 3; ++k) {
-          const double q = dot3(p, n.volume.axes[k]);
+          const double q = dot(p, n.volume.axes[k]);
           lo[k] = std::min(lo[k], q);
           hi[k] = std::max(hi[k], q);
         }

@@ -5,12 +5,9 @@
 #include <array>
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::collision {
-
-using Vec3 = std::array<double, 3>;
-
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Closest point of triangle (a, b, c) to p by Voronoi regions; writes barycentric weights.
 inline Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
@@ -46,7 +43,7 @@ inline Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, con
 inline double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   std::array<double, 3> w;
   const Vec3 q = sub(p, closest_on_triangle(p, a, b, c, w));
-  return std::sqrt(dot(q, q));
+  return norm(q);
 }
 
 // First fraction s in [0, 1] at which a sphere of radius r moving from -> to touches the

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::collision {
 namespace {
-
-double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // One side of a contact: up to three vertices of a surface, or a point on a rigid shape.
 struct Side {

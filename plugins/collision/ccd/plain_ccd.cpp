@@ -4,22 +4,18 @@
 #include <array>
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::collision {
 namespace {
 
 using Vec = std::array<double, 3>;
 
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec point(const double* p, int index) { return {p[3 * index], p[3 * index + 1], p[3 * index + 2]}; }
 Vec lerp(const double* p, int index, double t) {
-  const Vec a = point(p, index), b = point(p, index + 4);
+  const Vec a = point_at(p, index), b = point_at(p, index + 4);
   return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double det(const Vec& a, const Vec& b, const Vec& c) { return dot(a, cross(b, c)); }
+double det(const Vec& a, const Vec& b, const Vec& c) { return triple(a, b, c); }
 
 // det(A0 + t A1, B0 + t B1, C0 + t C1) = c[0] + c[1] t + c[2] t^2 + c[3] t^3.
 std::array<double, 4> cubic(const Vec& a0, const Vec& a1, const Vec& b0, const Vec& b1,
@@ -87,10 +83,10 @@ int roots_in_unit(const std::array<double, 4>& c, std::array<double, 3>& roots) 
 
 CcdResult vertex_face_plain(const double* p) noexcept {
   CcdResult result;
-  const Vec e1a = sub(point(p, 2), point(p, 1)), e2a = sub(point(p, 3), point(p, 1));
-  const Vec wa = sub(point(p, 0), point(p, 1));
-  const Vec e1b = sub(point(p, 6), point(p, 5)), e2b = sub(point(p, 7), point(p, 5));
-  const Vec wb = sub(point(p, 4), point(p, 5));
+  const Vec e1a = sub(point_at(p, 2), point_at(p, 1)), e2a = sub(point_at(p, 3), point_at(p, 1));
+  const Vec wa = sub(point_at(p, 0), point_at(p, 1));
+  const Vec e1b = sub(point_at(p, 6), point_at(p, 5)), e2b = sub(point_at(p, 7), point_at(p, 5));
+  const Vec wb = sub(point_at(p, 4), point_at(p, 5));
   const std::array<double, 4> c =
       cubic(e1a, sub(e1b, e1a), e2a, sub(e2b, e2a), wa, sub(wb, wa));
   std::array<double, 3> roots{};
@@ -119,10 +115,10 @@ CcdResult vertex_face_plain(const double* p) noexcept {
 
 CcdResult edge_edge_plain(const double* p) noexcept {
   CcdResult result;
-  const Vec ea = sub(point(p, 1), point(p, 0)), eb = sub(point(p, 3), point(p, 2));
-  const Vec wa = sub(point(p, 2), point(p, 0));
-  const Vec ea1 = sub(point(p, 5), point(p, 4)), eb1 = sub(point(p, 7), point(p, 6));
-  const Vec wa1 = sub(point(p, 6), point(p, 4));
+  const Vec ea = sub(point_at(p, 1), point_at(p, 0)), eb = sub(point_at(p, 3), point_at(p, 2));
+  const Vec wa = sub(point_at(p, 2), point_at(p, 0));
+  const Vec ea1 = sub(point_at(p, 5), point_at(p, 4)), eb1 = sub(point_at(p, 7), point_at(p, 6));
+  const Vec wa1 = sub(point_at(p, 6), point_at(p, 4));
   const std::array<double, 4> c = cubic(ea, sub(ea1, ea), eb, sub(eb1, eb), wa, sub(wa1, wa));
   std::array<double, 3> roots{};
   const int count = roots_in_unit(c, roots);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 #include "plain_ccd.hpp"
 
 namespace tacta::collision {
@@ -19,11 +21,9 @@ void load(const tacta_collision_surface& s, uint32_t vertex, double* start, doub
 void unit_normal(const double* x, double* n) {
   const double a[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]};
   const double b[3] = {x[6] - x[0], x[7] - x[1], x[8] - x[2]};
-  n[0] = a[1] * b[2] - a[2] * b[1];
-  n[1] = a[2] * b[0] - a[0] * b[2];
-  n[2] = a[0] * b[1] - a[1] * b[0];
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (int k = 0; k < 3; ++k) n[k] = length > 0.0 ? n[k] / length : 0.0;
+  const Vec3 c = cross(a, b);
+  const double length = norm(c);
+  for (int k = 0; k < 3; ++k) n[k] = length > 0.0 ? c[k] / length : 0.0;
 }
 
 CcdResult run(bool vertex_face, const double* q, CcdMethod method, const CcdTolerance& tol) {
@@ -50,19 +50,17 @@ void finish(tacta_contact& c, const double* q, double thickness) {
   } else {
     const double ea[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]};
     const double eb[3] = {x[9] - x[6], x[10] - x[7], x[11] - x[8]};
-    n[0] = ea[1] * eb[2] - ea[2] * eb[1];
-    n[1] = ea[2] * eb[0] - ea[0] * eb[2];
-    n[2] = ea[0] * eb[1] - ea[1] * eb[0];
-    double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double scale = std::sqrt((ea[0] * ea[0] + ea[1] * ea[1] + ea[2] * ea[2]) *
-                                   (eb[0] * eb[0] + eb[1] * eb[1] + eb[2] * eb[2]));
+    const Vec3 normal = cross(ea, eb);
+    for (int k = 0; k < 3; ++k) n[k] = normal[k];
+    double length = norm(n);
+    const double scale = std::sqrt(dot(ea, ea) * dot(eb, eb));
     // Nearly parallel edges (under ~0.06 degrees): the cross product's direction is rounding
     // noise; use the separation of the two contact points at the start of the tick instead.
     if (!(length > 1e-3 * scale)) {
       for (int k = 0; k < 3; ++k)
         n[k] = c.weights_a[0] * q[k] + c.weights_a[1] * q[3 + k] + c.weights_a[2] * q[6 + k] -
                (c.weights_b[0] * q[3 + k] + c.weights_b[1] * q[6 + k] + c.weights_b[2] * q[9 + k]);
-      length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      length = norm(n);
     }
     for (int k = 0; k < 3; ++k) n[k] = length > 0.0 ? n[k] / length : 0.0;
   }

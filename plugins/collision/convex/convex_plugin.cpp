@@ -11,6 +11,7 @@
 
 #include "tacta/sdk/collision.hpp"
 #include "vertex_shape_contacts.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::collision {
 namespace {
@@ -40,7 +41,7 @@ void set_pose(ConvexObject& o) {
 void support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& o = *static_cast<const ConvexObject*>(object);
   const double d[3] = {dir->v[0], dir->v[1], dir->v[2]};
-  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double len = norm(d);
   const double u[3] = {len > 0 ? d[0] / len : 1, len > 0 ? d[1] / len : 0, len > 0 ? d[2] / len : 0};
   double world[3] = {0, 0, 0};
   double radius = o.grow;

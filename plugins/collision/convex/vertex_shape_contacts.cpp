@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::collision {
 namespace {
 
 constexpr int kAdvanceSteps = 64;  // conservative advancement: grazing paths stop here (no hit)
 
-double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const double* a) { return std::sqrt(dot(a, a)); }
 bool finite3(const double* a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
 
 // Rotation by unit quaternion q (w, x, y, z), or by its inverse.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hyperelastic_model.hpp"
+#include "solver_params.hpp"
 #include "tacta/sdk/model.hpp"
 
 namespace tacta::models::hyperelastic {
@@ -31,7 +32,8 @@ class HyperelasticPlugin {
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element.
   static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
-  static constexpr std::array<tacta_param_spec, 18> kParams = {
+  // Material and dynamic-step parameters; the static and linear solves come from sparse_solvers.
+  static constexpr std::array<tacta_param_spec, 9> kModelParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
                         "energy: compressible Neo-Hookean, St Venant-Kirchhoff, or compressible "
                         "Mooney-Rivlin (C10, C01, bulk modulus)"),
@@ -49,29 +51,16 @@ class HyperelasticPlugin {
                         "nu >= 0.45 and the law is neo_hookean or mooney_rivlin"),
       sdk::choice_param("tangent", "projected|exact", 0,
                         "projected: negative tangent eigenvalues set to 0 (robust); exact"),
-      sdk::choice_param("solve", "dynamic|static", 0,
-                        "dynamic: backward Euler steps; static: each step finds equilibrium "
-                        "under the current loads and held nodes (velocities 0)"),
       sdk::int_param("newton_iterations", 3, 1, 100, "dynamic: Newton iterations per step, at most"),
       sdk::real_param("newton_tolerance", "", 1e-3, 1e-14, 1.0,
                       "dynamic: Newton stops when the residual falls below this fraction of "
                       "its first value"),
-      sdk::int_param("load_steps", 1, 1, 10000, "static: increments per solve (halved on failure)"),
-      sdk::int_param("static_iterations", 25, 1, 1000, "static: Newton iterations per increment"),
-      sdk::real_param("static_tolerance", "", 1e-6, 1e-14, 1.0,
-                      "static: converged when |f_int + f_ext| on free nodes is below this "
-                      "fraction of the load (or reaction) norm"),
-      sdk::choice_param("solver", "pcg|cholesky", 0,
-                        "linear solver: preconditioned CG with fallbacks, or sparse LDL^T"),
-      sdk::choice_param("preconditioner", "jacobi|block_jacobi|incomplete_cholesky", 1,
-                        "CG preconditioner"),
-      sdk::int_param("max_iterations", 50, 1, 10000, "CG iterations per solve before the fallbacks"),
-      sdk::real_param("tolerance", "", 1e-6, 1e-14, 1.0,
-                      "CG stops when the residual falls below this fraction of the rhs"),
-      sdk::choice_param("fallback", "direct|restart|none", 0,
-                        "when CG has not converged: restart from zero with 8x the iterations "
-                        "then sparse LDL^T (direct); the restart only; or nothing"),
   };
+  static constexpr auto kParams = sparse::join_params(
+      kModelParams, sparse::static_param_specs("dynamic: backward Euler steps; static: each "
+                                                  "step finds equilibrium under the current "
+                                                  "loads and held nodes (velocities 0)"),
+      sparse::solver_param_specs({.max_iterations = 50, .tolerance = 1e-6}));
 
   explicit HyperelasticPlugin(const tacta_model_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);
@@ -97,18 +86,11 @@ class HyperelasticPlugin {
     options.volumetric = volumetric_choice(params.choice("volumetric"), m.law,
                                            material.poisson_ratio);
     options.project_tangent = params.choice("tangent") == 0;
-    options.mode = static_cast<SolveMode>(params.choice("solve"));
     options.newton_iterations = params.integer("newton_iterations");
     options.newton_tolerance = params.real("newton_tolerance");
-    options.load_steps = params.integer("load_steps");
-    options.static_iterations = params.integer("static_iterations");
-    options.static_tolerance = params.real("static_tolerance");
-    options.solver.solver = static_cast<sparse::LinearSolver>(params.choice("solver"));
-    options.solver.preconditioner =
-        static_cast<sparse::Preconditioner>(params.choice("preconditioner"));
-    options.solver.max_iterations = params.integer("max_iterations");
-    options.solver.tolerance = params.real("tolerance");
-    options.solver.fallback = static_cast<sparse::SolverFallback>(params.choice("fallback"));
+    options.mode = sparse::read_static_params(params, options) ? SolveMode::kStatic
+                                                               : SolveMode::kDynamic;
+    sparse::read_solver_params(params, options.solver);
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<HyperelasticModel>(
         *setup.mesh, material, std::span<const double>(setup.masses, n),
@@ -122,20 +104,19 @@ class HyperelasticPlugin {
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
     const NewtonCounters& c = model_->counters();
-    const auto solver = sparse::named_counters(model_->solver_counters());
-    std::array<tacta_model_counter, 9 + solver.size()> all = {{
-        {"steps", static_cast<double>(c.steps)},
-        {"newton_iterations", static_cast<double>(c.newton_iterations)},
-        {"line_search_backtracks", static_cast<double>(c.line_search_backtracks)},
-        {"unconverged_steps", static_cast<double>(c.unconverged_steps)},
-        {"static_solves", static_cast<double>(c.static_solves)},
-        {"load_increments", static_cast<double>(c.load_increments)},
-        {"load_cuts", static_cast<double>(c.load_cuts)},
-        {"inverted_element_steps", static_cast<double>(c.inverted_element_steps)},
-        {"last_static_residual_N", c.last_static_residual},
-    }};
-    for (size_t i = 0; i < solver.size(); ++i) all[9 + i] = solver[i];
-    return sdk::copy_counters(all.data(), static_cast<uint32_t>(all.size()), out, capacity);
+    return sparse::report_counters(
+        std::array<tacta_model_counter, 9>{{
+            {"steps", static_cast<double>(c.steps)},
+            {"newton_iterations", static_cast<double>(c.newton_iterations)},
+            {"line_search_backtracks", static_cast<double>(c.line_search_backtracks)},
+            {"unconverged_steps", static_cast<double>(c.unconverged_steps)},
+            {"static_solves", static_cast<double>(c.static_solves)},
+            {"load_increments", static_cast<double>(c.load_increments)},
+            {"load_cuts", static_cast<double>(c.load_cuts)},
+            {"inverted_element_steps", static_cast<double>(c.inverted_element_steps)},
+            {"last_static_residual_N", c.last_static_residual},
+        }},
+        model_->solver_counters(), out, capacity);
   }
 
  private:

@@ -39,7 +39,7 @@ struct MouseInstance {
     return t;
   }
   const tacta_device_api& api;
-  std::vector<tacta_param_value> params;
+  testing::DefaultParams params;
   void* instance = nullptr;
 };
 

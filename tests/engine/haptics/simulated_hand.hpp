@@ -6,7 +6,7 @@
 
 #include <functional>
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics::testing {
 

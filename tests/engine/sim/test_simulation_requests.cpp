@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
+#include "tacta/param_defaults.hpp"
 
 namespace tacta::simtest {
 namespace {
@@ -24,31 +25,6 @@ bodies:
     model: tensor_mass
     fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
 )";
-
-// A complete parameter set holding a plugin's schema defaults, as the viewer builds one.
-ParamSet schema_defaults(const tacta_descriptor& d) {
-  ParamSet params;
-  for (uint32_t i = 0; i < d.param_count; ++i) {
-    const tacta_param_spec& p = d.params[i];
-    const std::string text = p.default_text != nullptr ? p.default_text : "";
-    if (p.type == TACTA_PARAM_CHOICE) {
-      std::string choices = p.choices != nullptr ? p.choices : "";
-      for (int k = 0; k < static_cast<int>(p.default_value) && choices.find('|') != std::string::npos; ++k)
-        choices = choices.substr(choices.find('|') + 1);
-      params.add_text(p.name, choices.substr(0, choices.find('|')), p.default_value);
-    } else if (p.type == TACTA_PARAM_TEXT) {
-      params.add_text(p.name, text);
-    } else if (p.type == TACTA_PARAM_VECTOR) {
-      std::vector<double> values;
-      std::istringstream in(text);
-      for (double v; in >> v;) values.push_back(v);
-      params.add_vector(p.name, values);
-    } else {
-      params.add_number(p.name, p.default_value);
-    }
-  }
-  return params;
-}
 
 TEST(SimulationRequests, SwapWithDefaultParametersBeforeRun) {
   Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
@@ -110,7 +86,7 @@ TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
   RunResult result;
   std::thread runner([&] { result = simulation.run(options); });
   while (!started.running.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  const ParamSet params = schema_defaults(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
+  const ParamSet params = defaults_of(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
   simulation.request_model_swap(0, "corotational_fem", params);
   runner.join();
   EXPECT_EQ(result.mode, "realtime");

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,11 +16,9 @@ class DeviceParams {
  public:
   explicit DeviceParams(const tacta_descriptor& d)
       : descriptor_(d), values_(default_params(d)), vectors_(d.param_count), texts_(d.param_count) {
-    for (uint32_t i = 0; i < d.param_count; ++i) {
-      if (d.params[i].type != TACTA_PARAM_VECTOR || d.params[i].default_text == nullptr) continue;
-      std::istringstream in(d.params[i].default_text);
-      for (double v; in >> v;) vectors_[i].push_back(v);
-    }
+    for (uint32_t i = 0; i < d.param_count; ++i)
+      if (values_[i].values != nullptr)
+        vectors_[i].assign(values_[i].values, values_[i].values + values_[i].count);
   }
   DeviceParams& number(const std::string& name, double v) { values_[index(name)].number = v; return *this; }
   DeviceParams& vector(const std::string& name, std::vector<double> v) { vectors_[index(name)] = std::move(v); return *this; }
@@ -51,7 +48,7 @@ class DeviceParams {
     throw std::runtime_error("no parameter " + name);
   }
   const tacta_descriptor& descriptor_;
-  std::vector<tacta_param_value> values_;
+  DefaultParams values_;
   std::vector<std::vector<double>> vectors_;
   std::vector<std::string> texts_;
   std::string base_directory_;

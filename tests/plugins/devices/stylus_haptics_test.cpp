@@ -32,7 +32,7 @@ struct StylusHapticsTest : ::testing::Test {
       const tacta_device_sample s = device.read(t);
       const auto r = renderer.tick(tissue, t, {s.position[0], s.position[1], s.position[2]},
                                    {s.velocity[0], s.velocity[1], s.velocity[2]}, 1e-3);
-      EXPECT_LE(haptics::norm(r.device_force), rp.peak_force) << "t = " << t;
+      EXPECT_LE(norm(r.device_force), rp.peak_force) << "t = " << t;
       device.write(t, r.device_force[0], r.device_force[1], r.device_force[2]);
     }
     return renderer.stats();

@@ -30,7 +30,7 @@
 
 #include <limits>
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

@@ -3,7 +3,7 @@
 // NaN from a model gives zero force in the same tick.
 #pragma once
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

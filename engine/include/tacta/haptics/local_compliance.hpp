@@ -15,7 +15,7 @@
 // contact; e.g. Cavusoglu and Tendick, ICRA 2000), here reduced to the normal direction.
 #pragma once
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

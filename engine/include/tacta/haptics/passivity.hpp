@@ -13,7 +13,7 @@
 // for b < 2 m / dt on a device of mass m). Any energy the coupling would inject is dissipated.
 #pragma once
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

@@ -3,7 +3,7 @@
 // Both queries run in the 1 kHz path: noexcept, no allocation.
 #pragma once
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

@@ -3,7 +3,7 @@
 // the reaction, its negative, acts on the proxy and through it on the touched body.
 #pragma once
 
-#include "tacta/haptics/vector_math.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::haptics {
 

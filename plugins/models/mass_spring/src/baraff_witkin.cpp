@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mass_spring_model.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::models {
 
@@ -55,7 +56,7 @@ void BaraffWitkinSolver::assemble(const MassSpringModel& model, const double* x,
   for (size_t s = 0; s < springs.size(); ++s) {
     const uint32_t a = springs.ends[2 * s], b = springs.ends[2 * s + 1];
     double n[3] = {x[3 * b] - x[3 * a], x[3 * b + 1] - x[3 * a + 1], x[3 * b + 2] - x[3 * a + 2]};
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double length = norm(n);
     double* jac = &jacobian_[9 * s];  // K_s = -df_a/dx_a, N/m (positive semi-definite)
     if (!(length > 0)) {
       for (int k = 0; k < 9; ++k) jac[k] = 0.0;

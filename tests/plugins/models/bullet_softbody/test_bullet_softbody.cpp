@@ -22,7 +22,7 @@ struct PluginRun {
   LoadedPlugin plugin{"tacta_bullet_softbody.so"};
   const tacta_descriptor& descriptor = plugin.descriptor("bullet_softbody");
   const tacta_model_api& api = plugin.api<tacta_model_api>("bullet_softbody");
-  std::vector<tacta_param_value> params = tacta::testing::default_params(descriptor);
+  tacta::testing::DefaultParams params = tacta::testing::default_params(descriptor);
   tacta_material material = tacta::models::make_material(1e5, 0.3, 1000.0);
 
   void* create(const TestMesh& mesh, const tacta_mesh_view& view, char* message, size_t size) {

@@ -32,7 +32,7 @@ struct Cantilever {
   tacta::models::TestMesh mesh;
   tacta_mesh_view view;
   tacta_material material;
-  std::vector<tacta_param_value> params;
+  tacta::testing::DefaultParams params;
   tacta_model_setup setup;
 };
 

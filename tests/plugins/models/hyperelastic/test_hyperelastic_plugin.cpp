@@ -37,7 +37,7 @@ TEST(HyperelasticPlugin, EveryMaterialStepsABeamUnderGravity) {
     mesh.fix_plane(2, 0.0);
     const tacta_mesh_view view = mesh.view();
     const tacta_material elastic = tacta::models::make_material(2e6, 0.45, 1100);
-    std::vector<tacta_param_value> params = tacta::testing::default_params(d);
+    auto params = tacta::testing::default_params(d);
     const uint32_t choice = index_of(d, "material");
     params[choice].text = material;
     params[choice].number = std::string(material) == "neo_hookean" ? 0 : std::string(material) == "stvk" ? 1 : 2;
@@ -74,7 +74,7 @@ TEST(HyperelasticPlugin, RefusesBadInputWithAMessage) {
   tacta::models::TestMesh mesh = tacta::models::box_tet_mesh({1, 1, 2}, {0.02, 0.02, 0.04}, 1100);
   const tacta_mesh_view view = mesh.view();
   const tacta_material elastic = tacta::models::make_material(2e6, 0.45, 1100);
-  std::vector<tacta_param_value> params = tacta::testing::default_params(d);
+  auto params = tacta::testing::default_params(d);
   tacta_model_setup setup{sizeof(tacta_model_setup), &view, &elastic, mesh.masses.data(),
                           mesh.fixed.data(), params.data(), d.param_count, 1e-3, nullptr};
   void* instance = nullptr;
