@@ -77,6 +77,7 @@ ClockSession::ClockSession(World& world, HapticInteraction* haptics, CollisionRe
     : initial_energy_J(begin_models(world)),
       world_(world),
       dt_(1.0 / world.scene().clock.haptic_rate_hz),
+      frame_clock_{1.0 / world.scene().clock.render_rate_hz},
       scene_static_(describe_scene(world)),
       snapshots_(HapticLoop::make_prototype(world)),
       loop_(world, snapshots_, 0, 0.0),
@@ -115,7 +116,6 @@ void ClockSession::start_workers(bool lockstep, uint64_t ticks) {
 uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
   reserve(ticks);
   start_workers(true, ticks);
-  const double frame_period = 1.0 / world_.scene().clock.render_rate_hz;
   if (tick_ == 0) {
     loop_.publish(0.0);
     render_.frame(0.0);
@@ -127,9 +127,7 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
     const bool keep_going = loop_.tick(tick_, time(), dt_);
     step_ms_.record(std::chrono::duration<double, std::milli>(SteadyClock::now() - t0).count());
     ++tick_;
-    // A frame when simulated time crosses k / render_rate (1 ns tolerance against rounding).
-    if (time() + 1e-9 >= static_cast<double>(next_frame_) * frame_period || !keep_going) {
-      while (time() + 1e-9 >= static_cast<double>(next_frame_) * frame_period) ++next_frame_;
+    if (frame_clock_.due(time()) || !keep_going) {
       loop_.publish(time());
       render_.frame(time());
       ++frames_;
@@ -154,7 +152,7 @@ ScheduleResult ClockSession::run(const ScheduleOptions& options) {
   // (and its state hash) includes it; the next batch starts them again in its own mode.
   loop_.stop_workers();
   workers_mode_ = -1;
-  next_frame_ = static_cast<uint64_t>(time() * world_.scene().clock.render_rate_hz + 1e-9) + 1;
+  frame_clock_.due(time());  // the run drew its own frames: the next step's frame is past its end
   return last_run_;
 }
 

@@ -67,7 +67,7 @@ class ClockSession {
   World& world_;
   double dt_;
   uint64_t tick_ = 0;
-  uint64_t next_frame_ = 1;  // index of the next 1/render_rate boundary of simulated time
+  FrameClock frame_clock_;  // 1/render_rate boundaries of simulated time, for step()
   SceneStatic scene_static_;
   TripleBuffer<Snapshot> snapshots_;
   HapticLoop loop_;

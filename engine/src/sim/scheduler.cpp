@@ -24,19 +24,6 @@ uint64_t tick_count(const ScheduleOptions& o) {
   return static_cast<uint64_t>(std::llround(o.duration_s * o.haptic_rate_hz));
 }
 
-// Index of the last tick before which a frame boundary falls: frames happen when simulated time
-// crosses k / render_rate, checked after each tick.
-struct FrameClock {
-  double period_s;
-  uint64_t next_frame = 1;
-  bool due(double time_s) {
-    // A small tolerance (1 ns) keeps 1/60 s boundaries from slipping a tick through rounding.
-    if (time_s + 1e-9 < static_cast<double>(next_frame) * period_s) return false;
-    while (time_s + 1e-9 >= static_cast<double>(next_frame) * period_s) ++next_frame;
-    return true;
-  }
-};
-
 constexpr double kWarmUpS = 1.0;  // s into the run when memory_warm is taken
 
 bool stop_requested(const ScheduleOptions& o) {

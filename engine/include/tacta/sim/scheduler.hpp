@@ -32,6 +32,20 @@ class RenderTask {
 
 enum class ClockMode { Lockstep, Realtime };
 
+// Frame boundaries of simulated time: a frame falls due when time crosses k / render_rate,
+// checked after each tick (by the lockstep scheduler and by Simulation::step).
+struct FrameClock {
+  double period_s;
+  uint64_t next_frame = 1;
+  // True when a boundary was crossed; moves past every boundary up to `time_s`.
+  bool due(double time_s) {
+    // A small tolerance (1 ns) keeps 1/60 s boundaries from slipping a tick through rounding.
+    if (time_s + 1e-9 < static_cast<double>(next_frame) * period_s) return false;
+    while (time_s + 1e-9 >= static_cast<double>(next_frame) * period_s) ++next_frame;
+    return true;
+  }
+};
+
 struct ScheduleOptions {
   ClockMode mode = ClockMode::Lockstep;
   double haptic_rate_hz = 1000;
