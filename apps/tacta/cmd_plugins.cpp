@@ -11,6 +11,7 @@
 #include "tacta/error.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/json.hpp"
+#include "tacta/live_params.hpp"
 #include "tacta/plugin_registry.hpp"
 
 namespace {
@@ -49,9 +50,10 @@ std::string short_number(double v) {
 }
 
 // One line per parameter: name, type, unit, default, range or choices, help.
-std::string describe_param(const tacta_param_spec& p) {
+std::string describe_param(const tacta_param_spec& p, bool live) {
   std::string line = std::string(p.name) + " (" + type_name(p.type);
   if (p.unit && p.unit[0]) line += std::string(", ") + p.unit;
+  if (live) line += ", live";
   line += ")";
   switch (p.type) {
     case TACTA_PARAM_REAL:
@@ -90,7 +92,8 @@ void print_text(const tacta::PluginRegistry& registry) {
               << ": " << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
     if (d.kind == TACTA_KIND_COLLISION) std::cout << "  roles: " << collision_roles_text(d) << "\n";
     if (d.param_count == 0) std::cout << "  parameters: none\n";
-    for (uint32_t i = 0; i < d.param_count; ++i) std::cout << "  - " << describe_param(d.params[i]) << "\n";
+    for (uint32_t i = 0; i < d.param_count; ++i)
+      std::cout << "  - " << describe_param(d.params[i], tacta::is_live_param(d, d.params[i].name)) << "\n";
   }
   const auto& refused = registry.refused();
   if (!refused.empty()) {
@@ -99,9 +102,10 @@ void print_text(const tacta::PluginRegistry& registry) {
   }
 }
 
-void write_param(tacta::JsonWriter& json, const tacta_param_spec& p) {
+void write_param(tacta::JsonWriter& json, const tacta_param_spec& p, bool live) {
   json.begin_object();
   json.field("name", p.name).field("type", type_name(p.type)).field("unit", p.unit ? p.unit : "");
+  json.field("live", live);
   switch (p.type) {
     case TACTA_PARAM_REAL:
     case TACTA_PARAM_INT:
@@ -150,7 +154,8 @@ void print_json(const tacta::PluginRegistry& registry) {
       json.end_array().field("roles_guessed", guessed != 0);
     }
     json.key("parameters").begin_array();
-    for (uint32_t i = 0; i < d.param_count; ++i) write_param(json, d.params[i]);
+    for (uint32_t i = 0; i < d.param_count; ++i)
+      write_param(json, d.params[i], tacta::is_live_param(d, d.params[i].name));
     json.end_array();
     json.end_object();
   }

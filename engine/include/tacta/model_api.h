@@ -140,11 +140,21 @@ typedef struct tacta_model_api {
   /* optional, appended (0 when api_size does not reach it): TACTA_MODEL_CLAIM_* bits. A plain
    * flag word, not an entry: an older host simply never reads it, so the ABI minor stays. */
   uint32_t claims;
+  /* optional, appended (NULL when api_size does not reach it): the parameters set_param changes
+   * between steps without rebuilding the instance, as "name|name"; the engine changes any other
+   * parameter by a swap to a fresh instance. Only REAL, INT and BOOL parameters can be live. */
+  const char* live_params;
 } tacta_model_api;
 
 /* The claims of a model table whose plugin saw api_size bytes of it (0 for an older plugin). */
 static inline uint32_t tacta_model_claims(const tacta_model_api* api, uint32_t api_size) {
   return api_size >= offsetof(tacta_model_api, claims) + sizeof(uint32_t) ? api->claims : 0u;
+}
+
+/* The live parameter list of a model table ("a|b"), NULL when the plugin has none or is older. */
+static inline const char* tacta_model_live_params(const tacta_model_api* api, uint32_t api_size) {
+  return api_size >= offsetof(tacta_model_api, live_params) + sizeof(const char*) ? api->live_params
+                                                                                   : NULL;
 }
 
 #define TACTA_MODEL_API_FIELD(member, required) \

@@ -18,6 +18,7 @@ CheckResult check_net_force(const tacta_descriptor& model);
 CheckResult check_step_allocations(const tacta_descriptor& model, const AllocationProbe& probe);
 CheckResult check_nan_reported(const tacta_descriptor& model);
 CheckResult check_worker_thread(const tacta_descriptor& model);
+CheckResult check_live_params(const tacta_descriptor& model);
 
 // The descriptor's TACTA_MODEL_CLAIM_* bits.
 uint32_t claims_of(const tacta_descriptor& model);

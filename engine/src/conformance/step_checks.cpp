@@ -2,9 +2,11 @@
 // NaN it is handed, and gives the same state whichever thread calls it.
 #include <cmath>
 #include <thread>
+#include <algorithm>
 
 #include "conformance/checks.hpp"
 #include "conformance/test_body.hpp"
+#include "tacta/live_params.hpp"
 
 namespace tacta::conformance {
 
@@ -99,6 +101,38 @@ CheckResult check_worker_thread(const tacta_descriptor& model) {
           "max |x(this thread) - x(worker)| " + figure(worst) + " m after " +
               std::to_string(2 * kCountedSteps) + " steps, limit " + figure(limit) + " m",
           worst <= limit ? Verdict::Pass : Verdict::Fail};
+}
+
+}  // namespace tacta::conformance
+
+namespace tacta::conformance {
+
+CheckResult check_live_params(const tacta_descriptor& model) {
+  const char* name = "live parameters";
+  const std::vector<std::string> live = live_param_names(model);
+  if (live.empty()) return {name, "the model lists no live parameter", Verdict::Skip};
+  // Setting each live parameter to the value it already has, mid-run, must be accepted and must
+  // leave the motion exactly as it was: set_param changes a limit, it does not restart the model.
+  Sagging plain(model), touched(model);
+  plain.steps(2 * kCountedSteps);
+  touched.steps(kCountedSteps);
+  for (const std::string& param : live) {
+    uint32_t index = 0;
+    while (index < model.param_count && param != model.params[index].name) ++index;
+    std::string why;
+    const tacta_param_value value{model.params[index].default_value, nullptr, nullptr, 0};
+    if (!touched.model->set_param(index, value, why))
+      return {name, "set_param('" + param + "') refused its own default: " + why, Verdict::Fail};
+  }
+  touched.steps(kCountedSteps);
+  double worst = 0;
+  for (size_t i = 0; i < plain.state.x.size(); ++i)
+    worst = std::max(worst, std::abs(plain.state.x[i] - touched.state.x[i]));
+  if (!all_finite(touched.state.x)) worst = std::nan("");
+  return {name,
+          std::to_string(live.size()) + " live, each set to its value mid-run: max |dx| " +
+              figure(worst) + " m against the untouched run, limit 0",
+          worst == 0 ? Verdict::Pass : Verdict::Fail};
 }
 
 }  // namespace tacta::conformance

@@ -46,6 +46,7 @@ std::vector<CheckResult> check_model(const tacta_descriptor& model, const Alloca
       {"no allocation in step", [&] { return check_step_allocations(model, probe); }},
       {"NaN input reported", [&] { return check_nan_reported(model); }},
       {"step on a worker thread", [&] { return check_worker_thread(model); }},
+      {"live parameters", [&] { return check_live_params(model); }},
   };
   for (const auto& [name, check] : checks) results.push_back(guarded(name, check));
   return results;

@@ -7,8 +7,10 @@
 #include <cstring>
 #include <set>
 #include <string_view>
+#include <vector>
 
 #include "tacta/device_api.h"
+#include "tacta/live_params.hpp"
 #include "tacta/model_api.h"
 #if __has_include("tacta/collision_api.h")
 #include "tacta/collision_api.h"
@@ -97,6 +99,23 @@ std::optional<std::string> check_api(const tacta_descriptor& d) {
   return std::nullopt;
 }
 
+// A live list names parameters of the schema that set_param can take: numbers, and an entry.
+std::optional<std::string> check_live_params(const tacta_descriptor& d) {
+  const std::vector<std::string> live = live_param_names(d);
+  if (live.empty()) return std::nullopt;
+  if (static_cast<const tacta_model_api*>(d.api)->set_param == nullptr)
+    return std::string("live_params lists parameters but set_param is NULL");
+  for (const std::string& name : live) {
+    const tacta_param_spec* spec = nullptr;
+    for (uint32_t i = 0; i < d.param_count; ++i)
+      if (name == d.params[i].name) spec = &d.params[i];
+    if (spec == nullptr) return "live_params names '" + name + "', which is not a parameter";
+    if (spec->type != TACTA_PARAM_REAL && spec->type != TACTA_PARAM_INT && spec->type != TACTA_PARAM_BOOL)
+      return "live parameter '" + name + "' is not a number (REAL, INT or BOOL)";
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> check_param(const tacta_param_spec& spec) {
@@ -150,6 +169,7 @@ std::optional<std::string> check_descriptor(const tacta_descriptor* d, uint64_t 
     if (auto bad = check_param(spec)) return label + ": parameter '" + spec.name + "': " + *bad;
   }
   if (auto bad = check_api(*d)) return label + ": " + *bad;
+  if (auto bad = check_live_params(*d)) return label + ": " + *bad;
   return std::nullopt;
 }
 

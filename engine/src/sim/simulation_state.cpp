@@ -8,6 +8,7 @@
 #include "../report/run_outputs.hpp"
 #include "run_status.hpp"
 #include "simulation_impl.hpp"
+#include "tacta/live_params.hpp"
 
 namespace tacta {
 
@@ -190,10 +191,12 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
                                 "] " + spec.unit + ", found " + std::to_string(value));
   ParamSet params = complete_params(d, asked);
   params.set_number(name, value);
-  // Live only while nothing steps the model and no swap waits: between steps, on a haptic-thread body.
+  // A live parameter (the schema's live list) changes in place while nothing steps the model and no
+  // swap waits: between steps, on a haptic-thread body. Any other change is a swap.
   const bool quiet = !impl_->running.load() && !b.own_thread && !pending;
   std::string why;
-  if (quiet && b.model->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {
+  if (quiet && is_live_param(d, name) &&
+      b.model->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {
     impl_->requested_params[body] = std::move(params);
     return true;
   }

@@ -24,6 +24,8 @@ class CorotationalFemPlugin {
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element.
   static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  // The solver's limits; rotation, solver and preconditioner size the buffers built at creation.
+  static constexpr const char* kLiveParams = "max_iterations|tolerance|refactor_interval";
   static constexpr auto kParams = sparse::join_params(
       std::array{sdk::choice_param("rotation", "polar|svd", 0,
                                    "element rotation: polar (warm-started iteration) or svd "

@@ -109,4 +109,23 @@ TEST(DescriptorCheck, RefusesInsaneParameters) {
   EXPECT_NE(refusal(make_model(nullptr, 3)).find("params is NULL"), std::string::npos);
 }
 
+TEST(DescriptorCheck, LiveParametersMustBeNumbersOfTheSchemaWithASetParamEntry) {
+  using namespace tacta::sdk;
+  const tacta_param_spec params[] = {real_param("damping", "1/s", 1, 0, 10, ""),
+                                     choice_param("solver", "cg|ldlt", 0, "")};
+  tacta_model_api api = kFullApi;
+  const auto with = [&](const char* live) {
+    api.live_params = live;
+    tacta_descriptor d = make_model(params, 2);
+    d.api = &api;
+    return refusal(d);
+  };
+  EXPECT_NE(with("damping").find("set_param is NULL"), std::string::npos) << with("damping");
+  api.set_param = [](void*, uint32_t, const tacta_param_value*, char*, size_t) { return TACTA_OK; };
+  EXPECT_EQ(with("damping"), "<accepted>");
+  EXPECT_EQ(with(nullptr), "<accepted>");
+  EXPECT_NE(with("damping|stiffness").find("'stiffness', which is not a parameter"), std::string::npos);
+  EXPECT_NE(with("solver").find("'solver' is not a number"), std::string::npos) << with("solver");
+}
+
 }  // namespace

@@ -14,6 +14,7 @@
 //   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept
 //   std::string describe() const          what the instance chose that its parameters did not say
 //   static constexpr uint32_t kClaims      TACTA_MODEL_CLAIM_* bits (checked by tacta check-plugin)
+//   static constexpr const char* kLiveParams  "a|b": what set_param changes without a swap
 #pragma once
 
 #include <cstring>
@@ -90,6 +91,7 @@ struct ModelAdapter {
       api.counters = &counters;
     if constexpr (requires(const T& t) { t.describe(); }) api.describe = &describe;
     if constexpr (requires { T::kClaims; }) api.claims = T::kClaims;
+    if constexpr (requires { T::kLiveParams; }) api.live_params = T::kLiveParams;
     return api;
   }
 };

@@ -137,8 +137,9 @@ class Simulation {
   void clear_applied_forces(size_t body);
   double kinetic_energy(size_t body) const;  // J
   double elastic_energy(size_t body) const;  // J
-  // Changes one model parameter between steps: live when the model takes it without rebuilding
-  // (its set_param entry), else by a swap to the same model with the new value. Throws InputError.
+  // Changes one model parameter between steps: live when the schema marks it so (the model's
+  // live_params) and its set_param takes it, else by a swap to the same model with the new value.
+  // Throws InputError.
   // Returns true when the change was live, false when it took a swap (applied at the next tick).
   bool set_param(size_t body, const std::string& name, double value);
   const ParamSet& body_params(size_t body) const;  // the model's parameters as last asked for

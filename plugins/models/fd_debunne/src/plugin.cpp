@@ -17,6 +17,7 @@ class FdDebunnePlugin {
   static constexpr uint32_t kVersion = 10000;
   // Finite differences on the edge graph: neither rotation-invariant nor momentum-conserving.
   static constexpr uint32_t kClaims = 0;
+  static constexpr const char* kLiveParams = "damping";
   static constexpr std::array<tacta_param_spec, 5> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|explicit_euler", 0,
                                "time integrator; explicit_euler is the paper's forward Euler"),
