@@ -98,6 +98,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     j.key("models_run").begin_array();
     for (const auto& [time, model] : runs) j.begin_object().field("time_s", time).field("model", model).end_object();
     j.end_array();
+    j.field("models_run_unlisted", body.runtime_swaps_unlisted);
     j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
     write_mesh_origin(j, b, body.topology->load);
     j.field("model_notes", body.model->describe());
@@ -250,6 +251,7 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   }
   j.end_array();
   j.field("dropped_records", loop.trace().dropped() + loop.trajectory().dropped() + loop.energy().dropped());
+  j.field("dropped_faults", loop.faults().dropped());
   j.field("state_hash", result.state_hash);
   j.key("outputs").begin_array();
   for (const std::string& o : result.outputs) j.value(o);

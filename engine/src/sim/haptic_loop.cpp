@@ -164,6 +164,7 @@ void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
     } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
                                                        std::memory_order_relaxed));
     if (b.runtime_swaps.size() < b.runtime_swaps.capacity()) b.runtime_swaps.push_back({time, incoming->name()});
+    else ++b.runtime_swaps_unlisted;
     b.model->begin(b.state_view(time), dt);
   }
 }

@@ -81,6 +81,7 @@ struct SoftBody {
   std::string initial_model;             // the scene's model; later ones are in swaps/runtime_swaps
   std::unique_ptr<ModelMailbox> mailbox = std::make_unique<ModelMailbox>();
   std::vector<RuntimeSwap> runtime_swaps;  // reserved at load; swaps past its capacity go unlisted
+  uint64_t runtime_swaps_unlisted = 0;     // and are counted here (report.json models_run_unlisted)
   BodyFault fault;
   double divergence_limit_m = 1;  // displacement beyond which the body counts as diverged
   double max_displacement_m = 0;  // over the whole run
