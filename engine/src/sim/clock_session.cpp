@@ -122,10 +122,12 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
     ++frames_;
   }
   uint64_t ran = 0;
+  step_status_ = {};
   for (; ran < ticks; ++ran) {
     const auto t0 = SteadyClock::now();
     const bool keep_going = loop_.tick(tick_, time(), dt_);
     step_ms_.record(std::chrono::duration<double, std::milli>(SteadyClock::now() - t0).count());
+    step_status_.merge(loop_.last_status());
     ++tick_;
     if (frame_clock_.due(time()) || !keep_going) {
       loop_.publish(time());

@@ -44,6 +44,8 @@ class ClockSession {
   // Lockstep ticks on the calling thread from the current time, frames at every 1/render_rate
   // of simulated time; returns the ticks run (fewer when the loop ends the run).
   uint64_t step(uint64_t ticks, const std::atomic<bool>* stop = nullptr);
+  // What the ticks of the last step() raised, OR-ed over them.
+  const TickStatus& step_status() const noexcept { return step_status_; }
   // A batch on `options`' clock from the current time; the clock advances by the ticks it ran.
   ScheduleResult run(const ScheduleOptions& options);
 
@@ -73,6 +75,7 @@ class ClockSession {
   HapticLoop loop_;
   ObserverRenderTask render_;
   std::unique_ptr<FrameObserver> surface_feed_;  // remote devices' surface, when any
+  TickStatus step_status_;
   TickRecorder step_ms_;                         // durations of stepped ticks
   ScheduleResult last_run_;                      // the last run()'s schedule figures
   uint64_t frames_ = 0;

@@ -42,14 +42,6 @@ class Interaction {
   virtual uint32_t collision_bits() const noexcept { return 0; }
 };
 
-// What one tick raised: the OR of each source's bits, and whether any of them is an error.
-struct TickStatus {
-  uint32_t model_bits = 0;      // TACTA_STEP_* over every body stepped this tick
-  uint32_t collision_bits = 0;  // TACTA_COLLIDE_*
-  uint32_t device_bits = 0;     // kDevice* (status_bits.hpp) over every device
-  bool error = false;
-};
-
 class HapticLoop final : public HapticTask {
  public:
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames

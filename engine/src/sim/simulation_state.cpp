@@ -100,6 +100,9 @@ double Simulation::time() const noexcept {
   return impl_->clock ? impl_->clock->time() : 0.0;
 }
 uint64_t Simulation::tick() const noexcept { return impl_->clock ? impl_->clock->tick() : 0; }
+TickStatus Simulation::step_status() const noexcept {
+  return impl_->clock ? impl_->clock->step_status() : TickStatus{};
+}
 double Simulation::dt() const noexcept { return 1.0 / impl_->world.scene().clock.haptic_rate_hz; }
 void Simulation::attach(FrameObserver* observer) { impl_->session().attach(observer); }
 void Simulation::detach(FrameObserver* observer) {

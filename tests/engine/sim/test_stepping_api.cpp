@@ -119,6 +119,22 @@ TEST(SteppingApi, AWrittenStateIsWhatTheNextStepStartsFrom) {
   EXPECT_GT(simulation.kinetic_energy(0), 0.0);
 }
 
+TEST(SteppingApi, StepStatusSaysWhatTheLastStepRaised) {
+  Simulation simulation(beam(), plugins());
+  simulation.step(20);
+  EXPECT_EQ(simulation.step_status().model_bits & TACTA_STEP_FAULT_MASK, 0u);
+  EXPECT_FALSE(simulation.step_status().error) << "a clean beam raises no error";
+  BodyArrays a = simulation.body_arrays(0);
+  a.positions[3 * (a.nodes - 1)] = std::nan("");  // the free tip
+  simulation.state_written(0);
+  simulation.step(5);
+  EXPECT_TRUE(simulation.step_status().error) << "the body faulted and froze in these ticks";
+  EXPECT_NE(simulation.step_status().model_bits & TACTA_STEP_FAULT_MASK, 0u);
+  simulation.step(5);
+  EXPECT_FALSE(simulation.step_status().error) << "a frozen body raises nothing more";
+  EXPECT_EQ(simulation.report().faults, 1u);
+}
+
 TEST(SteppingApi, WritesTheReportSoFar) {
   Simulation simulation(beam(), plugins());
   simulation.advance_to(0.05);

@@ -39,6 +39,21 @@ struct RunStatus {
   std::vector<std::string> lines;   // one per warning or error kind, for the console
 };
 
+// What ticks raised: the OR of each source's bits, and whether any of them is an error. One tick's
+// (HapticLoop::last_status) or a whole Simulation::step call's (Simulation::step_status).
+struct TickStatus {
+  uint32_t model_bits = 0;      // TACTA_STEP_* over every body stepped
+  uint32_t collision_bits = 0;  // TACTA_COLLIDE_*
+  uint32_t device_bits = 0;     // device bits (engine/src/sim/status_bits.hpp) over every device
+  bool error = false;
+  void merge(const TickStatus& t) noexcept {
+    model_bits |= t.model_bits;
+    collision_bits |= t.collision_bits;
+    device_bits |= t.device_bits;
+    error = error || t.error;
+  }
+};
+
 const char* severity_name(StatusSeverity s) noexcept;
 
 }  // namespace tacta

@@ -116,6 +116,9 @@ class Simulation {
   uint64_t advance_to(double time_s);
   double time() const noexcept;     // s, simulated: tick() * dt()
   uint64_t tick() const noexcept;   // haptic ticks run since open
+  // What the ticks of the last step()/advance_to() raised (model, collision and device bits,
+  // OR-ed, and whether one is an error, e.g. a body faulted and frozen); report() has the counts.
+  TickStatus step_status() const noexcept;
   double dt() const noexcept;       // s, one haptic tick
   // Frame observers for stepping (a window, a frame writer): told at each 1/render_rate of
   // simulated time. Not owned; detach before destroying them.
