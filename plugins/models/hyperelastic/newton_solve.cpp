@@ -42,16 +42,18 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
   const bool has_fixed = !fixed_.empty();
   double first_norm = 0.0;
   bool converged = false;
-  bool forces_at_x = false;  // the line search's last trial left forces_ at x
+  bool forces_at_x = false;  // the line search's last trial left forces_ (and energy) at x
+  double energy = 0.0;
   for (int iteration = 0;; ++iteration) {
-    // The last pass only measures the residual: no tangent, and no pass at all when the line
-    // search has just computed the forces there.
+    // The residual comes first, from the line search's forces when it has just computed them;
+    // the tangent is assembled only once the residual says another correction is needed.
     const bool last = iteration == o.max_iterations;
-    double energy = 0.0;
-    if (!(last && forces_at_x)) {
+    bool tangent_ready = false;
+    if (!forces_at_x) {
       matrix_.set_zero();
       std::fill(forces_.begin(), forces_.end(), 0.0);
       energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
+      tangent_ready = !last;
     }
     if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
       const auto from = matrix_.values();
@@ -77,6 +79,11 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     }
     if (last) break;
     ++counters_.newton_iterations;
+    if (!tangent_ready) {  // forces_ and energy at x are the line search's; only K is missing
+      matrix_.set_zero();
+      std::fill(forces_.begin(), forces_.end(), 0.0);
+      element_pass(x, forces_.data(), o.potential);
+    }
     // A = (a + b) M + c Kd + s K(x)
     if (o.stiffness_damping != 0.0) {
       const auto kd = damping_.values();
@@ -101,8 +108,8 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack) {
       for (size_t k = 0; k < n; ++k) trial_[k] = x[k] + t * correction_[k];
       std::fill(forces_.begin(), forces_.end(), 0.0);
-      const double trial_energy = element_pass(trial_.data(), forces_.data(), 0.0);
-      const double trial_value = objective_value(o, trial_.data(), trial_energy);
+      energy = element_pass(trial_.data(), forces_.data(), 0.0);
+      const double trial_value = objective_value(o, trial_.data(), energy);
       if (std::isfinite(trial_value) && trial_value <= value - kArmijo * t * slope) break;
       if (backtrack == kMaxBacktracks) break;  // take the shortest step anyway
       ++counters_.line_search_backtracks;
