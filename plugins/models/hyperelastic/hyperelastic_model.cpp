@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "invariant_stress.hpp"
 #include "isotropic_element.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
@@ -15,6 +16,15 @@ namespace tacta::models::hyperelastic {
 namespace {
 constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+
+// f_a = -V P grad_a onto the element's nodes, N.
+void scatter_forces(const TetRest& element, const Eigen::Matrix3d& stress, double* forces) {
+  for (int a = 0; a < 4; ++a) {
+    const Eigen::Vector3d f =
+        -element.volume * (stress * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]));
+    for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
+  }
+}
 
 // The matrix pattern beyond the tets' own pairs: the nodal volumes' 1-ring coupling.
 std::vector<uint32_t> extra_pairs(const tacta_mesh_view& mesh, const Options& options) {
@@ -87,6 +97,15 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     for (int a = 0; a < 4; ++a)
       deformation.noalias() += node_position(x, element.nodes[a]) *
                                Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
+    if (scale == 0.0) {  // no tangent: the invariants give psi and P without an SVD
+      double psi = 0.0;
+      Eigen::Matrix3d stress;
+      if (invariant_stress(material, deformation, psi, forces != nullptr ? &stress : nullptr)) {
+        energy += element.volume * psi;
+        if (forces != nullptr) scatter_forces(element, stress, forces);
+        continue;
+      }
+    }
     const StretchFrame frame = rotation_variant_svd(deformation);
     if (frame.sigma[2] <= 0.0) inverted_ = true;
     if (forces == nullptr && scale == 0.0) {
@@ -95,14 +114,7 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     }
     const StretchDerivatives psi = clamped_stretch_derivatives(material, frame.sigma);
     energy += element.volume * psi.energy;
-    if (forces != nullptr) {
-      const Eigen::Matrix3d stress = first_piola(frame, psi);
-      for (int a = 0; a < 4; ++a) {
-        const Eigen::Vector3d f =
-            -element.volume * (stress * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]));
-        for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
-      }
-    }
+    if (forces != nullptr) scatter_forces(element, first_piola(frame, psi), forces);
     if (scale == 0.0) continue;
     const DiagonalTangent tangent = diagonal_tangent(frame.sigma, psi, options_.project_tangent);
     Eigen::Vector3d w[4];  // V^T grad_a

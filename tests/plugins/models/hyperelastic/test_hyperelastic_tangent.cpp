@@ -10,6 +10,7 @@
 #include <random>
 
 #include "hyperelastic_test_support.hpp"
+#include "invariant_stress.hpp"
 #include "isotropic_element.hpp"
 
 namespace tacta::models::hyperelastic {
@@ -71,6 +72,40 @@ TEST_P(PerLaw, ProjectedTangentStaysPositiveThroughInversion) {
   EXPECT_GT(r.lowest_eigenvalue_share, -1e-9);
   EXPECT_TRUE(r.finite);
   EXPECT_GT(r.corner_force, 0.0);  // the force pushes the corner back up
+}
+
+// The SVD-free stress of force-only passes against the stretch-space one, on random F up to
+// 30% strain; and the cases it must hand back to the SVD path.
+TEST_P(PerLaw, InvariantStressMatchesTheStretchPath) {
+  const MaterialConstants m = material_for(GetParam(), 1e4, 0.45);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> strain(-0.3, 0.3);
+  int compared = 0;
+  for (int sample = 0; sample < 50; ++sample) {
+    Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
+    for (int k = 0; k < 9; ++k) f(k / 3, k % 3) += strain(random);
+    double energy = 0.0;
+    Eigen::Matrix3d stress;
+    const bool taken = invariant_stress(m, f, energy, &stress);
+    if (GetParam() == MaterialLaw::kStVenantKirchhoff) {
+      EXPECT_FALSE(taken);
+      continue;
+    }
+    if (!taken) continue;  // the bound could not rule the clamp out: the SVD path's case
+    const StretchFrame frame = rotation_variant_svd(f);
+    const StretchDerivatives psi = clamped_stretch_derivatives(m, frame.sigma);
+    ++compared;
+    EXPECT_NEAR(energy, psi.energy, 1e-10 * 1e4) << sample;
+    EXPECT_LT((stress - first_piola(frame, psi)).norm(), 1e-9 * 1e4) << sample;
+  }
+  if (GetParam() != MaterialLaw::kStVenantKirchhoff) {
+    EXPECT_GT(compared, 40);
+  }
+  double energy = 0.0;
+  EXPECT_FALSE(invariant_stress(m, Eigen::Vector3d(1.0, 1.0, 0.05).asDiagonal().toDenseMatrix(),
+                                energy, nullptr));  // a stretch below min_stretch
+  EXPECT_FALSE(invariant_stress(m, Eigen::Vector3d(1.0, 1.0, -0.5).asDiagonal().toDenseMatrix(),
+                                energy, nullptr));  // inverted
 }
 
 INSTANTIATE_TEST_SUITE_P(Laws, PerLaw, ::testing::ValuesIn(all_laws()),
