@@ -73,7 +73,7 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
   }
   const size_t n = 3 * static_cast<size_t>(node_count_);
   for (auto* buffer : {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
-                       &equilibrium_loads_, &scratch_, &product_, &last_correction_})
+                       &equilibrium_loads_, &scratch_, &product_, &last_correction_, &trial_residual_})
     buffer->assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
   solver_ = std::make_unique<sparse::SafeSolver>(matrix_, options_.solver);

@@ -96,8 +96,10 @@ class HyperelasticModel {
     double relative_tolerance, absolute_tolerance;  // on |r|, in the residual's units
   };
   bool newton(const Objective& objective, double* x) noexcept;
-  // Phi at x, with the element energy already known.
-  double objective_value(const Objective& objective, const double* x, double energy) noexcept;
+  // Phi at x, given the element energy and forces_ at x; writes -grad Phi (zero on fixed
+  // nodes) to residual and its norm. Leaves scratch_ = x - x_n and product_ = Kd scratch_.
+  double measure_at(const Objective& objective, const double* x, double energy, double* residual,
+                    double& residual_norm) noexcept;
   uint32_t step_dynamic(tacta_body_state& state, double h) noexcept;
   uint32_t solve_static(tacta_body_state& state) noexcept;
 
@@ -112,9 +114,10 @@ class HyperelasticModel {
   sparse::BlockSparseMatrix matrix_, damping_;
   std::unique_ptr<sparse::SafeSolver> solver_;
   // 3 per node: forces, residual, Newton correction, predicted and start positions, the trial
-  // point of the line search, the loads applied, the last equilibrium's loads and scratch.
+  // point of the line search and its residual, the loads applied, the last equilibrium's loads
+  // and scratch.
   std::vector<double> forces_, residual_, correction_, predicted_, start_, trial_, loads_,
-      equilibrium_loads_, scratch_, product_, last_correction_;
+      equilibrium_loads_, scratch_, product_, last_correction_, trial_residual_;
   std::vector<double> weights_;  // node_stress: volume per node
   NewtonCounters counters_;
   double rayleigh_mass_, rayleigh_stiffness_;  // alpha (1/s), beta (s)

@@ -10,6 +10,7 @@ namespace tacta::models::hyperelastic {
 namespace {
 constexpr int kMaxBacktracks = 8;       // line search halvings before the step is taken anyway
 constexpr double kArmijo = 1e-4;        // sufficient decrease, fraction of the linear model
+constexpr double kRounding = 1e-12;     // a change of Phi this small relative to Phi is noise
 double norm(const std::vector<double>& v) {
   double sum = 0.0;
   for (const double x : v) sum += x * x;
@@ -17,60 +18,55 @@ double norm(const std::vector<double>& v) {
 }
 }  // namespace
 
-double HyperelasticModel::objective_value(const Objective& o, const double* x,
-                                          double energy) noexcept {
-  double inertia = 0.0, mass_damping = 0.0, work = 0.0;
-  for (size_t k = 0; k < scratch_.size(); ++k) {
+double HyperelasticModel::measure_at(const Objective& o, const double* x, double energy,
+                                      double* residual, double& residual_norm) noexcept {
+  const size_t n = residual_.size();
+  const bool has_fixed = !fixed_.empty();
+  for (size_t k = 0; k < n; ++k) scratch_[k] = x[k] - o.start[k];
+  const double skds = o.stiffness_damping != 0.0
+                          ? damping_.multiply(scratch_.data(), product_.data())  // s.Kd s
+                          : 0.0;
+  double inertia = 0.0, mass_damping = 0.0, work = 0.0, norm2 = 0.0;
+  for (size_t k = 0; k < n; ++k) {
     const double m = masses_[k / 3];
-    const double d = x[k] - o.predicted[k], s = x[k] - o.start[k];
+    const double d = x[k] - o.predicted[k], s = scratch_[k];
     inertia += m * d * d;
     mass_damping += m * s * s;
     work += o.loads[k] * x[k];
-    scratch_[k] = s;
+    // r = -grad Phi = s (f_int + f_ext) - a M (x - x~) - b M (x - x_n) - c Kd (x - x_n)
+    double r = o.potential * (forces_[k] + o.loads[k]) - o.inertia * m * d - o.mass_damping * m * s;
+    if (o.stiffness_damping != 0.0) r -= o.stiffness_damping * product_[k];
+    residual[k] = has_fixed && fixed_[k / 3] ? 0.0 : r;
+    norm2 += residual[k] * residual[k];
   }
-  double value = 0.5 * o.inertia * inertia + 0.5 * o.mass_damping * mass_damping +
-                 o.potential * (energy - work);
-  if (o.stiffness_damping != 0.0) {
-    const double skds = damping_.multiply(scratch_.data(), product_.data());  // (x-x_n).Kd(x-x_n)
-    value += 0.5 * o.stiffness_damping * skds;
-  }
-  return value;
+  residual_norm = std::sqrt(norm2);
+  return 0.5 * o.inertia * inertia + 0.5 * o.mass_damping * mass_damping +
+         0.5 * o.stiffness_damping * skds + o.potential * (energy - work);
 }
 
 bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
   const size_t n = residual_.size();
   const bool has_fixed = !fixed_.empty();
-  double first_norm = 0.0;
+  double first_norm = 0.0, residual_norm = 0.0, value = 0.0;
   bool converged = false;
-  bool forces_at_x = false;  // the line search's last trial left forces_ (and energy) at x
-  double energy = 0.0;
+  bool measured = false;  // the accepted line search trial left forces_, Phi and r at x
   for (int iteration = 0;; ++iteration) {
     // The residual comes first, from the line search's forces when it has just computed them;
     // the tangent is assembled only once the residual says another correction is needed.
     const bool last = iteration == o.max_iterations;
     bool tangent_ready = false;
-    if (!forces_at_x) {
+    if (!measured) {
       matrix_.set_zero();
       std::fill(forces_.begin(), forces_.end(), 0.0);
-      energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
+      const double energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
       tangent_ready = !last;
+      if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
+        const auto from = matrix_.values();
+        const auto to = damping_.values();
+        for (size_t k = 0; k < from.size(); ++k) to[k] = from[k] / o.potential;
+      }
+      value = measure_at(o, x, energy, residual_.data(), residual_norm);
     }
-    if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
-      const auto from = matrix_.values();
-      const auto to = damping_.values();
-      for (size_t k = 0; k < from.size(); ++k) to[k] = from[k] / o.potential;
-    }
-    // r = -grad Phi = s (f_int + f_ext) - a M (x - x~) - b M (x - x_n) - c Kd (x - x_n)
-    for (size_t k = 0; k < n; ++k) scratch_[k] = x[k] - o.start[k];
-    if (o.stiffness_damping != 0.0) damping_.multiply(scratch_.data(), product_.data());
-    for (size_t k = 0; k < n; ++k) {
-      const double m = masses_[k / 3];
-      double r = o.potential * (forces_[k] + o.loads[k]) - o.inertia * m * (x[k] - o.predicted[k]) -
-                 o.mass_damping * m * scratch_[k];
-      if (o.stiffness_damping != 0.0) r -= o.stiffness_damping * product_[k];
-      residual_[k] = has_fixed && fixed_[k / 3] ? 0.0 : r;
-    }
-    const double residual_norm = norm(residual_);
     if (iteration == 0) first_norm = residual_norm;
     if (residual_norm <= o.absolute_tolerance ||
         (iteration > 0 && residual_norm <= o.relative_tolerance * first_norm)) {
@@ -79,7 +75,7 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     }
     if (last) break;
     ++counters_.newton_iterations;
-    if (!tangent_ready) {  // forces_ and energy at x are the line search's; only K is missing
+    if (!tangent_ready) {  // forces_ and Phi at x are the line search's; only K is missing
       matrix_.set_zero();
       std::fill(forces_.begin(), forces_.end(), 0.0);
       element_pass(x, forces_.data(), o.potential);
@@ -100,23 +96,36 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     if (has_fixed)
       for (size_t k = 0; k < n; ++k)
         if (fixed_[k / 3]) correction_[k] = 0.0;
-    // Backtracking on Phi along the correction: Phi(x + t d) <= Phi(x) - armijo t r.d.
-    const double value = objective_value(o, x, energy);
+    // Backtracking on Phi along the correction: Phi(x + t d) <= Phi(x) - armijo t r.d. Near
+    // the solution that decrease sinks below Phi's rounding (Phi carries f_ext . x in absolute
+    // positions), so a step whose change of Phi is at rounding level passes when it halves |r|.
     double slope = 0.0;
     for (size_t k = 0; k < n; ++k) slope += residual_[k] * correction_[k];
-    double t = 1.0;
+    double t = 1.0, trial_norm = 0.0;
     for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack) {
       for (size_t k = 0; k < n; ++k) trial_[k] = x[k] + t * correction_[k];
       std::fill(forces_.begin(), forces_.end(), 0.0);
-      energy = element_pass(trial_.data(), forces_.data(), 0.0);
-      const double trial_value = objective_value(o, trial_.data(), energy);
-      if (std::isfinite(trial_value) && trial_value <= value - kArmijo * t * slope) break;
-      if (backtrack == kMaxBacktracks) break;  // take the shortest step anyway
+      const double energy = element_pass(trial_.data(), forces_.data(), 0.0);
+      const double trial_value = measure_at(o, trial_.data(), energy, trial_residual_.data(),
+                                            trial_norm);
+      const bool decreased = trial_value <= value - kArmijo * t * slope;
+      const bool in_rounding = std::abs(trial_value - value) <= kRounding * std::abs(value) &&
+                               trial_norm <= 0.5 * residual_norm;
+      if (std::isfinite(trial_value) && (decreased || in_rounding)) {
+        value = trial_value;
+        break;
+      }
+      if (backtrack == kMaxBacktracks) {  // take the shortest step anyway
+        value = trial_value;
+        break;
+      }
       ++counters_.line_search_backtracks;
       t *= 0.5;
     }
     for (size_t k = 0; k < n; ++k) x[k] += t * correction_[k];
-    forces_at_x = true;
+    residual_.swap(trial_residual_);
+    residual_norm = trial_norm;
+    measured = true;
   }
   return converged;
 }
