@@ -142,6 +142,7 @@ void HyperelasticModel::internal_forces(const double* positions, double* forces)
 
 const sparse::BlockSparseMatrix& HyperelasticModel::assemble_stiffness(
     const double* positions) noexcept {
+  system_valid_ = false;
   matrix_.set_zero();
   element_pass(positions, nullptr, 1.0);
   return matrix_;

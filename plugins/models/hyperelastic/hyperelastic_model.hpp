@@ -38,6 +38,9 @@ struct Options {
   Volumetric volumetric = Volumetric::kElement;
   SolveMode mode = SolveMode::kDynamic;
   int newton_iterations = 3;       // dynamic: per step, at most
+  // dynamic: steps whose first Newton correction reuses an earlier step's system matrix (its
+  // tangent, preconditioner and Kd) before a fresh one is assembled; 0: fresh every step.
+  int tangent_reuse_steps = 0;
   double newton_tolerance = 1e-3;  // dynamic: stop when |r| <= this * |r_0| (residual in N s^2)
   int load_steps = 1;              // static: increments of the load change per solve
   int static_iterations = 25;      // static: Newton iterations per increment, at most
@@ -51,6 +54,7 @@ struct NewtonCounters {
   uint64_t unconverged_steps = 0;  // dynamic: iterations ran out; static: cuts ran out
   uint64_t static_solves = 0, load_increments = 0, load_cuts = 0;
   uint64_t inverted_element_steps = 0;  // steps that ended with an inverted element
+  uint64_t lagged_tangents = 0;  // dynamic: first corrections solved with a reused system
   double last_static_residual = 0.0;    // N: |f_int + f_ext| on the free nodes at the end
 };
 
@@ -94,6 +98,7 @@ class HyperelasticModel {
     const double* first_guess;  // the first correction's CG guess, or null for zero
     int max_iterations;
     double relative_tolerance, absolute_tolerance;  // on |r|, in the residual's units
+    bool reuse_system;  // dynamic: the first correction may use the lagged system matrix
   };
   bool newton(const Objective& objective, double* x) noexcept;
   // Phi at x, given the element energy and forces_ at x; writes -grad Phi (zero on fixed
@@ -122,6 +127,11 @@ class HyperelasticModel {
   NewtonCounters counters_;
   double rayleigh_mass_, rayleigh_stiffness_;  // alpha (1/s), beta (s)
   bool inverted_ = false;
+  // matrix_ holds a complete system A (with Kd, masses, fixed rows) for the step h
+  // system_step_, reused by system_age_ steps since its assembly.
+  bool system_valid_ = false;
+  int system_age_ = 0;
+  double system_step_ = 0.0;  // s
   bool linear_solve_failed_ = false;  // in this step
 };
 

@@ -54,12 +54,19 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     // The residual comes first, from the line search's forces when it has just computed them;
     // the tangent is assembled only once the residual says another correction is needed.
     const bool last = iteration == o.max_iterations;
+    // A lagged system: the last step's A, its preconditioner and Kd, for the first correction.
+    const bool lagged = iteration == 0 && o.reuse_system && system_valid_ &&
+                        system_age_ < options_.tangent_reuse_steps;
     bool tangent_ready = false;
-    if (!measured) {
+    if (!measured && (last || lagged)) {
+      std::fill(forces_.begin(), forces_.end(), 0.0);
+      value = measure_at(o, x, element_pass(x, forces_.data(), 0.0), residual_.data(),
+                         residual_norm);
+    } else if (!measured) {
       matrix_.set_zero();
       std::fill(forces_.begin(), forces_.end(), 0.0);
-      const double energy = element_pass(x, forces_.data(), last ? 0.0 : o.potential);
-      tangent_ready = !last;
+      const double energy = element_pass(x, forces_.data(), o.potential);
+      tangent_ready = true;
       if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
         const auto from = matrix_.values();
         const auto to = damping_.values();
@@ -75,24 +82,33 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     }
     if (last) break;
     ++counters_.newton_iterations;
-    if (!tangent_ready) {  // forces_ and Phi at x are the line search's; only K is missing
-      matrix_.set_zero();
-      std::fill(forces_.begin(), forces_.end(), 0.0);
-      element_pass(x, forces_.data(), o.potential);
+    if (lagged) {
+      ++system_age_;
+      ++counters_.lagged_tangents;
+    } else {
+      if (!tangent_ready) {  // forces_ and Phi at x are the line search's; only K is missing
+        matrix_.set_zero();
+        std::fill(forces_.begin(), forces_.end(), 0.0);
+        element_pass(x, forces_.data(), o.potential);
+      }
+      // A = (a + b) M + c Kd + s K(x)
+      if (o.stiffness_damping != 0.0) {
+        const auto kd = damping_.values();
+        const auto a = matrix_.values();
+        for (size_t k = 0; k < a.size(); ++k) a[k] += o.stiffness_damping * kd[k];
+      }
+      if (o.inertia + o.mass_damping != 0.0)
+        matrix_.add_to_diagonal(masses_, o.inertia + o.mass_damping);
+      matrix_.apply_fixed(fixed_);
+      system_valid_ = o.reuse_system;
+      if (iteration == 0) system_age_ = 0;  // the age of Kd, which only a first iterate sets
     }
-    // A = (a + b) M + c Kd + s K(x)
-    if (o.stiffness_damping != 0.0) {
-      const auto kd = damping_.values();
-      const auto a = matrix_.values();
-      for (size_t k = 0; k < a.size(); ++k) a[k] += o.stiffness_damping * kd[k];
-    }
-    if (o.inertia + o.mass_damping != 0.0)
-      matrix_.add_to_diagonal(masses_, o.inertia + o.mass_damping);
-    matrix_.apply_fixed(fixed_);
     if (iteration == 0 && o.first_guess != nullptr) std::copy_n(o.first_guess, n, correction_.begin());
     else std::fill(correction_.begin(), correction_.end(), 0.0);
-    if (!solver_->solve(matrix_, residual_.data(), correction_.data()).converged)
+    if (!solver_->solve(matrix_, residual_.data(), correction_.data(), lagged).converged) {
       linear_solve_failed_ = true;
+      system_valid_ = false;  // the next step starts from a fresh tangent
+    }
     if (has_fixed)
       for (size_t k = 0; k < n; ++k)
         if (fixed_[k / 3]) correction_[k] = 0.0;
@@ -144,13 +160,18 @@ uint32_t HyperelasticModel::step_dynamic(tacta_body_state& state, double h) noex
     loads_[k] = state.external_forces[k];
   }
   std::copy(predicted_.begin(), predicted_.end(), state.positions);
+  if (h != system_step_) system_valid_ = false;  // A holds h in its weights
+  system_step_ = h;
   const Objective objective{1.0, h * rayleigh_mass_, h * rayleigh_stiffness_, h * h,
                             predicted_.data(), start_.data(), loads_.data(),
                             last_correction_.data(), options_.newton_iterations,
-                            options_.newton_tolerance, 0.0};
+                            options_.newton_tolerance, 0.0, true};
   // Newton stopping at its iteration cap is the usual haptic-rate compromise (counted); a
   // linear solve that failed every fallback is a warning.
-  if (!newton(objective, state.positions)) ++counters_.unconverged_steps;
+  if (!newton(objective, state.positions)) {
+    ++counters_.unconverged_steps;
+    system_valid_ = false;
+  }
   const uint32_t result = linear_solve_failed_ ? TACTA_STEP_SOLVER_NOT_CONVERGED : TACTA_STEP_OK;
   for (size_t k = 0; k < n; ++k) {
     // The whole correction from the prediction: the next step's first guess (a smooth motion
@@ -185,7 +206,7 @@ uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
     std::copy_n(state.positions, n, start_.begin());
     const Objective objective{0.0, 0.0, 0.0, 1.0, start_.data(), start_.data(), loads_.data(),
                               nullptr, options_.static_iterations, 0.0,
-                              options_.static_tolerance * load_scale};
+                              options_.static_tolerance * load_scale, false};
     ++counters_.load_increments;
     if (newton(objective, state.positions)) {
       done = target;
@@ -222,6 +243,7 @@ uint32_t HyperelasticModel::step(tacta_body_state& state, double dt) noexcept {
 
 void HyperelasticModel::begin(const tacta_body_state& /*state*/, double /*dt*/) noexcept {
   std::fill(last_correction_.begin(), last_correction_.end(), 0.0);
+  system_valid_ = false;
 }
 
 }  // namespace tacta::models::hyperelastic

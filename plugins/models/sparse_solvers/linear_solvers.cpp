@@ -119,8 +119,8 @@ double ConjugateGradientSolver::multiply(const BlockSparseMatrix& a, const doubl
 }
 
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
-                                           double* x) {
-  build_preconditioner(a);
+                                           double* x, bool keep_preconditioner) {
+  if (!keep_preconditioner) build_preconditioner(a);
   return iterate(a, b, x, max_iterations_);
 }
 
@@ -245,12 +245,15 @@ CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::ma
 
 CholeskySolver::~CholeskySolver() = default;
 
-bool CholeskySolver::solve(const BlockSparseMatrix& a, const double* b, double* x) {
-  const auto values = a.values();
-  double* target = permuted_upper_.valuePtr();
-  for (size_t s = 0; s < value_source_.size(); ++s) target[s] = values[value_source_[s]];
-  ldlt_->factorize_preordered_upper(permuted_upper_);
-  if (ldlt_->info() != Eigen::Success) return false;
+bool CholeskySolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
+                           bool keep_factor) {
+  if (!keep_factor) {
+    const auto values = a.values();
+    double* target = permuted_upper_.valuePtr();
+    for (size_t s = 0; s < value_source_.size(); ++s) target[s] = values[value_source_[s]];
+    ldlt_->factorize_preordered_upper(permuted_upper_);
+    if (ldlt_->info() != Eigen::Success) return false;
+  }
   const size_t n = new_index_.size();
   for (size_t i = 0; i < n; ++i) rhs_[new_index_[i]] = b[i];
   solution_ = ldlt_->solve(rhs_);

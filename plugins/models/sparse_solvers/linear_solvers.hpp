@@ -35,7 +35,9 @@ class ConjugateGradientSolver {
                           int max_iterations, double tolerance, int refactor_interval = 1);
   // x holds the initial guess (the previous step's solution) and receives the solution.
   // Convergence: ||b - A x|| <= tolerance ||b||.
-  SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x);
+  // keep_preconditioner: a is the last solve's matrix, unchanged (no refactorisation, no copy).
+  SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x,
+                    bool keep_preconditioner = false);
   // Solves again with the preconditioner of the last solve() on the same a, at most
   // max_iterations: the fallback when solve() did not converge.
   SolveReport resolve(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations) {
@@ -81,7 +83,8 @@ class CholeskySolver {
   explicit CholeskySolver(const BlockSparseMatrix& pattern);
   ~CholeskySolver();
   // Factorises a (numeric only) and solves; false if the matrix is not positive definite.
-  bool solve(const BlockSparseMatrix& a, const double* b, double* x);
+  // keep_factor: a is the matrix of the last successful solve, unchanged (no refactorisation).
+  bool solve(const BlockSparseMatrix& a, const double* b, double* x, bool keep_factor = false);
 
  private:
   struct Ldlt;

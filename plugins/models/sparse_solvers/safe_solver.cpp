@@ -39,24 +39,28 @@ void SafeSolver::set_limits(int max_iterations, double tolerance, int refactor_i
   if (cg_) cg_->set_limits(max_iterations, tolerance, refactor_interval);
 }
 
-SolveReport SafeSolver::solve_direct(const BlockSparseMatrix& a, const double* b,
-                                     double* x) noexcept {
+SolveReport SafeSolver::solve_direct(const BlockSparseMatrix& a, const double* b, double* x,
+                                     bool same_matrix) noexcept {
   SolveReport report;
-  report.converged = cholesky_->solve(a, b, x);
+  report.converged = cholesky_->solve(a, b, x, same_matrix && cholesky_current_);
+  cholesky_current_ = report.converged;
   return report;
 }
 
-SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, double* x) noexcept {
+SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
+                              bool same_matrix) noexcept {
   ++counters_.solves;
+  if (!same_matrix) cg_current_ = cholesky_current_ = false;
   SolveReport report;
   if (!cg_) {
-    report = solve_direct(a, b, x);
+    report = solve_direct(a, b, x, same_matrix);
   } else if (cholesky_ && direct_hold_ > 0) {  // CG failed lately: do not pay for it to fail again
     --direct_hold_;
     ++counters_.direct_solves_held;
-    report = solve_direct(a, b, x);
+    report = solve_direct(a, b, x, same_matrix);
   } else {
-    report = cg_->solve(a, b, x);
+    report = cg_->solve(a, b, x, same_matrix && cg_current_);
+    cg_current_ = true;
     counters_.cg_iterations += static_cast<uint64_t>(report.iterations);
     if (report.warm_start_rejected) ++counters_.warm_starts_rejected;
     if (!report.converged && options_.fallback != SolverFallback::kNone) {
@@ -71,7 +75,7 @@ SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, doubl
       if (!restart.converged && cholesky_) {
         ++counters_.direct_fallbacks;
         const int iterations = report.iterations;
-        report = solve_direct(a, b, x);
+        report = solve_direct(a, b, x, same_matrix);
         report.iterations = iterations;
         // The next solves go straight to LDL^T, twice as many each time CG fails again.
         direct_hold_ = direct_hold_length_;

@@ -50,20 +50,24 @@ class SafeSolver {
   SafeSolver(const BlockSparseMatrix& pattern, const SolverOptions& options);
   ~SafeSolver();
   // x: the initial guess on entry (CG only), the solution on exit. No allocation (see
-  // CholeskySolver for its one exception on very large systems).
-  SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x) noexcept;
+  // CholeskySolver for its one exception on very large systems). same_matrix: a is the matrix
+  // of the last solve, unchanged, so its preconditioner (or LDL^T factor) is reused.
+  SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x,
+                    bool same_matrix = false) noexcept;
   void set_limits(int max_iterations, double tolerance, int refactor_interval);
   const SolverOptions& options() const { return options_; }
   const SolverCounters& counters() const { return counters_; }
   bool iterative() const { return cg_ != nullptr; }
 
  private:
-  SolveReport solve_direct(const BlockSparseMatrix& a, const double* b, double* x) noexcept;
+  SolveReport solve_direct(const BlockSparseMatrix& a, const double* b, double* x,
+                           bool same_matrix) noexcept;
   SolverOptions options_;
   std::unique_ptr<ConjugateGradientSolver> cg_;
   std::unique_ptr<CholeskySolver> cholesky_;
   SolverCounters counters_;
   int direct_hold_ = 0, direct_hold_length_ = 1;  // solves left on LDL^T; the next hold's length
+  bool cg_current_ = false, cholesky_current_ = false;  // built from the last solve's matrix
 };
 
 }  // namespace tacta::models::sparse
