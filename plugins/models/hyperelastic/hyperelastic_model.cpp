@@ -76,6 +76,7 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
                        &equilibrium_loads_, &scratch_, &product_, &last_correction_, &trial_residual_})
     buffer->assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
+  assembled_deformation_.assign(elements_.size(), Eigen::Matrix3d::Identity());
   solver_ = std::make_unique<sparse::SafeSolver>(matrix_, options_.solver);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
@@ -97,6 +98,10 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     for (int a = 0; a < 4; ++a)
       deformation.noalias() += node_position(x, element.nodes[a]) *
                                Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
+    if (record_deformation_) assembled_deformation_[e] = deformation;
+    if (track_change_)
+      deformation_change_ = std::max(deformation_change_,
+                                     (deformation - assembled_deformation_[e]).squaredNorm());
     if (scale == 0.0) {  // no tangent: the invariants give psi and P without an SVD
       double psi = 0.0;
       Eigen::Matrix3d stress;

@@ -40,7 +40,9 @@ struct Options {
   int newton_iterations = 3;       // dynamic: per step, at most
   // dynamic: steps whose first Newton correction reuses an earlier step's system matrix (its
   // tangent, preconditioner and Kd) before a fresh one is assembled; 0: fresh every step.
-  int tangent_reuse_steps = 0;
+  int tangent_reuse_steps = 4;
+  // dynamic: ... and while no element's F has changed by more than this (Frobenius norm) since.
+  double tangent_reuse_change = 0.01;
   double newton_tolerance = 1e-3;  // dynamic: stop when |r| <= this * |r_0| (residual in N s^2)
   int load_steps = 1;              // static: increments of the load change per solve
   int static_iterations = 25;      // static: Newton iterations per increment, at most
@@ -130,6 +132,11 @@ class HyperelasticModel {
   // matrix_ holds a complete system A (with Kd, masses, fixed rows) for the step h
   // system_step_, reused by system_age_ steps since its assembly.
   bool system_valid_ = false;
+  // F per element at the first iterate of the last fresh assembly (Kd's), and the largest
+  // |F - that|^2 a force pass met while track_change_ is set.
+  std::vector<Eigen::Matrix3d> assembled_deformation_;
+  bool record_deformation_ = false, track_change_ = false;
+  double deformation_change_ = 0.0;
   int system_age_ = 0;
   double system_step_ = 0.0;  // s
   bool linear_solve_failed_ = false;  // in this step

@@ -54,18 +54,28 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     // The residual comes first, from the line search's forces when it has just computed them;
     // the tangent is assembled only once the residual says another correction is needed.
     const bool last = iteration == o.max_iterations;
-    // A lagged system: the last step's A, its preconditioner and Kd, for the first correction.
-    const bool lagged = iteration == 0 && o.reuse_system && system_valid_ &&
-                        system_age_ < options_.tangent_reuse_steps;
+    // A lagged system: an earlier step's A, its preconditioner and Kd, for the first
+    // correction, while no element's F has moved further than tangent_reuse_change from the
+    // F that Kd was assembled at (the force pass measures it).
+    bool lagged = iteration == 0 && o.reuse_system && system_valid_ &&
+                  system_age_ < options_.tangent_reuse_steps;
     bool tangent_ready = false;
     if (!measured && (last || lagged)) {
       std::fill(forces_.begin(), forces_.end(), 0.0);
-      value = measure_at(o, x, element_pass(x, forces_.data(), 0.0), residual_.data(),
-                         residual_norm);
-    } else if (!measured) {
+      deformation_change_ = 0.0;
+      track_change_ = lagged;
+      const double energy = element_pass(x, forces_.data(), 0.0);
+      track_change_ = false;
+      lagged = lagged && deformation_change_ <=
+                             options_.tangent_reuse_change * options_.tangent_reuse_change;
+      if (last || lagged) value = measure_at(o, x, energy, residual_.data(), residual_norm);
+    }
+    if (!measured && !last && !lagged) {
       matrix_.set_zero();
       std::fill(forces_.begin(), forces_.end(), 0.0);
+      record_deformation_ = iteration == 0;
       const double energy = element_pass(x, forces_.data(), o.potential);
+      record_deformation_ = false;
       tangent_ready = true;
       if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
         const auto from = matrix_.values();

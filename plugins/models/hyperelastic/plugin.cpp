@@ -33,7 +33,7 @@ class HyperelasticPlugin {
   // Forces depend on the deformation alone and sum to zero over each element.
   static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   // Material and dynamic-step parameters; the static and linear solves come from sparse_solvers.
-  static constexpr std::array<tacta_param_spec, 10> kModelParams = {
+  static constexpr std::array<tacta_param_spec, 11> kModelParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
                         "energy: compressible Neo-Hookean, St Venant-Kirchhoff, or compressible "
                         "Mooney-Rivlin (C10, C01, bulk modulus)"),
@@ -60,6 +60,9 @@ class HyperelasticPlugin {
                      "system (tangent, preconditioner, and the Rayleigh Kd, which is then up to "
                      "this many steps old) before a fresh one; the residual test is unchanged, "
                      "and a step needing a second correction assembles afresh; 0: every step"),
+      sdk::real_param("tangent_reuse_change", "", 0.01, 0.0, 1.0,
+                      "dynamic: ... and only while no element's deformation gradient F has moved "
+                      "further than this (Frobenius norm) from the F of that assembly"),
   };
   static constexpr auto kParams = sparse::join_params(
       kModelParams, sparse::static_param_specs("dynamic: backward Euler steps; static: each "
@@ -96,6 +99,7 @@ class HyperelasticPlugin {
     options.newton_iterations = params.integer("newton_iterations");
     options.newton_tolerance = params.real("newton_tolerance");
     options.tangent_reuse_steps = params.integer("tangent_reuse_steps");
+    options.tangent_reuse_change = params.real("tangent_reuse_change");
     options.mode = sparse::read_static_params(params, options) ? SolveMode::kStatic
                                                                : SolveMode::kDynamic;
     sparse::read_solver_params(params, options.solver);
