@@ -3,13 +3,11 @@
 // faulted (the picture is still written) or no picture could be made, 2 bad input.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <utility>
 
 #include "command.hpp"
-#include "compare_last_snapshot.hpp"
 #include "tacta/error.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/render/headless.hpp"
@@ -41,14 +39,6 @@ void check_args(const SnapshotArgs& args) {
   if (args.out.empty()) throw InputError({"--out", 0, 0, ""}, "expected a PNG file name, found nothing");
 }
 
-// "model: a" or "models: a, b" for the overlay, from the models the bodies ended with.
-std::string model_label(const RunResult& result) {
-  std::string names;
-  for (const BodyResult& b : result.bodies)
-    if (names.find(b.model) == std::string::npos) names += (names.empty() ? "" : ", ") + b.model;
-  return (names.find(',') == std::string::npos ? "model: " : "models: ") + names;
-}
-
 int take_snapshot(const SnapshotArgs& args) {
   check_args(args);
   PluginRegistry plugins;
@@ -63,23 +53,15 @@ int take_snapshot(const SnapshotArgs& args) {
   // Made before the run, so a machine without EGL fails at once rather than after the run.
   render::HeadlessRenderer renderer(view);
 
-  LastSnapshotKeeper final_state;
   RunOptions options;
   options.realtime = false;
   options.duration_s = args.at;
-  options.observers.push_back(&final_state);
   const RunResult result = simulation.run(options);
-  if (!final_state.has_frame()) throw std::runtime_error("the run published no state to draw");
-
-  render::SnapshotStyle style;
-  style.model_label = model_label(result);
-  const render::Image image = renderer.render(render::make_render_frame(final_state.scene(), final_state.last(), style));
-  const std::filesystem::path file(args.out);
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  render::write_png(file, image);
+  const render::Image image =
+      render::write_snapshot_png(renderer, simulation.scene_static(), simulation.snapshot(), args.out);
 
   if (!args.quiet) {
-    std::printf("%s at t = %.6g s (%llu ticks): wrote %s (%dx%d)\n", result.scene.c_str(), final_state.last().time_s,
+    std::printf("%s at t = %.6g s (%llu ticks): wrote %s (%dx%d)\n", result.scene.c_str(), simulation.time(),
                 static_cast<unsigned long long>(result.schedule.ticks), args.out.c_str(), image.width, image.height);
     for (const BodyResult& b : result.bodies)
       if (b.frozen) std::printf("  body %s (%s) FROZEN: %s\n", b.name.c_str(), b.model.c_str(), b.fault.c_str());

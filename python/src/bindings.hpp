@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,6 +53,17 @@ std::shared_ptr<PluginRegistry> shared_plugins();
 // to call it with the GIL held. Returns the ticks run.
 uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks);
 
+// {"bodies.*.model": "tensor_mass"} (or a list of "key=value") -> the command line's --set strings.
+std::vector<std::string> override_strings(const py::object& overrides);
+
+// A JSON file the engine writes, `write(dir)` returning its path, read back as Python objects:
+// written with the GIL released into a private temporary folder, removed afterwards. How the
+// report and the comparison table reach Python with exactly the numbers of their files.
+py::object json_written_by(const std::function<std::string(const std::string& dir)>& write);
+
+// Raises tacta.RenderError (a RuntimeError): no picture could be made (no EGL, no renderer).
+[[noreturn]] void raise_render_error(const std::string& message);
+
 // Adds Simulation.<property>: a dict {name: Item{holder, index}} over count() items, in scene order.
 template <typename Item>
 void def_by_name(py::module_& m, const char* property, size_t (Simulation::*count)() const,
@@ -71,5 +83,7 @@ void register_errors(py::module_& m);
 void register_simulation(py::module_& m);
 void register_bodies(py::module_& m);
 void register_devices(py::module_& m);
+void register_snapshot(py::module_& m);
+void register_compare(py::module_& m);
 
 }  // namespace tacta::python

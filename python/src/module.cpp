@@ -7,7 +7,8 @@
 namespace tacta::python {
 namespace {
 
-PyObject* scene_error_type = nullptr;  // tacta.SceneError, owned by the module for its life
+PyObject* scene_error_type = nullptr;   // tacta.SceneError, owned by the module for its life
+PyObject* render_error_type = nullptr;  // tacta.RenderError, likewise
 
 py::dict plugin_list() {
   const std::shared_ptr<PluginRegistry> registry = shared_plugins();
@@ -57,6 +58,11 @@ void raise_scene_error(const InputError& error) {
   throw py::error_already_set();
 }
 
+void raise_render_error(const std::string& message) {
+  PyErr_SetString(render_error_type, message.c_str());
+  throw py::error_already_set();
+}
+
 void register_errors(py::module_& m) {
   scene_error_type = PyErr_NewExceptionWithDoc(
       "tacta.SceneError",
@@ -64,6 +70,12 @@ void register_errors(py::module_& m) {
       "column (1-based, 0 when unknown) and key (the key path, e.g. 'bodies[0].material.E').",
       PyExc_ValueError, nullptr);
   m.attr("SceneError") = py::reinterpret_borrow<py::object>(scene_error_type);
+  render_error_type = PyErr_NewExceptionWithDoc(
+      "tacta.RenderError",
+      "No picture could be made: no headless EGL context (needs Mesa's libegl-mesa0 and "
+      "libgl1-mesa-dri), or a build without the renderer. The message says which.",
+      PyExc_RuntimeError, nullptr);
+  m.attr("RenderError") = py::reinterpret_borrow<py::object>(render_error_type);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
@@ -86,6 +98,8 @@ PYBIND11_MODULE(_tacta, m) {
   register_simulation(m);
   register_bodies(m);
   register_devices(m);
+  register_snapshot(m);
+  register_compare(m);
   m.def("plugins", &plugin_list,
         "What the plugin loader found: {'loaded': [{kind, name, file}], 'refused': [{file, reason}], "
         "'search_paths': [...]}");

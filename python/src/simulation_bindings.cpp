@@ -11,7 +11,6 @@
 #include "tacta/sim/registry_schemas.hpp"
 
 namespace tacta::python {
-namespace {
 
 // {"bodies.*.model": "tensor_mass", "clock.duration_s": 0.5} -> the command line's key=value
 // strings. Text goes as is (YAML reads it), numbers and booleans as YAML scalars, lists and
@@ -31,6 +30,8 @@ std::vector<std::string> override_strings(const py::object& overrides) {
   }
   return out;
 }
+
+namespace {
 
 SimPtr open_scene(const std::function<SceneDesc(const SchemaLookup&)>& load) {
   auto holder = std::make_shared<SimHolder>();
@@ -55,27 +56,8 @@ SimPtr from_dict(const py::dict& scene, const std::string& base_dir, const py::o
       [&](const SchemaLookup& schemas) { return load_scene_from_string(text, virtual_path, schemas, sets); });
 }
 
-// report.json as a dict: written to a private temporary folder, read back with json, removed.
 py::object report_dict(SimHolder& holder) {
-  std::random_device entropy;
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("tacta-report-" + std::to_string(entropy()) + std::to_string(entropy()));
-  std::string path;
-  {
-    py::gil_scoped_release released;
-    path = holder.sim->write_report(dir.string());
-  }
-  py::object result;
-  try {
-    const py::object file = py::module_::import("io").attr("open")(path, "r", py::arg("encoding") = "utf-8");
-    result = py::module_::import("json").attr("load")(file);
-    file.attr("close")();
-  } catch (...) {
-    std::filesystem::remove_all(dir);
-    throw;
-  }
-  std::filesystem::remove_all(dir);
-  return result;
+  return json_written_by([&](const std::string& dir) { return holder.sim->write_report(dir); });
 }
 
 py::object run_batch(SimHolder& holder, std::optional<double> duration, std::optional<bool> realtime,
@@ -94,6 +76,28 @@ py::object run_batch(SimHolder& holder, std::optional<double> duration, std::opt
 }
 
 }  // namespace
+
+py::object json_written_by(const std::function<std::string(const std::string& dir)>& write) {
+  std::random_device entropy;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("tacta-py-" + std::to_string(entropy()) + std::to_string(entropy()));
+  py::object result;
+  try {
+    std::string path;
+    {
+      py::gil_scoped_release released;
+      path = write(dir.string());
+    }
+    const py::object file = py::module_::import("io").attr("open")(path, "r", py::arg("encoding") = "utf-8");
+    result = py::module_::import("json").attr("load")(file);
+    file.attr("close")();
+  } catch (...) {
+    std::filesystem::remove_all(dir);
+    throw;
+  }
+  std::filesystem::remove_all(dir);
+  return result;
+}
 
 void register_simulation(py::module_& m) {
   py::class_<SimHolder, SimPtr>(m, "Simulation",

@@ -8,6 +8,6 @@
 
 See docs/PYTHON.md for the whole surface.
 """
-from ._tacta import Body, Device, SceneError, Simulation, plugins
+from ._tacta import Body, Device, RenderError, SceneError, Simulation, compare, plugins
 
-__all__ = ["Body", "Device", "SceneError", "Simulation", "plugins"]
+__all__ = ["Body", "Device", "RenderError", "SceneError", "Simulation", "compare", "plugins"]

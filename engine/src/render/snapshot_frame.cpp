@@ -91,6 +91,25 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
   return frame;
 }
 
+std::string models_label(const Snapshot& snapshot) {
+  std::vector<std::string> names;
+  for (const BodySnapshot& b : snapshot.bodies)
+    if (std::find(names.begin(), names.end(), b.model) == names.end()) names.push_back(b.model);
+  std::string label = names.size() > 1 ? "models: " : "model: ";
+  for (size_t i = 0; i < names.size(); ++i) label += (i > 0 ? ", " : "") + names[i];
+  return label;
+}
+
+Image write_snapshot_png(HeadlessRenderer& renderer, const SceneStatic& scene, const Snapshot& snapshot,
+                         const std::string& path, SnapshotStyle style) {
+  if (style.model_label.empty()) style.model_label = models_label(snapshot);
+  Image image = renderer.render(make_render_frame(scene, snapshot, style));
+  const std::filesystem::path file(path);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  write_png(file, image);
+  return image;
+}
+
 namespace {
 
 class PngFrameWriter final : public FrameObserver {

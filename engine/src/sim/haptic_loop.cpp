@@ -371,8 +371,7 @@ void HapticLoop::record(double time) noexcept {
   }
 }
 
-void HapticLoop::publish(double time) noexcept {
-  Snapshot& s = snapshots_.write_slot();
+void HapticLoop::capture(Snapshot& s, double time) const noexcept {
   s.time_s = time;
   s.tick = tick_index_;
   s.last_tick_ms = last_tick_ms_;
@@ -394,7 +393,6 @@ void HapticLoop::publish(double time) noexcept {
     bs.kinetic_J = b.kinetic_energy();
     bs.elastic_J = w != nullptr ? w->elastic_energy() : b.model->elastic_energy(b.positions.data());
     bs.max_displacement_m = b.max_displacement_m;
-    energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, b.max_displacement_m});
   }
   for (size_t d = 0; d < world_.device_count(); ++d) {
     const DeviceSlot& slot = world_.device(d);
@@ -404,6 +402,15 @@ void HapticLoop::publish(double time) noexcept {
     ds.force = slot.force;
     ds.contact = slot.in_contact;
     ds.touched_body = slot.touched_body;
+  }
+}
+
+void HapticLoop::publish(double time) noexcept {
+  Snapshot& s = snapshots_.write_slot();
+  capture(s, time);
+  for (size_t i = 0; i < s.bodies.size(); ++i) {
+    const BodySnapshot& bs = s.bodies[i];
+    energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, bs.max_displacement_m});
   }
   snapshots_.publish();
 }

@@ -70,6 +70,9 @@ class HapticLoop final : public HapticTask {
   const StatusCounter& device_status(size_t device) const { return device_status_[device]; }
   const StatusCounter& collision_status() const { return collision_status_; }
   void publish(double time) noexcept override;
+  // Copies the current state into `s` (sized by make_prototype) without recording it: what
+  // publish() hands the render task, and what a picture between steps draws.
+  void capture(Snapshot& s, double time) const noexcept;
 
   const Recorder<TraceRow>& trace() const { return trace_; }
   const Recorder<TrajectoryRow>& trajectory() const { return trajectory_; }

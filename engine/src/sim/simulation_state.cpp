@@ -104,6 +104,13 @@ TickStatus Simulation::step_status() const noexcept {
   return impl_->clock ? impl_->clock->step_status() : TickStatus{};
 }
 double Simulation::dt() const noexcept { return 1.0 / impl_->world.scene().clock.haptic_rate_hz; }
+Snapshot Simulation::snapshot() {
+  ClockSession& session = impl_->session();
+  Snapshot s = HapticLoop::make_prototype(impl_->world);
+  session.loop().capture(s, session.time());
+  return s;
+}
+const SceneStatic& Simulation::scene_static() { return impl_->session().scene_static(); }
 void Simulation::attach(FrameObserver* observer) { impl_->session().attach(observer); }
 void Simulation::detach(FrameObserver* observer) {
   if (impl_->clock) impl_->clock->detach(observer);

@@ -147,6 +147,11 @@ class Simulation {
   bool set_param(size_t body, const std::string& name, double value);
   const ParamSet& body_params(size_t body) const;  // the model's parameters as last asked for
   DeviceReading device_reading(size_t device) const;
+  // The state now, as the render task would draw it (positions, embedded surfaces, stress,
+  // devices), and what does not change: for a picture between steps or after run() (`tacta
+  // snapshot`, Python's Simulation.snapshot). Allocates; nothing is recorded.
+  Snapshot snapshot();
+  const SceneStatic& scene_static();
   // The report so far: what run() returns, for everything since open.
   RunResult report() const;
   // Writes report.json, the CSV records and plots for everything since open into `dir`.

@@ -1,27 +1,17 @@
-// compare.json, compare.csv and the printed table of `tacta compare` (see docs/COMPARE.md).
-#include "compare_table.hpp"
+// compare.json, compare.csv, the chart and the printed table of a comparison (docs/COMPARE.md).
+#include "tacta/compare/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "tacta/json.hpp"
+#include "tacta/output/plot_script.hpp"
 
-namespace tacta::cli {
+namespace tacta {
 namespace {
-
-// |x - x_rest| of one node, m; nullopt when the final state does not hold the node.
-std::optional<double> node_displacement(const LastSnapshotKeeper& state, size_t body, uint32_t node) {
-  if (!state.has_frame() || body >= state.scene().bodies.size() || body >= state.last().bodies.size())
-    return std::nullopt;
-  const std::vector<double>& rest = state.scene().bodies[body].rest_positions;
-  const std::vector<double>& now = state.last().bodies[body].positions;
-  const size_t i = 3 * static_cast<size_t>(node);
-  if (i + 2 >= rest.size() || i + 2 >= now.size()) return std::nullopt;
-  const double dx = now[i] - rest[i], dy = now[i + 1] - rest[i + 1], dz = now[i + 2] - rest[i + 2];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
 
 std::string csv_number(double value) {
   if (!std::isfinite(value)) return "";
@@ -52,36 +42,6 @@ std::string table_number(const std::optional<double>& value, Style style) {
 }
 
 }  // namespace
-
-CompareRow make_compare_row(const std::string& model, const SceneDesc& scene, const RunResult& result,
-                            const LastSnapshotKeeper& final_state) {
-  CompareRow row;
-  row.model = model;
-  row.tick_p50_ms = result.schedule.tick.p50_ms;
-  row.tick_p99_ms = result.schedule.tick.p99_ms;
-  for (const BodyResult& b : result.bodies) {
-    row.max_displacement_m = std::max(row.max_displacement_m, b.max_displacement_m);
-    row.energy_start_J += b.initial_energy_J;
-    row.energy_end_J += b.kinetic_energy_J + b.elastic_energy_J;
-    if (b.frozen && row.fault_reason.empty()) row.fault_reason = b.name + ": " + b.fault;
-  }
-  if (std::abs(row.energy_start_J) >= kNegligibleEnergyJ)
-    row.energy_drift = (row.energy_end_J - row.energy_start_J) / std::abs(row.energy_start_J);
-  // The first body that names a probe node; the scene format allows one per body.
-  for (size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (!scene.bodies[i].probe_node) continue;
-    row.probe = scene.bodies[i].name + ":" + std::to_string(*scene.bodies[i].probe_node);
-    row.probe_displacement_m = node_displacement(final_state, i, *scene.bodies[i].probe_node);
-    break;
-  }
-  if (final_state.has_frame())
-    for (const auto& body : final_state.last().bodies)
-      row.final_positions.insert(row.final_positions.end(), body.positions.begin(), body.positions.end());
-  row.faults = result.faults;
-  row.state_hash = result.state_hash;
-  if (row.faults > 0 && row.fault_reason.empty()) row.fault_reason = "fault reported (see report.json)";
-  return row;
-}
 
 CompareRow make_failed_row(const std::string& model, const std::string& reason) {
   CompareRow row;
@@ -166,6 +126,27 @@ void write_compare_csv(const std::string& path, const CompareSummary& summary, b
   if (!file) throw std::runtime_error("cannot write " + path);
 }
 
+std::vector<std::string> write_compare_outputs(const std::string& dir, const CompareSummary& summary,
+                                               std::string& warning) {
+  const std::filesystem::path out(dir);
+  std::filesystem::create_directories(out);
+  std::vector<std::string> written{(out / "compare.json").string(), (out / "compare.csv").string()};
+  write_compare_json(written[0], summary);
+  write_compare_csv(written[1], summary);
+  std::string metrics;
+  for (const std::string& m : plotted_metrics(summary)) metrics += (metrics.empty() ? "" : ",") + m;
+  const std::string png = (out / "compare.png").string();
+  // The chart reads a copy whose faulted models say so: a frozen body is no longer stepped, so
+  // its bars (cheap ticks, a diverged energy) must not pass for a fast, sound model.
+  const std::string chart_csv = (out / ".compare_chart.csv").string();
+  write_compare_csv(chart_csv, summary, true);
+  const int plot_status = run_plot_script("compare_bars.py", {chart_csv, png, "--metrics", metrics});
+  std::filesystem::remove(chart_csv);
+  if (plot_status == 0) written.push_back(png);
+  else warning = "compare_bars.py exited with " + std::to_string(plot_status) + "; no " + png;
+  return written;
+}
+
 void print_compare_table(std::FILE* out, const CompareSummary& summary) {
   std::fprintf(out, "%s, %.6g s simulated per model (lockstep)\n", summary.scene.c_str(), summary.duration_s);
   int width = 18;  // characters of the model column: the longest label
@@ -200,4 +181,4 @@ std::vector<std::string> plotted_metrics(const CompareSummary& summary) {
   return metrics;
 }
 
-}  // namespace tacta::cli
+}  // namespace tacta
