@@ -1,6 +1,7 @@
 # cmake -P script: install, build an external plugin against the installed package, list it.
 # Inputs: TACTA_BUILD_DIR, EXTERNAL_SOURCE_DIR, WORK_DIR, GENERATOR, CXX_COMPILER, and the
-# parent build's CXX_FLAGS, EXE_LINKER_FLAGS, MODULE_LINKER_FLAGS (sanitizers).
+# parent build's CXX_FLAGS, EXE_LINKER_FLAGS, MODULE_LINKER_FLAGS (sanitizers); PYTHON and
+# PYTHON_PACKAGE_DIR (relative to the prefix) when the build has the Python module.
 cmake_minimum_required(VERSION 3.25)
 
 function(run step)
@@ -88,6 +89,17 @@ if(EXISTS ${build}/engine_user)
   run("engine user" ${build}/engine_user)
   if(NOT run_output MATCHES "\"entities\":2")
     message(FATAL_ERROR "engine_user printed: ${run_output}")
+  endif()
+endif()
+if(PYTHON)
+  # Only the installed package on the path (not build/python), run from a folder of its own.
+  set(package_root ${prefix}/${PYTHON_PACKAGE_DIR})
+  run("import the installed tacta package" ${CMAKE_COMMAND} -E chdir ${WORK_DIR}
+      ${CMAKE_COMMAND} -E env PYTHONPATH=${package_root} TACTA_PLUGIN_PATH=${plugin_dir} PYTHONDONTWRITEBYTECODE=1
+      ${PYTHON} -c "import tacta; assert tacta.__file__.startswith('${package_root}/'), tacta.__file__; \
+sim = tacta.Simulation('free_body.yaml'); sim.step(5); print(sim.bodies['block'].model, sim.tick)")
+  if(NOT run_output MATCHES "external_free_body 5")
+    message(FATAL_ERROR "the installed tacta package printed: ${run_output}")
   endif()
 endif()
 message(STATUS "installed package OK: external_demo listed, external_free_body ran, from ${plugin_dir}")

@@ -41,28 +41,8 @@ def beam_scene(model="corotational_fem", youngs_modulus=5.0e5, duration=1.0):
 
 
 def pressed_block_scene():
-    """A soft block on a fixed base touched from above by a mouse-driven stylus (host input)."""
-    return {
-        "name": "python_press",
-        "gravity": [0, 0, 0],
-        "clock": {"mode": "lockstep", "duration_s": 5.0},
-        "bodies": [{
-            "name": "block",
-            "mesh": {"box_grid": {"size": [0.1, 0.05, 0.1], "cells": [4, 2, 4], "origin": [-0.05, 0, -0.05]}},
-            "material": {"youngs_modulus": 2.0e4, "poisson_ratio": 0.4, "density": 1000, "rayleigh_mass": 5.0},
-            "model": "tensor_mass",
-            "fixed": [{"box": {"min": [-1, -0.001, -1], "max": [1, 0.001, 1]}}],
-        }],
-        "devices": [{
-            "name": "hand",
-            "plugin": "mouse",
-            "params": {"start_position": [0, 0.07, 0]},
-            "tool": {"sphere": {"radius": 0.005}},
-            "coupling": {"stiffness": 400, "damping": 1.0},
-            "touches": "block",
-        }],
-        "collision": {"enabled": False, "broad_phase": "bvh"},
-    }
+    """scenes/examples/hand_press.yaml: a soft block touched from above by a mouse-driven stylus."""
+    return str(ROOT / "scenes/examples/hand_press.yaml")
 
 
 def read_png_rgb(path):

@@ -26,7 +26,7 @@ class ForceController:
 
 
 def test_python_force_controller_closes_the_loop():
-    sim = tacta.Simulation.from_dict(pressed_block_scene())
+    sim = tacta.Simulation(pressed_block_scene())
     hand = sim.devices["hand"]
     controller = ForceController(setpoint=1.0, start=[0, 0.06, 0])
     assert hand.attach(controller, rate_hz=100) == 10
@@ -41,7 +41,7 @@ def test_python_force_controller_closes_the_loop():
 def test_python_device_calls_fall_on_absolute_ticks():
     hashes = []
     for chunks in ([1] * 200, [200], [3, 97, 100]):
-        sim = tacta.Simulation.from_dict(pressed_block_scene())
+        sim = tacta.Simulation(pressed_block_scene())
         sim.devices["hand"].attach(ForceController(setpoint=0.5, start=[0, 0.055, 0]), rate_hz=250)
         for n in chunks:
             sim.step(n)
