@@ -64,18 +64,22 @@ void raise_render_error(const std::string& message) {
 }
 
 void register_errors(py::module_& m) {
-  scene_error_type = PyErr_NewExceptionWithDoc(
-      "tacta.SceneError",
+  // An exception class of the module, kept for the module's life.
+  auto add_error = [&m](const char* name, const char* doc, PyObject* base) {
+    PyObject* type = PyErr_NewExceptionWithDoc((std::string("tacta.") + name).c_str(), doc, base, nullptr);
+    m.attr(name) = py::reinterpret_borrow<py::object>(type);
+    return type;
+  };
+  scene_error_type = add_error(
+      "SceneError",
       "Bad input: a scene, override, mesh, plugin name or parameter. Attributes: file, line, "
       "column (1-based, 0 when unknown) and key (the key path, e.g. 'bodies[0].material.E').",
-      PyExc_ValueError, nullptr);
-  m.attr("SceneError") = py::reinterpret_borrow<py::object>(scene_error_type);
-  render_error_type = PyErr_NewExceptionWithDoc(
-      "tacta.RenderError",
+      PyExc_ValueError);
+  render_error_type = add_error(
+      "RenderError",
       "No picture could be made: no headless EGL context (needs Mesa's libegl-mesa0 and "
       "libgl1-mesa-dri), or a build without the renderer. The message says which.",
-      PyExc_RuntimeError, nullptr);
-  m.attr("RenderError") = py::reinterpret_borrow<py::object>(render_error_type);
+      PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);

@@ -92,12 +92,13 @@ if(EXISTS ${build}/engine_user)
   endif()
 endif()
 if(PYTHON)
-  # Only the installed package on the path (not build/python), run from a folder of its own.
+  # Only the installed package on the path (not build/python), run from a folder of its own. The
+  # code's statements are on lines: a ';' would split the argument as a CMake list.
   set(package_root ${prefix}/${PYTHON_PACKAGE_DIR})
   run("import the installed tacta package" ${CMAKE_COMMAND} -E chdir ${WORK_DIR}
       ${CMAKE_COMMAND} -E env PYTHONPATH=${package_root} TACTA_PLUGIN_PATH=${plugin_dir} PYTHONDONTWRITEBYTECODE=1
-      ${PYTHON} -c "import tacta; assert tacta.__file__.startswith('${package_root}/'), tacta.__file__; \
-sim = tacta.Simulation('free_body.yaml'); sim.step(5); print(sim.bodies['block'].model, sim.tick)")
+      ${PYTHON} -c "import tacta\nassert tacta.__file__.startswith('${package_root}/'), tacta.__file__\n\
+sim = tacta.Simulation('free_body.yaml')\nsim.step(5)\nprint(sim.bodies['block'].model, sim.tick)")
   if(NOT run_output MATCHES "external_free_body 5")
     message(FATAL_ERROR "the installed tacta package printed: ${run_output}")
   endif()

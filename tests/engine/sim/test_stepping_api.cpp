@@ -2,6 +2,8 @@
 // stepping in any chunks gives the state run() gives, bit for bit; runs continue one clock; a
 // load moves the body; live parameters change without a swap, others by one; bad input throws.
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +25,13 @@ bodies:
 )";
 
 SceneDesc beam() { return scene_from_text(kBeam, "beam_stepping"); }
+
+std::string read_file(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
 
 std::string run_hash(double duration_s) {
   Simulation simulation(beam(), plugins());
@@ -172,6 +181,30 @@ bodies:
   simulation.step(ticks);
   const BodyArrays a = simulation.body_arrays(0);
   return {a.positions, a.positions + 3 * a.nodes};
+}
+
+// What `tacta snapshot` and Python's Simulation.snapshot draw: the state at the current tick (not
+// the last frame's), and taking it records nothing (energy.csv is that of a run without it).
+TEST(SteppingApi, SnapshotIsTheStateNowAndRecordsNothing) {
+  Simulation plain(beam(), plugins()), pictured(beam(), plugins());
+  plain.step(37);
+  pictured.step(37);  // 37 ms: between two 60 Hz frames
+  const Snapshot now = pictured.snapshot();
+  EXPECT_NEAR(now.time_s, 0.037, 1e-12);
+  const BodyArrays state = pictured.body_arrays(0);
+  ASSERT_EQ(now.bodies.size(), 1u);
+  EXPECT_EQ(now.bodies[0].positions, std::vector<double>(state.positions, state.positions + 3 * state.nodes));
+  EXPECT_EQ(now.bodies[0].model, "corotational_fem");
+  EXPECT_GT(now.bodies[0].elastic_J, 0.0);
+  ASSERT_EQ(pictured.scene_static().bodies.size(), 1u);
+  EXPECT_EQ(pictured.scene_static().bodies[0].rest_positions.size(), 3 * state.nodes);
+  plain.step(63);
+  pictured.step(63);
+  EXPECT_EQ(pictured.report().state_hash, plain.report().state_hash);
+  const std::string a = fresh_dir("snapshot_plain"), b = fresh_dir("snapshot_pictured");
+  plain.write_outputs(a);
+  pictured.write_outputs(b);
+  EXPECT_EQ(read_file(a + "/energy.csv"), read_file(b + "/energy.csv"));
 }
 
 TEST(HostServices, TwoWorkersGiveTheSerialPassToRoundingAndRepeat) {
