@@ -33,6 +33,7 @@ struct SimHolder {
   std::shared_ptr<PluginRegistry> plugins;
   std::unique_ptr<Simulation> sim;
   std::vector<PythonDevice> python_devices;
+  TickStatus last_status;  // OR-ed over every chunk of the last step()/advance_to()
 };
 using SimPtr = std::shared_ptr<SimHolder>;
 

@@ -52,6 +52,7 @@ void exchange(SimHolder& holder, const PythonDevice& pd) {
 uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks) {
   Simulation& sim = *holder.sim;
   uint64_t done = 0;
+  holder.last_status = {};
   while (done < ticks) {
     uint64_t chunk = ticks - done;
     // Exchanges fall on absolute ticks (multiples of every_ticks), so step(1) a thousand times
@@ -66,6 +67,7 @@ uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks) {
       py::gil_scoped_release released;
       ran = sim.step(chunk);
     }
+    holder.last_status.merge(sim.step_status());
     done += ran;
     if (ran < chunk) break;  // the run ended (every device finished)
   }

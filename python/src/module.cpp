@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "tacta/live_params.hpp"
 
 namespace tacta::python {
 namespace {
@@ -18,6 +19,7 @@ py::dict plugin_list() {
     row["kind"] = tacta_kind_name(d.descriptor->kind);
     row["name"] = d.descriptor->name;
     row["file"] = d.file;
+    if (d.descriptor->kind == TACTA_KIND_MODEL) row["live_params"] = live_param_names(*d.descriptor);
     loaded.append(row);
   }
   for (const RefusedPlugin& r : registry->refused()) {

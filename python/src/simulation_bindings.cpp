@@ -129,6 +129,19 @@ void register_simulation(py::module_& m) {
       .def_property_readonly("time", [](const SimHolder& h) { return h.sim->time(); }, "simulated time, s")
       .def_property_readonly("tick", [](const SimHolder& h) { return h.sim->tick(); }, "haptic ticks run")
       .def_property_readonly("dt", [](const SimHolder& h) { return h.sim->dt(); }, "one haptic tick, s")
+      .def_property_readonly(
+          "last_status",
+          [](const SimHolder& h) {
+            py::dict d;
+            d["model_bits"] = h.last_status.model_bits;
+            d["collision_bits"] = h.last_status.collision_bits;
+            d["device_bits"] = h.last_status.device_bits;
+            d["error"] = h.last_status.error;
+            return d;
+          },
+          "what the last step()/advance_to() raised: model (TACTA_STEP_*), collision and device "
+          "bits OR-ed over its ticks, and 'error' (e.g. a body faulted and froze); report()['status'] "
+          "has the names, counts and remedies")
       .def_property_readonly("scene_path", [](const SimHolder& h) { return h.sim->scene().path; })
       .def_property_readonly("warnings", [](const SimHolder& h) { return h.sim->load_warnings(); },
                              "legal but likely mistaken parts of the scene, with file, line and key")

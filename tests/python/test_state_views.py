@@ -78,7 +78,10 @@ def test_set_param_live_or_by_swap():
     sim = tacta.Simulation.from_dict(beam_scene())
     beam = sim.bodies["beam"]
     live = beam.set_param("tolerance", 1e-6)
-    assert isinstance(live, bool)
+    assert live  # corotational_fem lists tolerance as live: changed in place, no swap
+    models = {p["name"]: p for p in tacta.plugins()["loaded"] if p["kind"] == "model"}
+    assert "tolerance" in models["corotational_fem"]["live_params"]
+    assert not beam.set_param("restart_factor", 4)  # not live: a swap to the same model
     assert beam.params["tolerance"] == pytest.approx(1e-6)
     sim.step(5)
     with pytest.raises(tacta.SceneError):
@@ -109,3 +112,17 @@ def test_applied_forces_act_until_cleared():
     with pytest.raises(tacta.SceneError, match="past the body"):
         beam.apply_force([99], [[0, 0, 1]])
     assert beam.faults == []
+
+
+def test_last_status_says_what_the_last_step_raised():
+    sim = tacta.Simulation.from_dict(beam_scene())
+    beam = sim.bodies["beam"]
+    sim.step(10)
+    assert sim.last_status["error"] is False
+    beam.positions[35, 0] = float("nan")  # the free tip
+    beam.state_written()
+    sim.step(5)
+    assert sim.last_status["error"] is True and sim.last_status["model_bits"] != 0
+    assert len(beam.faults) == 1
+    sim.step(5)
+    assert sim.last_status["error"] is False  # frozen: nothing more is raised
