@@ -125,12 +125,14 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     Eigen::Vector3d w[4];  // V^T grad_a
     for (int a = 0; a < 4; ++a)
       w[a] = frame.v.transpose() * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]);
+    Eigen::Matrix3d blocks[10];
+    element_stiffness(frame, tangent, w, scale * element.volume, blocks);
     const uint32_t* slots = matrix_.element_slots(e);
     for (int p = 0; p < 10; ++p) {
-      int a = kPairA[p], b = kPairB[p];
-      if (element.nodes[a] > element.nodes[b]) std::swap(a, b);  // the stored block is (low, high)
-      const Eigen::Matrix3d k = stiffness_block(frame, tangent, w[a], w[b], scale * element.volume);
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(matrix_.block(slots[p])) += k;
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> stored(matrix_.block(slots[p]));
+      // The stored block is (low node, high node): K_ba = K_ab^T when a's node is the higher.
+      if (element.nodes[kPairA[p]] > element.nodes[kPairB[p]]) stored += blocks[p].transpose();
+      else stored += blocks[p];
     }
   }
   return energy;

@@ -75,20 +75,38 @@ DiagonalTangent diagonal_tangent(const Eigen::Vector3d& sigma, const StretchDeri
   return t;
 }
 
-Eigen::Matrix3d stiffness_block(const StretchFrame& frame, const DiagonalTangent& tangent,
-                                const Eigen::Vector3d& wa, const Eigen::Vector3d& wb,
-                                double volume) {
-  Eigen::Matrix3d d = wa.asDiagonal() * tangent.scaling * wb.asDiagonal();
+void element_stiffness(const StretchFrame& frame, const DiagonalTangent& tangent,
+                       const Eigen::Vector3d (&w)[4], double volume, Eigen::Matrix3d (&blocks)[10]) {
+  // The modes' weights times the volume once, not per block.
+  const Eigen::Matrix3d scaling = volume * tangent.scaling;
+  double same[3], cross[3];
   for (int p = 0; p < 3; ++p) {
-    const int i = kPairI[p], j = kPairJ[p];
-    const double same = 0.5 * (tangent.twist[p] + tangent.flip[p]);
-    const double cross = 0.5 * (tangent.flip[p] - tangent.twist[p]);
-    d(i, i) += same * wa[j] * wb[j];
-    d(j, j) += same * wa[i] * wb[i];
-    d(i, j) += cross * wa[j] * wb[i];
-    d(j, i) += cross * wa[i] * wb[j];
+    same[p] = 0.5 * volume * (tangent.twist[p] + tangent.flip[p]);
+    cross[p] = 0.5 * volume * (tangent.flip[p] - tangent.twist[p]);
   }
-  return volume * (frame.u * d * frame.u.transpose());
+  // K(wa, wb) = U d U^T with d the tangent in U's frame, bilinear in wa and wb.
+  const auto block = [&](const Eigen::Vector3d& wa, const Eigen::Vector3d& wb) {
+    Eigen::Matrix3d d = wa.asDiagonal() * scaling * wb.asDiagonal();
+    for (int p = 0; p < 3; ++p) {
+      const int i = kPairI[p], j = kPairJ[p];
+      d(i, i) += same[p] * wa[j] * wb[j];
+      d(j, j) += same[p] * wa[i] * wb[i];
+      d(i, j) += cross[p] * wa[j] * wb[i];
+      d(j, i) += cross[p] * wa[i] * wb[j];
+    }
+    return Eigen::Matrix3d(frame.u * d * frame.u.transpose());
+  };
+  blocks[0] = block(w[0], w[0]);
+  blocks[1] = block(w[0], w[1]);
+  blocks[2] = block(w[0], w[2]);
+  blocks[4] = block(w[1], w[1]);
+  blocks[5] = block(w[1], w[2]);
+  blocks[7] = block(w[2], w[2]);
+  // w_3 = -(w_0 + w_1 + w_2), and K_ba = K_ab^T.
+  blocks[3] = -(blocks[0] + blocks[1] + blocks[2]);
+  blocks[6] = -(blocks[1].transpose() + blocks[4] + blocks[5]);
+  blocks[8] = -(blocks[2].transpose() + blocks[5].transpose() + blocks[7]);
+  blocks[9] = -(blocks[3].transpose() + blocks[6].transpose() + blocks[8].transpose()).eval();
 }
 
 }  // namespace tacta::models::hyperelastic

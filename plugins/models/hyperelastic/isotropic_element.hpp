@@ -33,10 +33,11 @@ inline Eigen::Matrix3d first_piola(const StretchFrame& frame, const StretchDeriv
   return frame.u * psi.gradient.asDiagonal() * frame.v.transpose();
 }
 
-// The 3x3 block K_ab = volume * sum over modes of lambda (Q g_a)(Q g_b)^T, given w = V^T g for
-// both nodes (1/m): N/m.
-Eigen::Matrix3d stiffness_block(const StretchFrame& frame, const DiagonalTangent& tangent,
-                                const Eigen::Vector3d& wa, const Eigen::Vector3d& wb,
-                                double volume);
+// The element's ten node-pair blocks K_ab = volume * sum over modes of lambda (Q g_a)(Q g_b)^T,
+// a <= b in the order (0,0) (0,1) (0,2) (0,3) (1,1) (1,2) (1,3) (2,2) (2,3) (3,3), given
+// w_a = V^T g_a (1/m): N/m. The gradients of a tet sum to zero, so the six blocks among nodes
+// 0-2 are computed and those with node 3 follow as sums (K_a3 = -sum_c K_ac).
+void element_stiffness(const StretchFrame& frame, const DiagonalTangent& tangent,
+                       const Eigen::Vector3d (&w)[4], double volume, Eigen::Matrix3d (&blocks)[10]);
 
 }  // namespace tacta::models::hyperelastic
