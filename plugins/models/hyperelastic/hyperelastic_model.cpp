@@ -99,9 +99,14 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
       deformation.noalias() += node_position(x, element.nodes[a]) *
                                Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
     if (record_deformation_) assembled_deformation_[e] = deformation;
-    if (track_change_)
+    if (track_change_) {
       deformation_change_ = std::max(deformation_change_,
                                      (deformation - assembled_deformation_[e]).squaredNorm());
+      // The lagged system is ruled out: the caller assembles a fresh tangent, which computes
+      // the forces again, so the rest of this pass would be wasted.
+      if (deformation_change_ > options_.tangent_reuse_change * options_.tangent_reuse_change)
+        return energy;
+    }
     if (scale == 0.0) {  // no tangent: the invariants give psi and P without an SVD
       double psi = 0.0;
       Eigen::Matrix3d stress;

@@ -133,7 +133,8 @@ class HyperelasticModel {
   // system_step_, reused by system_age_ steps since its assembly.
   bool system_valid_ = false;
   // F per element at the first iterate of the last fresh assembly (Kd's), and the largest
-  // |F - that|^2 a force pass met while track_change_ is set.
+  // |F - that|^2 a force pass met while track_change_ is set (which stops the pass once it
+  // exceeds tangent_reuse_change^2: its forces are then incomplete).
   std::vector<Eigen::Matrix3d> assembled_deformation_;
   bool record_deformation_ = false, track_change_ = false;
   double deformation_change_ = 0.0;

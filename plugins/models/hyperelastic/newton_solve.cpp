@@ -63,7 +63,7 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
     if (!measured && (last || lagged)) {
       std::fill(forces_.begin(), forces_.end(), 0.0);
       deformation_change_ = 0.0;
-      track_change_ = lagged;
+      track_change_ = lagged && !last;  // may cut the pass short: only when a tangent follows
       const double energy = element_pass(x, forces_.data(), 0.0);
       track_change_ = false;
       lagged = lagged && deformation_change_ <=
