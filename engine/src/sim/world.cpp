@@ -120,16 +120,14 @@ ecs::Entity World::add_body(const BodyDesc& desc) {
 void World::remove_body(ecs::Entity handle) {
   const std::lock_guard<std::mutex> lock(requests_);
   const size_t slot = body_slot(handle);
-  uint32_t next = handle.generation + 1;
-  if (next == 0) next = 1;
-  generations_[slot].store(next, std::memory_order_release);
+  generations_[slot].store(retired_generation(handle.generation), std::memory_order_release);
   commands_.push({EntityCommand::kRemoveBody, static_cast<uint32_t>(slot), 0});
 }
 
 ecs::Entity World::body_handle(size_t body) const {
   if (body >= body_count())
     throw InputError({scene_.path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
-  return {body_entities_[body].index, generations_[body].load(std::memory_order_acquire)};
+  return {body_entities_[body].index, generations_[body].load(std::memory_order_acquire) & ~kRemovedBit};
 }
 
 bool World::is_live(ecs::Entity handle) const noexcept {
@@ -143,8 +141,8 @@ size_t World::body_slot(ecs::Entity handle) const {
   if (!is_live(handle))
     throw InputError({scene_.path, 0, 0, "bodies"},
                      "stale body handle " + ecs::to_string(handle) + ": body '" + body(handle.index).name +
-                         "' was removed (current generation " +
-                         std::to_string(generations_[handle.index].load(std::memory_order_acquire)) + ")");
+                         "' was removed (its handles' generation is now " +
+                         std::to_string(generations_[handle.index].load(std::memory_order_acquire) & ~kRemovedBit) + ")");
   return handle.index;
 }
 
@@ -161,8 +159,8 @@ void World::apply_entity_commands(double time) noexcept {
       continue;
     }
     // A timed removal retires the handle now, like a request would.
-    const uint32_t g = generations_[t.slot].load(std::memory_order_relaxed) + 1;
-    generations_[t.slot].store(g == 0 ? 1 : g, std::memory_order_release);
+    const uint32_t g = generations_[t.slot].load(std::memory_order_relaxed);
+    if ((g & kRemovedBit) == 0) generations_[t.slot].store(retired_generation(g), std::memory_order_release);
     leave(t.slot, time);
   }
 }

@@ -69,6 +69,13 @@ class World {
   void apply_entity_commands(double time) noexcept;
 
  private:
+  // A removed body's generation moves on and carries kRemovedBit, so no handle matches it
+  // again, not even the one body_handle() gives for it afterwards.
+  static constexpr uint32_t kRemovedBit = 0x80000000u;
+  static uint32_t retired_generation(uint32_t live) noexcept {
+    const uint32_t next = (live + 1) & ~kRemovedBit;
+    return (next == 0 ? 1 : next) | kRemovedBit;
+  }
   void enter(size_t slot, double time) noexcept;
   void leave(size_t slot, double time) noexcept;
   std::unique_ptr<SoftBody> build_body(const BodyDesc& desc) const;
