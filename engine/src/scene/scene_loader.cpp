@@ -215,10 +215,13 @@ SourceLocation location_of(const std::string& file, const YAML::Mark& mark) {
 }  // namespace
 }  // namespace scene_detail
 
-SceneDesc load_scene_from_string(const std::string& text, const std::string& virtual_path,
-                                 const SchemaLookup& schemas,
-                                 const std::vector<std::string>& overrides) {
-  using namespace scene_detail;
+namespace scene_detail {
+namespace {
+
+// Parses `text` and hands its root to `read` with a context anchored at `virtual_path`; YAML
+// errors become InputErrors at their mark.
+template <class Read>
+auto read_text(const std::string& text, const std::string& virtual_path, const SchemaLookup& schemas, Read&& read) {
   LoadContext context;
   context.file = virtual_path;
   context.directory = std::filesystem::absolute(virtual_path).parent_path().lexically_normal();
@@ -230,35 +233,35 @@ SceneDesc load_scene_from_string(const std::string& text, const std::string& vir
     throw InputError(location_of(virtual_path, e.mark), "YAML syntax error: " + e.msg);
   }
   try {
-    apply_overrides(root, overrides, context.overrides);
-    SceneDesc scene = read_scene(Field(context, root, "", YAML::Mark::null_mark()));
-    scene.path = virtual_path;
-    scene.directory = context.directory.string();
-    return scene;
+    return read(context, root);
   } catch (const YAML::Exception& e) {
     // yaml-cpp itself should not throw once parsed; report it at its mark rather than crash.
     throw InputError(location_of(virtual_path, e.mark), "malformed YAML: " + e.msg);
   }
 }
 
+}  // namespace
+}  // namespace scene_detail
+
+SceneDesc load_scene_from_string(const std::string& text, const std::string& virtual_path,
+                                 const SchemaLookup& schemas,
+                                 const std::vector<std::string>& overrides) {
+  using namespace scene_detail;
+  return read_text(text, virtual_path, schemas, [&](LoadContext& context, YAML::Node& root) {
+    apply_overrides(root, overrides, context.overrides);
+    SceneDesc scene = read_scene(Field(context, root, "", YAML::Mark::null_mark()));
+    scene.path = virtual_path;
+    scene.directory = context.directory.string();
+    return scene;
+  });
+}
+
 BodyDesc load_body_from_string(const std::string& text, const std::string& virtual_path,
                                const SchemaLookup& schemas) {
   using namespace scene_detail;
-  LoadContext context;
-  context.file = virtual_path;
-  context.directory = std::filesystem::absolute(virtual_path).parent_path().lexically_normal();
-  context.schemas = &schemas;
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(location_of(virtual_path, e.mark), "YAML syntax error: " + e.msg);
-  }
-  try {
+  return read_text(text, virtual_path, schemas, [](LoadContext& context, YAML::Node& root) {
     return read_body(Field(context, root, "", YAML::Mark::null_mark()));
-  } catch (const YAML::Exception& e) {
-    throw InputError(location_of(virtual_path, e.mark), "malformed YAML: " + e.msg);
-  }
+  });
 }
 
 SceneDesc load_scene(const std::string& path, const SchemaLookup& schemas,
