@@ -80,6 +80,7 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     registry_.emplace<DeviceSlot>(e, std::move(slot));
     devices_.push_back(e);
   }
+  for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
 }
 
 std::unique_ptr<SoftBody> World::build_body(const BodyDesc& desc) const {

@@ -41,8 +41,10 @@ class World {
   SoftBody& body(size_t i) { return *slots_[i]; }
   const SoftBody& body(size_t i) const { return *slots_[i]; }
   const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
-  DeviceSlot& device(size_t i) { return registry_.get<DeviceSlot>(devices_[i]); }
-  const DeviceSlot& device(size_t i) const { return registry_.get<DeviceSlot>(devices_[i]); }
+  // Through pointers taken at load (devices never come or go, so their pool never moves): other
+  // threads (device input) reach a device without reading the registry the tick's thread changes.
+  DeviceSlot& device(size_t i) { return *device_slots_[i]; }
+  const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
   int body_index(const std::string& name) const;
   ecs::Registry& registry() noexcept { return registry_; }
   uint32_t threads() const noexcept { return jobs_->threads(); }
@@ -90,6 +92,7 @@ class World {
   std::unique_ptr<std::atomic<uint32_t>[]> generations_;  // per slot: the live handle's generation
   std::atomic<size_t> body_count_{0};
   std::vector<ecs::Entity> devices_;
+  std::vector<DeviceSlot*> device_slots_;
   std::mutex requests_;  // serialises requesters only; the tick's thread never takes it
   EntityCommandRing commands_;
   std::vector<EntityCommand> timed_;  // the scene's events, by time
