@@ -198,7 +198,13 @@ SceneDesc read_scene(const Field& root) {
     f->expect_map("a map {bodies}");
     f->check_keys({"bodies"});
     // 4096: far past what a haptic scene steps at 1 kHz; each slot is reserved at load.
-    if (auto b = f->get("bodies")) scene.body_capacity = static_cast<uint32_t>(b->integer(1, 4096));
+    if (auto b = f->get("bodies")) {
+      scene.body_capacity = static_cast<uint32_t>(b->integer(1, 4096));
+      size_t needed = scene.bodies.size();
+      for (const BodyEventDesc& e : scene.events) needed += e.add ? 1 : 0;
+      if (scene.body_capacity < needed)
+        b->fail_expected("at least " + std::to_string(needed) + " (the scene's bodies and the bodies its events add)");
+    }
   }
   return scene;
 }

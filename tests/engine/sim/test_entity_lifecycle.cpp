@@ -176,6 +176,13 @@ events:
                                "bad_events"),
                InputError)
       << "out of time order";
+  try {
+    scene_from_text(text + "capacity: {bodies: 1}\n", "bad_capacity");
+    FAIL() << "capacity below the scene's bodies and its events' adds";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("capacity.bodies"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at least 2"), std::string::npos) << e.what();
+  }
 }
 
 // The liver demo's stylus presses the liver (touches: liver); the liver is removed mid-press:
