@@ -174,6 +174,15 @@ struct SwapDesc {
   ParamSet params;
 };
 
+// A body entering or leaving the scene while it runs (scene key `events`): exactly one of
+// `add` (a whole body, as under `bodies`) and `remove` (a body's name).
+struct BodyEventDesc {
+  double time = 0;  // s, simulated
+  std::optional<BodyDesc> add;
+  std::string remove;
+  SourceLocation where;
+};
+
 // The longest run, in haptic ticks (1 h at 1 kHz): per-tick records (trace rows, tick timings,
 // ~150 bytes a tick) are reserved before the run so the haptic path never allocates.
 constexpr uint64_t kMaxRunTicks = 3'600'000;
@@ -227,6 +236,12 @@ struct SceneDesc {
   // Threads a model's parallel_for runs on (the stepping thread included); 1: serial. The
   // result then depends on the ordering a model picks for parallel work, not on this number.
   uint32_t threads = 1;
+  std::vector<BodyEventDesc> events;  // sorted by time
+  // Body slots reserved at load (scene key capacity.bodies): the scene's bodies, its events'
+  // and those added through the API. 0: the scene's and its events' plus kSpareBodySlots.
+  uint32_t body_capacity = 0;
 };
+
+constexpr uint32_t kSpareBodySlots = 16;
 
 }  // namespace tacta

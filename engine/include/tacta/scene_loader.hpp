@@ -64,6 +64,11 @@ SceneDesc load_scene_from_string(const std::string& text, const std::string& vir
                                  const SchemaLookup& schemas,
                                  const std::vector<std::string>& overrides = {});
 
+// One body (the map a scene lists under `bodies`), e.g. to add while a scene runs; relative
+// paths resolve against `virtual_path`'s folder (give the scene's path).
+BodyDesc load_body_from_string(const std::string& text, const std::string& virtual_path,
+                               const SchemaLookup& schemas);
+
 // Isotropic elasticity conversions (both in Pa; nu dimensionless).
 struct LameParameters {
   double lambda;  // Pa

@@ -41,6 +41,10 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
     const BodyStatic& b = scene.bodies[i];
     const BodySnapshot& s = snapshot.bodies[i];
     BodyDraw d;
+    if (!s.present) {  // not in the scene yet, or removed: drawn as nothing, indices kept
+      frame.bodies.push_back(std::move(d));
+      continue;
+    }
     const bool embedded = shows_embedded(b, s);
     const std::vector<double>& rest = embedded ? b.surface_rest_positions : b.rest_positions;
     d.positions = embedded ? s.surface_positions : s.positions;

@@ -89,9 +89,13 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     const SoftBody& body = world.body(i);
     j.begin_object();
     j.field("name", b.name).field("model", b.model);
+    // Only for bodies that came or went while the scene ran (scene events, Simulation::add_body).
+    if (b.added_s >= 0) j.field("added_s", b.added_s);
+    if (b.removed_s >= 0) j.field("removed_s", b.removed_s);
+    if (b.pending) j.field("pending", true);
     // Every model the body ran, with the simulated time it took over (s): the scene's scheduled
     // swaps and the ones requested while running, in time order.
-    std::vector<std::pair<double, std::string>> runs{{0.0, body.initial_model}};
+    std::vector<std::pair<double, std::string>> runs{{std::max(0.0, b.added_s), body.initial_model}};
     for (size_t s = 0; s < body.next_swap; ++s) runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
     for (const RuntimeSwap& r : body.runtime_swaps) runs.emplace_back(r.time_s, r.model);
     std::stable_sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });

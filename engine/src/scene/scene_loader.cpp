@@ -110,10 +110,40 @@ void check_unique(const std::vector<Field>& items, const std::vector<std::string
                                       "' (first used by " + items[j].path() + ")");
 }
 
+// `events`: bodies entering ({time, add: {a body}}) or leaving ({time, remove: name}) while the
+// scene runs, kept in time order. Names stay unique across bodies and added ones.
+void read_events(const Field& field, const std::vector<Field>& body_items, SceneDesc& scene) {
+  std::vector<Field> named = body_items;
+  std::vector<std::string> names;
+  for (const BodyDesc& b : scene.bodies) names.push_back(b.name);
+  for (const Field& item : field.items("a list of events {time, add | remove}")) {
+    item.expect_map("an event: a map {time, add: {a body}} or {time, remove: body name}");
+    item.check_keys({"time", "add", "remove"});
+    BodyEventDesc event;
+    event.time = item.require("time").real(Range::non_negative());
+    event.where = item.where();
+    const std::string what = exactly_one_of(item, {"add", "remove"});
+    if (what == "add") {
+      event.add = read_body(item.require("add"));
+      named.push_back(item.require("add"));
+      names.push_back(event.add->name);
+      check_unique(named, names, "body");
+    } else {
+      const Field f = item.require("remove");
+      event.remove = f.text();
+      if (std::find(names.begin(), names.end(), event.remove) == names.end())
+        f.fail("no body named '" + event.remove + "' among the scene's bodies and the events' adds");
+    }
+    if (!scene.events.empty() && event.time < scene.events.back().time)
+      item.require("time").fail("events are listed in time order (this one is earlier than the one before)");
+    scene.events.push_back(std::move(event));
+  }
+}
+
 SceneDesc read_scene(const Field& root) {
   root.expect_map("a scene: a map with keys name, gravity, clock, bodies, ...");
   root.check_keys({"name", "gravity", "seed", "threads", "clock", "bodies", "devices", "obstacles",
-                   "collision", "swaps", "output"});
+                   "collision", "swaps", "output", "events", "capacity"});
   SceneDesc scene;
   scene.name = std::filesystem::path(root.context().file).stem().string();
   if (auto f = root.get("name")) scene.name = f->text();
@@ -163,6 +193,19 @@ SceneDesc read_scene(const Field& root) {
     for (const Field& item : f->items("a list of swaps {time, body, model}"))
       scene.swaps.push_back(read_swap(item, scene.bodies));
   if (auto f = root.get("output")) scene.output = read_output(*f);
+  if (auto f = root.get("events")) read_events(*f, body_items, scene);
+  if (auto f = root.get("capacity")) {
+    f->expect_map("a map {bodies}");
+    f->check_keys({"bodies"});
+    // 4096: far past what a haptic scene steps at 1 kHz; each slot is reserved at load.
+    if (auto b = f->get("bodies")) {
+      scene.body_capacity = static_cast<uint32_t>(b->integer(1, 4096));
+      size_t needed = scene.bodies.size();
+      for (const BodyEventDesc& e : scene.events) needed += e.add ? 1 : 0;
+      if (scene.body_capacity < needed)
+        b->fail_expected("at least " + std::to_string(needed) + " (the scene's bodies and the bodies its events add)");
+    }
+  }
   return scene;
 }
 
@@ -178,10 +221,13 @@ SourceLocation location_of(const std::string& file, const YAML::Mark& mark) {
 }  // namespace
 }  // namespace scene_detail
 
-SceneDesc load_scene_from_string(const std::string& text, const std::string& virtual_path,
-                                 const SchemaLookup& schemas,
-                                 const std::vector<std::string>& overrides) {
-  using namespace scene_detail;
+namespace scene_detail {
+namespace {
+
+// Parses `text` and hands its root to `read` with a context anchored at `virtual_path`; YAML
+// errors become InputErrors at their mark.
+template <class Read>
+auto read_text(const std::string& text, const std::string& virtual_path, const SchemaLookup& schemas, Read&& read) {
   LoadContext context;
   context.file = virtual_path;
   context.directory = std::filesystem::absolute(virtual_path).parent_path().lexically_normal();
@@ -193,15 +239,35 @@ SceneDesc load_scene_from_string(const std::string& text, const std::string& vir
     throw InputError(location_of(virtual_path, e.mark), "YAML syntax error: " + e.msg);
   }
   try {
+    return read(context, root);
+  } catch (const YAML::Exception& e) {
+    // yaml-cpp itself should not throw once parsed; report it at its mark rather than crash.
+    throw InputError(location_of(virtual_path, e.mark), "malformed YAML: " + e.msg);
+  }
+}
+
+}  // namespace
+}  // namespace scene_detail
+
+SceneDesc load_scene_from_string(const std::string& text, const std::string& virtual_path,
+                                 const SchemaLookup& schemas,
+                                 const std::vector<std::string>& overrides) {
+  using namespace scene_detail;
+  return read_text(text, virtual_path, schemas, [&](LoadContext& context, YAML::Node& root) {
     apply_overrides(root, overrides, context.overrides);
     SceneDesc scene = read_scene(Field(context, root, "", YAML::Mark::null_mark()));
     scene.path = virtual_path;
     scene.directory = context.directory.string();
     return scene;
-  } catch (const YAML::Exception& e) {
-    // yaml-cpp itself should not throw once parsed; report it at its mark rather than crash.
-    throw InputError(location_of(virtual_path, e.mark), "malformed YAML: " + e.msg);
-  }
+  });
+}
+
+BodyDesc load_body_from_string(const std::string& text, const std::string& virtual_path,
+                               const SchemaLookup& schemas) {
+  using namespace scene_detail;
+  return read_text(text, virtual_path, schemas, [](LoadContext& context, YAML::Node& root) {
+    return read_body(Field(context, root, "", YAML::Mark::null_mark()));
+  });
 }
 
 SceneDesc load_scene(const std::string& path, const SchemaLookup& schemas,

@@ -55,7 +55,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     if (answerer_ == nullptr || answerer_->api.sphere_cast == nullptr) return false;
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if (surface_ >= 0 && static_cast<uint32_t>(surface_) != s) continue;
+      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s)) continue;
       tacta_surface_hit h{};
       if (answerer_->api.sphere_cast(answerer_->instance, &context_.view_, s, from.data(), to.data(), radius, &h) &&
           (!found || h.toi < hit.fraction)) {
@@ -72,7 +72,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     if (answerer_ == nullptr || answerer_->api.closest_point == nullptr) return false;
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if (surface_ >= 0 && static_cast<uint32_t>(surface_) != s) continue;
+      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s)) continue;
       tacta_surface_hit h{};
       if (!answerer_->api.closest_point(answerer_->instance, &context_.view_, s, point.data(), max_distance, &h))
         continue;
@@ -182,7 +182,7 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   embedded_.resize(world.body_count());
   for (size_t i = 0; i < world.body_count(); ++i) {
     SoftBody& b = world.body(i);
-    if (!scene.bodies[i].collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
+    if (!world.body_desc(i).collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
     std::vector<double>& inv = inverse_masses_[i];
     inv.resize(b.node_count());
     // A body stepping on its own thread has its state replaced at each refresh, so a correction
@@ -307,6 +307,22 @@ std::vector<CollisionPluginUse> CollisionContext::plugin_uses() const {
 
 CollisionContext::~CollisionContext() = default;
 
+bool CollisionContext::surface_present(uint32_t surface) const noexcept {
+  return world_.body(static_cast<size_t>(body_of_surface_[surface])).present();
+}
+
+uint32_t CollisionContext::drop_absent(uint32_t first, uint32_t count) noexcept {
+  // Contacts name bodies by id: surfaces' ids are body slots, tools' and obstacles' come after
+  // the bodies the context was built with.
+  const auto absent = [this](uint32_t id) {
+    return id < surface_of_body_.size() && surface_of_body_[id] >= 0 && !surface_present(static_cast<uint32_t>(surface_of_body_[id]));
+  };
+  uint32_t kept = 0;
+  for (uint32_t c = first; c < first + count; ++c)
+    if (!absent(contacts_[c].body_a) && !absent(contacts_[c].body_b)) contacts_[first + kept++] = contacts_[c];
+  return kept;
+}
+
 const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept {
   query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size() ? surface_of_body_[static_cast<size_t>(body)] : -1);
   return *query_;
@@ -346,16 +362,21 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   const CollisionInstance* narrow = served_[role_index(TACTA_COLLISION_ROLE_NARROW_PHASE)];
   const CollisionInstance* response = served_[role_index(TACTA_COLLISION_ROLE_RESPONSE)];
   const bool self_collision = world_.scene().collision.self_collision;
+  // Bodies waiting to be added, or removed, are out of every pair and contact.
+  bool all_present = true;
+  for (uint32_t k = 0; k < view_.surface_count; ++k) all_present = all_present && surface_present(k);
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
     // One surface and no self-collision: every pair the broad phase could find would be dropped.
     if (broad != nullptr && broad->api.find_pairs != nullptr && (self_collision || view_.surface_count > 1))
       bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
-    if (!self_collision) {  // the scene's collision.self_collision: drop pairs within one surface
+    if (!self_collision || !all_present) {  // collision.self_collision off: drop pairs within one surface
       uint32_t kept = 0;
       for (uint32_t p = 0; p < pair_count; ++p)
-        if (pairs_[p].surface_a != pairs_[p].surface_b) pairs_[kept++] = pairs_[p];
+        if ((self_collision || pairs_[p].surface_a != pairs_[p].surface_b) && surface_present(pairs_[p].surface_a) &&
+            surface_present(pairs_[p].surface_b))
+          pairs_[kept++] = pairs_[p];
       pair_count = kept;
     }
     pairs_high_water_ = std::max(pairs_high_water_, pair_count);
@@ -368,6 +389,7 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
       const bool pairwise = inst.get() == narrow && broad != nullptr;
       bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
                                contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
+      if (!all_present) found = drop_absent(contact_count_, found);
       contact_count_ += found;
     }
     for (auto& e : embedded_)

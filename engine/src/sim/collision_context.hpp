@@ -43,7 +43,10 @@ class CollisionContext {
   // Tool shapes (one per device): the host moves them each tick (pose at start and end).
   tacta_collision_shape& tool(size_t device) { return tools_[device]; }
   // Body index -> surface index in the view (-1 when the body does not collide).
-  int surface_of(size_t body) const { return surface_of_body_[body]; }
+  // Bodies added after the context was built have no surface (-1).
+  int surface_of(size_t body) const { return body < surface_of_body_.size() ? surface_of_body_[body] : -1; }
+  // False while the surface's body waits to be added, and after it was removed.
+  bool surface_present(uint32_t surface) const noexcept;
   int body_of(uint32_t surface) const { return body_of_surface_[surface]; }
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
@@ -67,6 +70,8 @@ class CollisionContext {
 
  private:
   class Query;
+  // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
+  uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
   template <class Add>
   void pick_roles(const CollisionDesc& c, bool needed, Add& add);
   World& world_;

@@ -36,7 +36,10 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
       // through whatever lies between (contacts tens of mm deep for the collision response).
       slot.proxy = ch.renderer.proxy().position();
     }
-    if (slot.state != TACTA_DEVICE_CONNECTED) {
+    // A tool whose body was removed has nothing to touch: no force, and a fresh start if the
+    // device goes on (its proxy would otherwise stay on a surface that is gone).
+    const bool body_gone = slot.touched_body >= 0 && !world.body(static_cast<size_t>(slot.touched_body)).present();
+    if (slot.state != TACTA_DEVICE_CONNECTED || body_gone) {
       slot.force = {0, 0, 0};
       slot.in_contact = false;
       ch.started = false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
@@ -89,6 +92,7 @@ Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& position
 void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force) noexcept {
   if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0) return;
   SoftBody& body = world.body(static_cast<size_t>(hit.body));
+  if (!body.present()) return;
   const std::vector<uint32_t>& triangles = body.surface ? body.surface->triangles : body.topology->mesh.triangles;
   const auto t = static_cast<size_t>(hit.triangle);
   if (3 * t + 2 >= triangles.size()) return;

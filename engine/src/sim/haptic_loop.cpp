@@ -18,7 +18,7 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
     : world_(world), snapshots_(snapshots) {
   record_interval_s_ = world.scene().output.record_interval_s;
   faults_.reserve(64 + world.body_count() + world.device_count());
-  body_status_.resize(world.body_count());
+  body_status_.resize(world.body_capacity());  // bodies added while running count here too
   device_status_.resize(world.device_count());
   reserve(expected_ticks, duration_s);
 }
@@ -47,7 +47,7 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
   const size_t records = static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
   probes_.grow(records * probes, kRecordBytes / sizeof(ProbeRow));
   const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
-  energy_.grow(frames * world_.body_count() + 16, kRecordBytes / sizeof(EnergyRow));
+  energy_.grow(frames * world_.body_capacity() + 16, kRecordBytes / sizeof(EnergyRow));
   for (TickRecorder& r : stages_) r.grow(expected_ticks, kTickDurations);
 }
 
@@ -81,11 +81,15 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   tick_index_ = index;
   tick_time_ = time;
   last_status_ = {};
+  // The tick boundary: bodies requested in or out since the last tick (or due by the scene's
+  // events) enter or leave before anything reads the world.
+  world_.apply_entity_commands(time);
   apply_swaps(time);
   read_devices(time);
   const auto read_done = Clock::now();
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
+    if (!b.present()) continue;
     // Loads set from outside (the stepping API) start each tick's contact sum.
     if (b.applied_forces.empty()) std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
     else std::copy(b.applied_forces.begin(), b.applied_forces.end(), b.contact_forces.begin());
@@ -117,9 +121,16 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
 }
 
 bool HapticLoop::should_continue() const noexcept {
-  if (world_.body_count() == 0) return true;
-  for (size_t i = 0; i < world_.body_count(); ++i)
-    if (!world_.body(i).fault.frozen) return true;
+  // Every body gone (removed, or still to come) is not the end: one may be added.
+  bool any_present = false;
+  for (size_t i = 0; i < world_.body_count(); ++i) {
+    const SoftBody& b = world_.body(i);
+    if (b.presence.state == BodyPresence::kPending) return true;
+    if (!b.present()) continue;
+    any_present = true;
+    if (!b.fault.frozen) return true;
+  }
+  if (!any_present) return true;
   for (size_t d = 0; d < world_.device_count(); ++d) {
     const tacta_device_state s = world_.device(d).state;
     if (s == TACTA_DEVICE_CONNECTED || s == TACTA_DEVICE_DISCONNECTED) return true;
@@ -143,7 +154,7 @@ void HapticLoop::apply_swaps(double time) noexcept {
   // A body on a worker thread takes its swaps between two of its steps (step_on_worker), when
   // the worker is not using the model.
   for (size_t i = 0; i < world_.body_count(); ++i)
-    if (!world_.body(i).own_thread) apply_swaps_to(world_.body(i), time);
+    if (!world_.body(i).own_thread && world_.body(i).present()) apply_swaps_to(world_.body(i), time);
 }
 
 void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
@@ -210,7 +221,7 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
   bool healthy = true;
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
-    if (b.fault.frozen) continue;
+    if (b.fault.frozen || !b.present()) continue;
     if (BodyWorker* w = i < workers_.size() ? workers_[i].get() : nullptr) {
       healthy = step_on_worker(b, i, *w, time, dt) && healthy;
       continue;
@@ -275,7 +286,7 @@ void HapticLoop::stop_workers() noexcept {
     // reported like any other, not lost with the run.
     const StepOutcome& out = workers_[i]->last_outcome();
     SoftBody& b = world_.body(i);
-    if (out.why != nullptr && !b.fault.frozen) freeze(b, i, tick_time_, out.bits, out.why);
+    if (out.why != nullptr && !b.fault.frozen && b.present()) freeze(b, i, tick_time_, out.bits, out.why);
   }
 }
 
@@ -291,9 +302,13 @@ void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, c
 }
 
 bool HapticLoop::touches_frozen_body(const DeviceSlot& slot) const noexcept {
-  if (slot.touched_body >= 0) return world_.body(static_cast<size_t>(slot.touched_body)).fault.frozen;
+  // A removed body is gone for the device too: its force drops to zero from the removing tick.
+  if (slot.touched_body >= 0) {
+    const SoftBody& b = world_.body(static_cast<size_t>(slot.touched_body));
+    return b.fault.frozen || !b.present();
+  }
   for (size_t i = 0; i < world_.body_count(); ++i)
-    if (world_.body(i).fault.frozen) return true;
+    if (world_.body(i).fault.frozen && world_.body(i).present()) return true;
   return false;
 }
 
@@ -356,6 +371,7 @@ void HapticLoop::record(double time) noexcept {
   next_record_s_ += record_interval_s_;
   for (size_t i = 0; i < world_.body_count(); ++i) {
     const SoftBody& b = world_.body(i);
+    if (!b.present()) continue;
     for (uint32_t n : b.recorded_nodes) {
       TrajectoryRow row{time, static_cast<uint32_t>(i), n, {}, {}};
       for (int a = 0; a < 3; ++a) {
@@ -377,7 +393,10 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
   s.last_tick_ms = last_tick_ms_;
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
+    if (i >= s.bodies.size()) continue;  // added after the render task started (publish: energy rows)
     BodySnapshot& bs = s.bodies[i];
+    bs.present = b.present();
+    if (b.presence.state == BodyPresence::kPending) continue;
     std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
     std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
     if (b.surface) interpolate_to_surface(*b.surface, b.positions.data(), bs.surface_positions.data());
@@ -410,7 +429,13 @@ void HapticLoop::publish(double time) noexcept {
   capture(s, time);
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     const BodySnapshot& bs = s.bodies[i];
-    energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, bs.max_displacement_m});
+    if (bs.present) energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, bs.max_displacement_m});
+  }
+  for (size_t i = s.bodies.size(); i < world_.body_count(); ++i) {  // added after the render task started
+    SoftBody& b = world_.body(i);
+    if (b.present())
+      energy_.push({time, static_cast<uint32_t>(i), b.kinetic_energy(), b.model->elastic_energy(b.positions.data()),
+                    b.max_displacement_m});
   }
   snapshots_.publish();
 }

@@ -11,6 +11,7 @@
 
 #include "../report/run_outputs.hpp"
 #include "simulation_impl.hpp"
+#include "tacta/sim/registry_schemas.hpp"
 #include "vtk_observer.hpp"
 
 namespace tacta {
@@ -43,11 +44,36 @@ std::string hash_positions(const std::vector<const std::vector<double>*>& arrays
 
 Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
     : impl_(std::make_unique<Impl>(scene, plugins)) {
-  for (const BodyDesc& b : scene.bodies) {
-    impl_->requested_models.push_back(b.model);
-    impl_->requested_params.push_back(b.model_params);
+  // Reserved for every slot: a body added from another thread never moves these under a reader.
+  impl_->requested_models.reserve(impl_->world.body_capacity());
+  impl_->requested_params.reserve(impl_->world.body_capacity());
+  for (size_t i = 0; i < impl_->world.body_count(); ++i) {
+    impl_->requested_models.push_back(impl_->world.body_desc(i).model);
+    impl_->requested_params.push_back(impl_->world.body_desc(i).model_params);
   }
 }
+
+BodyHandle Simulation::add_body(const BodyDesc& desc) {
+  const ecs::Entity e = impl_->world.add_body(desc);
+  impl_->requested_models.push_back(desc.model);
+  impl_->requested_params.push_back(desc.model_params);
+  return {e.index, e.generation};
+}
+
+BodyHandle Simulation::add_body(const std::string& yaml) {
+  return add_body(load_body_from_string(yaml, impl_->world.scene().path, RegistrySchemas(impl_->plugins)));
+}
+
+void Simulation::remove_body(BodyHandle body) { impl_->world.remove_body({body.index, body.generation}); }
+
+BodyHandle Simulation::body_handle(size_t body) const {
+  const ecs::Entity e = impl_->world.body_handle(body);
+  return {e.index, e.generation};
+}
+
+bool Simulation::body_alive(BodyHandle body) const noexcept { return impl_->world.is_live({body.index, body.generation}); }
+
+size_t Simulation::body_index(BodyHandle body) const { return impl_->world.body_slot({body.index, body.generation}); }
 
 void Simulation::request_model_swap(size_t body, const std::string& model, const ParamSet& params) {
   World& world = impl_->world;

@@ -41,7 +41,11 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   for (size_t i = 0; i < world.body_count(); ++i) {
     const SoftBody& b = world.body(i);
     BodyResult br;
-    br.initial_energy_J = session.initial_energy_J[i];
+    br.initial_energy_J =
+        b.presence.added_s >= 0 || i >= session.initial_energy_J.size() ? b.presence.initial_energy_J : session.initial_energy_J[i];
+    br.added_s = b.presence.added_s;
+    br.removed_s = b.presence.removed_s;
+    br.pending = b.presence.state == BodyPresence::kPending;
     br.name = b.name;
     br.model = b.model->name();
     br.nodes = b.node_count();

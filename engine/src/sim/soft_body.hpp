@@ -62,8 +62,20 @@ struct BodyFault {
   std::array<char, 160> reason{};  // fixed buffer: written from the 1 kHz path
 };
 
+// When a body is part of the running scene. Bodies added while a scene runs wait as Pending
+// until the tick boundary that takes them in; removed ones stay (frozen in place, out of every
+// system) so the report still lists them.
+struct BodyPresence {
+  enum State : uint8_t { kPending, kPresent, kRemoved };
+  State state = kPresent;
+  double added_s = -1;    // s, simulated; -1: in the scene from the start
+  double removed_s = -1;  // s, simulated; -1: not removed
+  double initial_energy_J = 0;  // kinetic + elastic when added (bodies added while running)
+};
+
 struct SoftBody {
   std::string name;
+  BodyPresence presence;
   std::string load_warning;  // something odd but legal in the scene (every node fixed); empty: none
   std::unique_ptr<BodyTopology> topology;
   // The surface the body is drawn, touched and collided through when it came from a surface file
@@ -95,6 +107,7 @@ struct SoftBody {
   uint64_t refreshes = 0;       // own_thread: finished steps taken into the arrays above so far
   bool local_contact_yielding = true;  // own_thread: render through haptics::LocalCompliance
 
+  bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
   size_t node_count() const { return positions.size() / 3; }
   const std::vector<double>& rest() const { return topology->mesh.positions; }
   double kinetic_energy() const noexcept;

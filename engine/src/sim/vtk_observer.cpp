@@ -29,6 +29,7 @@ class VtkObserver final : public FrameObserver {
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
       const BodyStatic& b = scene.bodies[i];
       const BodySnapshot& s = snapshot.bodies[i];
+      if (!s.present) continue;  // not in the scene yet, or removed
       for (size_t k = 0; k < displacement_[i].size(); ++k) displacement_[i][k] = s.positions[k] - b.rest_positions[k];
       output::VtkGrid grid;
       grid.points = s.positions;

@@ -1,5 +1,7 @@
 #include "world.hpp"
 
+#include <algorithm>
+
 #include "param_defaults.hpp"
 
 namespace tacta {
@@ -10,17 +12,53 @@ constexpr double kSetupDt = 1e-3;  // s; only used for a default when a model is
 
 World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     : scene_(scene), plugins_(plugins), jobs_(std::make_unique<JobPool>(scene.threads)) {
-  const ModelFactory factory = [this](const std::string& model, const ParamSet& params,
-                                      const BodyTopology& topology, double dt,
-                                      const SourceLocation& where) {
-    return make_model(model, params, topology, dt, where);
-  };
-  for (const BodyDesc& desc : scene_.bodies) {
-    SoftBody body = build_soft_body(desc, scene_, factory);
-    const ecs::Entity e = registry_.create();
-    registry_.emplace<SoftBody>(e, std::move(body));
-    bodies_.push_back(e);
+  size_t event_bodies = 0;
+  for (const BodyEventDesc& e : scene_.events) event_bodies += e.add ? 1 : 0;
+  const size_t needed = scene_.bodies.size() + event_bodies;
+  const size_t capacity = scene_.body_capacity > 0 ? scene_.body_capacity : needed + kSpareBodySlots;
+  if (capacity < needed)
+    throw InputError({scene_.path, 0, 0, "capacity.bodies"},
+                     "capacity.bodies is " + std::to_string(capacity) + " but the scene's bodies and events need " +
+                         std::to_string(needed) + " slots");
+  // Every slot's entity and storage are made now, so taking a body in or out at a tick boundary
+  // allocates nothing. Entity index = body slot (bodies are created before devices).
+  slots_.resize(capacity);
+  descs_.reserve(capacity);
+  generations_ = std::make_unique<std::atomic<uint32_t>[]>(capacity);
+  registry_.reserve<BodyRef>(capacity + scene_.devices.size());
+  for (size_t i = 0; i < capacity; ++i) {
+    body_entities_.push_back(registry_.create());
+    generations_[i].store(body_entities_.back().generation, std::memory_order_relaxed);
   }
+  commands_.resize(2 * capacity);  // an add and a remove per slot at most
+  for (const BodyDesc& desc : scene_.bodies) {
+    slots_[descs_.size()] = build_body(desc);
+    descs_.push_back(desc);
+    registry_.emplace<BodyRef>(body_entities_[descs_.size() - 1],
+                               BodyRef{slots_[descs_.size() - 1].get(), static_cast<uint32_t>(descs_.size() - 1)});
+  }
+  // The scene's timed events: their bodies are built now and wait, pending, for their time.
+  std::vector<std::string> names;
+  for (const BodyDesc& b : scene_.bodies) names.push_back(b.name);
+  for (const BodyEventDesc& e : scene_.events) {
+    EntityCommand c{e.add ? EntityCommand::kAddBody : EntityCommand::kRemoveBody, 0, e.time};
+    if (e.add) {
+      if (std::find(names.begin(), names.end(), e.add->name) != names.end())
+        throw InputError(e.where, "duplicate body name '" + e.add->name + "' (body names are unique, removed ones too)");
+      slots_[descs_.size()] = build_body(*e.add);
+      slots_[descs_.size()]->presence.state = BodyPresence::kPending;
+      c.slot = static_cast<uint32_t>(descs_.size());
+      descs_.push_back(*e.add);
+      names.push_back(e.add->name);
+    } else {
+      const auto it = std::find(names.begin(), names.end(), e.remove);
+      if (it == names.end())
+        throw InputError(e.where, "no body named '" + e.remove + "' before this event (bodies and earlier adds)");
+      c.slot = static_cast<uint32_t>(it - names.begin());
+    }
+    timed_.push_back(c);
+  }
+  body_count_.store(descs_.size(), std::memory_order_release);
   for (const DeviceDesc& desc : scene_.devices) {
     const LoadedDescriptor* found = plugins_.find(TACTA_KIND_DEVICE, desc.plugin);
     if (found == nullptr)
@@ -42,12 +80,112 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     registry_.emplace<DeviceSlot>(e, std::move(slot));
     devices_.push_back(e);
   }
+  for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
+}
+
+std::unique_ptr<SoftBody> World::build_body(const BodyDesc& desc) const {
+  const ModelFactory factory = [this](const std::string& model, const ParamSet& params, const BodyTopology& topology,
+                                      double dt, const SourceLocation& where) {
+    return make_model(model, params, topology, dt, where);
+  };
+  return std::make_unique<SoftBody>(build_soft_body(desc, scene_, factory));
 }
 
 int World::body_index(const std::string& name) const {
-  for (size_t i = 0; i < bodies_.size(); ++i)
+  for (size_t i = 0; i < body_count(); ++i)
     if (body(i).name == name) return static_cast<int>(i);
   return -1;
+}
+
+ecs::Entity World::add_body(const BodyDesc& desc) {
+  std::unique_ptr<SoftBody> built = build_body(desc);  // the heavy part, outside the lock
+  if (built->own_thread)
+    throw InputError(desc.where, "a body added while the scene runs cannot have step_thread: own (its worker thread "
+                                 "would start inside a tick); declare it under bodies or events");
+  const std::lock_guard<std::mutex> lock(requests_);
+  const size_t slot = body_count();
+  if (body_index(desc.name) >= 0)
+    throw InputError(desc.where, "a body named '" + desc.name + "' already exists (body names are unique, removed ones too)");
+  if (slot >= slots_.size())
+    throw InputError({scene_.path, 0, 0, "capacity.bodies"},
+                     "no free body slot: capacity.bodies is " + std::to_string(slots_.size()) +
+                         " (raise it in the scene to add more bodies while it runs)");
+  built->presence.state = BodyPresence::kPending;
+  slots_[slot] = std::move(built);
+  descs_.push_back(desc);  // reserved to capacity: never reallocates under a reader
+  body_count_.store(slot + 1, std::memory_order_release);
+  commands_.push({EntityCommand::kAddBody, static_cast<uint32_t>(slot), 0});  // room for 2 per slot
+  return body_entities_[slot];
+}
+
+void World::remove_body(ecs::Entity handle) {
+  const std::lock_guard<std::mutex> lock(requests_);
+  const size_t slot = body_slot(handle);
+  generations_[slot].store(retired_generation(handle.generation), std::memory_order_release);
+  commands_.push({EntityCommand::kRemoveBody, static_cast<uint32_t>(slot), 0});
+}
+
+ecs::Entity World::body_handle(size_t body) const {
+  if (body >= body_count())
+    throw InputError({scene_.path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
+  return {body_entities_[body].index, generations_[body].load(std::memory_order_acquire) & ~kRemovedBit};
+}
+
+bool World::is_live(ecs::Entity handle) const noexcept {
+  return handle.index < body_count() && generations_[handle.index].load(std::memory_order_acquire) == handle.generation;
+}
+
+size_t World::body_slot(ecs::Entity handle) const {
+  if (handle.index >= body_count())
+    throw InputError({scene_.path, 0, 0, "bodies"}, "no body with handle " + ecs::to_string(handle) + " (" +
+                                                        std::to_string(body_count()) + " body slots in use)");
+  if (!is_live(handle))
+    throw InputError({scene_.path, 0, 0, "bodies"},
+                     "stale body handle " + ecs::to_string(handle) + ": body '" + body(handle.index).name +
+                         "' was removed (its handles' generation is now " +
+                         std::to_string(generations_[handle.index].load(std::memory_order_acquire) & ~kRemovedBit) + ")");
+  return handle.index;
+}
+
+void World::apply_entity_commands(double time) noexcept {
+  EntityCommand c;
+  while (commands_.pop(c)) {
+    if (c.kind == EntityCommand::kAddBody) enter(c.slot, time);
+    else leave(c.slot, time);
+  }
+  for (; next_timed_ < timed_.size() && timed_[next_timed_].time_s <= time + 1e-12; ++next_timed_) {
+    const EntityCommand& t = timed_[next_timed_];
+    if (t.kind == EntityCommand::kAddBody) {
+      enter(t.slot, time);
+      continue;
+    }
+    // A timed removal retires the handle now, like a request would.
+    const uint32_t g = generations_[t.slot].load(std::memory_order_relaxed);
+    if ((g & kRemovedBit) == 0) generations_[t.slot].store(retired_generation(g), std::memory_order_release);
+    leave(t.slot, time);
+  }
+}
+
+void World::enter(size_t slot, double time) noexcept {
+  SoftBody& b = *slots_[slot];
+  if (b.presence.state != BodyPresence::kPending) return;
+  b.presence.state = BodyPresence::kPresent;
+  b.presence.added_s = time;
+  b.presence.initial_energy_J = b.kinetic_energy() + b.model->elastic_energy(b.positions.data());
+  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / scene_.clock.haptic_rate_hz;
+  b.next_step_time_s = time;
+  b.model->begin(b.state_view(time), dt);
+  registry_.emplace<BodyRef>(body_entities_[slot], BodyRef{&b, static_cast<uint32_t>(slot)});
+}
+
+void World::leave(size_t slot, double time) noexcept {
+  SoftBody& b = *slots_[slot];
+  if (b.presence.state == BodyPresence::kRemoved) return;
+  b.presence.state = BodyPresence::kRemoved;
+  b.presence.removed_s = time;
+  // The entity goes (its generation moves on); the body's storage stays for the report.
+  const ecs::Entity e = body_entities_[slot];
+  if (registry_.valid(e)) registry_.destroy(e);
 }
 
 std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const ParamSet& params,

@@ -1,18 +1,30 @@
-// The world of one run: an ECS registry holding a SoftBody per body and a DeviceSlot per device,
-// built from a validated scene. Building either completes or throws InputError; nothing is left
-// half-loaded.
+// The world of one run: an ECS registry with an entity per body slot and per device, built from
+// a validated scene. Building either completes or throws InputError; nothing is left
+// half-loaded. Bodies can be added and removed while the scene runs: a request (any thread but
+// the tick's) builds what it needs, claims a reserved slot and posts a command; the thread that
+// owns the tick applies the commands at the next tick boundary without allocating.
 #pragma once
 
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "device_slot.hpp"
+#include "entity_commands.hpp"
 #include "soft_body.hpp"
 #include "tacta/ecs.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
 
 namespace tacta {
+
+// The registry component of a body entity: where its SoftBody lives (a heap-held slot, so the
+// references body workers and collision surfaces keep never move).
+struct BodyRef {
+  SoftBody* body = nullptr;
+  uint32_t slot = 0;
+};
 
 class World {
  public:
@@ -21,13 +33,18 @@ class World {
   World& operator=(const World&) = delete;
 
   const SceneDesc& scene() const noexcept { return scene_; }
-  size_t body_count() const noexcept { return bodies_.size(); }
+  // Slots in use: the scene's bodies, then the added ones in the order they were requested
+  // (pending, present or removed; a slot is never reused, so indices stay valid for the run).
+  size_t body_count() const noexcept { return body_count_.load(std::memory_order_acquire); }
+  size_t body_capacity() const noexcept { return slots_.size(); }
   size_t device_count() const noexcept { return devices_.size(); }
-  // Entities stay valid for the world's life: nothing is created or destroyed after loading.
-  SoftBody& body(size_t i) { return registry_.get<SoftBody>(bodies_[i]); }
-  const SoftBody& body(size_t i) const { return registry_.get<SoftBody>(bodies_[i]); }
-  DeviceSlot& device(size_t i) { return registry_.get<DeviceSlot>(devices_[i]); }
-  const DeviceSlot& device(size_t i) const { return registry_.get<DeviceSlot>(devices_[i]); }
+  SoftBody& body(size_t i) { return *slots_[i]; }
+  const SoftBody& body(size_t i) const { return *slots_[i]; }
+  const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
+  // Through pointers taken at load (devices never come or go, so their pool never moves): other
+  // threads (device input) reach a device without reading the registry the tick's thread changes.
+  DeviceSlot& device(size_t i) { return *device_slots_[i]; }
+  const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
   int body_index(const std::string& name) const;
   ecs::Registry& registry() noexcept { return registry_; }
   uint32_t threads() const noexcept { return jobs_->threads(); }
@@ -37,13 +54,49 @@ class World {
                                             const BodyTopology& topology, double dt,
                                             const SourceLocation& where) const;
 
+  // Requests (any thread but the one running the tick; serialised among themselves). add_body
+  // builds the body here (mesh, model instance: allocates, throws InputError) and returns its
+  // handle; it enters the scene at the next tick boundary. remove_body takes it out at the next
+  // boundary; the handle is stale from the request on.
+  ecs::Entity add_body(const BodyDesc& desc);
+  void remove_body(ecs::Entity handle);
+  // Handles: entity index = body slot; the generation changes when the body is removed.
+  ecs::Entity body_handle(size_t body) const;
+  bool is_live(ecs::Entity handle) const noexcept;
+  // The slot of a live handle; throws InputError naming the body and why the handle is stale.
+  size_t body_slot(ecs::Entity handle) const;
+
+  // The tick's side: applies the posted commands (and the scene's timed events due by `time`).
+  // No allocation, no lock, no throw.
+  void apply_entity_commands(double time) noexcept;
+
  private:
+  // A removed body's generation moves on and carries kRemovedBit, so no handle matches it
+  // again, not even the one body_handle() gives for it afterwards.
+  static constexpr uint32_t kRemovedBit = 0x80000000u;
+  static uint32_t retired_generation(uint32_t live) noexcept {
+    const uint32_t next = (live + 1) & ~kRemovedBit;
+    return (next == 0 ? 1 : next) | kRemovedBit;
+  }
+  void enter(size_t slot, double time) noexcept;
+  void leave(size_t slot, double time) noexcept;
+  std::unique_ptr<SoftBody> build_body(const BodyDesc& desc) const;
+
   SceneDesc scene_;
   const PluginRegistry& plugins_;
   std::unique_ptr<JobPool> jobs_;  // plugins' parallel_for workers (scene key `threads`)
-  ecs::Registry registry_;
-  std::vector<ecs::Entity> bodies_;
+  ecs::Registry registry_;         // owned by the tick's thread once the scene runs
+  std::vector<std::unique_ptr<SoftBody>> slots_;       // capacity.bodies, filled in order
+  std::vector<BodyDesc> descs_;                         // per used slot (reserved to capacity)
+  std::vector<ecs::Entity> body_entities_;              // per slot, created at load
+  std::unique_ptr<std::atomic<uint32_t>[]> generations_;  // per slot: the live handle's generation
+  std::atomic<size_t> body_count_{0};
   std::vector<ecs::Entity> devices_;
+  std::vector<DeviceSlot*> device_slots_;
+  std::mutex requests_;  // serialises requesters only; the tick's thread never takes it
+  EntityCommandRing commands_;
+  std::vector<EntityCommand> timed_;  // the scene's events, by time
+  size_t next_timed_ = 0;
 };
 
 }  // namespace tacta

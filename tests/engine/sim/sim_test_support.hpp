@@ -96,6 +96,19 @@ inline Csv read_csv(const std::string& path) {
   return csv;
 }
 
+// A 0.3 m beam clamped at x = 0, sagging under gravity (corotational FEM, 0.2 s).
+inline const char* const kSaggingBeamScene = R"(
+name: beam_stepping
+gravity: [0, -9.81, 0]
+clock: {duration_s: 0.2}
+bodies:
+  - name: beam
+    mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1]}}
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 1.0}
+    model: corotational_fem
+    fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+)";
+
 // The 1 kHz task without the scheduler: the same objects Simulation::run wires together.
 class LoopHarness {
  public:

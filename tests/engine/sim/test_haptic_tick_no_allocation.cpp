@@ -59,5 +59,40 @@ TEST(HapticTickAllocations, LiverPalpationWithCollisionResponse) {
   EXPECT_FALSE(run.frozen);
 }
 
+// A body added while the scene runs, then the liver removed: the requests allocate (they build
+// the body) but the ticks that take them in and out, and the ticks after, allocate nothing.
+TEST(HapticTickAllocations, AddAndRemoveBodiesAtTickBoundaries) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
+  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  LoopHarness h(scene, kWarmUpTicks + kCountedTicks);
+  for (int i = 0; i < kWarmUpTicks; ++i) h.tick();
+  const BodyDesc cube = load_body_from_string(R"(
+name: dropped
+mesh: {box_grid: {size: [0.04, 0.04, 0.04], cells: [2, 2, 2], origin: [0.2, 0.1, 0]}}
+material: {youngs_modulus: 20000, poisson_ratio: 0.4, density: 1000}
+model: corotational_fem
+)", scene.path, schemas());
+  const auto count_100_ticks = [&] {  // with a snapshot now and then, as the render task takes them
+    g_allocations = 0;
+    g_counting = true;
+    for (int i = 0; i < 100; ++i) {
+      h.tick();
+      if (i % 16 == 0) h.loop.publish(static_cast<double>(h.next) * h.dt);
+    }
+    g_counting = false;
+    return g_allocations;
+  };
+  const ecs::Entity added = h.world.add_body(cube);
+  const long around_add = count_100_ticks();
+  h.world.remove_body(h.world.body_handle(0));
+  g_allocations = count_100_ticks();
+  EXPECT_EQ(around_add, 0) << "heap allocations in the 100 ticks that took the body in";
+  EXPECT_EQ(g_allocations, 0) << "heap allocations in the 100 ticks that took the liver out";
+  EXPECT_TRUE(h.world.body(1).present());
+  EXPECT_TRUE(h.world.is_live(added));
+  EXPECT_GT(h.world.body(1).max_displacement_m, 0.0) << "the added cube falls";
+  EXPECT_FALSE(h.world.body(0).present());
+}
+
 }  // namespace
 }  // namespace tacta::simtest

@@ -37,6 +37,13 @@ class Pool final : public PoolBase {
   std::span<T> components() noexcept { return components_; }
   std::span<const T> components() const noexcept { return components_; }
 
+  // Room for `count` components and slot indices below `slots`: emplace then allocates nothing.
+  void reserve(size_t count, size_t slots) {
+    components_.reserve(count);
+    entities_.reserve(count);
+    if (sparse_.size() < slots) sparse_.resize(slots, kAbsent);
+  }
+
   template <class... Args>
   T& emplace(Entity e, Args&&... args) {
     if (e.index >= sparse_.size()) sparse_.resize(size_t{e.index} + 1, kAbsent);

@@ -64,6 +64,16 @@ class Registry {
     free_.push_back(e.index);
   }
 
+  // Room for `entities` entities and T components on them: create, emplace<T> and destroy then
+  // allocate nothing (the haptic task adds and removes bodies at tick boundaries).
+  template <class T>
+  void reserve(size_t entities) {
+    generations_.reserve(entities);
+    alive_.reserve(entities);
+    free_.reserve(entities);
+    pool<T>().reserve(entities, entities);
+  }
+
   bool valid(Entity e) const noexcept {
     return e.index < generations_.size() && alive_[e.index] && generations_[e.index] == e.generation;
   }

@@ -50,6 +50,10 @@ struct BodyResult {
   TickSummary worker_step_ms;        // wall time of each step on the worker
   uint64_t late_boundaries = 0;      // realtime: boundaries where the step was not finished
   double max_lateness_s = 0;         // realtime: longest time a step was collected past its boundary
+  // Bodies that came or went while the scene ran (-1: in the scene from the start / never removed);
+  // pending: requested or scheduled, not taken in yet.
+  double added_s = -1, removed_s = -1;
+  bool pending = false;
   // The final model's own counters (solver fallbacks, Newton iterations), in its order.
   std::vector<std::pair<std::string, double>> model_counters;
 };
@@ -94,6 +98,15 @@ struct DeviceReading {
   double force[3] = {};     // N, last sent (zero after a fault)
   int32_t state = 0;        // tacta_device_state
   bool in_contact = false;
+};
+
+// A body's identity while bodies come and go: `index` is its body index (slots are never reused
+// within a Simulation), `generation` changes when the body is removed, so a handle kept past the
+// removal is detected as stale instead of reaching another body.
+struct BodyHandle {
+  uint32_t index = 0xffffffffu;
+  uint32_t generation = 0;
+  friend bool operator==(BodyHandle, BodyHandle) = default;
 };
 
 class Simulation {
@@ -169,6 +182,25 @@ class Simulation {
   // allocate and throws InputError when the model refuses the body; the haptic thread only
   // switches pointers. Also how the viewer changes a parameter (same model, new values).
   void request_model_swap(size_t body, const std::string& model, const ParamSet& params);
+  // Adding and removing bodies while the scene runs, from any one thread at a time (the caller
+  // between steps, or another thread during run()). add_body builds the body here (mesh, model:
+  // allocates; InputError for a bad description, a name in use, step_thread: own, or no free slot
+  // of the scene's capacity.bodies) and it enters at the next tick boundary, on the thread that
+  // runs the tick; body_count() counts it from the call. remove_body takes the body out at the
+  // next boundary (it stops stepping, colliding and being touched: a device touching it gets
+  // zero force from that tick) and keeps it in the report; InputError for a stale handle.
+  // A body added after the first step is stepped and reported but not collided with or drawn
+  // (the collision world and the render task's bodies are fixed when the clock starts); bodies
+  // the scene's `events` add are, from their time on.
+  BodyHandle add_body(const BodyDesc& desc);
+  // The same from YAML text: one body as a scene lists it under `bodies` (paths relative to the
+  // scene's folder).
+  BodyHandle add_body(const std::string& yaml);
+  void remove_body(BodyHandle body);
+  BodyHandle body_handle(size_t body) const;    // InputError for an index past body_count()
+  bool body_alive(BodyHandle body) const noexcept;  // false once removal was requested
+  size_t body_index(BodyHandle body) const;     // InputError when stale (names the body)
+
   // Ends run() after the current tick. The request is consumed when that run() returns, so a
   // later run() runs again (how the viewer pauses and plays on).
   void request_stop() noexcept;

@@ -1,0 +1,208 @@
+// Bodies added and removed while a scene runs: through the stepping API (lockstep), from another
+// thread during a realtime run, and from the scene's `events`. Adds enter and removals leave at
+// a tick boundary; stale handles are reported; removed bodies stay in the report with their
+// times; a device touching a removed body gets zero force from that tick; bad events are
+// InputErrors naming the key.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "sim_test_support.hpp"
+
+namespace tacta::simtest {
+namespace {
+
+const char* const kBeam = kSaggingBeamScene;
+
+// A second beam, offset in z: the body dropped in.
+const char* const kSecondBeam = R"(
+name: second
+mesh: {beam_grid: {size: [0.3, 0.04, 0.04], cells: [6, 1, 1], origin: [0, 0, 0.2]}}
+material: {youngs_modulus: 2.0e6, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 1.0}
+model: corotational_fem
+fixed: [{box: {min: [-0.001, -1, -1], max: [0.001, 1, 1]}}]
+)";
+
+SceneDesc beam(const std::vector<std::string>& overrides = {}) {
+  return scene_from_text(kBeam, "beam_lifecycle", overrides);
+}
+
+double tip_y(Simulation& s, size_t body) {
+  const BodyArrays a = s.body_arrays(body);
+  return a.positions[3 * (a.nodes - 1) + 1];
+}
+
+TEST(EntityLifecycle, AddAndRemoveInLockstep) {
+  Simulation simulation(beam(), plugins());
+  simulation.step(50);
+  const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
+  EXPECT_EQ(simulation.body_count(), 2u);
+  EXPECT_EQ(simulation.body_index(added), 1u);
+  EXPECT_TRUE(simulation.body_alive(added));
+  const double rest_y = tip_y(simulation, 1);
+  simulation.step(50);  // enters at the boundary before tick 50, then sags under gravity
+  EXPECT_LT(tip_y(simulation, 1), rest_y - 1e-5) << "the added body steps";
+
+  const BodyHandle first = simulation.body_handle(0);
+  simulation.remove_body(first);
+  EXPECT_FALSE(simulation.body_alive(first));
+  simulation.step(1);
+  const double frozen_y = tip_y(simulation, 0);
+  simulation.step(20);
+  EXPECT_EQ(tip_y(simulation, 0), frozen_y) << "a removed body no longer steps";
+
+  const RunResult r = simulation.report();
+  ASSERT_EQ(r.bodies.size(), 2u);
+  EXPECT_NEAR(r.bodies[1].added_s, 0.05, 1e-9);
+  EXPECT_LT(r.bodies[1].removed_s, 0.0);
+  EXPECT_NEAR(r.bodies[0].removed_s, 0.1, 1e-9);
+  EXPECT_LT(r.bodies[0].added_s, 0.0);
+  const std::string dir = fresh_dir("lifecycle_lockstep");
+  simulation.write_report(dir);
+  std::ifstream in(dir + "/report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_NEAR(report["bodies"][0]["removed_s"].get<double>(), 0.1, 1e-9);
+  EXPECT_NEAR(report["bodies"][1]["added_s"].get<double>(), 0.05, 1e-9);
+  EXPECT_FALSE(report["bodies"][0].contains("added_s"));
+}
+
+TEST(EntityLifecycle, StaleHandlesAreDetected) {
+  Simulation simulation(beam(), plugins());
+  const BodyHandle h = simulation.add_body(std::string(kSecondBeam));
+  simulation.step(2);
+  simulation.remove_body(h);
+  try {
+    simulation.remove_body(h);
+    FAIL() << "a second removal through the same handle must throw";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stale body handle"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("second"), std::string::npos) << "names the body: " << e.what();
+  }
+  EXPECT_THROW(simulation.body_index(h), InputError);
+  EXPECT_THROW(simulation.body_index(BodyHandle{7, 1}), InputError) << "a slot never used";
+  EXPECT_THROW(simulation.body_index(BodyHandle{}), InputError) << "a default handle";
+  const BodyHandle now = simulation.body_handle(1);
+  EXPECT_NE(now.generation, h.generation);
+  EXPECT_FALSE(simulation.body_alive(now)) << "removed: no live handle";
+}
+
+TEST(EntityLifecycle, BadAddsAreInputErrors) {
+  Simulation simulation(beam({"capacity.bodies=2"}), plugins());
+  EXPECT_THROW(simulation.add_body(std::string("name: beam\n") + (kSecondBeam + std::string(kSecondBeam).find("mesh"))),
+               InputError)
+      << "a name in use";
+  EXPECT_THROW(simulation.add_body(std::string("name: x\nmesh: 3\n")), InputError);
+  simulation.add_body(std::string(kSecondBeam));
+  try {
+    std::string third = kSecondBeam;
+    third.replace(third.find("second"), 6, "third");
+    simulation.add_body(third);
+    FAIL() << "past capacity.bodies";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("capacity.bodies"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(simulation.body_count(), 2u);
+}
+
+// Realtime: the haptic thread runs on the wall clock while this thread adds a body and removes
+// the scene's; both are taken at tick boundaries by the haptic thread (ThreadSanitizer: clean).
+TEST(EntityLifecycle, AddAndRemoveDuringARealtimeRun) {
+  Simulation simulation(beam(), plugins());
+  RunOptions options;
+  options.realtime = true;
+  options.duration_s = 0.4;
+  struct Progress final : FrameObserver {
+    std::atomic<double> time{0};
+    void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
+  } progress;
+  options.observers.push_back(&progress);
+  RunResult result;
+  std::thread runner([&] { result = simulation.run(options); });
+  while (progress.time.load() < 0.05) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
+  while (progress.time.load() < 0.15) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  simulation.remove_body(simulation.body_handle(0));
+  runner.join();
+  ASSERT_EQ(result.bodies.size(), 2u);
+  EXPECT_EQ(result.schedule.ticks, 400u);
+  EXPECT_GT(result.bodies[1].added_s, 0.04);
+  EXPECT_LT(result.bodies[1].added_s, 0.3);
+  EXPECT_GT(result.bodies[0].removed_s, result.bodies[1].added_s);
+  EXPECT_LT(result.bodies[0].removed_s, 0.4);
+  EXPECT_TRUE(simulation.body_alive(added));
+  EXPECT_GT(result.bodies[1].max_displacement_m, 0.0) << "the added body stepped";
+}
+
+// The scene's events: a body dropped in at 0.05 s (collides and is drawn), the first one removed
+// at 0.1 s; a device touching the removed body renders zero force from that tick.
+TEST(EntityLifecycle, SceneEventsAddAndRemove) {
+  const std::string text = std::string(kBeam) + R"(
+events:
+  - time: 0.05
+    add:
+)" + [] {
+    std::string indented;
+    std::string body = kSecondBeam;
+    for (size_t start = 0; start < body.size();) {
+      const size_t end = body.find('\n', start);
+      indented += "      " + body.substr(start, end - start) + "\n";
+      start = end + 1;
+    }
+    return indented;
+  }() + R"(
+  - {time: 0.1, remove: beam}
+)";
+  Simulation simulation(scene_from_text(text, "beam_events"), plugins());
+  EXPECT_EQ(simulation.body_count(), 2u) << "the event's body has its slot from load";
+  const RunResult pending = simulation.report();
+  EXPECT_TRUE(pending.bodies[1].pending);
+  RunOptions options;
+  options.duration_s = 0.2;
+  const RunResult r = simulation.run(options);
+  EXPECT_FALSE(r.bodies[1].pending);
+  EXPECT_NEAR(r.bodies[1].added_s, 0.05, 1e-9);
+  EXPECT_NEAR(r.bodies[0].removed_s, 0.1, 1e-9);
+  EXPECT_GT(r.bodies[1].max_displacement_m, 0.0);
+  EXPECT_EQ(r.exit_code, 0);
+
+  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1, remove: nobody}\n", "bad_events"),
+               InputError);
+  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1}\n", "bad_events"), InputError);
+  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.2, remove: beam}\n  - {time: 0.1, remove: beam}\n",
+                               "bad_events"),
+               InputError)
+      << "out of time order";
+  try {
+    scene_from_text(text + "capacity: {bodies: 1}\n", "bad_capacity");
+    FAIL() << "capacity below the scene's bodies and its events' adds";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("capacity.bodies"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at least 2"), std::string::npos) << e.what();
+  }
+}
+
+// The liver demo's stylus presses the liver (touches: liver); the liver is removed mid-press:
+// the force sent drops to zero in the tick that takes it out and stays there.
+TEST(EntityLifecycle, DeviceForceDropsWhenItsBodyIsRemoved) {
+  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  LoopHarness h(scene, 1200);
+  const auto force = [&] {
+    const auto& f = h.world.device(0).force;
+    return std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  };
+  while (h.next < 1200 && !(h.world.device(0).in_contact && force() > 0.05)) h.tick();
+  ASSERT_GT(force(), 0.05) << "the stylus must be pressing when the liver goes";
+  h.world.remove_body(h.world.body_handle(0));
+  h.tick();
+  EXPECT_EQ(force(), 0.0) << "zero force in the removing tick";
+  for (int i = 0; i < 50; ++i) h.tick();
+  EXPECT_EQ(force(), 0.0);
+  EXPECT_FALSE(h.world.device(0).in_contact) << "nothing left to touch";
+}
+
+}  // namespace
+}  // namespace tacta::simtest
