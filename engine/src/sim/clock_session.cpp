@@ -33,22 +33,27 @@ class OffsetTask final : public HapticTask {
 
 }  // namespace
 
+namespace {
+
+BodyStatic describe_body(const SoftBody& b) {
+  const VolumeMesh& m = b.topology->mesh;
+  BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
+  if (b.surface) {
+    bs.surface_rest_positions = b.surface->rest_positions;
+    bs.surface_triangles = b.surface->triangles;
+  }
+  for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
+    if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
+  return bs;
+}
+
+}  // namespace
+
 SceneStatic describe_scene(World& world) {
   SceneStatic s;
   s.name = world.scene().name;
   s.haptic_rate_hz = world.scene().clock.haptic_rate_hz;
-  for (size_t i = 0; i < world.body_count(); ++i) {
-    const SoftBody& b = world.body(i);
-    const VolumeMesh& m = b.topology->mesh;
-    BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
-    if (b.surface) {
-      bs.surface_rest_positions = b.surface->rest_positions;
-      bs.surface_triangles = b.surface->triangles;
-    }
-    for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
-      if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
-    s.bodies.push_back(std::move(bs));
-  }
+  for (size_t i = 0; i < world.body_count(); ++i) s.bodies.push_back(describe_body(world.body(i)));
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot& slot = world.device(d);
     s.devices.push_back({slot.name, slot.desc.tool.radius, slot.device->capabilities().peak_force});
@@ -89,6 +94,16 @@ ClockSession::ClockSession(World& world, HapticInteraction* haptics, CollisionRe
 }
 
 ClockSession::~ClockSession() { loop_.stop_workers(); }
+
+void ClockSession::add_body(size_t slot) {
+  // Slots are filled in order; the snapshots and the description grow to cover this one.
+  while (scene_static_.bodies.size() <= slot) {
+    SoftBody& b = world_.body(scene_static_.bodies.size());
+    scene_static_.bodies.push_back(describe_body(b));
+    const BodySnapshot prototype = HapticLoop::body_prototype(b);
+    snapshots_.for_each_slot([&](Snapshot& s) { s.bodies.push_back(prototype); });
+  }
+}
 
 void ClockSession::reserve(uint64_t ticks) {
   loop_.reserve(ticks, static_cast<double>(ticks) * dt_);

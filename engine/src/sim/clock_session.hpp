@@ -49,6 +49,10 @@ class ClockSession {
   // A batch on `options`' clock from the current time; the clock advances by the ticks it ran.
   ScheduleResult run(const ScheduleOptions& options);
 
+  // A body added between steps (lockstep, not during run()): its render description and snapshot
+  // entries are made here (allocates), so frames, VTK and observers show it once it enters.
+  void add_body(size_t slot);
+
   uint64_t tick() const noexcept { return tick_; }
   double dt() const noexcept { return dt_; }
   double time() const noexcept { return static_cast<double>(tick_) * dt_; }

@@ -176,43 +176,20 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const double dt = 1.0 / scene.clock.haptic_rate_hz;
   response_enabled_ = c.enabled;
 
-  surface_of_body_.assign(world.body_count(), -1);
-  refits_seen_.assign(world.body_count(), 0);
-  inverse_masses_.resize(world.body_count());
-  embedded_.resize(world.body_count());
+  // Per slot, so a body added later (add_surface) finds its entries.
+  surface_of_body_.assign(world.body_capacity(), -1);
+  refits_seen_.assign(world.body_capacity(), 0);
+  inverse_masses_.resize(world.body_capacity());
+  embedded_.resize(world.body_capacity());
+  surfaces_.reserve(world.body_capacity());
   for (size_t i = 0; i < world.body_count(); ++i) {
-    SoftBody& b = world.body(i);
-    if (!world.body_desc(i).collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) continue;
-    std::vector<double>& inv = inverse_masses_[i];
-    inv.resize(b.node_count());
-    // A body stepping on its own thread has its state replaced at each refresh, so a correction
-    // made here would be lost: for the response it is a moving obstacle (infinite mass).
-    for (size_t n = 0; n < inv.size(); ++n)
-      inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
     tacta_collision_surface s{};
-    s.body_id = static_cast<uint32_t>(i);
-    s.vertex_count = static_cast<uint32_t>(b.node_count());
-    s.positions_start = b.saved_positions.data();
-    s.positions_end = b.positions.data();
-    s.velocities = b.velocities.data();
-    s.inverse_masses = inv.data();
-    s.triangle_count = static_cast<uint32_t>(b.topology->mesh.triangles.size() / 3);
-    s.triangles = b.topology->mesh.triangles.data();
-    s.tet_count = static_cast<uint32_t>(b.topology->mesh.tets.size() / 4);
-    s.tets = s.tet_count ? b.topology->mesh.tets.data() : nullptr;
-    s.thickness = c.thickness;
-    // A body with an embedded surface is seen, touched and collided through that surface.
-    if (b.surface) {
-      embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(world, i, inverse_masses_[i]);
-      embedded_[i]->describe(s);
-    }
-    surface_of_body_[i] = static_cast<int>(surfaces_.size());
-    body_of_surface_.push_back(static_cast<int>(i));
-    surfaces_.push_back(s);
+    if (describe_body(i, s)) append(i, s);
   }
   if (c.enabled) check_thickness(c, world, surfaces_, body_of_surface_);
-  // Shape ids follow the bodies: tools first, then obstacles, so contacts name them uniquely.
-  uint32_t next_id = static_cast<uint32_t>(world.body_count());
+  // Shape ids follow every body slot (added bodies too): tools first, then obstacles, so contacts
+  // name them uniquely.
+  uint32_t next_id = static_cast<uint32_t>(world.body_capacity());
   for (size_t d = 0; d < world.device_count(); ++d) tools_.push_back(make_shape(world.device(d).desc.tool, next_id++, nullptr));
   std::vector<std::vector<double>> hulls(scene.obstacles.size());
   for (size_t o = 0; o < scene.obstacles.size(); ++o)
@@ -222,8 +199,6 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
     if (obstacles_[o].type == TACTA_SHAPE_HULL) obstacles_[o].points = hull_points_[o].data();
 
   view_.struct_size = sizeof view_;
-  view_.surface_count = static_cast<uint32_t>(surfaces_.size());
-  view_.surfaces = surfaces_.data();
   view_.shape_count = static_cast<uint32_t>(tools_.size());
   view_.shapes = tools_.data();
   view_.obstacle_count = static_cast<uint32_t>(obstacles_.size());
@@ -246,6 +221,47 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   if (c.enabled && !c.narrow_phase.empty()) add(c.narrow_phase, c.narrow_params, where);
   if (c.enabled && !c.convex.empty() && (!obstacles_.empty() || !tools_.empty())) add(c.convex, c.convex_params, where);
   pick_roles(c, needed, add);
+  prepare_plugins(where);
+  query_ = std::make_unique<Query>(*this, served_[role_index(TACTA_COLLISION_ROLE_PROXY)]);
+}
+
+bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
+  SoftBody& b = world_.body(i);
+  if (!world_.body_desc(i).collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) return false;
+  std::vector<double>& inv = inverse_masses_[i];
+  inv.resize(b.node_count());
+  // A body stepping on its own thread has its state replaced at each refresh, so a correction
+  // made here would be lost: for the response it is a moving obstacle (infinite mass).
+  for (size_t n = 0; n < inv.size(); ++n)
+    inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
+  s.body_id = static_cast<uint32_t>(i);
+  s.vertex_count = static_cast<uint32_t>(b.node_count());
+  s.positions_start = b.saved_positions.data();
+  s.positions_end = b.positions.data();
+  s.velocities = b.velocities.data();
+  s.inverse_masses = inv.data();
+  s.triangle_count = static_cast<uint32_t>(b.topology->mesh.triangles.size() / 3);
+  s.triangles = b.topology->mesh.triangles.data();
+  s.tet_count = static_cast<uint32_t>(b.topology->mesh.tets.size() / 4);
+  s.tets = s.tet_count ? b.topology->mesh.tets.data() : nullptr;
+  s.thickness = world_.scene().collision.thickness;
+  // A body with an embedded surface is seen, touched and collided through that surface.
+  if (b.surface) {
+    embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(world_, i, inverse_masses_[i]);
+    embedded_[i]->describe(s);
+  }
+  return true;
+}
+
+void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
+  surface_of_body_[body] = static_cast<int>(surfaces_.size());
+  body_of_surface_.push_back(static_cast<int>(body));
+  surfaces_.push_back(s);
+}
+
+void CollisionContext::prepare_plugins(const SourceLocation& where) {
+  view_.surface_count = static_cast<uint32_t>(surfaces_.size());
+  view_.surfaces = surfaces_.data();
   for (auto& inst : instances_) {
     if (inst->api.prepare == nullptr) continue;
     char message[kMessageCapacity] = {0};
@@ -256,7 +272,17 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   for (const auto& s : surfaces_) vertices += s.vertex_count;
   pairs_.resize(16384 + 16 * vertices);
   contacts_.resize(4096 + 4 * vertices);
-  query_ = std::make_unique<Query>(*this, served_[role_index(TACTA_COLLISION_ROLE_PROXY)]);
+  refitted_once_ = false;  // the plugins' hierarchies are built again at the next refit
+}
+
+void CollisionContext::add_surface(size_t body) {
+  if (body >= surface_of_body_.size() || surface_of_body_[body] >= 0) return;
+  tacta_collision_surface s{};
+  if (!describe_body(body, s)) return;
+  const CollisionDesc& c = world_.scene().collision;
+  if (c.enabled) check_thickness(c, world_, {s}, {static_cast<int>(body)});
+  append(body, s);
+  prepare_plugins({world_.scene().path, 0, 0, "collision"});
 }
 
 // The scene's collision.plugins first (a plugin no stage loaded is loaded for its role; one that

@@ -43,11 +43,16 @@ class CollisionContext {
   // Tool shapes (one per device): the host moves them each tick (pose at start and end).
   tacta_collision_shape& tool(size_t device) { return tools_[device]; }
   // Body index -> surface index in the view (-1 when the body does not collide).
-  // Bodies added after the context was built have no surface (-1).
   int surface_of(size_t body) const { return body < surface_of_body_.size() ? surface_of_body_[body] : -1; }
   // False while the surface's body waits to be added, and after it was removed.
   bool surface_present(uint32_t surface) const noexcept;
   int body_of(uint32_t surface) const { return body_of_surface_[surface]; }
+
+  // A body added while the scene runs gets its surface here, on the thread that runs the ticks,
+  // between them (lockstep): builds the surface, checks its thickness (InputError) and has the
+  // plugins prepare again (allocates). The surface stays out of every query and contact until
+  // the body enters at a tick boundary, as an event's body is until its time.
+  void add_surface(size_t body);
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;
@@ -72,6 +77,9 @@ class CollisionContext {
   class Query;
   // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
   uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
+  bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
+  void append(size_t body, const tacta_collision_surface& s);
+  void prepare_plugins(const SourceLocation& where);
   template <class Add>
   void pick_roles(const CollisionDesc& c, bool needed, Add& add);
   World& world_;

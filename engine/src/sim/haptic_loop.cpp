@@ -56,18 +56,20 @@ const char* HapticLoop::stage_name(int stage) noexcept {
   return stage >= 0 && stage < kStageCount ? names[stage] : "?";
 }
 
+BodySnapshot HapticLoop::body_prototype(SoftBody& b) {
+  BodySnapshot bs;
+  bs.positions = b.positions;
+  bs.velocities = b.velocities;
+  if (b.model->has_stress()) bs.von_mises.assign(b.node_count(), 0.0);
+  if (b.surface) bs.surface_positions = b.surface->positions;
+  bs.model = b.model->name();
+  bs.model.reserve(64);  // a swap copies the new name without reallocating
+  return bs;
+}
+
 Snapshot HapticLoop::make_prototype(World& world) {
   Snapshot s;
-  s.bodies.resize(world.body_count());
-  for (size_t i = 0; i < world.body_count(); ++i) {
-    SoftBody& b = world.body(i);
-    s.bodies[i].positions = b.positions;
-    s.bodies[i].velocities = b.velocities;
-    if (b.model->has_stress()) s.bodies[i].von_mises.assign(b.node_count(), 0.0);
-    if (b.surface) s.bodies[i].surface_positions = b.surface->positions;
-    s.bodies[i].model = b.model->name();
-    s.bodies[i].model.reserve(64);  // a swap copies the new name without reallocating
-  }
+  for (size_t i = 0; i < world.body_count(); ++i) s.bodies.push_back(body_prototype(world.body(i)));
   s.devices.resize(world.device_count());
   return s;
 }

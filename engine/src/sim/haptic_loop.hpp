@@ -80,6 +80,7 @@ class HapticLoop final : public HapticTask {
   const Recorder<EnergyRow>& energy() const { return energy_; }
   const Recorder<FaultRecord>& faults() const { return faults_; }
   // A prototype snapshot with every buffer sized, for building the triple buffer.
+  static BodySnapshot body_prototype(SoftBody& body);  // one body's entry, sized for it
   static Snapshot make_prototype(World& world);
 
   // Where a tick's time goes (ms per tick, every tick), for report.json's tick_breakdown_ms.

@@ -54,7 +54,15 @@ Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
 }
 
 BodyHandle Simulation::add_body(const BodyDesc& desc) {
-  const ecs::Entity e = impl_->world.add_body(desc);
+  // Outside run() the calling thread is the one that runs the ticks (step, advance_to): the
+  // body's collision surface and render entries are made here, before its command is posted,
+  // and the tick only lets it in. During run() the tick runs on another thread: neither is made.
+  const bool between_steps = !impl_->running.load();
+  const ecs::Entity e = impl_->world.add_body(desc, [&](size_t slot) {
+    if (!between_steps) return;
+    if (impl_->collision) impl_->collision->add_surface(slot);
+    if (impl_->clock) impl_->clock->add_body(slot);
+  });
   impl_->requested_models.push_back(desc.model);
   impl_->requested_params.push_back(desc.model_params);
   return {e.index, e.generation};

@@ -14,18 +14,14 @@ class VtkObserver final : public FrameObserver {
 
   void on_start(const SceneStatic& scene) override {
     std::filesystem::create_directories(directory_);
-    for (const BodyStatic& b : scene.bodies) {
-      series_.emplace_back(directory_, b.name);
-      displacement_.emplace_back(b.rest_positions.size(), 0.0);
-      // The embedded surface, the one the body is seen and touched through, as a series of its own.
-      surface_series_.emplace_back(directory_, b.name + "_surface");
-      surface_displacement_.emplace_back(b.surface_rest_positions.size(), 0.0);
-    }
+    for (const BodyStatic& b : scene.bodies) add_series(b);
   }
 
   void on_frame(const SceneStatic& scene, const Snapshot& snapshot) override {
     if (snapshot.time_s + 1e-9 < next_time_s_) return;
     next_time_s_ = snapshot.time_s + interval_s_;
+    // A body added between steps joins the scene's description after on_start.
+    while (series_.size() < scene.bodies.size()) add_series(scene.bodies[series_.size()]);
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
       const BodyStatic& b = scene.bodies[i];
       const BodySnapshot& s = snapshot.bodies[i];
@@ -49,6 +45,14 @@ class VtkObserver final : public FrameObserver {
       surface.point_data.push_back({"displacement", 3, surface_displacement_[i]});
       surface_series_[i].write(snapshot.time_s, surface);
     }
+  }
+
+  void add_series(const BodyStatic& b) {
+    series_.emplace_back(directory_, b.name);
+    displacement_.emplace_back(b.rest_positions.size(), 0.0);
+    // The embedded surface, the one the body is seen and touched through, as a series of its own.
+    surface_series_.emplace_back(directory_, b.name + "_surface");
+    surface_displacement_.emplace_back(b.surface_rest_positions.size(), 0.0);
   }
 
   std::vector<std::string> finish() override {

@@ -97,7 +97,7 @@ int World::body_index(const std::string& name) const {
   return -1;
 }
 
-ecs::Entity World::add_body(const BodyDesc& desc) {
+ecs::Entity World::add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare) {
   std::unique_ptr<SoftBody> built = build_body(desc);  // the heavy part, outside the lock
   if (built->own_thread)
     throw InputError(desc.where, "a body added while the scene runs cannot have step_thread: own (its worker thread "
@@ -113,6 +113,15 @@ ecs::Entity World::add_body(const BodyDesc& desc) {
   built->presence.state = BodyPresence::kPending;
   slots_[slot] = std::move(built);
   descs_.push_back(desc);  // reserved to capacity: never reallocates under a reader
+  if (prepare) {
+    try {
+      prepare(slot);
+    } catch (...) {
+      descs_.pop_back();
+      slots_[slot].reset();
+      throw;
+    }
+  }
   body_count_.store(slot + 1, std::memory_order_release);
   commands_.push({EntityCommand::kAddBody, static_cast<uint32_t>(slot), 0});  // room for 2 per slot
   return body_entities_[slot];

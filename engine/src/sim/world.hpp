@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -57,8 +58,10 @@ class World {
   // Requests (any thread but the one running the tick; serialised among themselves). add_body
   // builds the body here (mesh, model instance: allocates, throws InputError) and returns its
   // handle; it enters the scene at the next tick boundary. remove_body takes it out at the next
-  // boundary; the handle is stale from the request on.
-  ecs::Entity add_body(const BodyDesc& desc);
+  // boundary; the handle is stale from the request on. `prepare` (may be empty) runs with the
+  // body in its slot before the command is posted (what else the body needs: its collision
+  // surface); when it throws, the add is undone.
+  ecs::Entity add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare = {});
   void remove_body(ecs::Entity handle);
   // Handles: entity index = body slot; the generation changes when the body is removed.
   ecs::Entity body_handle(size_t body) const;

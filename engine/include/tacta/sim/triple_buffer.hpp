@@ -33,6 +33,12 @@ class TripleBuffer {
     return true;
   }
 
+  // Every slot, for a change of shape made while neither side runs (allocates).
+  template <class F>
+  void for_each_slot(F&& change) {
+    for (T& slot : slots_) change(slot);
+  }
+
   // Consumer: the slot taken by the last acquire() (a default slot before the first).
   const T& read_slot() const noexcept { return slots_[read_]; }
 
