@@ -189,9 +189,11 @@ class Simulation {
   // runs the tick; body_count() counts it from the call. remove_body takes the body out at the
   // next boundary (it stops stepping, colliding and being touched: a device touching it gets
   // zero force from that tick) and keeps it in the report; InputError for a stale handle.
-  // A body added after the first step is stepped and reported but not collided with or drawn
-  // (the collision world and the render task's bodies are fixed when the clock starts); bodies
-  // the scene's `events` add are, from their time on.
+  // Outside run() (before the first step or between steps) add_body also builds the body's
+  // collision surface and render entries here, so from the boundary it enters at it collides,
+  // is touched by devices and is in snapshots, frames and VTK, as a body the scene's `events`
+  // add is from its time on. A body added from another thread during run() is stepped and
+  // reported but not collided with, touched or drawn.
   BodyHandle add_body(const BodyDesc& desc);
   // The same from YAML text: one body as a scene lists it under `bodies` (paths relative to the
   // scene's folder).
