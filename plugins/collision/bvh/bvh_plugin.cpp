@@ -37,7 +37,9 @@ class BvhBroadPhase {
   }
 
   void prepare(const tacta_collision_world& world) {
-    trees_.assign(world.surface_count, BoundingTree{});
+    // The host prepares again when a body joins while the scene runs: its surface comes last and
+    // the trees already built are kept, so the others' hierarchies stay as they were.
+    trees_.resize(world.surface_count);
     for (uint32_t s = 0; s < world.surface_count; ++s) {
       const tacta_collision_surface& surface = world.surfaces[s];
       const ElementView view = element_view(surface);
