@@ -276,16 +276,7 @@ TEST(EntityLifecycle, SceneEventsAddAndRemove) {
 events:
   - time: 0.05
     add:
-)" + [] {
-    std::string indented;
-    std::string body = kSecondBeam;
-    for (size_t start = 0; start < body.size();) {
-      const size_t end = body.find('\n', start);
-      indented += "      " + body.substr(start, end - start) + "\n";
-      start = end + 1;
-    }
-    return indented;
-  }() + R"(
+)" + indented(kSecondBeam, "      ") + R"(
   - {time: 0.1, remove: beam}
 )";
   Simulation simulation(scene_from_text(text, "beam_events"), plugins());
