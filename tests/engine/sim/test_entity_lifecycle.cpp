@@ -260,7 +260,8 @@ fixed: [{box: {min: [-1, -0.001, -1], max: [1, 0.001, 1]}}]
     double strongest = 0;
     for (int t = 0; t < 380; ++t) {
       simulation.step(1);
-      const auto& f = simulation.snapshot().devices[0].force;
+      const DeviceReading reading = simulation.device_reading(0);
+      const auto& f = reading.force;
       strongest = std::max(strongest, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
     }
     return strongest;
