@@ -71,7 +71,7 @@ std::vector<double> begin_models(World& world) {
     SoftBody& b = world.body(i);
     energy.push_back(b.kinetic_energy() + b.model->elastic_energy(b.positions.data()));
     const tacta_body_state state = b.state_view(0.0);
-    b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : haptic_dt);
+    b.model->begin(state, b.step_dt(haptic_dt));
   }
   return energy;
 }

@@ -160,7 +160,7 @@ void HapticLoop::apply_swaps(double time) noexcept {
 }
 
 void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
-  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / world_.scene().clock.haptic_rate_hz;
+  const double dt = b.step_dt(1.0 / world_.scene().clock.haptic_rate_hz);
   while (b.next_swap < b.swaps.size() && b.swaps[b.next_swap].time_s <= time + 1e-12) {
     // The scheduled instance was built at load time; the outgoing one is parked in its place
     // and destroyed with the world, so nothing is freed on the haptic thread.

@@ -88,7 +88,7 @@ void Simulation::request_model_swap(size_t body, const std::string& model, const
   if (body >= world.body_count())
     throw InputError({world.scene().path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
   SoftBody& b = world.body(body);
-  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / world.scene().clock.haptic_rate_hz;
+  const double dt = b.step_dt(1.0 / world.scene().clock.haptic_rate_hz);
   std::unique_ptr<ModelInstance> instance =
       world.make_model(model, params, *b.topology, dt, {world.scene().path, 0, 0, "bodies." + b.name + ".model"});
   // Free what the haptic thread retired, then post; an unconsumed earlier request is replaced.

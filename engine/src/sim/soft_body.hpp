@@ -109,6 +109,8 @@ struct SoftBody {
 
   bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
   size_t node_count() const { return positions.size() / 3; }
+  // s: how far one model step advances this body (its own step period, else the haptic tick).
+  double step_dt(double haptic_dt) const noexcept { return step_period_s > 0 ? step_period_s : haptic_dt; }
   const std::vector<double>& rest() const { return topology->mesh.positions; }
   double kinetic_energy() const noexcept;
   tacta_body_state state_view(double time) noexcept {

@@ -181,9 +181,8 @@ void World::enter(size_t slot, double time) noexcept {
   b.presence.state = BodyPresence::kPresent;
   b.presence.added_s = time;
   b.presence.initial_energy_J = b.kinetic_energy() + b.model->elastic_energy(b.positions.data());
-  const double dt = b.step_period_s > 0 ? b.step_period_s : 1.0 / scene_.clock.haptic_rate_hz;
   b.next_step_time_s = time;
-  b.model->begin(b.state_view(time), dt);
+  b.model->begin(b.state_view(time), b.step_dt(1.0 / scene_.clock.haptic_rate_hz));
   registry_.emplace<BodyRef>(body_entities_[slot], BodyRef{&b, static_cast<uint32_t>(slot)});
 }
 
