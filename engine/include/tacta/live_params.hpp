@@ -8,23 +8,17 @@
 #include <vector>
 
 #include "tacta/model_api.h"
+#include "tacta/param_defaults.hpp"
 #include "tacta/plugin.h"
 
 namespace tacta {
 
 // The names in the descriptor's live list, in its order; empty for other kinds or no list.
 inline std::vector<std::string> live_param_names(const tacta_descriptor& d) {
-  std::vector<std::string> names;
-  if (d.kind != TACTA_KIND_MODEL || d.api == nullptr) return names;
+  if (d.kind != TACTA_KIND_MODEL || d.api == nullptr) return {};
   const char* list = tacta_model_live_params(static_cast<const tacta_model_api*>(d.api), d.api_size);
-  if (list == nullptr) return names;
-  std::string_view rest(list);
-  while (!rest.empty()) {
-    const size_t bar = rest.find('|');
-    names.emplace_back(rest.substr(0, bar));
-    rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
-  }
-  return names;
+  if (list == nullptr || list[0] == '\0') return {};
+  return bar_list(list);
 }
 
 inline bool is_live_param(const tacta_descriptor& d, std::string_view name) {

@@ -7,6 +7,7 @@
 #include <span>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tacta/param_set.hpp"
@@ -14,11 +15,11 @@
 
 namespace tacta {
 
-// The names of a CHOICE parameter ("a|b|c" -> a, b, c); empty when it has no choices.
-inline std::vector<std::string> choice_names(const tacta_param_spec& spec) {
+// The names in a schema list "a|b|c" (CHOICE choices, a model's live parameters); empty for NULL.
+inline std::vector<std::string> bar_list(const char* list) {
   std::vector<std::string> names;
-  if (spec.choices == nullptr) return names;
-  const std::string all(spec.choices);
+  if (list == nullptr) return names;
+  const std::string all(list);
   size_t start = 0;
   for (size_t bar = all.find('|'); bar != std::string::npos; bar = all.find('|', start)) {
     names.push_back(all.substr(start, bar - start));
@@ -26,6 +27,16 @@ inline std::vector<std::string> choice_names(const tacta_param_spec& spec) {
   }
   names.push_back(all.substr(start));
   return names;
+}
+
+// The names of a CHOICE parameter ("a|b|c" -> a, b, c); empty when it has no choices.
+inline std::vector<std::string> choice_names(const tacta_param_spec& spec) { return bar_list(spec.choices); }
+
+// The schema index of parameter `name`, or param_count when the descriptor has none.
+inline uint32_t param_index(const tacta_descriptor& d, std::string_view name) {
+  uint32_t index = 0;
+  while (index < d.param_count && name != d.params[index].name) ++index;
+  return index;
 }
 
 // The name of choice `index`, or "" when there is no such choice.

@@ -117,8 +117,7 @@ CheckResult check_live_params(const tacta_descriptor& model) {
   plain.steps(2 * kCountedSteps);
   touched.steps(kCountedSteps);
   for (const std::string& param : live) {
-    uint32_t index = 0;
-    while (index < model.param_count && param != model.params[index].name) ++index;
+    const uint32_t index = param_index(model, param);
     std::string why;
     const tacta_param_value value{model.params[index].default_value, nullptr, nullptr, 0};
     if (!touched.model->set_param(index, value, why))

@@ -106,10 +106,9 @@ std::optional<std::string> check_live_params(const tacta_descriptor& d) {
   if (static_cast<const tacta_model_api*>(d.api)->set_param == nullptr)
     return std::string("live_params lists parameters but set_param is NULL");
   for (const std::string& name : live) {
-    const tacta_param_spec* spec = nullptr;
-    for (uint32_t i = 0; i < d.param_count; ++i)
-      if (name == d.params[i].name) spec = &d.params[i];
-    if (spec == nullptr) return "live_params names '" + name + "', which is not a parameter";
+    const uint32_t index = param_index(d, name);
+    if (index == d.param_count) return "live_params names '" + name + "', which is not a parameter";
+    const tacta_param_spec* spec = &d.params[index];
     if (spec->type != TACTA_PARAM_REAL && spec->type != TACTA_PARAM_INT && spec->type != TACTA_PARAM_BOOL)
       return "live parameter '" + name + "' is not a number (REAL, INT or BOOL)";
   }

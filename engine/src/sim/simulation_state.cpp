@@ -130,8 +130,7 @@ void Simulation::state_written(size_t body) {
   SoftBody& b = impl_->world.body(impl_->check_body(body));
   // The model's history (previous positions, warm starts) no longer matches the state.
   const tacta_body_state state = b.state_view(time());
-  const double haptic_dt = dt();
-  b.model->begin(state, b.step_period_s > 0 ? b.step_period_s : haptic_dt);
+  b.model->begin(state, b.step_dt(dt()));
 }
 
 const VolumeMesh& Simulation::body_mesh(size_t body) const {
@@ -192,8 +191,7 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
   const LoadedDescriptor* found = impl_->plugins.find(TACTA_KIND_MODEL, model);
   if (found == nullptr) throw InputError(where, "no model plugin '" + model + "'");
   const tacta_descriptor& d = *found->descriptor;
-  uint32_t index = 0;
-  while (index < d.param_count && name != d.params[index].name) ++index;
+  const uint32_t index = param_index(d, name);
   if (index == d.param_count) throw InputError(where, "model '" + std::string(d.name) + "' has no parameter '" + name + "'");
   const tacta_param_spec& spec = d.params[index];
   if (spec.type == TACTA_PARAM_TEXT || spec.type == TACTA_PARAM_CHOICE || spec.type == TACTA_PARAM_VECTOR)
