@@ -1,5 +1,6 @@
 // Fuzzes the reader of the CCD query files (tests/data/ccd) that the CCD tests and benchmarks use.
 #include "ccd_queries.hpp"
+
 #include "fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

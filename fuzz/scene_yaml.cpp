@@ -35,11 +35,13 @@ constexpr tacta_param_spec kCollisionSchema[] = {
 const tacta::SchemaLookup& schemas() {
   static const tacta::SchemaTable table = [] {
     tacta::SchemaTable t;
-    for (const char* model : {"corotational_fem", "tensor_mass", "mass_spring", "fd_debunne", "bullet_softbody"})
+    for (const char* model :
+         {"corotational_fem", "tensor_mass", "mass_spring", "fd_debunne", "bullet_softbody"})
       t.add(TACTA_KIND_MODEL, model, kModelSchema);
     for (const char* device : {"sim_stylus", "replay", "mouse", "openigtlink", "net"})
       t.add(TACTA_KIND_DEVICE, device, kDeviceSchema);
-    for (const char* collision : {"bvh", "ccd", "convex"}) t.add(TACTA_KIND_COLLISION, collision, kCollisionSchema);
+    for (const char* collision : {"bvh", "ccd", "convex"})
+      t.add(TACTA_KIND_COLLISION, collision, kCollisionSchema);
     return t;
   }();
   return table;
@@ -53,11 +55,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   constexpr std::string_view kSet = "--set ";
   while (text.starts_with(kSet)) {
     const size_t end = text.find('\n');
-    overrides.emplace_back(text.substr(kSet.size(), end == std::string_view::npos ? std::string_view::npos : end - kSet.size()));
+    overrides.emplace_back(text.substr(
+        kSet.size(), end == std::string_view::npos ? std::string_view::npos : end - kSet.size()));
     text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
   }
   try {
-    (void)tacta::load_scene_from_string(std::string(text), "/fuzz/scene.yaml", schemas(), overrides);
+    (void)tacta::load_scene_from_string(std::string(text), "/fuzz/scene.yaml", schemas(),
+                                        overrides);
   } catch (const tacta::InputError&) {
   }
   return 0;

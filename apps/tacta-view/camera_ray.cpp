@@ -38,7 +38,8 @@ Ray pixel_ray(const Camera& camera, const Viewport& viewport, double x, double y
   return {camera.eye, normalised(d)};
 }
 
-std::optional<std::array<double, 2>> project(const Camera& camera, const Viewport& viewport, const Vec3d& point) {
+std::optional<std::array<double, 2>> project(const Camera& camera, const Viewport& viewport,
+                                             const Vec3d& point) {
   const Basis b = basis(camera);
   const Vec3d v = sub(point, camera.eye);
   const double depth = dot(v, b.forward);
@@ -49,7 +50,8 @@ std::optional<std::array<double, 2>> project(const Camera& camera, const Viewpor
   return std::array<double, 2>{(ndc_x + 1) * viewport.width / 2, (1 - ndc_y) * viewport.height / 2};
 }
 
-std::optional<Vec3d> intersect_facing_plane(const Ray& ray, const Vec3d& anchor, const Vec3d& normal) {
+std::optional<Vec3d> intersect_facing_plane(const Ray& ray, const Vec3d& anchor,
+                                            const Vec3d& normal) {
   const double along = dot(ray.direction, normal);
   if (std::abs(along) < 1e-9) return std::nullopt;
   const double t = dot(sub(anchor, ray.origin), normal) / along;

@@ -26,10 +26,12 @@ struct Viewport {
 Vec3d camera_forward(const Camera& camera);
 Ray pixel_ray(const Camera& camera, const Viewport& viewport, double x, double y);
 // The pixel where `point` appears; nullopt when it is behind the eye.
-std::optional<std::array<double, 2>> project(const Camera& camera, const Viewport& viewport, const Vec3d& point);
+std::optional<std::array<double, 2>> project(const Camera& camera, const Viewport& viewport,
+                                             const Vec3d& point);
 
 // A plane through `anchor` with the camera's forward direction as normal: dragging keeps the
 // target at the same depth. Returns where the ray meets it (nullopt when parallel or behind).
-std::optional<Vec3d> intersect_facing_plane(const Ray& ray, const Vec3d& anchor, const Vec3d& normal);
+std::optional<Vec3d> intersect_facing_plane(const Ray& ray, const Vec3d& anchor,
+                                            const Vec3d& normal);
 
 }  // namespace tacta::view

@@ -18,7 +18,9 @@ class RingPlot {
   const float* data() const { return samples_.data(); }
   int size() const { return static_cast<int>(N); }
   int offset() const { return static_cast<int>(next_); }  // the oldest sample
-  float max() const { return count_ == 0 ? 0.0f : *std::max_element(samples_.begin(), samples_.end()); }
+  float max() const {
+    return count_ == 0 ? 0.0f : *std::max_element(samples_.begin(), samples_.end());
+  }
   float latest() const { return count_ == 0 ? 0.0f : samples_[(next_ + N - 1) % N]; }
 
  private:

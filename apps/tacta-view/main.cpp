@@ -3,7 +3,6 @@
 // model of any body and edits its parameters, drives the stylus with the mouse (--mouse) and
 // plots force and tick time. Exit 0 ok, 1 a run-time failure, 2 bad input.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -16,22 +15,32 @@ int main(int argc, char** argv) {
   tacta::view::ViewerOptions options;
   std::string size = "1280x800";
   app.add_option("scene", options.scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
-  app.add_option("--set", options.overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
-  app.add_flag("--mouse", options.mouse, "Replace the scene's devices by the mouse (plugin 'mouse'), keeping their tools");
-  app.add_flag("--paused", options.paused, "Start paused (one frame is stepped for a first picture)");
-  app.add_option("--quit-after", options.quit_after_s, "Close after this many seconds of wall time (0: never)")
+  app.add_option("--set", options.overrides,
+                 "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
+  app.add_flag("--mouse", options.mouse,
+               "Replace the scene's devices by the mouse (plugin 'mouse'), keeping their tools");
+  app.add_flag("--paused", options.paused,
+               "Start paused (one frame is stepped for a first picture)");
+  app.add_option("--quit-after", options.quit_after_s,
+                 "Close after this many seconds of wall time (0: never)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--seconds", options.quit_after_s, "Same as --quit-after")->check(CLI::NonNegativeNumber);
-  app.add_option("--screenshot", options.screenshot, "Write the last frame shown to this PNG on exit");
-  app.add_option("--status", options.status, "Write a JSON summary (frames, swaps, force, mouse) on exit");
-  app.add_option("--script", options.script,
-                 "Scripted actions 'FRAME:VERB ARGS; ...' (swap BODY MODEL, set BODY PARAM VALUE, play, pause, "
-                 "step, quit, mark, drag DX DY FRAMES, press DEPTH FRAMES, release, wheel NOTCHES)");
+  app.add_option("--seconds", options.quit_after_s, "Same as --quit-after")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--screenshot", options.screenshot,
+                 "Write the last frame shown to this PNG on exit");
+  app.add_option("--status", options.status,
+                 "Write a JSON summary (frames, swaps, force, mouse) on exit");
+  app.add_option(
+      "--script", options.script,
+      "Scripted actions 'FRAME:VERB ARGS; ...' (swap BODY MODEL, set BODY PARAM VALUE, play, "
+      "pause, "
+      "step, quit, mark, drag DX DY FRAMES, press DEPTH FRAMES, release, wheel NOTCHES)");
   app.add_option("--size", size, "Window size in pixels, WIDTHxHEIGHT");
   CLI11_PARSE(app, argc, argv);
-  if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||
-      options.height < 64) {
-    std::fprintf(stderr, "error: --size: expected WIDTHxHEIGHT of at least 64x64, found '%s'\n", size.c_str());
+  if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 ||
+      options.width < 64 || options.height < 64) {
+    std::fprintf(stderr, "error: --size: expected WIDTHxHEIGHT of at least 64x64, found '%s'\n",
+                 size.c_str());
     return 2;
   }
   try {

@@ -1,14 +1,14 @@
 #include "model_panel.hpp"
 
-#include <imgui.h>
-
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <imgui.h>
 
 namespace tacta::view {
 
-ModelPanel::ModelPanel(const PluginRegistry& plugins, Simulation& simulation, const SceneDesc& scene)
+ModelPanel::ModelPanel(const PluginRegistry& plugins, Simulation& simulation,
+                       const SceneDesc& scene)
     : plugins_(plugins), simulation_(simulation) {
   for (const LoadedDescriptor& d : plugins.list())
     if (d.descriptor->kind == TACTA_KIND_MODEL) model_names_.emplace_back(d.descriptor->name);
@@ -16,7 +16,8 @@ ModelPanel::ModelPanel(const PluginRegistry& plugins, Simulation& simulation, co
     body_names_.push_back(b.name);
     BodyState state;
     state.model = b.model;
-    if (auto schema = plugins.schema(TACTA_KIND_MODEL, b.model)) state.values = param_values(*schema, &b.model_params);
+    if (auto schema = plugins.schema(TACTA_KIND_MODEL, b.model))
+      state.values = param_values(*schema, &b.model_params);
     bodies_.push_back(std::move(state));
   }
 }
@@ -94,8 +95,9 @@ bool ModelPanel::param_widget(ParamValue& value) {
     case TACTA_PARAM_INT: {
       int n = static_cast<int>(value.number);
       const int lo = static_cast<int>(spec.min_value), hi = static_cast<int>(spec.max_value);
-      ImGui::SliderInt(spec.name, &n, lo, hi, "%d",
-                       ImGuiSliderFlags_AlwaysClamp | (hi - lo > 1000 ? ImGuiSliderFlags_Logarithmic : 0));
+      ImGui::SliderInt(
+          spec.name, &n, lo, hi, "%d",
+          ImGuiSliderFlags_AlwaysClamp | (hi - lo > 1000 ? ImGuiSliderFlags_Logarithmic : 0));
       value.number = n;
       done = ImGui::IsItemDeactivatedAfterEdit();
       break;
@@ -123,8 +125,8 @@ bool ModelPanel::param_widget(ParamValue& value) {
     default: ImGui::TextDisabled("%s: %zu values", spec.name, value.values.size()); break;
   }
   if (ImGui::IsItemHovered() && spec.help != nullptr)
-    ImGui::SetTooltip("%s%s%s%s", spec.help, spec.unit && *spec.unit ? " (" : "", spec.unit ? spec.unit : "",
-                      spec.unit && *spec.unit ? ")" : "");
+    ImGui::SetTooltip("%s%s%s%s", spec.help, spec.unit && *spec.unit ? " (" : "",
+                      spec.unit ? spec.unit : "", spec.unit && *spec.unit ? ")" : "");
   return done;
 }
 
@@ -141,7 +143,8 @@ void ModelPanel::draw() {
   BodyState& body = bodies_[selected_];
   if (ImGui::BeginCombo("model", body.model.c_str())) {
     for (const std::string& name : model_names_)
-      if (ImGui::Selectable(name.c_str(), name == body.model) && name != body.model) choose_model(selected_, name);
+      if (ImGui::Selectable(name.c_str(), name == body.model) && name != body.model)
+        choose_model(selected_, name);
     ImGui::EndCombo();
   }
   ImGui::PushID(static_cast<int>(selected_));

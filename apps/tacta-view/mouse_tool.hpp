@@ -13,7 +13,7 @@
 namespace tacta::view {
 
 struct PointerState {
-  double x = 0, y = 0;    // pixels in the window, top left origin
+  double x = 0, y = 0;  // pixels in the window, top left origin
   bool left_down = false;
   double wheel = 0;       // notches this frame, + away from the viewer
   bool over_gui = false;  // Dear ImGui wants the mouse: the scene ignores it

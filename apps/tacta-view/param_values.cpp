@@ -4,7 +4,8 @@
 
 namespace tacta::view {
 
-std::vector<ParamValue> param_values(std::span<const tacta_param_spec> schema, const ParamSet* current) {
+std::vector<ParamValue> param_values(std::span<const tacta_param_spec> schema,
+                                     const ParamSet* current) {
   const ParamSet defaults = defaults_of(schema);
   std::vector<ParamValue> out;
   for (size_t i = 0; i < schema.size(); ++i) {

@@ -14,13 +14,14 @@ namespace tacta::view {
 
 struct ParamValue {
   const tacta_param_spec* spec = nullptr;  // lives as long as the plugin registry
-  double number = 0;                        // REAL, INT, BOOL (0/1), CHOICE index
-  std::string text;                         // TEXT
-  std::vector<double> values;               // VECTOR
+  double number = 0;                       // REAL, INT, BOOL (0/1), CHOICE index
+  std::string text;                        // TEXT
+  std::vector<double> values;              // VECTOR
 };
 
 // The schema's defaults, overridden by the entries `current` names (e.g. the scene's values).
-std::vector<ParamValue> param_values(std::span<const tacta_param_spec> schema, const ParamSet* current = nullptr);
+std::vector<ParamValue> param_values(std::span<const tacta_param_spec> schema,
+                                     const ParamSet* current = nullptr);
 
 // The ParamSet of these values; CHOICE entries carry their choice name and index.
 ParamSet to_param_set(const std::vector<ParamValue>& values);

@@ -71,7 +71,8 @@ void SimSession::work() {
     std::lock_guard lock(command_mutex_);
     error_ = e.what();
   }
-  const auto frame_ticks = static_cast<uint64_t>(std::max(1.0, std::round(frame_period_s_ / simulation_.dt())));
+  const auto frame_ticks =
+      static_cast<uint64_t>(std::max(1.0, std::round(frame_period_s_ / simulation_.dt())));
   for (;;) {
     RunOptions options;
     bool stepping = false;
@@ -92,8 +93,10 @@ void SimSession::work() {
       running_.store(true, std::memory_order_release);
     }
     try {
-      if (stepping) simulation_.step(frame_ticks);
-      else simulation_.run(options);
+      if (stepping)
+        simulation_.step(frame_ticks);
+      else
+        simulation_.run(options);
     } catch (const std::exception& e) {
       std::lock_guard lock(command_mutex_);
       error_ = e.what();

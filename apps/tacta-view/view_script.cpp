@@ -17,17 +17,17 @@ double number(const ScriptAction& a, size_t i) {
   try {
     return std::stod(a.args.at(i));
   } catch (const std::exception&) {
-    throw std::invalid_argument("--script: '" + a.verb + "' at frame " + std::to_string(a.frame) + ": argument " +
-                                std::to_string(i + 1) + " must be a number");
+    throw std::invalid_argument("--script: '" + a.verb + "' at frame " + std::to_string(a.frame) +
+                                ": argument " + std::to_string(i + 1) + " must be a number");
   }
 }
 
 }  // namespace
 
 std::vector<ScriptAction> parse_script(const std::string& text) {
-  const std::vector<std::pair<std::string, size_t>> arity{{"swap", 2}, {"set", 3},  {"play", 0},    {"pause", 0},
-                                                          {"step", 0}, {"quit", 0}, {"mark", 0}, {"drag", 3}, {"press", 2},   {"release", 0},
-                                                          {"wheel", 1}};
+  const std::vector<std::pair<std::string, size_t>> arity{
+      {"swap", 2}, {"set", 3},  {"play", 0},  {"pause", 0},   {"step", 0}, {"quit", 0},
+      {"mark", 0}, {"drag", 3}, {"press", 2}, {"release", 0}, {"wheel", 1}};
   std::vector<ScriptAction> actions;
   std::istringstream entries(text);
   for (std::string entry; std::getline(entries, entry, ';');) {
@@ -39,17 +39,21 @@ std::vector<ScriptAction> parse_script(const std::string& text) {
       if (colon == std::string::npos) throw std::invalid_argument("no colon");
       size_t used = 0;
       a.frame = std::stoi(entry.substr(0, colon), &used);
-      if (trim(entry.substr(0, colon)).size() != used || a.frame < 0) throw std::invalid_argument("frame");
+      if (trim(entry.substr(0, colon)).size() != used || a.frame < 0)
+        throw std::invalid_argument("frame");
     } catch (const std::exception&) {
-      throw std::invalid_argument("--script: '" + entry + "': expected FRAME:VERB ARGS with FRAME >= 0");
+      throw std::invalid_argument("--script: '" + entry +
+                                  "': expected FRAME:VERB ARGS with FRAME >= 0");
     }
     std::istringstream words(entry.substr(colon + 1));
     words >> a.verb;
     for (std::string w; words >> w;) a.args.push_back(w);
-    const auto known = std::find_if(arity.begin(), arity.end(), [&](const auto& p) { return p.first == a.verb; });
+    const auto known =
+        std::find_if(arity.begin(), arity.end(), [&](const auto& p) { return p.first == a.verb; });
     if (known == arity.end())
-      throw std::invalid_argument("--script: '" + entry + "': unknown verb '" + a.verb +
-                                  "' (swap, set, play, pause, step, quit, mark, drag, press, release, wheel)");
+      throw std::invalid_argument(
+          "--script: '" + entry + "': unknown verb '" + a.verb +
+          "' (swap, set, play, pause, step, quit, mark, drag, press, release, wheel)");
     if (a.args.size() != known->second)
       throw std::invalid_argument("--script: '" + entry + "': '" + a.verb + "' takes " +
                                   std::to_string(known->second) + " arguments");
@@ -57,12 +61,13 @@ std::vector<ScriptAction> parse_script(const std::string& text) {
     for (size_t i = first_number; i < a.args.size(); ++i) number(a, i);
     actions.push_back(std::move(a));
   }
-  std::stable_sort(actions.begin(), actions.end(), [](const auto& x, const auto& y) { return x.frame < y.frame; });
+  std::stable_sort(actions.begin(), actions.end(),
+                   [](const auto& x, const auto& y) { return x.frame < y.frame; });
   return actions;
 }
 
-void ScriptPlayer::start_track(const std::array<double, 2>& from, const std::array<double, 2>& to, int frames,
-                               bool release) {
+void ScriptPlayer::start_track(const std::array<double, 2>& from, const std::array<double, 2>& to,
+                               int frames, bool release) {
   track_.clear();
   frames = std::max(frames, 1);
   for (int k = 0; k <= frames; ++k) {
@@ -85,13 +90,20 @@ std::optional<PointerState> ScriptPlayer::advance(int frame, ScriptHost& host) {
   for (; next_ < actions_.size() && actions_[next_].frame <= frame; ++next_) {
     const ScriptAction& a = actions_[next_];
     bool ok = true;
-    if (a.verb == "swap") ok = host.swap(a.args[0], a.args[1]);
-    else if (a.verb == "set") ok = host.set_param(a.args[0], a.args[1], number(a, 2));
-    else if (a.verb == "play") host.play();
-    else if (a.verb == "pause") host.pause();
-    else if (a.verb == "step") host.step();
-    else if (a.verb == "quit") host.quit();
-    else if (a.verb == "mark") host.mark();
+    if (a.verb == "swap")
+      ok = host.swap(a.args[0], a.args[1]);
+    else if (a.verb == "set")
+      ok = host.set_param(a.args[0], a.args[1], number(a, 2));
+    else if (a.verb == "play")
+      host.play();
+    else if (a.verb == "pause")
+      host.pause();
+    else if (a.verb == "step")
+      host.step();
+    else if (a.verb == "quit")
+      host.quit();
+    else if (a.verb == "mark")
+      host.mark();
     else if (a.verb == "release") {
       track_.clear();
       if (pointer_) pointer_->left_down = false;
@@ -101,14 +113,17 @@ std::optional<PointerState> ScriptPlayer::advance(int frame, ScriptHost& host) {
     } else {  // drag, press: from the target's pixel
       const auto from = host.pixel_of(host.mouse_target());
       std::optional<std::array<double, 2>> to;
-      if (from && a.verb == "drag") to = std::array<double, 2>{(*from)[0] + number(a, 0), (*from)[1] + number(a, 1)};
+      if (from && a.verb == "drag")
+        to = std::array<double, 2>{(*from)[0] + number(a, 0), (*from)[1] + number(a, 1)};
       if (from && a.verb == "press") {
         Vec3d p = host.top_point();
         p[1] -= number(a, 0);
         to = host.pixel_of(p);
       }
       ok = from && to;
-      if (ok) start_track(*from, *to, static_cast<int>(number(a, a.verb == "drag" ? 2 : 1)), a.verb == "drag");
+      if (ok)
+        start_track(*from, *to, static_cast<int>(number(a, a.verb == "drag" ? 2 : 1)),
+                    a.verb == "drag");
     }
     if (!ok) failures_.push_back(std::to_string(a.frame) + ":" + a.verb);
   }

@@ -53,7 +53,8 @@ class ScriptPlayer {
   const std::vector<std::string>& failures() const { return failures_; }  // refused actions
 
  private:
-  void start_track(const std::array<double, 2>& from, const std::array<double, 2>& to, int frames, bool release);
+  void start_track(const std::array<double, 2>& from, const std::array<double, 2>& to, int frames,
+                   bool release);
   std::vector<ScriptAction> actions_;
   size_t next_ = 0;
   std::deque<PointerState> track_;

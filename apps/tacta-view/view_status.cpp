@@ -47,7 +47,8 @@ void write_view_status(const std::string& path, const ViewStatus& s) {
   out << "  \"wall_time_s\": " << number << ",\n";
   out << "  \"marks\": [";
   for (size_t i = 0; i < s.marks.size(); ++i) {
-    std::snprintf(number, sizeof number, "%s[%.0f, %.9g]", i ? ", " : "", s.marks[i][0], s.marks[i][1]);
+    std::snprintf(number, sizeof number, "%s[%.0f, %.9g]", i ? ", " : "", s.marks[i][0],
+                  s.marks[i][1]);
     out << number;
   }
   out << "],\n";
@@ -55,7 +56,8 @@ void write_view_status(const std::string& path, const ViewStatus& s) {
   out << "  \"swap_history\": " << list(s.swap_history) << ",\n";
   out << "  \"body_models\": " << list(s.body_models) << ",\n";
   out << "  \"body_frozen\": [";
-  for (size_t i = 0; i < s.body_frozen.size(); ++i) out << (i ? ", " : "") << (s.body_frozen[i] ? "true" : "false");
+  for (size_t i = 0; i < s.body_frozen.size(); ++i)
+    out << (i ? ", " : "") << (s.body_frozen[i] ? "true" : "false");
   out << "],\n";
   std::snprintf(number, sizeof number, "%.9g", s.max_force_N);
   out << "  \"max_force_N\": " << number << ",\n";

@@ -10,9 +10,9 @@ namespace tacta::view {
 
 struct ViewStatus {
   int frames = 0;
-  double sim_time_s = 0;                 // s, of the last snapshot shown
+  double sim_time_s = 0;                     // s, of the last snapshot shown
   std::vector<std::array<double, 2>> marks;  // (frame, simulated time shown in s) per script mark
-  double wall_time_s = 0;                // s from loading the scene (the first run) to the exit
+  double wall_time_s = 0;                    // s from loading the scene (the first run) to the exit
   int swaps_requested = 0;
   std::vector<std::string> swap_history;  // "body -> model"
   std::vector<std::string> body_models;   // per body, from the last snapshot (the haptic side)

@@ -2,17 +2,16 @@
 
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
-#include <imgui.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <imgui.h>
 #include <thread>
 
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
-#include "view_status.hpp"
 #include "tacta/vec3.hpp"
+#include "view_status.hpp"
 
 namespace tacta::view {
 namespace {
@@ -31,15 +30,17 @@ Placement placement(const SceneStatic& scene) {
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (const BodyStatic& b : scene.bodies)
     for (size_t n = 0; n + 2 < b.rest_positions.size(); n += 3) {
-      if (b.rest_positions[n + 1] > hi[1]) p.top = {b.rest_positions[n], b.rest_positions[n + 1], b.rest_positions[n + 2]};
+      if (b.rest_positions[n + 1] > hi[1])
+        p.top = {b.rest_positions[n], b.rest_positions[n + 1], b.rest_positions[n + 2]};
       for (int a = 0; a < 3; ++a) {
         lo[a] = std::min(lo[a], b.rest_positions[n + a]);
         hi[a] = std::max(hi[a], b.rest_positions[n + a]);
       }
     }
   if (lo[0] > hi[0]) return p;  // no bodies
-  const double size = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double size =
+      std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
   p.start = {p.top[0], p.top[1] + std::max(0.02, 0.1 * size), p.top[2]};
   p.depth_step_m = 0.01 * size;
   return p;
@@ -75,23 +76,31 @@ PluginRegistry& loaded(PluginRegistry& plugins) {
 
 Viewer::Viewer(const ViewerOptions& options)
     : options_(options),
-      scene_desc_(load_scene(options.scene, RegistrySchemas(loaded(plugins_)), with_mouse(options.overrides, options.mouse))),
+      scene_desc_(load_scene(options.scene, RegistrySchemas(loaded(plugins_)),
+                             with_mouse(options.overrides, options.mouse))),
       simulation_(std::make_unique<Simulation>(scene_desc_, plugins_)),
       mouse_(mouse_feed(*simulation_)),
       models_(std::make_unique<ModelPanel>(plugins_, *simulation_, scene_desc_)) {
-  for (const DeviceDesc& d : scene_desc_.devices) mouse_driven_ = mouse_driven_ || d.plugin == "mouse";
+  for (const DeviceDesc& d : scene_desc_.devices)
+    mouse_driven_ = mouse_driven_ || d.plugin == "mouse";
   if (!options.script.empty()) script_.emplace(parse_script(options.script));
   const double frame_period = 1.0 / scene_desc_.clock.render_rate_hz;
-  session_ = std::make_unique<SimSession>(*simulation_, frame_period, [this](const SceneStatic& scene) {
-    if (mouse_driven_) mouse_.feed(placement(scene).start);  // before the first tick reads the device
-  });
-  if (options.paused) session_->step();  // one frame, for a first picture
-  else session_->play();
+  session_ =
+      std::make_unique<SimSession>(*simulation_, frame_period, [this](const SceneStatic& scene) {
+        if (mouse_driven_)
+          mouse_.feed(placement(scene).start);  // before the first tick reads the device
+      });
+  if (options.paused)
+    session_->step();  // one frame, for a first picture
+  else
+    session_->play();
 }
 
 Viewer::~Viewer() = default;
 
-bool Viewer::swap(const std::string& body, const std::string& model) { return models_->swap_model(body, model); }
+bool Viewer::swap(const std::string& body, const std::string& model) {
+  return models_->swap_model(body, model);
+}
 
 bool Viewer::set_param(const std::string& body, const std::string& name, double value) {
   return models_->set_param(body, name, value);
@@ -127,7 +136,8 @@ void Viewer::draw_panel(double frame_ms) {
   ImGui::SameLine();
   ImGui::Checkbox("Wireframe", &style_.wireframe);
   const std::string error = session_->error();
-  if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "run stopped: %s", error.c_str());
+  if (!error.empty())
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "run stopped: %s", error.c_str());
 
   if (ImGui::CollapsingHeader("Model", ImGuiTreeNodeFlags_DefaultOpen)) models_->draw();
   if (ImGui::CollapsingHeader("Device", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -136,14 +146,16 @@ void Viewer::draw_panel(double frame_ms) {
       ImGui::Text("mouse target %.1f %.1f %.1f mm", 1e3 * t[0], 1e3 * t[1], 1e3 * t[2]);
       ImGui::TextDisabled("left drag: move on the view plane; wheel: depth");
     } else {
-      ImGui::TextDisabled(scene_desc_.devices.empty() ? "no device" : "scripted device (run with --mouse to drive it)");
+      ImGui::TextDisabled(scene_desc_.devices.empty()
+                              ? "no device"
+                              : "scripted device (run with --mouse to drive it)");
     }
   }
   if (ImGui::CollapsingHeader("Plots", ImGuiTreeNodeFlags_DefaultOpen)) {
     char label[64];
     std::snprintf(label, sizeof label, "%.2f N", static_cast<double>(force_plot_.latest()));
-    ImGui::PlotLines("force", force_plot_.data(), force_plot_.size(), force_plot_.offset(), label, 0.0f,
-                     std::max(1.0f, force_plot_.max()), ImVec2(240, 60));
+    ImGui::PlotLines("force", force_plot_.data(), force_plot_.size(), force_plot_.offset(), label,
+                     0.0f, std::max(1.0f, force_plot_.max()), ImVec2(240, 60));
     std::snprintf(label, sizeof label, "%.3f ms", static_cast<double>(tick_plot_.latest()));
     ImGui::PlotLines("tick", tick_plot_.data(), tick_plot_.size(), tick_plot_.offset(), label, 0.0f,
                      std::max(1.0f, tick_plot_.max()), ImVec2(240, 60));
@@ -183,8 +195,10 @@ int Viewer::run() {
       tick_plot_.push(static_cast<float>(snapshot_.last_tick_ms));
     }
     render::RenderFrame frame;
-    if (have_scene_ && have_snapshot_) frame = render::make_render_frame(scene_, snapshot_, style_);
-    else frame.overlay_lines.emplace_back("starting...");
+    if (have_scene_ && have_snapshot_)
+      frame = render::make_render_frame(scene_, snapshot_, style_);
+    else
+      frame.overlay_lines.emplace_back("starting...");
     camera_ = frame.camera;
 
     ImGui_ImplOpenGL3_NewFrame();
@@ -194,15 +208,16 @@ int Viewer::run() {
     viewport_ = {io.DisplaySize.x, io.DisplaySize.y};
     std::optional<PointerState> pointer = script_ ? script_->advance(frames_, *this) : std::nullopt;
     if (!pointer) {
-      pointer = PointerState{io.MousePos.x, io.MousePos.y, io.MouseDown[0], io.MouseWheel, io.WantCaptureMouse};
+      pointer = PointerState{io.MousePos.x, io.MousePos.y, io.MouseDown[0], io.MouseWheel,
+                             io.WantCaptureMouse};
     }
     if (mouse_driven_ && have_scene_) {
       mouse_.update(*pointer, camera_, viewport_);
       if (const auto at = project(camera_, viewport_, mouse_.target()))  // the target, as a ring
-        ImGui::GetBackgroundDrawList()->AddCircle(ImVec2(static_cast<float>((*at)[0]), static_cast<float>((*at)[1])),
-                                                  7.0f, mouse_.dragging() ? IM_COL32(255, 220, 80, 255)
-                                                                          : IM_COL32(120, 200, 255, 255),
-                                                  0, 2.0f);
+        ImGui::GetBackgroundDrawList()->AddCircle(
+            ImVec2(static_cast<float>((*at)[0]), static_cast<float>((*at)[1])), 7.0f,
+            mouse_.dragging() ? IM_COL32(255, 220, 80, 255) : IM_COL32(120, 200, 255, 255), 0,
+            2.0f);
     }
     draw_panel(frame_ms);
     ImGui::Render();
@@ -210,7 +225,8 @@ int Viewer::run() {
     ++frames_;
 
     const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
-    if (quit_requested_ || (options_.quit_after_s > 0 && elapsed_s >= options_.quit_after_s)) window.request_close();
+    if (quit_requested_ || (options_.quit_after_s > 0 && elapsed_s >= options_.quit_after_s))
+      window.request_close();
     std::this_thread::sleep_until(now + std::chrono::duration_cast<Clock::duration>(
                                             std::chrono::duration<double>(kFramePeriod_s)));
   }
@@ -222,7 +238,8 @@ int Viewer::run() {
   int code = 0;
   if (!options_.screenshot.empty()) {
     if (window.last_picture().empty()) {
-      std::fprintf(stderr, "error: no frame was shown, nothing to write to %s\n", options_.screenshot.c_str());
+      std::fprintf(stderr, "error: no frame was shown, nothing to write to %s\n",
+                   options_.screenshot.c_str());
       code = 1;
     } else {
       render::write_png(options_.screenshot, window.last_picture());

@@ -26,11 +26,11 @@ struct ViewerOptions {
   std::vector<std::string> overrides;  // --set key.path=value
   bool mouse = false;                  // replace the scene's devices by the mouse
   bool paused = false;
-  double quit_after_s = 0;             // wall-clock seconds; 0: until the window closes
-  std::string screenshot;              // PNG of the last frame, written on exit
-  std::string status;                  // JSON summary, written on exit
-  std::string script;                  // see view_script.hpp
-  int width = 1280, height = 800;      // pixels
+  double quit_after_s = 0;         // wall-clock seconds; 0: until the window closes
+  std::string screenshot;          // PNG of the last frame, written on exit
+  std::string status;              // JSON summary, written on exit
+  std::string script;              // see view_script.hpp
+  int width = 1280, height = 800;  // pixels
 };
 
 class Viewer final : public ScriptHost {
@@ -47,7 +47,9 @@ class Viewer final : public ScriptHost {
   void pause() override { session_->pause(); }
   void step() override { session_->step(); }
   void quit() override { quit_requested_ = true; }
-  void mark() override { marks_.push_back({static_cast<double>(frames_), have_snapshot_ ? snapshot_.time_s : 0.0}); }
+  void mark() override {
+    marks_.push_back({static_cast<double>(frames_), have_snapshot_ ? snapshot_.time_s : 0.0});
+  }
   std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const override;
   Vec3d mouse_target() const override { return mouse_.target(); }
   Vec3d top_point() const override { return top_point_; }
@@ -58,7 +60,8 @@ class Viewer final : public ScriptHost {
   void write_status(const std::string& path, double wall_time_s) const;
 
   ViewerOptions options_;
-  std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();  // the run starts here
+  std::chrono::steady_clock::time_point created_ =
+      std::chrono::steady_clock::now();  // the run starts here
   PluginRegistry plugins_;
   SceneDesc scene_desc_;
   std::unique_ptr<Simulation> simulation_;
@@ -76,8 +79,8 @@ class Viewer final : public ScriptHost {
   Viewport viewport_;
   Vec3d top_point_{0, 0, 0};
   bool mouse_driven_ = false;  // a device of the scene is the mouse plugin
-  RingPlot<300> force_plot_;    // N, one sample a new snapshot
-  RingPlot<300> tick_plot_;     // ms
+  RingPlot<300> force_plot_;   // N, one sample a new snapshot
+  RingPlot<300> tick_plot_;    // ms
   double max_force_N_ = 0;
   int frames_ = 0;
   bool quit_requested_ = false;

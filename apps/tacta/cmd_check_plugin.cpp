@@ -46,35 +46,44 @@ bool looks_like_path(const std::string& text) {
 }
 
 // The model descriptors to check; throws InputError (exit 2) when there are none.
-std::vector<tacta::LoadedDescriptor> resolve(tacta::PluginRegistry& registry, const std::string& what) {
+std::vector<tacta::LoadedDescriptor> resolve(tacta::PluginRegistry& registry,
+                                             const std::string& what) {
   std::vector<tacta::LoadedDescriptor> models;
   if (looks_like_path(what)) {
     if (!std::filesystem::is_regular_file(what))
       throw tacta::InputError(at_file(what), "no such plugin file");
     registry.load_file(what);
     if (!registry.refused().empty())
-      throw tacta::InputError(at_file(what), "the loader refused it: " + registry.refused().front().reason);
+      throw tacta::InputError(at_file(what),
+                              "the loader refused it: " + registry.refused().front().reason);
     std::string others;
     for (const auto& entry : registry.list()) {
-      if (entry.descriptor->kind == TACTA_KIND_MODEL) models.push_back(entry);
-      else others += std::string(" ") + tacta_kind_name(entry.descriptor->kind) + " " + entry.descriptor->name;
+      if (entry.descriptor->kind == TACTA_KIND_MODEL)
+        models.push_back(entry);
+      else
+        others += std::string(" ") + tacta_kind_name(entry.descriptor->kind) + " " +
+                  entry.descriptor->name;
     }
     if (models.empty())
-      throw tacta::InputError(at_file(what), "not a model plugin (it registers" +
-                                          (others.empty() ? std::string(" nothing") : others) + ")");
+      throw tacta::InputError(at_file(what),
+                              "not a model plugin (it registers" +
+                                  (others.empty() ? std::string(" nothing") : others) + ")");
     return models;
   }
   registry.load();
   if (const auto* found = registry.find(TACTA_KIND_MODEL, what)) return {*found};
   for (const tacta_kind kind : {TACTA_KIND_COLLISION, TACTA_KIND_DEVICE})
     if (registry.find(kind, what) != nullptr)
-      throw tacta::InputError(at_file("tacta check-plugin"), "'" + what + "' is a " + tacta_kind_name(kind) +
-                                      " plugin, not a model plugin");
-  throw tacta::InputError(at_file("tacta check-plugin"), registry.unknown_name_message(TACTA_KIND_MODEL, what));
+      throw tacta::InputError(
+          at_file("tacta check-plugin"),
+          "'" + what + "' is a " + tacta_kind_name(kind) + " plugin, not a model plugin");
+  throw tacta::InputError(at_file("tacta check-plugin"),
+                          registry.unknown_name_message(TACTA_KIND_MODEL, what));
 }
 
 // Prints one model's checks; true when none failed.
-bool run_suite(const tacta::LoadedDescriptor& model, const tacta::conformance::AllocationProbe& probe) {
+bool run_suite(const tacta::LoadedDescriptor& model,
+               const tacta::conformance::AllocationProbe& probe) {
   std::cout << "model " << model.descriptor->name << " (" << model.file << ")\n";
   int failed = 0, skipped = 0;
   const auto results = tacta::conformance::check_model(*model.descriptor, probe);
@@ -96,11 +105,14 @@ void add_check_plugin_command(CLI::App& app, int& exit_code) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "check-plugin", "Run the conformance suite on a model plugin (a .so path or a model name): "
-                      "forces at rest and under rigid motion, momentum, no allocation in step, "
-                      "NaN reported, parameter schema, stepping from a worker thread");
-  cmd->add_option("plugin", options->plugin, "Path of a plugin library, or a model name")->required();
-  cmd->add_option("--path", options->paths, "Also search this folder for a named model (repeatable)");
+      "check-plugin",
+      "Run the conformance suite on a model plugin (a .so path or a model name): "
+      "forces at rest and under rigid motion, momentum, no allocation in step, "
+      "NaN reported, parameter schema, stepping from a worker thread");
+  cmd->add_option("plugin", options->plugin, "Path of a plugin library, or a model name")
+      ->required();
+  cmd->add_option("--path", options->paths,
+                  "Also search this folder for a named model (repeatable)");
   cmd->callback([options, &exit_code] {
     exit_code = tacta::cli::run_guarded([&] {
       tacta::PluginRegistry registry(looks_like_path(options->plugin)

@@ -22,7 +22,8 @@ int compare_models(const CompareArgs& args) {
   PluginRegistry plugins;
   plugins.load();
   CompareOptions options = args.options;
-  if (!args.quiet) options.note = [](const std::string& text) { std::fprintf(stderr, "%s\n", text.c_str()); };
+  if (!args.quiet)
+    options.note = [](const std::string& text) { std::fprintf(stderr, "%s\n", text.c_str()); };
   const CompareSummary summary = run_comparison(options, plugins);
   std::string warning;
   const std::vector<std::string> written = write_compare_outputs(options.out_dir, summary, warning);
@@ -40,19 +41,30 @@ int compare_models(const CompareArgs& args) {
 
 void add_compare_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<CompareArgs>();
-  CLI::App* cmd = app.add_subcommand("compare", "Run one scene once per model and compare timings, displacement, energy");
-  cmd->add_option("scene", args->options.scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--models,-m", args->options.models, "Models, comma-separated; each NAME or NAME:param=value:... (tensor_mass,fd_debunne:symmetric=true)")
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Run one scene once per model and compare timings, displacement, energy");
+  cmd->add_option("scene", args->options.scene, "Scene file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--models,-m", args->options.models,
+                  "Models, comma-separated; each NAME or NAME:param=value:... "
+                  "(tensor_mass,fd_debunne:symmetric=true)")
       ->required()
       ->delimiter(',');
-  cmd->add_option("--out,-o", args->options.out_dir, "Output folder: one subfolder a model, compare.json/csv/png")->required();
-  cmd->add_option("--duration", args->options.duration_s, "Simulated duration, s (overrides clock.duration_s)")
+  cmd->add_option("--out,-o", args->options.out_dir,
+                  "Output folder: one subfolder a model, compare.json/csv/png")
+      ->required();
+  cmd->add_option("--duration", args->options.duration_s,
+                  "Simulated duration, s (overrides clock.duration_s)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--set", args->options.overrides, "Override a scene key for every run: key.path=value");
+  cmd->add_option("--set", args->options.overrides,
+                  "Override a scene key for every run: key.path=value");
   cmd->add_option("--reference", args->options.reference,
-                  "A --models entry to measure the others against: max displacement ratio and RMS node distance at the end");
+                  "A --models entry to measure the others against: max displacement ratio and RMS "
+                  "node distance at the end");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return compare_models(*args); }); });
+  cmd->callback(
+      [args, &exit_code] { exit_code = run_guarded([&] { return compare_models(*args); }); });
 }
 
 const bool registered = register_command(&add_compare_command);

@@ -37,7 +37,8 @@ Summary summarize(const std::string& path) {
     s.triangles = mesh.triangles.size() / 3;
     s.edges = mesh.edges.size() / 2;
     s.quality = tacta::mesh_quality(mesh);
-    std::vector<double> unit_masses = tacta::lumped_masses(mesh, 1.0);  // at 1 kg/m^3 mass is volume
+    std::vector<double> unit_masses =
+        tacta::lumped_masses(mesh, 1.0);  // at 1 kg/m^3 mass is volume
     s.volume = std::accumulate(unit_masses.begin(), unit_masses.end(), 0.0);
     return s;
   }
@@ -63,7 +64,8 @@ Summary summarize(const std::string& path) {
     for (size_t k = 0; k < 3; ++k) {
       const double* a = &surface.positions[3 * size_t{surface.triangles[3 * t + k]}];
       const double* b = &surface.positions[3 * size_t{surface.triangles[3 * t + (k + 1) % 3]}];
-      double length = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+      double length = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+                                (b[2] - a[2]) * (b[2] - a[2]));
       s.quality.min_edge = std::min(s.quality.min_edge, length);
       s.quality.max_edge = std::max(s.quality.max_edge, length);
     }
@@ -75,29 +77,35 @@ void print_text(const std::string& path, const Summary& s) {
   const tacta::MeshQuality& q = s.quality;
   std::cout << path << "\n  format: " << s.report.format << " (" << s.kind << ")\n";
   if (s.kind == "volume") {
-    std::cout << "  nodes: " << s.nodes << "\n  tets: " << s.tets << "\n  boundary triangles: " << s.triangles
-              << "\n  edges: " << s.edges << "\n  skipped non-tet elements: " << s.report.skipped_elements
+    std::cout << "  nodes: " << s.nodes << "\n  tets: " << s.tets
+              << "\n  boundary triangles: " << s.triangles << "\n  edges: " << s.edges
+              << "\n  skipped non-tet elements: " << s.report.skipped_elements
               << "\n  inverted tets re-oriented: " << s.report.inverted_tets
-              << "\n  unused nodes removed: " << s.report.removed_nodes << "\n  volume: " << s.volume << " m^3"
+              << "\n  unused nodes removed: " << s.report.removed_nodes
+              << "\n  volume: " << s.volume << " m^3"
               << "\n  tet volume: min " << q.min_volume << ", max " << q.max_volume << " m^3"
               << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
               << "\n  worst aspect ratio: " << q.worst_aspect_ratio << " (1 = regular tet)"
-              << "\n  dihedral angle: min " << q.min_dihedral_deg << ", max " << q.max_dihedral_deg << " degrees"
-              << "\n  radius ratio (3 r_in / r_circ, 1 regular): min " << q.min_radius_ratio << ", mean "
-              << q.mean_radius_ratio << "\n";
+              << "\n  dihedral angle: min " << q.min_dihedral_deg << ", max " << q.max_dihedral_deg
+              << " degrees"
+              << "\n  radius ratio (3 r_in / r_circ, 1 regular): min " << q.min_radius_ratio
+              << ", mean " << q.mean_radius_ratio << "\n";
   } else {
     std::cout << "  vertices: " << s.nodes << "\n  triangles: " << s.triangles
               << "\n  welded vertices: " << s.report.welded_vertices
               << "\n  degenerate triangles dropped: " << s.report.degenerate_triangles
-              << "\n  closed: " << (s.report.closed() ? "yes" : "no") << " (" << s.report.boundary_edges
-              << " open edges, " << s.report.nonmanifold_edges << " non-manifold edges)"
+              << "\n  closed: " << (s.report.closed() ? "yes" : "no") << " ("
+              << s.report.boundary_edges << " open edges, " << s.report.nonmanifold_edges
+              << " non-manifold edges)"
               << "\n  enclosed volume: " << s.volume << " m^3"
               << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
               << "\n  as a scene body: " << s.as_body << "\n";
-    for (const std::string& w : s.body_report.warnings) std::cout << "  as a scene body, warning: " << w << "\n";
+    for (const std::string& w : s.body_report.warnings)
+      std::cout << "  as a scene body, warning: " << w << "\n";
   }
-  std::cout << "  bounds: [" << q.bounds_min[0] << ", " << q.bounds_min[1] << ", " << q.bounds_min[2] << "] .. ["
-            << q.bounds_max[0] << ", " << q.bounds_max[1] << ", " << q.bounds_max[2] << "] m\n";
+  std::cout << "  bounds: [" << q.bounds_min[0] << ", " << q.bounds_min[1] << ", "
+            << q.bounds_min[2] << "] .. [" << q.bounds_max[0] << ", " << q.bounds_max[1] << ", "
+            << q.bounds_max[2] << "] m\n";
   for (const std::string& w : s.report.warnings) std::cout << "  warning: " << w << "\n";
 }
 
@@ -109,7 +117,8 @@ void print_json(const std::string& path, const Summary& s) {
   json.field(s.kind == "volume" ? "nodes" : "vertices", static_cast<uint64_t>(s.nodes));
   json.field("triangles", static_cast<uint64_t>(s.triangles));
   if (s.kind == "volume") {
-    json.field("tets", static_cast<uint64_t>(s.tets)).field("edges", static_cast<uint64_t>(s.edges));
+    json.field("tets", static_cast<uint64_t>(s.tets))
+        .field("edges", static_cast<uint64_t>(s.edges));
     json.field("skipped_elements", static_cast<uint64_t>(s.report.skipped_elements));
     json.field("inverted_tets", static_cast<uint64_t>(s.report.inverted_tets));
     json.field("removed_nodes", static_cast<uint64_t>(s.report.removed_nodes));
@@ -118,8 +127,10 @@ void print_json(const std::string& path, const Summary& s) {
     json.field("min_tet_volume_m3", q.min_volume).field("max_tet_volume_m3", q.max_volume);
     json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
     json.field("worst_aspect_ratio", q.worst_aspect_ratio);
-    json.field("min_dihedral_deg", q.min_dihedral_deg).field("max_dihedral_deg", q.max_dihedral_deg);
-    json.field("min_radius_ratio", q.min_radius_ratio).field("mean_radius_ratio", q.mean_radius_ratio);
+    json.field("min_dihedral_deg", q.min_dihedral_deg)
+        .field("max_dihedral_deg", q.max_dihedral_deg);
+    json.field("min_radius_ratio", q.min_radius_ratio)
+        .field("mean_radius_ratio", q.mean_radius_ratio);
     json.end_object();
   } else {
     json.field("welded_vertices", static_cast<uint64_t>(s.report.welded_vertices));
@@ -130,7 +141,8 @@ void print_json(const std::string& path, const Summary& s) {
     json.field("enclosed_volume_m3", s.volume);
     json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
     json.key("as_body").begin_object().field("summary", s.as_body);
-    json.field("voxel_size_m", s.body_report.voxel_size).field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
+    json.field("voxel_size_m", s.body_report.voxel_size)
+        .field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
     json.field("volume_m3", s.body_report.mesh_volume);
     json.key("piece_volumes_m3").begin_array();
     for (double v : s.body_report.piece_volumes) json.value(v);
@@ -139,8 +151,18 @@ void print_json(const std::string& path, const Summary& s) {
     for (const std::string& w : s.body_report.warnings) json.value(w);
     json.end_array().end_object();
   }
-  json.key("bounds_min_m").begin_array().value(q.bounds_min[0]).value(q.bounds_min[1]).value(q.bounds_min[2]).end_array();
-  json.key("bounds_max_m").begin_array().value(q.bounds_max[0]).value(q.bounds_max[1]).value(q.bounds_max[2]).end_array();
+  json.key("bounds_min_m")
+      .begin_array()
+      .value(q.bounds_min[0])
+      .value(q.bounds_min[1])
+      .value(q.bounds_min[2])
+      .end_array();
+  json.key("bounds_max_m")
+      .begin_array()
+      .value(q.bounds_max[0])
+      .value(q.bounds_max[1])
+      .value(q.bounds_max[2])
+      .end_array();
   json.key("warnings").begin_array();
   for (const std::string& w : s.report.warnings) json.value(w);
   json.end_array();
@@ -154,9 +176,11 @@ void add_mesh_info_command(CLI::App& app, int& exit_code) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "mesh-info", "Load a mesh (Gmsh .msh, VTK .vtk/.vtu tets; OBJ, STL, PLY, glTF surfaces) and print its "
-                   "format, counts, bounds and quality, or the error that stops it loading");
-  cmd->add_option("FILE", options->file, "The mesh file; its format is read from its content")->required();
+      "mesh-info",
+      "Load a mesh (Gmsh .msh, VTK .vtk/.vtu tets; OBJ, STL, PLY, glTF surfaces) and print its "
+      "format, counts, bounds and quality, or the error that stops it loading");
+  cmd->add_option("FILE", options->file, "The mesh file; its format is read from its content")
+      ->required();
   cmd->add_flag("--json", options->json, "Print the same as JSON ({\"error\": ...} on failure)");
   cmd->callback([options, &exit_code] {
     Summary summary;
@@ -166,7 +190,10 @@ void add_mesh_info_command(CLI::App& app, int& exit_code) {
       std::cerr << "tacta mesh-info: " << e.what() << "\n";
       if (options->json) {
         tacta::JsonWriter json(std::cout);
-        json.begin_object().field("file", options->file).field("error", std::string(e.what())).end_object();
+        json.begin_object()
+            .field("file", options->file)
+            .field("error", std::string(e.what()))
+            .end_object();
       }
       exit_code = tacta::cli::kExitBadInput;
       return;

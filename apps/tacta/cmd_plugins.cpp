@@ -9,9 +9,9 @@
 #include "command.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
-#include "tacta/param_defaults.hpp"
 #include "tacta/json.hpp"
 #include "tacta/live_params.hpp"
+#include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
 
 namespace {
@@ -30,7 +30,8 @@ const char* type_name(tacta_param_type type) {
 
 // major*10000 + minor*100 + patch -> "major.minor.patch"
 std::string version_text(uint32_t v) {
-  return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+  return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." +
+         std::to_string(v % 100);
 }
 
 // "broad_phase, proxy" for a collision descriptor, "(guessed from its entries)" when it declares none.
@@ -39,8 +40,10 @@ std::string collision_roles_text(const tacta_descriptor& d) {
   const uint32_t roles = tacta_collision_roles(&d, &guessed);
   std::string text;
   for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
-    if (roles & (1u << r)) text += (text.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
-  return (text.empty() ? std::string("none") : text) + (guessed ? " (guessed from its entries)" : "");
+    if (roles & (1u << r))
+      text += (text.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
+  return (text.empty() ? std::string("none") : text) +
+         (guessed ? " (guessed from its entries)" : "");
 }
 
 std::string short_number(double v) {
@@ -58,8 +61,8 @@ std::string describe_param(const tacta_param_spec& p, bool live) {
   switch (p.type) {
     case TACTA_PARAM_REAL:
     case TACTA_PARAM_INT:
-      line += " default " + short_number(p.default_value) + ", range [" + short_number(p.min_value) +
-              ", " + short_number(p.max_value) + "]";
+      line += " default " + short_number(p.default_value) + ", range [" +
+              short_number(p.min_value) + ", " + short_number(p.max_value) + "]";
       break;
     case TACTA_PARAM_BOOL: line += p.default_value != 0 ? " default true" : " default false"; break;
     case TACTA_PARAM_CHOICE: {
@@ -69,7 +72,9 @@ std::string describe_param(const tacta_param_spec& p, bool live) {
               ", one of " + (p.choices ? p.choices : "");
       break;
     }
-    case TACTA_PARAM_TEXT: line += std::string(" default '") + (p.default_text ? p.default_text : "") + "'"; break;
+    case TACTA_PARAM_TEXT:
+      line += std::string(" default '") + (p.default_text ? p.default_text : "") + "'";
+      break;
     case TACTA_PARAM_VECTOR:
       line += " default [" + std::string(p.default_text ? p.default_text : "") + "], groups of " +
               std::to_string(p.vector_stride) + ", each in [" + short_number(p.min_value) + ", " +
@@ -88,12 +93,14 @@ void print_text(const tacta::PluginRegistry& registry) {
   std::cout << "\n" << loaded.size() << " plugin descriptor(s):\n";
   for (const auto& e : loaded) {
     const tacta_descriptor& d = *e.descriptor;
-    std::cout << "\n" << tacta_kind_name(d.kind) << " " << d.name << " " << version_text(d.version)
-              << ": " << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
+    std::cout << "\n"
+              << tacta_kind_name(d.kind) << " " << d.name << " " << version_text(d.version) << ": "
+              << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
     if (d.kind == TACTA_KIND_COLLISION) std::cout << "  roles: " << collision_roles_text(d) << "\n";
     if (d.param_count == 0) std::cout << "  parameters: none\n";
     for (uint32_t i = 0; i < d.param_count; ++i)
-      std::cout << "  - " << describe_param(d.params[i], tacta::is_live_param(d, d.params[i].name)) << "\n";
+      std::cout << "  - " << describe_param(d.params[i], tacta::is_live_param(d, d.params[i].name))
+                << "\n";
   }
   const auto& refused = registry.refused();
   if (!refused.empty()) {
@@ -174,8 +181,9 @@ void add_plugins_command(CLI::App& app, int& exit_code) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "plugins", "List the plugins found (build tree, install prefix, TACTA_PLUGIN_PATH, --path) "
-                 "with their parameters, and every refused file with the reason");
+      "plugins",
+      "List the plugins found (build tree, install prefix, TACTA_PLUGIN_PATH, --path) "
+      "with their parameters, and every refused file with the reason");
   cmd->add_flag("--json", options->json, "Print the same as JSON");
   cmd->add_option("--path", options->paths, "Also search this folder (repeatable)");
   cmd->callback([options, &exit_code] {

@@ -1,11 +1,10 @@
 // `tacta run SCENE`: loads a scene, runs it (lockstep by default, or realtime), writes the report,
 // records and plots to --out. Exit 0 ok, 1 a runtime fault (a body diverged, a device failed),
 // 2 bad input (scene, mesh, plugin).
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <unistd.h>
 
 #include "command.hpp"
 #include "tacta/error.hpp"
@@ -55,7 +54,8 @@ int run_scene(const RunArgs& args) {
     std::snprintf(text, sizeof text, "clock.duration_s=%.17g", args.duration);
     overrides.push_back(text);
   }
-  if (args.haptic_cpu >= -1) overrides.push_back("clock.haptic_cpu=" + std::to_string(args.haptic_cpu));
+  if (args.haptic_cpu >= -1)
+    overrides.push_back("clock.haptic_cpu=" + std::to_string(args.haptic_cpu));
   if (!args.replay.empty()) {
     // The scene's device is replaced by a replay of the log, keeping its tool and coupling.
     overrides.push_back("devices.*.plugin=replay");
@@ -64,7 +64,8 @@ int run_scene(const RunArgs& args) {
   SceneDesc scene = load_scene(args.scene, schemas, overrides);
   Simulation simulation(scene, plugins);
   if (!args.quiet)
-    for (const std::string& warning : simulation.load_warnings()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    for (const std::string& warning : simulation.load_warnings())
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
   RunOptions options;
   options.out_dir = args.out;
   if (args.realtime) options.realtime = true;
@@ -74,37 +75,46 @@ int run_scene(const RunArgs& args) {
   options.progress = !args.quiet && isatty(STDERR_FILENO);
   std::unique_ptr<FrameObserver> frames;
   if ((args.frames || scene.output.frames) && !args.out.empty()) {
-    frames = render::make_png_frame_writer(args.out + "/frames", scene.output.frame_times, scene.output.frame_width,
-                                           scene.output.frame_height);
+    frames = render::make_png_frame_writer(args.out + "/frames", scene.output.frame_times,
+                                           scene.output.frame_width, scene.output.frame_height);
     options.observers.push_back(frames.get());
   }
   const RunResult result = simulation.run(options);
   // A fault is an error: printed even with --quiet, on stderr, with the exit code 1.
-  for (const std::string& fault : result.fault_messages) std::fprintf(stderr, "error: runtime fault: %s\n", fault.c_str());
+  for (const std::string& fault : result.fault_messages)
+    std::fprintf(stderr, "error: runtime fault: %s\n", fault.c_str());
   // One line per status bit kind seen (who x bit), warnings included, with its remedy.
   for (const std::string& line : result.status.lines) std::fprintf(stderr, "%s\n", line.c_str());
 
   if (!args.quiet) {
-    std::printf("%s: %s, %llu ticks, %.3f s simulated in %.3f s, tick p50 %.3f ms p99 %.3f ms max %.3f ms",
-                result.scene.c_str(), result.mode.c_str(), static_cast<unsigned long long>(result.schedule.ticks),
-                result.sim_time_s, result.schedule.wall_time_s, result.schedule.tick.p50_ms,
-                result.schedule.tick.p99_ms, result.schedule.tick.max_ms);
+    std::printf(
+        "%s: %s, %llu ticks, %.3f s simulated in %.3f s, tick p50 %.3f ms p99 %.3f ms max %.3f ms",
+        result.scene.c_str(), result.mode.c_str(),
+        static_cast<unsigned long long>(result.schedule.ticks), result.sim_time_s,
+        result.schedule.wall_time_s, result.schedule.tick.p50_ms, result.schedule.tick.p99_ms,
+        result.schedule.tick.max_ms);
     if (result.mode == "realtime")
-      std::printf(", %llu deadline misses", static_cast<unsigned long long>(result.schedule.deadline_misses));
+      std::printf(", %llu deadline misses",
+                  static_cast<unsigned long long>(result.schedule.deadline_misses));
     std::printf("\n");
     const RealtimeGrant& grant = result.schedule.realtime;
     if (grant.demoted_at_tick >= 0)
-      std::printf("  warning: the haptic thread missed %u deadlines in a row at tick %lld and was dropped from "
-                  "SCHED_FIFO to SCHED_OTHER (nice %d) so it would not starve the machine; the scene's tick is "
-                  "too slow for clock.haptic_rate_hz here\n",
-                  kStarvingTicks, static_cast<long long>(grant.demoted_at_tick), grant.nice);
+      std::printf(
+          "  warning: the haptic thread missed %u deadlines in a row at tick %lld and was dropped "
+          "from "
+          "SCHED_FIFO to SCHED_OTHER (nice %d) so it would not starve the machine; the scene's "
+          "tick is "
+          "too slow for clock.haptic_rate_hz here\n",
+          kStarvingTicks, static_cast<long long>(grant.demoted_at_tick), grant.nice);
     for (const BodyResult& b : result.bodies)
-      std::printf("  body %s (%s): %zu nodes (%zu fixed), %zu elements, max displacement %.6g m%s%s\n", b.name.c_str(),
-                  b.model.c_str(), b.nodes, b.fixed_nodes, b.elements, b.max_displacement_m, b.frozen ? ", FROZEN: " : "",
-                  b.fault.c_str());
+      std::printf(
+          "  body %s (%s): %zu nodes (%zu fixed), %zu elements, max displacement %.6g m%s%s\n",
+          b.name.c_str(), b.model.c_str(), b.nodes, b.fixed_nodes, b.elements, b.max_displacement_m,
+          b.frozen ? ", FROZEN: " : "", b.fault.c_str());
     for (const BodyResult& b : result.bodies) {
       std::printf("  body %s mesh: %s\n", b.name.c_str(), b.mesh.c_str());
-      for (const std::string& w : b.mesh_warnings) std::printf("  body %s mesh warning: %s\n", b.name.c_str(), w.c_str());
+      for (const std::string& w : b.mesh_warnings)
+        std::printf("  body %s mesh warning: %s\n", b.name.c_str(), w.c_str());
     }
     for (const std::string& f : result.outputs) std::printf("  wrote %s\n", f.c_str());
     std::printf("  state hash %s\n", result.state_hash.c_str());
@@ -114,19 +124,26 @@ int run_scene(const RunArgs& args) {
 
 void add_run_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "Run a scene headless and write its report, records and plots");
+  CLI::App* cmd =
+      app.add_subcommand("run", "Run a scene headless and write its report, records and plots");
   cmd->add_option("scene", args->scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--out,-o", args->out, "Output folder for report.json, trace.csv, plots and frames");
-  cmd->add_option("--duration", args->duration, "Simulated duration, s (overrides clock.duration_s)")
+  cmd->add_option("--out,-o", args->out,
+                  "Output folder for report.json, trace.csv, plots and frames");
+  cmd->add_option("--duration", args->duration,
+                  "Simulated duration, s (overrides clock.duration_s)")
       ->check(kDurationSeconds);
-  cmd->add_flag("--realtime", args->realtime, "Run on the wall clock: haptic thread at 1 kHz, render thread at 60 Hz");
-  cmd->add_flag("--lockstep", args->lockstep, "Run on simulated time, as fast as possible (deterministic)");
-  cmd->add_option("--set", args->overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
+  cmd->add_flag("--realtime", args->realtime,
+                "Run on the wall clock: haptic thread at 1 kHz, render thread at 60 Hz");
+  cmd->add_flag("--lockstep", args->lockstep,
+                "Run on simulated time, as fast as possible (deterministic)");
+  cmd->add_option("--set", args->overrides,
+                  "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
   cmd->add_option("--record", args->record, "Write the first device's session log (CSV) here");
   cmd->add_option("--replay", args->replay, "Replace the scene's device by a replay of this log")
       ->check(CLI::ExistingFile);
   cmd->add_option("--haptic-cpu", args->haptic_cpu,
-                  "Realtime: pin the haptic thread to this CPU and move other threads off it (clock.haptic_cpu)")
+                  "Realtime: pin the haptic thread to this CPU and move other threads off it "
+                  "(clock.haptic_cpu)")
       ->check(CLI::Range(-1, 1023));
   cmd->add_flag("--frames", args->frames, "Write PNG frames from the render task");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");

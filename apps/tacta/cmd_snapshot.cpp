@@ -31,12 +31,16 @@ struct SnapshotArgs {
 
 void check_args(const SnapshotArgs& args) {
   if (!std::isfinite(args.at) || args.at < 0)
-    throw InputError({"--at", 0, 0, ""}, "expected a simulated time >= 0 s, found " + std::to_string(args.at));
-  for (const auto& [name, side] : {std::pair{"--width", args.width}, std::pair{"--height", args.height}})
+    throw InputError({"--at", 0, 0, ""},
+                     "expected a simulated time >= 0 s, found " + std::to_string(args.at));
+  for (const auto& [name, side] :
+       {std::pair{"--width", args.width}, std::pair{"--height", args.height}})
     if (side && (*side < 1 || *side > kMaxFrameSide))  // the scene's output.frame_size bounds
       throw InputError({name, 0, 0, ""}, "expected pixels in [1, " + std::to_string(kMaxFrameSide) +
-                                             "] (the off-screen renderer's limit), found " + std::to_string(*side));
-  if (args.out.empty()) throw InputError({"--out", 0, 0, ""}, "expected a PNG file name, found nothing");
+                                             "] (the off-screen renderer's limit), found " +
+                                             std::to_string(*side));
+  if (args.out.empty())
+    throw InputError({"--out", 0, 0, ""}, "expected a PNG file name, found nothing");
 }
 
 int take_snapshot(const SnapshotArgs& args) {
@@ -57,29 +61,37 @@ int take_snapshot(const SnapshotArgs& args) {
   options.realtime = false;
   options.duration_s = args.at;
   const RunResult result = simulation.run(options);
-  const render::Image image =
-      render::write_snapshot_png(renderer, simulation.scene_static(), simulation.snapshot(), args.out);
+  const render::Image image = render::write_snapshot_png(renderer, simulation.scene_static(),
+                                                         simulation.snapshot(), args.out);
 
   if (!args.quiet) {
-    std::printf("%s at t = %.6g s (%llu ticks): wrote %s (%dx%d)\n", result.scene.c_str(), simulation.time(),
-                static_cast<unsigned long long>(result.schedule.ticks), args.out.c_str(), image.width, image.height);
+    std::printf("%s at t = %.6g s (%llu ticks): wrote %s (%dx%d)\n", result.scene.c_str(),
+                simulation.time(), static_cast<unsigned long long>(result.schedule.ticks),
+                args.out.c_str(), image.width, image.height);
     for (const BodyResult& b : result.bodies)
-      if (b.frozen) std::printf("  body %s (%s) FROZEN: %s\n", b.name.c_str(), b.model.c_str(), b.fault.c_str());
+      if (b.frozen)
+        std::printf("  body %s (%s) FROZEN: %s\n", b.name.c_str(), b.model.c_str(),
+                    b.fault.c_str());
   }
   return result.exit_code;
 }
 
 void add_snapshot_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SnapshotArgs>();
-  CLI::App* cmd = app.add_subcommand("snapshot", "Run a scene in lockstep to time T and write one picture (PNG)");
+  CLI::App* cmd = app.add_subcommand(
+      "snapshot", "Run a scene in lockstep to time T and write one picture (PNG)");
   cmd->add_option("scene", args->scene, "Scene file (YAML)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--at,-t", args->at, "Simulated time of the picture, s (>= 0)")->required();
   cmd->add_option("--out,-o", args->out, "PNG file to write")->required();
-  cmd->add_option("--width", args->width, "Picture width, pixels (default: the scene's output.frame_size)");
-  cmd->add_option("--height", args->height, "Picture height, pixels (default: the scene's output.frame_size)");
-  cmd->add_option("--set", args->overrides, "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
+  cmd->add_option("--width", args->width,
+                  "Picture width, pixels (default: the scene's output.frame_size)");
+  cmd->add_option("--height", args->height,
+                  "Picture height, pixels (default: the scene's output.frame_size)");
+  cmd->add_option("--set", args->overrides,
+                  "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
   cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return take_snapshot(*args); }); });
+  cmd->callback(
+      [args, &exit_code] { exit_code = run_guarded([&] { return take_snapshot(*args); }); });
 }
 
 const bool registered = register_command(&add_snapshot_command);

@@ -1,7 +1,6 @@
 // BVH per tick: refit (or rebuild) + self and body-body candidate pairs on two deforming grids,
 // at about 5k and 50k triangles in all, against brute force over all swept element boxes.
 #include <benchmark/benchmark.h>
-
 #include <random>
 
 #include "bounding_tree.hpp"
@@ -16,7 +15,8 @@ using tacta::testing::TestSurface;
 struct Scene {
   TestSurface a, b;
   std::vector<double> a_end2, b_end2;  // a second proposed end, alternated each tick
-  explicit Scene(int n) : a(tacta::testing::grid(n, 1.0, 0, 0, 0)), b(tacta::testing::grid(n, 1.0, 0.1, 0.1, 0.01)) {
+  explicit Scene(int n)
+      : a(tacta::testing::grid(n, 1.0, 0, 0, 0)), b(tacta::testing::grid(n, 1.0, 0.1, 0.1, 0.01)) {
     std::mt19937 rng(7);
     tacta::testing::deform(a, rng, 0.01, 0.0);
     tacta::testing::deform(b, rng, 0.01, 1.0);
@@ -43,7 +43,8 @@ void BM_BvhTick(benchmark::State& state) {
   BoundingTree ta, tb;
   ta.reserve(static_cast<uint32_t>(scene.a.triangles.size() / 3));
   tb.reserve(static_cast<uint32_t>(scene.b.triangles.size() / 3));
-  const auto volume = state.range(1) == 1 ? BoundingTree::Volume::kObb : BoundingTree::Volume::kAabb;
+  const auto volume =
+      state.range(1) == 1 ? BoundingTree::Volume::kObb : BoundingTree::Volume::kAabb;
   bool flip = false;
   size_t pairs = 0;
   for (auto _ : state) {
@@ -84,7 +85,18 @@ void BM_BruteForceTick(benchmark::State& state) {
   state.counters["pairs"] = static_cast<double>(pairs);
 }
 
-BENCHMARK(BM_BvhTick)->Name("bvh/refit_pairs")->Args({35, 0})->Args({35, 1})->Args({112, 0})->Args({112, 1})->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_BruteForceTick)->Name("bvh/brute_force")->Arg(35)->Arg(112)->Iterations(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BvhTick)
+    ->Name("bvh/refit_pairs")
+    ->Args({35, 0})
+    ->Args({35, 1})
+    ->Args({112, 0})
+    ->Args({112, 1})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BruteForceTick)
+    ->Name("bvh/brute_force")
+    ->Arg(35)
+    ->Arg(112)
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

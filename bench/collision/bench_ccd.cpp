@@ -9,7 +9,8 @@
 namespace {
 
 const std::vector<tacta::testing::CcdQuery>& queries() {
-  static const auto all = tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+  static const auto all =
+      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
   return all;
 }
 

@@ -40,7 +40,8 @@ std::vector<std::string> split(const std::string& text) {
   return out;
 }
 
-std::string cell(const ZwidthResult& r, const tacta::bench::ZwidthSearch& search, bool stable_at_omni) {
+std::string cell(const ZwidthResult& r, const tacta::bench::ZwidthSearch& search,
+                 bool stable_at_omni) {
   char text[96];
   if (r.smallest_unstable == 0.0)
     std::snprintf(text, sizeof text, "≥ %.0f", search.k_max);
@@ -76,11 +77,14 @@ int main(int argc, char** argv) {
     std::ofstream csv;
     if (!csv_path.empty()) {
       csv.open(csv_path);
-      csv << "model,hand,coupling_damping_Ns_per_m,passivity,largest_stable_N_per_m,smallest_unstable_N_per_m,"
-             "unstable_reason,mean_force_N,rendered_stiffness_N_per_m,oscillation_rms_N,min_port_energy_J,stable_at_1000_N_per_m,runs\n";
+      csv << "model,hand,coupling_damping_Ns_per_m,passivity,largest_stable_N_per_m,smallest_"
+             "unstable_N_per_m,"
+             "unstable_reason,mean_force_N,rendered_stiffness_N_per_m,oscillation_rms_N,min_port_"
+             "energy_J,stable_at_1000_N_per_m,runs\n";
     }
     std::printf("| model | hand |");
-    for (const std::string& b : split(dampings)) std::printf(" b = %s, off | b = %s, on |", b.c_str(), b.c_str());
+    for (const std::string& b : split(dampings))
+      std::printf(" b = %s, off | b = %s, on |", b.c_str(), b.c_str());
     std::printf("\n|---|---|");
     for (size_t i = 0; i < split(dampings).size(); ++i) std::printf("---|---|");
     std::printf("\n");
@@ -97,11 +101,13 @@ int main(int argc, char** argv) {
             std::printf(" %s |", cell(r, search, omni.stable).c_str());
             std::fflush(stdout);
             if (csv.is_open())
-              csv << model << ',' << hand << ',' << b << ',' << passivity << ',' << r.largest_stable << ','
-                  << r.smallest_unstable << ',' << r.unstable_reason << ',' << r.at_largest_stable.mean_force << ','
-                  << r.at_largest_stable.rendered_stiffness << ','
-                  << r.at_largest_stable.oscillation_rms << ',' << r.at_largest_stable.min_port_energy << ','
-                  << omni.stable << ',' << r.runs + 1 << '\n' << std::flush;
+              csv << model << ',' << hand << ',' << b << ',' << passivity << ',' << r.largest_stable
+                  << ',' << r.smallest_unstable << ',' << r.unstable_reason << ','
+                  << r.at_largest_stable.mean_force << ',' << r.at_largest_stable.rendered_stiffness
+                  << ',' << r.at_largest_stable.oscillation_rms << ','
+                  << r.at_largest_stable.min_port_energy << ',' << omni.stable << ',' << r.runs + 1
+                  << '\n'
+                  << std::flush;
           }
         }
         std::printf("\n");

@@ -13,8 +13,11 @@
 namespace tacta::bench {
 
 ZwidthRunner::ZwidthRunner(std::string scene, std::string work_dir, const std::string& plugin_dir)
-    : scene_(std::move(scene)), work_dir_(std::move(work_dir)), plugins_(std::make_unique<PluginRegistry>()) {
-  if (!plugin_dir.empty() && std::filesystem::is_directory(plugin_dir)) plugins_->add_path(plugin_dir);
+    : scene_(std::move(scene)),
+      work_dir_(std::move(work_dir)),
+      plugins_(std::make_unique<PluginRegistry>()) {
+  if (!plugin_dir.empty() && std::filesystem::is_directory(plugin_dir))
+    plugins_->add_path(plugin_dir);
   plugins_->load();
   std::filesystem::create_directories(work_dir_);
 }

@@ -16,10 +16,10 @@ class PluginRegistry;
 namespace tacta::bench {
 
 struct ZwidthCase {
-  std::string model;                    // a model as the scene's `model:` key takes it (YAML)
-  double coupling_damping = 0.0;        // N s/m
-  bool passivity = false;               // the passivity controller acts
-  std::vector<std::string> overrides;   // further key=value overrides (e.g. the hand)
+  std::string model;                   // a model as the scene's `model:` key takes it (YAML)
+  double coupling_damping = 0.0;       // N s/m
+  bool passivity = false;              // the passivity controller acts
+  std::vector<std::string> overrides;  // further key=value overrides (e.g. the hand)
 };
 
 struct ZwidthSearch {
@@ -29,10 +29,10 @@ struct ZwidthSearch {
 };
 
 struct ZwidthResult {
-  double largest_stable = 0.0;    // N/m; 0 when even k_min is unstable
-  double smallest_unstable = 0.0; // N/m; 0 when even k_max is stable
+  double largest_stable = 0.0;     // N/m; 0 when even k_min is unstable
+  double smallest_unstable = 0.0;  // N/m; 0 when even k_max is stable
   StabilityVerdict at_largest_stable;
-  std::string unstable_reason;    // the verdict at smallest_unstable
+  std::string unstable_reason;  // the verdict at smallest_unstable
   int runs = 0;
 };
 

@@ -12,9 +12,8 @@ namespace tacta::bench {
 // A box of cells x cells x (cells + extra) cubes of 1 cm (6 tets each), clamped at z = 0. Tet counts: 4 -> 480, 7 -> 2,058, 12 -> 10,368, 20 -> 50,400.
 inline models::TestMesh clamped_box(uint32_t cells, uint32_t extra) {
   const double edge = 0.01;  // m per cube
-  models::TestMesh mesh = models::box_tet_mesh({cells, cells, cells + extra},
-                                               {edge * cells, edge * cells, edge * (cells + extra)},
-                                               1000.0);
+  models::TestMesh mesh = models::box_tet_mesh(
+      {cells, cells, cells + extra}, {edge * cells, edge * cells, edge * (cells + extra)}, 1000.0);
   mesh.fix_plane(2, 0.0);
   return mesh;
 }

@@ -2,9 +2,8 @@
 // all driven through the C ABI, on a clamped box under gravity at the haptic tick (dt = 1 ms).
 // The 1 kHz budget is 1 ms per tick for everything (collision, haptics, every body), so a
 // model's step should stay well below it. Models whose plugin is not built are skipped.
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
+#include <benchmark/benchmark.h>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -32,17 +31,32 @@ struct ModelCase {
 const std::vector<ModelCase>& model_cases() {
   static const std::vector<ModelCase> cases = {
       {"corotational_pcg", "tacta_corotational_fem.so", "corotational_fem", {}, 20},
-      {"corotational_cholesky", "tacta_corotational_fem.so", "corotational_fem",
-       {{"solver", 1, "cholesky"}}, 12},
+      {"corotational_cholesky",
+       "tacta_corotational_fem.so",
+       "corotational_fem",
+       {{"solver", 1, "cholesky"}},
+       12},
       {"hyperelastic", "tacta_hyperelastic.so", "hyperelastic", {}, 12},
-      {"hyperelastic_1_newton", "tacta_hyperelastic.so", "hyperelastic",
-       {{"newton_iterations", 1, nullptr}}, 12},
-      {"hyperelastic_cg_1e-5", "tacta_hyperelastic.so", "hyperelastic",
-       {{"tolerance", 1e-5, nullptr}}, 12},
-      {"hyperelastic_nodal_average", "tacta_hyperelastic.so", "hyperelastic",
-       {{"volumetric", 2, "nodal_average"}}, 12},
-      {"hyperelastic_fresh_tangent", "tacta_hyperelastic.so", "hyperelastic",
-       {{"tangent_reuse_steps", 0, nullptr}, {"tolerance", 1e-6, nullptr}}, 12},
+      {"hyperelastic_1_newton",
+       "tacta_hyperelastic.so",
+       "hyperelastic",
+       {{"newton_iterations", 1, nullptr}},
+       12},
+      {"hyperelastic_cg_1e-5",
+       "tacta_hyperelastic.so",
+       "hyperelastic",
+       {{"tolerance", 1e-5, nullptr}},
+       12},
+      {"hyperelastic_nodal_average",
+       "tacta_hyperelastic.so",
+       "hyperelastic",
+       {{"volumetric", 2, "nodal_average"}},
+       12},
+      {"hyperelastic_fresh_tangent",
+       "tacta_hyperelastic.so",
+       "hyperelastic",
+       {{"tangent_reuse_steps", 0, nullptr}, {"tolerance", 1e-6, nullptr}},
+       12},
       {"bullet_softbody", "tacta_bullet_softbody.so", "bullet_softbody", {}, 20},
       {"mass_spring", "tacta_mass_spring.so", "mass_spring", {}, 20},
       {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
@@ -51,8 +65,7 @@ const std::vector<ModelCase>& model_cases() {
   return cases;
 }
 
-void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells,
-                  uint32_t extra) {
+void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells, uint32_t extra) {
   const models::TestMesh mesh = clamped_box(cells, extra);
   // Soft tissue-like, and soft enough (c_p = 4.6 m/s, dt_crit about 2 ms on 1 cm cells) that
   // the explicit models are stable at the 1 ms tick too, so every model is timed doing work.

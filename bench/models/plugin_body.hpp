@@ -19,8 +19,8 @@ namespace tacta::bench {
 
 struct ParamOverride {
   std::string name;
-  double number;        // REAL, INT, BOOL, or the CHOICE index
-  const char* text;     // CHOICE name, else nullptr
+  double number;     // REAL, INT, BOOL, or the CHOICE index
+  const char* text;  // CHOICE name, else nullptr
 };
 
 inline bool plugin_built(const std::string& file) {
@@ -55,9 +55,15 @@ class PluginBody {
     }
     for (uint32_t i = 0; i < mesh_.node_count(); ++i)
       for (int c = 0; c < 3; ++c) forces_[3 * i + c] = mesh_.masses[i] * gravity[c];
-    const tacta_model_setup setup{sizeof(tacta_model_setup), &view_, &material_,
-                                  mesh_.masses.data(), mesh_.fixed.data(), params_.data(),
-                                  d.param_count, dt, nullptr};
+    const tacta_model_setup setup{sizeof(tacta_model_setup),
+                                  &view_,
+                                  &material_,
+                                  mesh_.masses.data(),
+                                  mesh_.fixed.data(),
+                                  params_.data(),
+                                  d.param_count,
+                                  dt,
+                                  nullptr};
     char message[512] = {0};
     if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK)
       throw std::runtime_error(model + ": create failed: " + message);

@@ -2,10 +2,9 @@
 // scene-error translation, and the per-concern registration functions (one .cpp each).
 #pragma once
 
-#include <pybind11/pybind11.h>
-
 #include <functional>
 #include <memory>
+#include <pybind11/pybind11.h>
 #include <string>
 #include <vector>
 
@@ -74,7 +73,8 @@ void def_by_name(py::module_& m, const char* property, size_t (Simulation::*coun
       property,
       [count, name](const SimPtr& h) {
         py::dict out;
-        for (size_t i = 0; i < ((*h->sim).*count)(); ++i) out[py::str(((*h->sim).*name)(i))] = Item{{h, i}};
+        for (size_t i = 0; i < ((*h->sim).*count)(); ++i)
+          out[py::str(((*h->sim).*name)(i))] = Item{{h, i}};
         return out;
       },
       doc);

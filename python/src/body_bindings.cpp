@@ -26,12 +26,14 @@ py::array view(const SimPtr& holder, const T* data, size_t rows, size_t columns,
                                   : std::vector<py::ssize_t>{static_cast<py::ssize_t>(rows),
                                                              static_cast<py::ssize_t>(columns)},
                      data, owner);
-  if (!writable) py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  if (!writable)
+    py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return out;
 }
 
 // Copies `values` (n, 3) into a state array and tells the model (its history restarts).
-void write_state(Body& b, double* target, const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+void write_state(Body& b, double* target,
+                 const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
   const size_t n = b.sim().body_arrays(b.at()).nodes;
   if (values.ndim() != 2 || values.shape(0) != static_cast<py::ssize_t>(n) || values.shape(1) != 3)
     throw py::value_error("expected an array of shape (" + std::to_string(n) + ", 3)");
@@ -49,7 +51,8 @@ auto node_array(Pointer BodyArrays::*member, size_t columns, bool writable) {
 }
 
 auto node_setter(double* BodyArrays::*member) {
-  return [member](Body& b, const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+  return [member](Body& b,
+                  const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
     write_state(b, b.sim().body_arrays(b.at()).*member, values);
   };
 }
@@ -77,11 +80,15 @@ ParamSet swap_params(const Body& b, const std::string& model, const py::kwargs& 
       known += (known.empty() ? "" : ", ") + std::string(s.name);
     }
     if (spec == nullptr)
-      throw InputError({b.sim().scene().path, 0, 0, "bodies." + b.sim().body_name(b.at()) + ".params." + name},
-                       "model '" + model + "' has no parameter '" + name + "'; it has: " + known);
-    if (spec->type == TACTA_PARAM_VECTOR) params.add_vector(name, value.cast<std::vector<double>>());
-    else if (py::isinstance<py::str>(value)) params.add_text(name, value.cast<std::string>());
-    else if (!params.set_number(name, value.cast<double>())) params.add_number(name, value.cast<double>());
+      throw InputError(
+          {b.sim().scene().path, 0, 0, "bodies." + b.sim().body_name(b.at()) + ".params." + name},
+          "model '" + model + "' has no parameter '" + name + "'; it has: " + known);
+    if (spec->type == TACTA_PARAM_VECTOR)
+      params.add_vector(name, value.cast<std::vector<double>>());
+    else if (py::isinstance<py::str>(value))
+      params.add_text(name, value.cast<std::string>());
+    else if (!params.set_number(name, value.cast<double>()))
+      params.add_number(name, value.cast<double>());
   }
   return params;
 }
@@ -100,13 +107,18 @@ void register_bodies(py::module_& m) {
   py::class_<Body>(m, "Body", "One body of a Simulation: sim.bodies['liver'].")
       .def_property_readonly("name", [](const Body& b) { return b.sim().body_name(b.index); })
       .def_property_readonly("index", [](const Body& b) { return b.index; })
-      .def_property_readonly("alive", [](const Body& b) { return b.sim().body_alive(b.handle); },
-                             "False once the body was removed (sim.remove_body)")
-      .def_property_readonly("node_count", [](const Body& b) { return b.sim().body_arrays(b.at()).nodes; })
-      .def_property("positions", node_array(&BodyArrays::positions, 3, true), node_setter(&BodyArrays::positions),
-                    "(n, 3) float64 view of the node positions, m. Assigning copies in and calls state_written(); "
+      .def_property_readonly(
+          "alive", [](const Body& b) { return b.sim().body_alive(b.handle); },
+          "False once the body was removed (sim.remove_body)")
+      .def_property_readonly("node_count",
+                             [](const Body& b) { return b.sim().body_arrays(b.at()).nodes; })
+      .def_property("positions", node_array(&BodyArrays::positions, 3, true),
+                    node_setter(&BodyArrays::positions),
+                    "(n, 3) float64 view of the node positions, m. Assigning copies in and calls "
+                    "state_written(); "
                     "after writing through the view, call state_written() before the next step.")
-      .def_property("velocities", node_array(&BodyArrays::velocities, 3, true), node_setter(&BodyArrays::velocities),
+      .def_property("velocities", node_array(&BodyArrays::velocities, 3, true),
+                    node_setter(&BodyArrays::velocities),
                     "(n, 3) float64 view of the node velocities, m/s; written like positions.")
       .def_property_readonly("rest_positions", node_array(&BodyArrays::rest_positions, 3, false),
                              "(n, 3) read-only view of the rest positions, m")
@@ -132,7 +144,8 @@ void register_bodies(py::module_& m) {
             const std::vector<uint32_t>& tris = b.sim().surface_triangles(b.at());
             return view(b.holder, tris.data(), tris.size() / 3, 3, false);
           },
-          "(k, 3) read-only uint32 view of the triangles drawn and touched (into surface_positions)")
+          "(k, 3) read-only uint32 view of the triangles drawn and touched (into "
+          "surface_positions)")
       .def_property_readonly(
           "surface_positions",
           [](Body& b) {
@@ -142,8 +155,10 @@ void register_bodies(py::module_& m) {
             return out;
           },
           "(v, 3) copy of the surface's current vertex positions, m")
-      .def("state_written", [](Body& b) { b.sim().state_written(b.at()); },
-           "Call after writing positions or velocities through their views (the model restarts its history).")
+      .def(
+          "state_written", [](Body& b) { b.sim().state_written(b.at()); },
+          "Call after writing positions or velocities through their views (the model restarts its "
+          "history).")
       .def(
           "apply_force",
           [](Body& b, const std::vector<uint32_t>& nodes,
@@ -152,16 +167,19 @@ void register_bodies(py::module_& m) {
             b.sim().set_applied_forces(b.at(), nodes, f);
           },
           py::arg("nodes"), py::arg("forces"),
-          "A load (N) on `nodes`, forces shaped (len(nodes), 3); kept for every step until cleared or replaced.")
+          "A load (N) on `nodes`, forces shaped (len(nodes), 3); kept for every step until cleared "
+          "or replaced.")
       .def("clear_forces", [](Body& b) { b.sim().clear_applied_forces(b.at()); })
-      .def_property_readonly("model", [](const Body& b) { return b.sim().body_model(b.at()); },
-                             "the model asked for last (a swap applies at the next tick)")
+      .def_property_readonly(
+          "model", [](const Body& b) { return b.sim().body_model(b.at()); },
+          "the model asked for last (a swap applies at the next tick)")
       .def_property_readonly(
           "params",
           [](const Body& b) {
             const ParamSet& p = b.sim().body_params(b.at());
             py::dict out;
-            for (size_t i = 0; i < p.names().size(); ++i) out[py::str(p.names()[i])] = param_value(p.data()[i]);
+            for (size_t i = 0; i < p.names().size(); ++i)
+              out[py::str(p.names()[i])] = param_value(p.data()[i]);
             return out;
           },
           "the model's parameters as last asked for")
@@ -171,19 +189,28 @@ void register_bodies(py::module_& m) {
             b.sim().request_model_swap(b.at(), model, swap_params(b, model, params));
           },
           py::arg("model"),
-          "Swaps to `model` with keyword parameters at the next tick; positions and velocities carry over "
+          "Swaps to `model` with keyword parameters at the next tick; positions and velocities "
+          "carry over "
           "(the NumPy views stay valid). Raises tacta.SceneError when the model refuses the body.")
       .def(
-          "set_param", [](Body& b, const std::string& name, double value) { return b.sim().set_param(b.at(), name, value); },
+          "set_param",
+          [](Body& b, const std::string& name, double value) {
+            return b.sim().set_param(b.at(), name, value);
+          },
           py::arg("name"), py::arg("value"),
-          "Changes one model parameter; True when the model took it live, False when it took a swap.")
-      .def_property_readonly("kinetic_energy", [](const Body& b) { return b.sim().kinetic_energy(b.at()); }, "J")
-      .def_property_readonly("elastic_energy", [](const Body& b) { return b.sim().elastic_energy(b.at()); }, "J")
-      .def_property_readonly("faults", &body_faults, "why the body was frozen (diverged), if it was: a list of text")
+          "Changes one model parameter; True when the model took it live, False when it took a "
+          "swap.")
+      .def_property_readonly(
+          "kinetic_energy", [](const Body& b) { return b.sim().kinetic_energy(b.at()); }, "J")
+      .def_property_readonly(
+          "elastic_energy", [](const Body& b) { return b.sim().elastic_energy(b.at()); }, "J")
+      .def_property_readonly("faults", &body_faults,
+                             "why the body was frozen (diverged), if it was: a list of text")
       .def("__repr__", [](const Body& b) {
-        if (!b.sim().body_alive(b.handle)) return "<tacta.Body '" + b.sim().body_name(b.index) + "', removed>";
-        return "<tacta.Body '" + b.sim().body_name(b.index) + "' " + b.sim().body_model(b.index) + ", " +
-               std::to_string(b.sim().body_arrays(b.index).nodes) + " nodes>";
+        if (!b.sim().body_alive(b.handle))
+          return "<tacta.Body '" + b.sim().body_name(b.index) + "', removed>";
+        return "<tacta.Body '" + b.sim().body_name(b.index) + "' " + b.sim().body_model(b.index) +
+               ", " + std::to_string(b.sim().body_arrays(b.index).nodes) + " nodes>";
       });
 
   auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
@@ -202,14 +229,16 @@ void register_bodies(py::module_& m) {
       "add_body",
       [](const SimPtr& h, const py::object& body) {
         // A dict goes as JSON, which the YAML reader takes; a str is YAML as a scene lists a body.
-        const std::string text = py::isinstance<py::str>(body)
-                                     ? body.cast<std::string>()
-                                     : py::module_::import("json").attr("dumps")(body).cast<std::string>();
+        const std::string text =
+            py::isinstance<py::str>(body)
+                ? body.cast<std::string>()
+                : py::module_::import("json").attr("dumps")(body).cast<std::string>();
         const BodyHandle handle = h->sim->add_body(text);
         return Body{{h, handle.index}, handle};
       },
       py::arg("body"),
-      "Adds a body (a dict as a scene lists it under `bodies`, or that YAML text); it enters at the "
+      "Adds a body (a dict as a scene lists it under `bodies`, or that YAML text); it enters at "
+      "the "
       "next tick. Raises tacta.SceneError for a bad description, a name in use or no free slot "
       "(scene key capacity.bodies). Returns its Body.");
   simulation.def(
@@ -218,7 +247,8 @@ void register_bodies(py::module_& m) {
         if (py::isinstance<py::str>(body)) {
           const int index = h->sim->body_index(body.cast<std::string>());
           if (index < 0)
-            throw InputError({h->sim->scene().path, 0, 0, "bodies"}, "no body named '" + body.cast<std::string>() + "'");
+            throw InputError({h->sim->scene().path, 0, 0, "bodies"},
+                             "no body named '" + body.cast<std::string>() + "'");
           h->sim->remove_body(h->sim->body_handle(static_cast<size_t>(index)));
         } else {
           h->sim->remove_body(body.cast<const Body&>().handle);

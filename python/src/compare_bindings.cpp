@@ -1,9 +1,8 @@
 // tacta.compare(scene, models): one scene run once per model, the table of `tacta compare` (the
 // same code, tacta/compare/compare.hpp) as a list of dicts, the rows of compare.json.
-#include <pybind11/stl.h>
-
 #include <filesystem>
 #include <optional>
+#include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "tacta/compare/compare.hpp"
@@ -11,8 +10,9 @@
 namespace tacta::python {
 namespace {
 
-py::object compare(const std::string& scene, const std::vector<std::string>& models, const py::object& overrides,
-                   std::optional<double> duration, const std::string& reference, const std::string& out_dir) {
+py::object compare(const std::string& scene, const std::vector<std::string>& models,
+                   const py::object& overrides, std::optional<double> duration,
+                   const std::string& reference, const std::string& out_dir) {
   CompareOptions options;
   options.scene = scene;
   options.models = models;
@@ -45,8 +45,9 @@ py::object compare(const std::string& scene, const std::vector<std::string>& mod
 }  // namespace
 
 void register_compare(py::module_& m) {
-  m.def("compare", &compare, py::arg("scene"), py::arg("models"), py::kw_only(), py::arg("overrides") = py::none(),
-        py::arg("duration") = py::none(), py::arg("reference") = "", py::arg("out_dir") = "",
+  m.def("compare", &compare, py::arg("scene"), py::arg("models"), py::kw_only(),
+        py::arg("overrides") = py::none(), py::arg("duration") = py::none(),
+        py::arg("reference") = "", py::arg("out_dir") = "",
         "Runs the scene file once per model (every body takes it; lockstep; GIL released) like "
         "`tacta compare` and returns its table: one dict per model with compare.json's columns "
         "(docs/COMPARE.md). models: names or 'name:param=value:...'; overrides as for Simulation; "

@@ -1,11 +1,10 @@
 // tacta.Device: a device's last sample and force between steps, host input, and devices written
 // in Python. A Python device is driven between chunks of haptic ticks, never inside one: the
 // 1 kHz loop runs with the GIL released and only sees the plugin's lock-free input slot.
-#include <pybind11/numpy.h>
-#include <pybind11/stl.h>
-
 #include <algorithm>
 #include <cmath>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "tacta/device_api.h"
@@ -33,9 +32,10 @@ py::array_t<double> vec3(const double* v) {
 
 void feed(SimHolder& holder, size_t device, const std::vector<double>& values) {
   if (!holder.sim->device_input(device, values.data(), static_cast<uint32_t>(values.size())))
-    throw py::value_error("device '" + holder.sim->device_name(device) + "' (plugin " +
-                          holder.sim->device_plugin(device) +
-                          ") takes no host input; a Python device needs an input device such as plugin: mouse");
+    throw py::value_error(
+        "device '" + holder.sim->device_name(device) + "' (plugin " +
+        holder.sim->device_plugin(device) +
+        ") takes no host input; a Python device needs an input device such as plugin: mouse");
 }
 
 // One exchange with a Python device: it gets the force last sent, then gives its next target.
@@ -43,7 +43,8 @@ void exchange(SimHolder& holder, const PythonDevice& pd) {
   const DeviceReading reading = holder.sim->device_reading(pd.device);
   pd.object.attr("write")(vec3(reading.force));
   const std::vector<double> target = pd.object.attr("read")().cast<std::vector<double>>();
-  if (target.size() != 3) throw py::value_error("a Python device's read() returns 3 values (x, y, z in m)");
+  if (target.size() != 3)
+    throw py::value_error("a Python device's read() returns 3 values (x, y, z in m)");
   feed(holder, pd.device, target);
 }
 
@@ -77,44 +78,60 @@ uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks) {
 void register_devices(py::module_& m) {
   py::class_<Device>(m, "Device", "One device of a Simulation: sim.devices['stylus'].")
       .def_property_readonly("name", [](const Device& d) { return d.sim().device_name(d.index); })
-      .def_property_readonly("plugin", [](const Device& d) { return d.sim().device_plugin(d.index); })
-      .def_property_readonly("position", [](const Device& d) { return vec3(d.sim().device_reading(d.index).position); },
-                             "(3,) the last sampled stylus position, m")
-      .def_property_readonly("proxy", [](const Device& d) { return vec3(d.sim().device_reading(d.index).proxy); },
-                             "(3,) the god-object proxy on the touched surface, m")
-      .def_property_readonly("force", [](const Device& d) { return vec3(d.sim().device_reading(d.index).force); },
-                             "(3,) the force last sent to the device, N (zero after a fault)")
-      .def_property_readonly("status", [](const Device& d) { return state_name(d.sim().device_reading(d.index).state); },
-                             "'connected', 'disconnected', 'fault' or 'finished'")
-      .def_property_readonly("in_contact", [](const Device& d) { return d.sim().device_reading(d.index).in_contact; })
+      .def_property_readonly("plugin",
+                             [](const Device& d) { return d.sim().device_plugin(d.index); })
+      .def_property_readonly(
+          "position",
+          [](const Device& d) { return vec3(d.sim().device_reading(d.index).position); },
+          "(3,) the last sampled stylus position, m")
+      .def_property_readonly(
+          "proxy", [](const Device& d) { return vec3(d.sim().device_reading(d.index).proxy); },
+          "(3,) the god-object proxy on the touched surface, m")
+      .def_property_readonly(
+          "force", [](const Device& d) { return vec3(d.sim().device_reading(d.index).force); },
+          "(3,) the force last sent to the device, N (zero after a fault)")
+      .def_property_readonly(
+          "status",
+          [](const Device& d) { return state_name(d.sim().device_reading(d.index).state); },
+          "'connected', 'disconnected', 'fault' or 'finished'")
+      .def_property_readonly(
+          "in_contact", [](const Device& d) { return d.sim().device_reading(d.index).in_contact; })
       .def(
-          "input", [](Device& d, const std::vector<double>& values) { feed(*d.holder, d.index, values); },
-          py::arg("values"), "Hands values to the plugin's input entry (mouse: a target x, y, z in m).")
+          "input",
+          [](Device& d, const std::vector<double>& values) { feed(*d.holder, d.index, values); },
+          py::arg("values"),
+          "Hands values to the plugin's input entry (mouse: a target x, y, z in m).")
       .def(
           "attach",
           [](Device& d, py::object object, double rate_hz) {
             if (!py::hasattr(object, "read") || !py::hasattr(object, "write"))
               throw py::type_error("a Python device has read() -> (x, y, z) and write(force)");
-            if (!(rate_hz > 0) || !std::isfinite(rate_hz)) throw py::value_error("rate_hz must be > 0");
+            if (!(rate_hz > 0) || !std::isfinite(rate_hz))
+              throw py::value_error("rate_hz must be > 0");
             const double per_tick = 1.0 / (rate_hz * d.sim().dt());
-            const uint64_t every = std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(per_tick)));
+            const uint64_t every =
+                std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(per_tick)));
             auto& list = d.holder->python_devices;
             std::erase_if(list, [&](const PythonDevice& pd) { return pd.device == d.index; });
             list.push_back({d.index, every, std::move(object)});
             return every;
           },
           py::arg("device"), py::arg("rate_hz") = 100.0,
-          "Drives this device from a Python object at rate_hz (default 100 Hz) of simulated time: at every "
-          "1/rate_hz boundary step() calls device.write(force) then feeds device.read() to the plugin's "
+          "Drives this device from a Python object at rate_hz (default 100 Hz) of simulated time: "
+          "at every "
+          "1/rate_hz boundary step() calls device.write(force) then feeds device.read() to the "
+          "plugin's "
           "input. Returns the haptic ticks between calls.")
       .def(
           "detach",
           [](Device& d) {
-            std::erase_if(d.holder->python_devices, [&](const PythonDevice& pd) { return pd.device == d.index; });
+            std::erase_if(d.holder->python_devices,
+                          [&](const PythonDevice& pd) { return pd.device == d.index; });
           },
           "Stops driving this device from Python (its last target stays).")
       .def("__repr__", [](const Device& d) {
-        return "<tacta.Device '" + d.sim().device_name(d.index) + "' " + d.sim().device_plugin(d.index) + ">";
+        return "<tacta.Device '" + d.sim().device_name(d.index) + "' " +
+               d.sim().device_plugin(d.index) + ">";
       });
 
   def_by_name<Device>(m, "devices", &Simulation::device_count, &Simulation::device_name,

@@ -19,7 +19,8 @@ py::dict plugin_list() {
     row["kind"] = tacta_kind_name(d.descriptor->kind);
     row["name"] = d.descriptor->name;
     row["file"] = d.file;
-    if (d.descriptor->kind == TACTA_KIND_MODEL) row["live_params"] = live_param_names(*d.descriptor);
+    if (d.descriptor->kind == TACTA_KIND_MODEL)
+      row["live_params"] = live_param_names(*d.descriptor);
     loaded.append(row);
   }
   for (const RefusedPlugin& r : registry->refused()) {
@@ -68,7 +69,8 @@ void raise_render_error(const std::string& message) {
 void register_errors(py::module_& m) {
   // An exception class of the module, kept for the module's life.
   auto add_error = [&m](const char* name, const char* doc, PyObject* base) {
-    PyObject* type = PyErr_NewExceptionWithDoc((std::string("tacta.") + name).c_str(), doc, base, nullptr);
+    PyObject* type =
+        PyErr_NewExceptionWithDoc((std::string("tacta.") + name).c_str(), doc, base, nullptr);
     m.attr(name) = py::reinterpret_borrow<py::object>(type);
     return type;
   };
@@ -77,11 +79,11 @@ void register_errors(py::module_& m) {
       "Bad input: a scene, override, mesh, plugin name or parameter. Attributes: file, line, "
       "column (1-based, 0 when unknown) and key (the key path, e.g. 'bodies[0].material.E').",
       PyExc_ValueError);
-  render_error_type = add_error(
-      "RenderError",
-      "No picture could be made: no headless EGL context (needs Mesa's libegl-mesa0 and "
-      "libgl1-mesa-dri), or a build without the renderer. The message says which.",
-      PyExc_RuntimeError);
+  render_error_type =
+      add_error("RenderError",
+                "No picture could be made: no headless EGL context (needs Mesa's libegl-mesa0 and "
+                "libgl1-mesa-dri), or a build without the renderer. The message says which.",
+                PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr thrown) {
     try {
       if (thrown) std::rethrow_exception(thrown);
@@ -106,7 +108,8 @@ PYBIND11_MODULE(_tacta, m) {
   register_devices(m);
   register_snapshot(m);
   register_compare(m);
-  m.def("plugins", &plugin_list,
-        "What the plugin loader found: {'loaded': [{kind, name, file}], 'refused': [{file, reason}], "
-        "'search_paths': [...]}");
+  m.def(
+      "plugins", &plugin_list,
+      "What the plugin loader found: {'loaded': [{kind, name, file}], 'refused': [{file, reason}], "
+      "'search_paths': [...]}");
 }

@@ -1,8 +1,7 @@
 // Simulation.snapshot(path): a PNG of the current state, drawn headless (EGL, Mesa's llvmpipe
 // without a GPU) by the same code as `tacta snapshot` (tacta/render/snapshot_frame.hpp).
-#include <pybind11/stl.h>
-
 #include <optional>
+#include <pybind11/stl.h>
 #include <stdexcept>
 
 #include "bindings.hpp"
@@ -39,12 +38,14 @@ py::tuple write_snapshot(SimHolder& holder, const std::string& path, std::option
       no_renderer = e.what();
     }
     if (renderer)
-      image = render::write_snapshot_png(*renderer, holder.sim->scene_static(), holder.sim->snapshot(), path, style);
+      image = render::write_snapshot_png(*renderer, holder.sim->scene_static(),
+                                         holder.sim->snapshot(), path, style);
   }
   if (!no_renderer.empty()) raise_render_error(no_renderer);
   return py::make_tuple(image.width, image.height);
 #else
-  (void)holder, (void)path, (void)width, (void)height, (void)wireframe, (void)colour_by_displacement;
+  (void)holder, (void)path, (void)width, (void)height, (void)wireframe,
+      (void)colour_by_displacement;
   raise_render_error("this build has no renderer (configured with TACTA_BUILD_RENDER=OFF)");
 #endif
 }
@@ -53,12 +54,13 @@ py::tuple write_snapshot(SimHolder& holder, const std::string& path, std::option
 
 void register_snapshot(py::module_& m) {
   auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
-  simulation.def("snapshot", &write_snapshot, py::arg("path"), py::kw_only(), py::arg("width") = py::none(),
-                 py::arg("height") = py::none(), py::arg("wireframe") = false,
-                 py::arg("colour_by_displacement") = true,
-                 "Writes a PNG of the current state at `path` (folders made), drawn headless (EGL) like "
-                 "`tacta snapshot`; width and height in pixels (default: the scene's output.frame_size). "
-                 "Returns (width, height). Raises tacta.RenderError when no EGL context can be made.");
+  simulation.def(
+      "snapshot", &write_snapshot, py::arg("path"), py::kw_only(), py::arg("width") = py::none(),
+      py::arg("height") = py::none(), py::arg("wireframe") = false,
+      py::arg("colour_by_displacement") = true,
+      "Writes a PNG of the current state at `path` (folders made), drawn headless (EGL) like "
+      "`tacta snapshot`; width and height in pixels (default: the scene's output.frame_size). "
+      "Returns (width, height). Raises tacta.RenderError when no EGL context can be made.");
 }
 
 }  // namespace tacta::python

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <dlfcn.h>
-
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -18,9 +17,8 @@ class LoadedPlugin {
  public:
   // file: a name under the build tree's plugin folder ("tacta_tensor_mass.so") or a full path.
   explicit LoadedPlugin(const std::string& file) {
-    const std::string path = file.find('/') == std::string::npos
-                                 ? std::string(TACTA_PLUGIN_DIR) + "/" + file
-                                 : file;
+    const std::string path =
+        file.find('/') == std::string::npos ? std::string(TACTA_PLUGIN_DIR) + "/" + file : file;
     handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle_ == nullptr) throw std::runtime_error(std::string("dlopen: ") + dlerror());
     auto entry = reinterpret_cast<tacta_plugin_entry_fn>(dlsym(handle_, TACTA_PLUGIN_ENTRY_SYMBOL));

@@ -67,7 +67,7 @@ typedef struct tacta_collision_shape {
   double half_length;     /* m: capsule */
   double half_extents[3]; /* m: box */
   uint32_t point_count;
-  const double* points; /* hull: 3 per point, m, local frame */
+  const double* points;   /* hull: 3 per point, m, local frame */
   double plane_normal[3]; /* plane: unit outward normal (world) */
   double plane_offset;    /* plane: m */
   tacta_pose pose_start;  /* at the start of the tick */
@@ -96,32 +96,32 @@ typedef struct tacta_collision_pair {
 } tacta_collision_pair;
 
 typedef int32_t tacta_contact_type;
-#define TACTA_CONTACT_VERTEX_FACE 1    /* vertex of a against triangle of b */
-#define TACTA_CONTACT_EDGE_EDGE 2      /* edge of a against edge of b */
-#define TACTA_CONTACT_SHAPE_VERTEX 3   /* vertex of surface a against shape b (tool, rigid) */
+#define TACTA_CONTACT_VERTEX_FACE 1     /* vertex of a against triangle of b */
+#define TACTA_CONTACT_EDGE_EDGE 2       /* edge of a against edge of b */
+#define TACTA_CONTACT_SHAPE_VERTEX 3    /* vertex of surface a against shape b (tool, rigid) */
 #define TACTA_CONTACT_OBSTACLE_VERTEX 4 /* vertex of surface a against obstacle b */
-#define TACTA_CONTACT_SHAPE_SHAPE 5    /* shape a against shape or obstacle b (convex) */
+#define TACTA_CONTACT_SHAPE_SHAPE 5     /* shape a against shape or obstacle b (convex) */
 
 /* Which array index_a / index_b refer to follows from the type: surfaces for deformable sides,
  * shapes for SHAPE_*, obstacles for OBSTACLE_*. Feature ids: vertex index, triangle index, or
  * an edge as triangle * 3 + local edge (edge k joins corners k and (k+1) % 3). */
 typedef struct tacta_contact {
   tacta_contact_type type;
-  uint32_t index_a, index_b;     /* into the world arrays (see above) */
-  uint32_t body_a, body_b;       /* body ids */
-  uint32_t feature_a, feature_b; /* see above; TACTA_COLLISION_NONE when not applicable */
-  uint32_t nodes_a[3], nodes_b[3]; /* vertices involved, TACTA_COLLISION_NONE padded */
+  uint32_t index_a, index_b;         /* into the world arrays (see above) */
+  uint32_t body_a, body_b;           /* body ids */
+  uint32_t feature_a, feature_b;     /* see above; TACTA_COLLISION_NONE when not applicable */
+  uint32_t nodes_a[3], nodes_b[3];   /* vertices involved, TACTA_COLLISION_NONE padded */
   double weights_a[3], weights_b[3]; /* barycentric weights of the contact point on each side */
-  double toi;       /* time of impact as a fraction of the tick, [0, 1] */
-  double point[3];  /* m, on b's side at the end of the tick */
-  double normal[3]; /* unit, from b towards a: the direction that separates a */
-  double depth;     /* m, penetration beyond the thickness (> 0 overlapping, <= 0 a gap) */
-  double force[3];  /* N, on a (b gets the opposite), written by respond(): impulse / dt */
+  double toi;                        /* time of impact as a fraction of the tick, [0, 1] */
+  double point[3];                   /* m, on b's side at the end of the tick */
+  double normal[3];                  /* unit, from b towards a: the direction that separates a */
+  double depth;    /* m, penetration beyond the thickness (> 0 overlapping, <= 0 a gap) */
+  double force[3]; /* N, on a (b gets the opposite), written by respond(): impulse / dt */
 } tacta_contact;
 
 /* The outcome of one primitive CCD query. */
 typedef struct tacta_ccd_hit {
-  double toi;           /* earliest time of contact, fraction of the tick; a lower bound */
+  double toi;            /* earliest time of contact, fraction of the tick; a lower bound */
   double barycentric[3]; /* vertex-face: weights of f0, f1, f2; edge-edge: s on a, t on b, 0 */
 } tacta_ccd_hit;
 
@@ -237,12 +237,12 @@ typedef struct tacta_collision_api {
   { #member, offsetof(tacta_collision_api, member), required }
 
 static const tacta_api_field tacta_collision_api_fields[] = {
-    TACTA_COLLISION_API_FIELD(create, 1),        TACTA_COLLISION_API_FIELD(destroy, 1),
-    TACTA_COLLISION_API_FIELD(prepare, 0),       TACTA_COLLISION_API_FIELD(update, 0),
-    TACTA_COLLISION_API_FIELD(find_pairs, 0),    TACTA_COLLISION_API_FIELD(overlap_shape, 0),
-    TACTA_COLLISION_API_FIELD(sphere_cast, 0),   TACTA_COLLISION_API_FIELD(closest_point, 0),
-    TACTA_COLLISION_API_FIELD(detect, 0),        TACTA_COLLISION_API_FIELD(vertex_face, 0),
-    TACTA_COLLISION_API_FIELD(edge_edge, 0),     TACTA_COLLISION_API_FIELD(shape_query, 0),
+    TACTA_COLLISION_API_FIELD(create, 1),      TACTA_COLLISION_API_FIELD(destroy, 1),
+    TACTA_COLLISION_API_FIELD(prepare, 0),     TACTA_COLLISION_API_FIELD(update, 0),
+    TACTA_COLLISION_API_FIELD(find_pairs, 0),  TACTA_COLLISION_API_FIELD(overlap_shape, 0),
+    TACTA_COLLISION_API_FIELD(sphere_cast, 0), TACTA_COLLISION_API_FIELD(closest_point, 0),
+    TACTA_COLLISION_API_FIELD(detect, 0),      TACTA_COLLISION_API_FIELD(vertex_face, 0),
+    TACTA_COLLISION_API_FIELD(edge_edge, 0),   TACTA_COLLISION_API_FIELD(shape_query, 0),
     TACTA_COLLISION_API_FIELD(respond, 0),
 };
 

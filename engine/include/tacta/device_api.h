@@ -14,14 +14,14 @@ extern "C" {
 #endif
 
 typedef struct tacta_device_capabilities {
-  double workspace_min[3];  /* m, world frame */
-  double workspace_max[3];  /* m */
-  double peak_force;        /* N, never exceeded by the engine */
-  double continuous_force;  /* N */
-  double usable_stiffness;  /* N/m, largest stable rendered stiffness at the nominal rate */
-  double nominal_rate;      /* Hz */
-  uint32_t dof_in;          /* sensed degrees of freedom (3 position, 6 with orientation) */
-  uint32_t dof_out;         /* actuated degrees of freedom (3 force, 6 with torque) */
+  double workspace_min[3]; /* m, world frame */
+  double workspace_max[3]; /* m */
+  double peak_force;       /* N, never exceeded by the engine */
+  double continuous_force; /* N */
+  double usable_stiffness; /* N/m, largest stable rendered stiffness at the nominal rate */
+  double nominal_rate;     /* Hz */
+  uint32_t dof_in;         /* sensed degrees of freedom (3 position, 6 with orientation) */
+  uint32_t dof_out;        /* actuated degrees of freedom (3 force, 6 with torque) */
 } tacta_device_capabilities;
 
 typedef struct tacta_device_sample {
@@ -53,12 +53,12 @@ typedef struct tacta_device_counter {
 
 /* A body's deformed surface as the engine hands it to a device (optional `surface` entry). */
 typedef struct tacta_device_surface {
-  double time;                 /* s, simulated time of the state */
-  const char* body;            /* the body's name */
-  const double* positions;     /* 3 per point, m, world frame: every node of the body, or every
+  double time;             /* s, simulated time of the state */
+  const char* body;        /* the body's name */
+  const double* positions; /* 3 per point, m, world frame: every node of the body, or every
                                   vertex of its embedded surface (tacta/embedded_surface.hpp) */
   uint32_t node_count;
-  const uint32_t* triangles;   /* 3 per triangle, indices into positions, outward */
+  const uint32_t* triangles; /* 3 per triangle, indices into positions, outward */
   uint32_t triangle_count;
 } tacta_device_surface;
 

@@ -53,17 +53,19 @@ inline constexpr const char* kDeviceLogHeader =
 inline constexpr int kDeviceLogColumns = 15;
 // Values no haptic device produces, refused as a corrupt log (a sample at px = 1e30 once replayed
 // as 1.3e29 J of injected energy). The replay device also checks positions against its workspace.
-inline constexpr double kDeviceLogMaxTime = 1e9;        // s, |time_s| (about 32 years)
-inline constexpr double kDeviceLogMaxPosition = 1e3;    // m, |px|, |py|, |pz| from the world origin
-inline constexpr double kDeviceLogMaxSpeed = 100.0;     // m/s, |vx|, |vy|, |vz|; a hand moves a few m/s
-inline constexpr double kDeviceLogMaxForce = 1e4;       // N, |fx|, |fy|, |fz|; desk devices give a few N
+inline constexpr double kDeviceLogMaxTime = 1e9;      // s, |time_s| (about 32 years)
+inline constexpr double kDeviceLogMaxPosition = 1e3;  // m, |px|, |py|, |pz| from the world origin
+inline constexpr double kDeviceLogMaxSpeed =
+    100.0;                                         // m/s, |vx|, |vy|, |vz|; a hand moves a few m/s
+inline constexpr double kDeviceLogMaxForce = 1e4;  // N, |fx|, |fy|, |fz|; desk devices give a few N
 inline constexpr double kDeviceLogQuaternionSlack = 0.01;  // |q| must lie within 1 +- this
 // Longest row: 14 numbers of at most 24 characters, a 10-digit integer, 14 commas, '\n', NUL.
 inline constexpr size_t kDeviceLogRowCapacity = 14 * 24 + 10 + 14 + 2;
 
 // Formats one sample as a CSV row ending in '\n' into buffer (no allocation). Returns the number
 // of characters written, or 0 if the buffer is too small.
-inline size_t format_device_log_row(const DeviceLogSample& s, char* buffer, size_t capacity) noexcept {
+inline size_t format_device_log_row(const DeviceLogSample& s, char* buffer,
+                                    size_t capacity) noexcept {
   const int n = std::snprintf(
       buffer, capacity,
       "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%u,%.17g,%.17g,%.17g\n",
@@ -75,7 +77,8 @@ inline size_t format_device_log_row(const DeviceLogSample& s, char* buffer, size
 }
 
 // Writes samples to path with the header. Not for the 1 kHz path. Throws InputError on I/O failure.
-inline void write_device_log(const std::string& path, const DeviceLogSample* samples, size_t count) {
+inline void write_device_log(const std::string& path, const DeviceLogSample* samples,
+                             size_t count) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) throw InputError({path, 0, 0, {}}, "cannot open the device log for writing");
   bool ok = std::fprintf(file, "%s\n", kDeviceLogHeader) > 0;
@@ -107,7 +110,10 @@ class DeviceLogRecorder {
   size_t capacity() const noexcept { return ring_.size(); }
   uint64_t overwritten_count() const noexcept { return overwritten_; }
   const DeviceLogSample& at(size_t i) const noexcept { return ring_[(first_ + i) % ring_.size()]; }
-  void clear() noexcept { first_ = count_ = 0; overwritten_ = 0; }
+  void clear() noexcept {
+    first_ = count_ = 0;
+    overwritten_ = 0;
+  }
 
   // Outside the 1 kHz path: writes the recorded samples, oldest first.
   void write_csv(const std::string& path) const {
@@ -132,8 +138,8 @@ inline std::string_view trim_line_end(std::string_view line) {
 }
 
 inline const char* column_name(int index) {
-  static const char* const names[kDeviceLogColumns] = {"time_s", "px", "py", "pz",      "qw",
-                                                       "qx",     "qy", "qz", "vx",      "vy",
+  static const char* const names[kDeviceLogColumns] = {"time_s", "px",      "py", "pz", "qw",
+                                                       "qx",     "qy",      "qz", "vx", "vy",
                                                        "vz",     "buttons", "fx", "fy", "fz"};
   return names[index];
 }
@@ -153,22 +159,27 @@ inline ColumnBound column_bound(int index) {
 
 // What is implausible in a parsed sample, or an empty string.
 inline std::string implausible(const DeviceLogSample& s) {
-  const double values[kDeviceLogColumns] = {
-      s.time,           s.position[0],    s.position[1],    s.position[2],    s.orientation[0],
-      s.orientation[1], s.orientation[2], s.orientation[3], s.velocity[0],    s.velocity[1],
-      s.velocity[2],    0.0,              s.force[0],       s.force[1],       s.force[2]};
+  const double values[kDeviceLogColumns] = {s.time,           s.position[0],    s.position[1],
+                                            s.position[2],    s.orientation[0], s.orientation[1],
+                                            s.orientation[2], s.orientation[3], s.velocity[0],
+                                            s.velocity[1],    s.velocity[2],    0.0,
+                                            s.force[0],       s.force[1],       s.force[2]};
   char text[200];
   for (int i = 0; i < kDeviceLogColumns; ++i) {
     const ColumnBound limit = column_bound(i);
     if (std::abs(values[i]) <= limit.bound) continue;
-    std::snprintf(text, sizeof text, "column %d (%s) = %.9g is beyond %g %s: no haptic device gives that (corrupt log?)",
-                  i + 1, column_name(i), values[i], limit.bound, limit.unit);
+    std::snprintf(
+        text, sizeof text,
+        "column %d (%s) = %.9g is beyond %g %s: no haptic device gives that (corrupt log?)", i + 1,
+        column_name(i), values[i], limit.bound, limit.unit);
     return text;
   }
-  const double norm = std::sqrt(s.orientation[0] * s.orientation[0] + s.orientation[1] * s.orientation[1] +
-                                s.orientation[2] * s.orientation[2] + s.orientation[3] * s.orientation[3]);
+  const double norm =
+      std::sqrt(s.orientation[0] * s.orientation[0] + s.orientation[1] * s.orientation[1] +
+                s.orientation[2] * s.orientation[2] + s.orientation[3] * s.orientation[3]);
   if (std::abs(norm - 1.0) > kDeviceLogQuaternionSlack) {
-    std::snprintf(text, sizeof text, "the orientation (qw qx qy qz) has norm %.9g; expected a unit quaternion", norm);
+    std::snprintf(text, sizeof text,
+                  "the orientation (qw qx qy qz) has norm %.9g; expected a unit quaternion", norm);
     return text;
   }
   return {};
@@ -177,15 +188,15 @@ inline std::string implausible(const DeviceLogSample& s) {
 // Parses one data line into sample; returns an empty string or what was wrong.
 inline std::string parse_row(std::string_view line, DeviceLogSample& s) {
   double* targets[kDeviceLogColumns] = {
-      &s.time,           &s.position[0],    &s.position[1],    &s.position[2],    &s.orientation[0],
-      &s.orientation[1], &s.orientation[2], &s.orientation[3], &s.velocity[0],    &s.velocity[1],
-      &s.velocity[2],    nullptr,           &s.force[0],       &s.force[1],       &s.force[2]};
+      &s.time,           &s.position[0],    &s.position[1],    &s.position[2], &s.orientation[0],
+      &s.orientation[1], &s.orientation[2], &s.orientation[3], &s.velocity[0], &s.velocity[1],
+      &s.velocity[2],    nullptr,           &s.force[0],       &s.force[1],    &s.force[2]};
   int column = 0;
   size_t start = 0;
   while (true) {
     const size_t comma = line.find(',', start);
-    const std::string_view field =
-        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::string_view field = line.substr(
+        start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     if (column >= kDeviceLogColumns)
       return "expected " + std::to_string(kDeviceLogColumns) + " columns, found more";
     const std::string text(field);
@@ -219,7 +230,8 @@ inline std::string parse_row(std::string_view line, DeviceLogSample& s) {
 }  // namespace device_log_detail
 
 // Parses log text; file names the source in errors. Throws InputError with file:line.
-inline std::vector<DeviceLogSample> parse_device_log(std::string_view text, const std::string& file) {
+inline std::vector<DeviceLogSample> parse_device_log(std::string_view text,
+                                                     const std::string& file) {
   std::vector<DeviceLogSample> samples;
   size_t start = 0;
   int line_number = 0;
@@ -247,15 +259,14 @@ inline std::vector<DeviceLogSample> parse_device_log(std::string_view text, cons
     const std::string problem = device_log_detail::parse_row(line, sample);
     if (!problem.empty()) throw InputError({file, line_number, 0, {}}, problem);
     if (!samples.empty() && sample.time < samples.back().time)
-      throw InputError({file, line_number, 0, {}},
-                       "expected non-decreasing time_s, found " + std::to_string(sample.time) +
-                           " after " + std::to_string(samples.back().time));
+      throw InputError({file, line_number, 0, {}}, "expected non-decreasing time_s, found " +
+                                                       std::to_string(sample.time) + " after " +
+                                                       std::to_string(samples.back().time));
     samples.push_back(sample);
   }
   if (!header_seen)
-    throw InputError({file, 1, 0, {}},
-                     std::string("expected the device log header '") + kDeviceLogHeader +
-                         "', found an empty file");
+    throw InputError({file, 1, 0, {}}, std::string("expected the device log header '") +
+                                           kDeviceLogHeader + "', found an empty file");
   return samples;
 }
 

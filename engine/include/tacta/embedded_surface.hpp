@@ -17,16 +17,16 @@
 namespace tacta {
 
 struct EmbeddedSurface {
-  std::vector<uint32_t> triangles;       // 3 per triangle, counter-clockwise seen from outside
-  std::vector<double> corner_uvs;        // 6 per triangle (u, v per corner), or empty: for texturing
-  std::vector<double> rest_positions;    // 3 per vertex, m (as given, after scale and translate)
-  std::vector<uint32_t> tet;             // 1 per vertex: the tet it follows
-  std::vector<uint32_t> nodes;           // 4 per vertex: that tet's nodes
-  std::vector<double> weights;           // 4 per vertex: barycentric in that tet (sum 1; some < 0 outside)
-  std::vector<double> positions;         // 3 per vertex, m: deformed, as of the last update
-  std::vector<double> normals;           // 3 per vertex: unit, area-weighted, of the deformed surface
-  size_t extrapolated_vertices = 0;      // vertices outside every tet, bound to the nearest one
-  std::string source;                    // file it came from, for messages
+  std::vector<uint32_t> triangles;     // 3 per triangle, counter-clockwise seen from outside
+  std::vector<double> corner_uvs;      // 6 per triangle (u, v per corner), or empty: for texturing
+  std::vector<double> rest_positions;  // 3 per vertex, m (as given, after scale and translate)
+  std::vector<uint32_t> tet;           // 1 per vertex: the tet it follows
+  std::vector<uint32_t> nodes;         // 4 per vertex: that tet's nodes
+  std::vector<double> weights;    // 4 per vertex: barycentric in that tet (sum 1; some < 0 outside)
+  std::vector<double> positions;  // 3 per vertex, m: deformed, as of the last update
+  std::vector<double> normals;    // 3 per vertex: unit, area-weighted, of the deformed surface
+  size_t extrapolated_vertices = 0;  // vertices outside every tet, bound to the nearest one
+  std::string source;                // file it came from, for messages
   size_t vertex_count() const { return rest_positions.size() / 3; }
   size_t triangle_count() const { return triangles.size() / 3; }
 };
@@ -34,7 +34,8 @@ struct EmbeddedSurface {
 // Binds each vertex of `surface` to the tet of `mesh` that holds it (the one whose smallest
 // barycentric weight is largest); a vertex outside every tet gets the tet that needs the least
 // extrapolation (weights below 0), counted in a warning. Load time; nearby tets found through a grid.
-Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh, LoadReport* report = nullptr);
+Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh,
+                               LoadReport* report = nullptr);
 
 // The runtime surface of a mesh that carries an Embedding (voxelised or given `surface:`), at
 // rest: positions and normals filled. Throws InputError when the embedding does not fit the mesh.
@@ -42,7 +43,8 @@ EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh);
 
 // Surface values interpolated from node values (3 per node, e.g. positions or velocities) into
 // `out` (3 per surface vertex). No allocation.
-void interpolate_to_surface(const EmbeddedSurface& s, const double* node_values, double* out) noexcept;
+void interpolate_to_surface(const EmbeddedSurface& s, const double* node_values,
+                            double* out) noexcept;
 
 // Deformed positions and normals from node positions (3 per node, m). No allocation.
 void update_embedded_surface(EmbeddedSurface& s, const double* node_positions) noexcept;

@@ -16,7 +16,8 @@ namespace tacta {
 // The names in the descriptor's live list, in its order; empty for other kinds or no list.
 inline std::vector<std::string> live_param_names(const tacta_descriptor& d) {
   if (d.kind != TACTA_KIND_MODEL || d.api == nullptr) return {};
-  const char* list = tacta_model_live_params(static_cast<const tacta_model_api*>(d.api), d.api_size);
+  const char* list =
+      tacta_model_live_params(static_cast<const tacta_model_api*>(d.api), d.api_size);
   if (list == nullptr || list[0] == '\0') return {};
   return bar_list(list);
 }

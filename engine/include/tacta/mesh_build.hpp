@@ -62,7 +62,8 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
 // InputError (exit 2) on an open or non-manifold surface, on one Gmsh cannot mesh (self-
 // intersecting), and when the quality asked for (options) is not reached; inward-facing surfaces
 // are flipped with a warning. report->format becomes "gmsh-tetrahedralize".
-VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options, LoadReport* report = nullptr);
+VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options,
+                          LoadReport* report = nullptr);
 
 // Writes the tets (and nodes) as a Gmsh 4.1 ASCII .msh file through Gmsh; InputError if it cannot.
 void write_gmsh(const VolumeMesh& mesh, const std::string& path);

@@ -16,25 +16,26 @@ namespace tacta {
 
 // What a load or a repair did that the user may want to know; every field is additive.
 struct LoadReport {
-  std::string format;                  // "gmsh-1", "gmsh-2.2", "gmsh-4.1", "vtk-legacy", "vtk-xml",
-                                       // or "surface:<extension>" for assimp imports
-  std::vector<std::string> warnings;   // one sentence each, for logs and `tacta mesh-info`
-  size_t skipped_elements = 0;         // non-tet elements in a volume file (lines, triangles, hexes)
-  size_t inverted_tets = 0;            // negatively oriented tets re-oriented by finalize
-  size_t removed_nodes = 0;            // nodes no element references, dropped by finalize
-  size_t welded_vertices = 0;          // surface vertices merged with an identical position
-  size_t degenerate_triangles = 0;     // zero-area or repeated-index triangles dropped
-  size_t boundary_edges = 0;           // surface edges used by one triangle (0 when closed)
-  size_t nonmanifold_edges = 0;        // surface edges used by three triangles or more
+  std::string format;                 // "gmsh-1", "gmsh-2.2", "gmsh-4.1", "vtk-legacy", "vtk-xml",
+                                      // or "surface:<extension>" for assimp imports
+  std::vector<std::string> warnings;  // one sentence each, for logs and `tacta mesh-info`
+  size_t skipped_elements = 0;        // non-tet elements in a volume file (lines, triangles, hexes)
+  size_t inverted_tets = 0;           // negatively oriented tets re-oriented by finalize
+  size_t removed_nodes = 0;           // nodes no element references, dropped by finalize
+  size_t welded_vertices = 0;         // surface vertices merged with an identical position
+  size_t degenerate_triangles = 0;    // zero-area or repeated-index triangles dropped
+  size_t boundary_edges = 0;          // surface edges used by one triangle (0 when closed)
+  size_t nonmanifold_edges = 0;       // surface edges used by three triangles or more
   bool closed() const { return boundary_edges == 0 && nonmanifold_edges == 0; }
   // What a surface became (voxel_size > 0: voxelised; format "gmsh-tetrahedralize": Gmsh tets).
-  double voxel_size = 0;               // m; 0 when the body was not voxelised
-  size_t voxel_cells = 0;              // kept cubes, 6 tets each
-  size_t shells = 0;                   // connected pieces of the input surface
-  double enclosed_volume = 0;          // m^3, inside the input surface
-  double mesh_volume = 0;              // m^3, of the tets made from it
-  std::vector<double> piece_volumes;   // m^3, one per connected piece of the tets (face-connected)
-  size_t split_pieces = 0;             // > 0: the inside cells fell into this many pieces, joined by the crossed cells
+  double voxel_size = 0;              // m; 0 when the body was not voxelised
+  size_t voxel_cells = 0;             // kept cubes, 6 tets each
+  size_t shells = 0;                  // connected pieces of the input surface
+  double enclosed_volume = 0;         // m^3, inside the input surface
+  double mesh_volume = 0;             // m^3, of the tets made from it
+  std::vector<double> piece_volumes;  // m^3, one per connected piece of the tets (face-connected)
+  size_t split_pieces =
+      0;  // > 0: the inside cells fell into this many pieces, joined by the crossed cells
 };
 
 // One line a person reads: what a surface-made body became (voxel size, counts, volume kept,

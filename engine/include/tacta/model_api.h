@@ -65,10 +65,10 @@ typedef struct tacta_host_services {
 /* What create() receives. Everything is valid only during create() unless stated otherwise. */
 typedef struct tacta_model_setup {
   uint32_t struct_size;
-  const tacta_mesh_view* mesh;     /* valid for the instance's lifetime */
+  const tacta_mesh_view* mesh; /* valid for the instance's lifetime */
   const tacta_material* material;
-  const double* masses;  /* 1 per node, kg: lumped by the engine; valid for the lifetime */
-  const uint8_t* fixed;  /* 1 per node, 1 = held at its current position; valid for the lifetime */
+  const double* masses; /* 1 per node, kg: lumped by the engine; valid for the lifetime */
+  const uint8_t* fixed; /* 1 per node, 1 = held at its current position; valid for the lifetime */
   const tacta_param_value* params; /* validated against the descriptor's schema, schema order */
   uint32_t param_count;
   double dt; /* the step the engine will use, s (the haptic tick unless the body runs slower) */
@@ -89,10 +89,10 @@ typedef struct tacta_body_state {
 
 /* Step result bits: 0 is success. The engine freezes the body on any fault bit. */
 #define TACTA_STEP_OK 0u
-#define TACTA_STEP_NOT_FINITE (1u << 0)          /* fault: NaN or infinity in the new state */
-#define TACTA_STEP_DIVERGED (1u << 1)            /* fault: energy or displacement blew up */
+#define TACTA_STEP_NOT_FINITE (1u << 0)           /* fault: NaN or infinity in the new state */
+#define TACTA_STEP_DIVERGED (1u << 1)             /* fault: energy or displacement blew up */
 #define TACTA_STEP_SOLVER_NOT_CONVERGED (1u << 2) /* warning: iterative solver hit its limit */
-#define TACTA_STEP_INVERTED_ELEMENT (1u << 3)    /* warning: an element turned inside out */
+#define TACTA_STEP_INVERTED_ELEMENT (1u << 3)     /* warning: an element turned inside out */
 #define TACTA_STEP_FAULT_MASK (TACTA_STEP_NOT_FINITE | TACTA_STEP_DIVERGED)
 
 /* A named figure a model keeps about its own work since create() (solver fallbacks, Newton
@@ -154,19 +154,18 @@ static inline uint32_t tacta_model_claims(const tacta_model_api* api, uint32_t a
 /* The live parameter list of a model table ("a|b"), NULL when the plugin has none or is older. */
 static inline const char* tacta_model_live_params(const tacta_model_api* api, uint32_t api_size) {
   return api_size >= offsetof(tacta_model_api, live_params) + sizeof(const char*) ? api->live_params
-                                                                                   : NULL;
+                                                                                  : NULL;
 }
 
 #define TACTA_MODEL_API_FIELD(member, required) \
   { #member, offsetof(tacta_model_api, member), required }
 
 static const tacta_api_field tacta_model_api_fields[] = {
-    TACTA_MODEL_API_FIELD(create, 1),          TACTA_MODEL_API_FIELD(destroy, 1),
-    TACTA_MODEL_API_FIELD(step, 1),            TACTA_MODEL_API_FIELD(begin, 0),
-    TACTA_MODEL_API_FIELD(elastic_energy, 0),  TACTA_MODEL_API_FIELD(internal_forces, 0),
-    TACTA_MODEL_API_FIELD(set_param, 0),       TACTA_MODEL_API_FIELD(node_stress, 0),
-    TACTA_MODEL_API_FIELD(counters, 0),
-    TACTA_MODEL_API_FIELD(describe, 0),
+    TACTA_MODEL_API_FIELD(create, 1),         TACTA_MODEL_API_FIELD(destroy, 1),
+    TACTA_MODEL_API_FIELD(step, 1),           TACTA_MODEL_API_FIELD(begin, 0),
+    TACTA_MODEL_API_FIELD(elastic_energy, 0), TACTA_MODEL_API_FIELD(internal_forces, 0),
+    TACTA_MODEL_API_FIELD(set_param, 0),      TACTA_MODEL_API_FIELD(node_stress, 0),
+    TACTA_MODEL_API_FIELD(counters, 0),       TACTA_MODEL_API_FIELD(describe, 0),
 };
 
 #ifdef __cplusplus

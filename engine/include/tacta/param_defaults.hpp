@@ -30,7 +30,9 @@ inline std::vector<std::string> bar_list(const char* list) {
 }
 
 // The names of a CHOICE parameter ("a|b|c" -> a, b, c); empty when it has no choices.
-inline std::vector<std::string> choice_names(const tacta_param_spec& spec) { return bar_list(spec.choices); }
+inline std::vector<std::string> choice_names(const tacta_param_spec& spec) {
+  return bar_list(spec.choices);
+}
 
 // The schema index of parameter `name`, or param_count when the descriptor has none.
 inline uint32_t param_index(const tacta_descriptor& d, std::string_view name) {
@@ -63,7 +65,9 @@ inline void add_default(ParamSet& set, const tacta_param_spec& spec) {
       set.add_text(spec.name, choice_name(spec, static_cast<size_t>(spec.default_value)),
                    spec.default_value);
       return;
-    case TACTA_PARAM_TEXT: set.add_text(spec.name, spec.default_text ? spec.default_text : ""); return;
+    case TACTA_PARAM_TEXT:
+      set.add_text(spec.name, spec.default_text ? spec.default_text : "");
+      return;
     case TACTA_PARAM_VECTOR: set.add_vector(spec.name, parse_numbers(spec.default_text)); return;
     default: set.add_number(spec.name, spec.default_value); return;
   }

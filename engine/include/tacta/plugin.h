@@ -28,7 +28,8 @@ extern "C" {
 /* ---- ABI id: major(16) | minor(16) | build bits(32) ------------------------------------------ */
 /* Major must match exactly; a plugin built against a newer minor than the host is refused. */
 #define TACTA_ABI_MAJOR 1u
-#define TACTA_ABI_MINOR 2u  /* 1.1: device_api surface and counters entries; 1.2: model_api describe */
+#define TACTA_ABI_MINOR \
+  2u /* 1.1: device_api surface and counters entries; 1.2: model_api describe */
 
 #define TACTA_ABI_BIT_SCALAR_DOUBLE (1u << 0) /* state arrays are double, not float */
 #define TACTA_ABI_BIT_POINTER_64 (1u << 1)    /* 64-bit pointers */
@@ -106,23 +107,23 @@ typedef int32_t tacta_param_type;
 #define TACTA_PARAM_VECTOR 6 /* list of doubles, a multiple of vector_stride long, each in range */
 
 typedef struct tacta_param_spec {
-  const char* name;      /* snake_case key used in scenes */
+  const char* name; /* snake_case key used in scenes */
   tacta_param_type type;
-  const char* unit;      /* SI unit ("Pa", "s", "N/m"), "" when dimensionless */
-  double default_value;  /* REAL/INT/BOOL; CHOICE: index of the default choice */
-  double min_value;      /* inclusive; REAL/INT/VECTOR elements */
-  double max_value;      /* inclusive */
-  const char* choices;   /* CHOICE: "a|b|c"; else NULL */
+  const char* unit;         /* SI unit ("Pa", "s", "N/m"), "" when dimensionless */
+  double default_value;     /* REAL/INT/BOOL; CHOICE: index of the default choice */
+  double min_value;         /* inclusive; REAL/INT/VECTOR elements */
+  double max_value;         /* inclusive */
+  const char* choices;      /* CHOICE: "a|b|c"; else NULL */
   const char* default_text; /* TEXT default; VECTOR default as space-separated numbers; else NULL */
   uint32_t vector_stride;   /* VECTOR: values come in groups of this size (e.g. 3 for xyz) */
   const char* help;         /* one line for --help, docs and tooltips */
 } tacta_param_spec;
 
 typedef struct tacta_param_value {
-  double number;          /* REAL, INT, BOOL, CHOICE index */
-  const char* text;       /* TEXT; CHOICE: the chosen name; else NULL */
-  const double* values;   /* VECTOR; else NULL */
-  uint32_t count;         /* VECTOR length */
+  double number;        /* REAL, INT, BOOL, CHOICE index */
+  const char* text;     /* TEXT; CHOICE: the chosen name; else NULL */
+  const double* values; /* VECTOR; else NULL */
+  uint32_t count;       /* VECTOR length */
 } tacta_param_value;
 
 /* ---- function tables: required and optional entries ------------------------------------------- */
@@ -134,8 +135,8 @@ typedef struct tacta_api_field {
 
 /* ---- descriptor ------------------------------------------------------------------------------- */
 typedef struct tacta_descriptor {
-  uint32_t struct_size;  /* sizeof(tacta_descriptor) as the plugin saw it */
-  uint64_t abi;          /* the plugin's TACTA_ABI_ID */
+  uint32_t struct_size; /* sizeof(tacta_descriptor) as the plugin saw it */
+  uint64_t abi;         /* the plugin's TACTA_ABI_ID */
   tacta_kind kind;
   const char* name;        /* unique per kind, snake_case: "tensor_mass", "sim_stylus" */
   uint32_t version;        /* the plugin's own version, major*10000 + minor*100 + patch */
@@ -188,7 +189,8 @@ static inline int tacta_abi_check(uint64_t host, uint64_t plugin, char* message,
   }
   if (message && capacity)
     snprintf(message, capacity, "build bit %u differs: %s (host %s, plugin %s)", index,
-             tacta_abi_bit_name(1u << index), (tacta_abi_bits(host) >> index) & 1u ? "set" : "clear",
+             tacta_abi_bit_name(1u << index),
+             (tacta_abi_bits(host) >> index) & 1u ? "set" : "clear",
              (tacta_abi_bits(plugin) >> index) & 1u ? "set" : "clear");
   return 0;
 }

@@ -23,7 +23,7 @@ namespace tacta {
 
 struct LoadedDescriptor {
   const tacta_descriptor* descriptor = nullptr;  // lives as long as the registry
-  std::string file;                               // canonical path of the library
+  std::string file;                              // canonical path of the library
 };
 
 struct RefusedPlugin {

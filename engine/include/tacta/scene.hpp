@@ -37,22 +37,23 @@ struct TetrahedralizeDesc {
 // Where the body's mesh comes from: a file or a built-in primitive.
 struct MeshSourceDesc {
   enum class Kind { File, BoxGrid, BeamGrid, QuadGrid, Sphere } kind = Kind::File;
-  std::string path;                 // File: absolute, resolved against the scene folder
-  Vec3 size{1, 1, 1};               // BoxGrid/BeamGrid: edge lengths, m; QuadGrid: x, y used
+  std::string path;                   // File: absolute, resolved against the scene folder
+  Vec3 size{1, 1, 1};                 // BoxGrid/BeamGrid: edge lengths, m; QuadGrid: x, y used
   std::array<int, 3> cells{1, 1, 1};  // grid cells along x, y, z (QuadGrid: x, y)
-  Vec3 origin{0, 0, 0};             // corner with the smallest coordinates, m (Sphere: centre)
-  double radius = 0.05;             // Sphere, m
-  int subdivisions = 2;             // Sphere resolution
-  double voxel_size = 0;            // File with a surface only: tet grid cell, m (0 = automatic)
-  std::optional<TetrahedralizeDesc> tetrahedralize;  // File with a surface only: Gmsh instead of voxels
-  Vec3 scale{1, 1, 1};              // applied to file coordinates (e.g. mm -> m: 0.001)
-  Vec3 translate{0, 0, 0};          // applied after scale, m
+  Vec3 origin{0, 0, 0};               // corner with the smallest coordinates, m (Sphere: centre)
+  double radius = 0.05;               // Sphere, m
+  int subdivisions = 2;               // Sphere resolution
+  double voxel_size = 0;              // File with a surface only: tet grid cell, m (0 = automatic)
+  std::optional<TetrahedralizeDesc>
+      tetrahedralize;       // File with a surface only: Gmsh instead of voxels
+  Vec3 scale{1, 1, 1};      // applied to file coordinates (e.g. mm -> m: 0.001)
+  Vec3 translate{0, 0, 0};  // applied after scale, m
   // `surface:` a finer surface file bound to the tets (scale and translate apply to it too);
   // empty: a voxelised surface file is its own embedded surface, other meshes show their tets.
   std::string surface_path;
   bool surface_tet_boundary = false;  // `surface: tet_boundary`: draw and touch the tets' boundary
   SourceLocation surface_where;       // the scene's `surface` key, for messages
-  SourceLocation where;             // the scene's `file` key (or the primitive's), for messages
+  SourceLocation where;               // the scene's `file` key (or the primitive's), for messages
 };
 
 struct FixedRegionDesc {
@@ -79,11 +80,11 @@ struct PrescribedDesc {
 // A rigid plate (a moving plane) that presses the nodes of a region when they reach it.
 struct PlateDesc {
   std::string name;
-  FixedRegionDesc region;       // nodes the plate may touch
-  Vec3 point{0, 0, 0};          // a point of the plate at rest, m
-  Vec3 normal{0, 1, 0};         // unit, from the plate into the body
-  TimeSeriesDesc motion;        // m, translation of the plate from its rest place
-  bool stuck = false;           // true: a node that touches sticks; false: frictionless
+  FixedRegionDesc region;  // nodes the plate may touch
+  Vec3 point{0, 0, 0};     // a point of the plate at rest, m
+  Vec3 normal{0, 1, 0};    // unit, from the plate into the body
+  TimeSeriesDesc motion;   // m, translation of the plate from its rest place
+  bool stuck = false;      // true: a node that touches sticks; false: frictionless
   SourceLocation where;
 };
 
@@ -102,7 +103,10 @@ struct BodyDesc {
   std::vector<FixedRegionDesc> fixed;
   SourceLocation fixed_where;  // the scene's `fixed` key, for messages
   // Initial state: per-node displacement/velocity overrides, and uniform ones.
-  struct NodeVector { uint32_t node; Vec3 value; };
+  struct NodeVector {
+    uint32_t node;
+    Vec3 value;
+  };
   std::vector<NodeVector> initial_displacement;  // m
   std::vector<NodeVector> initial_velocity;      // m/s
   Vec3 uniform_velocity{0, 0, 0};                // m/s, added to every free node
@@ -122,26 +126,27 @@ struct BodyDesc {
 // A rigid tool carried by a device (the stylus tip) or a static obstacle.
 struct ShapeDesc {
   enum class Kind { Sphere, Capsule, Box, Plane, Mesh } kind = Kind::Sphere;
-  double radius = 0.002;       // m (Sphere, Capsule)
-  double half_length = 0.01;   // m (Capsule, along the tool axis)
+  double radius = 0.002;             // m (Sphere, Capsule)
+  double half_length = 0.01;         // m (Capsule, along the tool axis)
   Vec3 half_extents{0.1, 0.1, 0.1};  // m (Box)
-  Vec3 normal{0, 1, 0};        // Plane
-  double offset = 0;           // Plane: n . x = offset, m
-  std::string path;            // Mesh: convex hull of this file
-  SourceLocation path_where;   // Mesh: the scene's `file` key, for messages
-  Vec3 position{0, 0, 0};      // m
+  Vec3 normal{0, 1, 0};              // Plane
+  double offset = 0;                 // Plane: n . x = offset, m
+  std::string path;                  // Mesh: convex hull of this file
+  SourceLocation path_where;         // Mesh: the scene's `file` key, for messages
+  Vec3 position{0, 0, 0};            // m
 };
 
 struct DeviceDesc {
   std::string name;
   std::string plugin;  // device plugin name
   ParamSet params;
-  ShapeDesc tool;                    // what the device holds (its collision shape)
-  double coupling_stiffness = 500;   // N/m, virtual coupling device <-> proxy
-  double coupling_damping = 1.0;     // N s/m
-  bool coupling_passivity = true;    // passivity controller acts; false: observe only (Z-width runs)
-  bool coupling_first_contact = true;  // first-contact stretch limit; false: the coupling alone (Z-width)
-  std::string touches;               // body name, empty = all bodies
+  ShapeDesc tool;                   // what the device holds (its collision shape)
+  double coupling_stiffness = 500;  // N/m, virtual coupling device <-> proxy
+  double coupling_damping = 1.0;    // N s/m
+  bool coupling_passivity = true;   // passivity controller acts; false: observe only (Z-width runs)
+  bool coupling_first_contact =
+      true;             // first-contact stretch limit; false: the coupling alone (Z-width)
+  std::string touches;  // body name, empty = all bodies
   SourceLocation where;
 };
 
@@ -161,14 +166,15 @@ struct CollisionDesc {
   std::array<std::string, 4> role_plugins;
   std::array<ParamSet, 4> role_params;
   std::array<SourceLocation, 4> role_where;
-  double friction = 0.3;            // Coulomb coefficient, body-body and body-obstacle
+  double friction = 0.3;  // Coulomb coefficient, body-body and body-obstacle
   bool self_collision = false;
-  double thickness = 1e-4;          // m, contact margin
-  SourceLocation thickness_where;   // the scene's `thickness` key, for the bound checked on the meshes
+  double thickness = 1e-4;  // m, contact margin
+  SourceLocation
+      thickness_where;  // the scene's `thickness` key, for the bound checked on the meshes
 };
 
 struct SwapDesc {
-  double time = 0;  // s
+  double time = 0;   // s
   std::string body;  // body name, "*" = every body
   std::string model;
   ParamSet params;
@@ -208,8 +214,8 @@ std::string duration_limit_problem(double duration_s, double haptic_rate_hz, siz
 constexpr int kMaxFrameSide = 8192;
 
 struct OutputDesc {
-  bool frames = false;               // PNG frames from the render task
-  std::vector<double> frame_times;   // s; empty with frames=true: every frame
+  bool frames = false;              // PNG frames from the render task
+  std::vector<double> frame_times;  // s; empty with frames=true: every frame
   int frame_width = 800, frame_height = 600;
   bool vtk = false;                  // .vtu series + .pvd
   double vtk_interval_s = 1.0 / 60;  // s between VTK frames
@@ -221,8 +227,8 @@ struct OutputDesc {
 };
 
 struct SceneDesc {
-  std::string path;         // the scene file
-  std::string directory;    // its folder; relative paths resolve against it
+  std::string path;       // the scene file
+  std::string directory;  // its folder; relative paths resolve against it
   std::string name;
   Vec3 gravity{0, -9.81, 0};  // m/s^2
   ClockDesc clock;

@@ -21,7 +21,7 @@ struct ModelChoice {
   std::string label;     // the entry as written: the row's `model`
   std::string plugin;    // the model plugin
   std::string override;  // the override that gives every body this model
-  std::string dir;       // subfolder of the output: the label with anything but [A-Za-z0-9_.-] as '_'
+  std::string dir;  // subfolder of the output: the label with anything but [A-Za-z0-9_.-] as '_'
 };
 
 ModelChoice parse_model_choice(const std::string& entry, const PluginRegistry& plugins) {
@@ -33,7 +33,8 @@ ModelChoice parse_model_choice(const std::string& entry, const PluginRegistry& p
   std::string params;
   for (size_t at = entry.find(':'); at != std::string::npos;) {
     const size_t next = entry.find(':', at + 1);
-    const std::string pair = entry.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
+    const std::string pair =
+        entry.substr(at + 1, next == std::string::npos ? std::string::npos : next - at - 1);
     const size_t eq = pair.find('=');
     if (eq == 0 || eq == std::string::npos || eq + 1 == pair.size())
       throw InputError(where, "expected MODEL[:param=value]..., found '" + pair + "' after ':'");
@@ -41,14 +42,17 @@ ModelChoice parse_model_choice(const std::string& entry, const PluginRegistry& p
     at = next;
   }
   // The loader checks the parameters against the plugin's schema, like any scene value.
-  choice.override = "bodies.*.model=" + (params.empty() ? choice.plugin : "{name: " + choice.plugin + params + "}");
+  choice.override = "bodies.*.model=" +
+                    (params.empty() ? choice.plugin : "{name: " + choice.plugin + params + "}");
   for (char& c : choice.dir)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '.' && c != '-') c = '_';
   return choice;
 }
 
-std::vector<ModelChoice> parse_model_choices(const std::vector<std::string>& entries, const PluginRegistry& plugins) {
-  if (entries.empty()) throw InputError({"--models", 0, 0, ""}, "expected at least one model name, found none");
+std::vector<ModelChoice> parse_model_choices(const std::vector<std::string>& entries,
+                                             const PluginRegistry& plugins) {
+  if (entries.empty())
+    throw InputError({"--models", 0, 0, ""}, "expected at least one model name, found none");
   std::vector<ModelChoice> choices;
   std::set<std::string> labels, dirs;
   for (const std::string& entry : entries) {
@@ -67,7 +71,8 @@ struct ModelRun {
   std::unique_ptr<Simulation> simulation;
 };
 
-std::vector<ModelRun> build_runs(const CompareOptions& options, const std::vector<ModelChoice>& models,
+std::vector<ModelRun> build_runs(const CompareOptions& options,
+                                 const std::vector<ModelChoice>& models,
                                  const PluginRegistry& plugins, const SchemaLookup& schemas) {
   std::vector<ModelRun> runs;
   for (const ModelChoice& model : models) {
@@ -78,7 +83,8 @@ std::vector<ModelRun> build_runs(const CompareOptions& options, const std::vecto
     if (!run.scene.swaps.empty()) {
       // A swap would change the model under comparison part way through.
       if (options.note)
-        options.note("note: " + options.scene + ": the scene's " + std::to_string(run.scene.swaps.size()) +
+        options.note("note: " + options.scene + ": the scene's " +
+                     std::to_string(run.scene.swaps.size()) +
                      " model swap(s) are ignored by compare");
       run.scene.swaps.clear();
     }
@@ -89,7 +95,8 @@ std::vector<ModelRun> build_runs(const CompareOptions& options, const std::vecto
 }
 
 // |x - x_rest| of one node, m; nullopt when the state does not hold the node.
-std::optional<double> node_displacement(const SceneStatic& scene, const Snapshot& state, size_t body, uint32_t node) {
+std::optional<double> node_displacement(const SceneStatic& scene, const Snapshot& state,
+                                        size_t body, uint32_t node) {
   if (body >= scene.bodies.size() || body >= state.bodies.size()) return std::nullopt;
   const std::vector<double>& rest = scene.bodies[body].rest_positions;
   const std::vector<double>& now = state.bodies[body].positions;
@@ -100,8 +107,8 @@ std::optional<double> node_displacement(const SceneStatic& scene, const Snapshot
 }
 
 // A row from a finished run: its result and the simulation's final state.
-CompareRow make_compare_row(const std::string& model, const SceneDesc& scene, const RunResult& result,
-                            Simulation& simulation) {
+CompareRow make_compare_row(const std::string& model, const SceneDesc& scene,
+                            const RunResult& result, Simulation& simulation) {
   CompareRow row;
   row.model = model;
   row.tick_p50_ms = result.schedule.tick.p50_ms;
@@ -119,20 +126,24 @@ CompareRow make_compare_row(const std::string& model, const SceneDesc& scene, co
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     if (!scene.bodies[i].probe_node) continue;
     row.probe = scene.bodies[i].name + ":" + std::to_string(*scene.bodies[i].probe_node);
-    row.probe_displacement_m = node_displacement(simulation.scene_static(), final_state, i, *scene.bodies[i].probe_node);
+    row.probe_displacement_m =
+        node_displacement(simulation.scene_static(), final_state, i, *scene.bodies[i].probe_node);
     break;
   }
   for (const BodySnapshot& body : final_state.bodies)
-    row.final_positions.insert(row.final_positions.end(), body.positions.begin(), body.positions.end());
+    row.final_positions.insert(row.final_positions.end(), body.positions.begin(),
+                               body.positions.end());
   row.faults = result.faults;
   row.state_hash = result.state_hash;
-  if (row.faults > 0 && row.fault_reason.empty()) row.fault_reason = "fault reported (see report.json)";
+  if (row.faults > 0 && row.fault_reason.empty())
+    row.fault_reason = "fault reported (see report.json)";
   return row;
 }
 
 CompareRow run_one(ModelRun& run, const CompareOptions& options) {
   RunOptions run_options;
-  if (!options.out_dir.empty()) run_options.out_dir = (std::filesystem::path(options.out_dir) / run.model.dir).string();
+  if (!options.out_dir.empty())
+    run_options.out_dir = (std::filesystem::path(options.out_dir) / run.model.dir).string();
   run_options.realtime = false;  // lockstep: the same inputs, one model apart
   if (options.duration_s > 0) run_options.duration_s = options.duration_s;
   CompareRow row;
@@ -151,16 +162,17 @@ CompareRow run_one(ModelRun& run, const CompareOptions& options) {
 CompareSummary run_comparison(const CompareOptions& options, const PluginRegistry& plugins) {
   RegistrySchemas schemas(plugins);
   const std::vector<ModelChoice> models = parse_model_choices(options.models, plugins);
-  if (!options.reference.empty() && std::none_of(models.begin(), models.end(), [&](const ModelChoice& m) {
-        return m.label == options.reference;
-      }))
+  if (!options.reference.empty() &&
+      std::none_of(models.begin(), models.end(),
+                   [&](const ModelChoice& m) { return m.label == options.reference; }))
     throw InputError({"--reference", 0, 0, options.reference},
                      "expected one of the --models entries, found '" + options.reference + "'");
   std::vector<ModelRun> runs = build_runs(options, models, plugins, schemas);
 
   CompareSummary summary;
   summary.scene = options.scene;
-  summary.duration_s = options.duration_s > 0 ? options.duration_s : runs.front().scene.clock.duration_s;
+  summary.duration_s =
+      options.duration_s > 0 ? options.duration_s : runs.front().scene.clock.duration_s;
   summary.reference = options.reference;
   for (ModelRun& run : runs) {
     if (options.note) options.note("running " + run.model.label + " ...");

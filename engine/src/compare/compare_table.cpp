@@ -1,12 +1,11 @@
 // compare.json, compare.csv, the chart and the printed table of a comparison (docs/COMPARE.md).
-#include "tacta/compare/compare.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
+#include "tacta/compare/compare.hpp"
 #include "tacta/json.hpp"
 #include "tacta/output/plot_script.hpp"
 
@@ -20,7 +19,9 @@ std::string csv_number(double value) {
   return text;
 }
 
-std::string csv_number(const std::optional<double>& value) { return value ? csv_number(*value) : ""; }
+std::string csv_number(const std::optional<double>& value) {
+  return value ? csv_number(*value) : "";
+}
 
 // Model names come from the plugin registry; quote them anyway if they ever hold a comma.
 std::string csv_text(const std::string& text) {
@@ -36,8 +37,10 @@ enum class Style { Fixed4, Significant6 };
 std::string table_number(const std::optional<double>& value, Style style) {
   if (!value || !std::isfinite(*value)) return "-";
   char text[40];
-  if (style == Style::Fixed4) std::snprintf(text, sizeof text, "%.4f", *value);
-  else std::snprintf(text, sizeof text, "%.6g", *value);
+  if (style == Style::Fixed4)
+    std::snprintf(text, sizeof text, "%.4f", *value);
+  else
+    std::snprintf(text, sizeof text, "%.6g", *value);
   return text;
 }
 
@@ -54,8 +57,9 @@ CompareRow make_failed_row(const std::string& model, const std::string& reason) 
 }
 
 void compare_with_reference(CompareSummary& summary) {
-  const auto reference = std::find_if(summary.rows.begin(), summary.rows.end(),
-                                      [&](const CompareRow& r) { return r.model == summary.reference; });
+  const auto reference =
+      std::find_if(summary.rows.begin(), summary.rows.end(),
+                   [&](const CompareRow& r) { return r.model == summary.reference; });
   if (summary.reference.empty() || reference == summary.rows.end()) return;
   const CompareRow ref = *reference;
   for (CompareRow& r : summary.rows) {
@@ -77,34 +81,50 @@ void write_compare_json(const std::string& path, const CompareSummary& summary) 
   json.begin_object();
   json.field("scene", summary.scene).field("duration_s", summary.duration_s);
   json.key("reference");
-  if (summary.reference.empty()) json.null();
-  else json.value(summary.reference);
+  if (summary.reference.empty())
+    json.null();
+  else
+    json.value(summary.reference);
   json.key("models").begin_array();
   for (const CompareRow& r : summary.rows) {
     json.begin_object();
-    json.field("model", r.model).field("tick_p50_ms", r.tick_p50_ms).field("tick_p99_ms", r.tick_p99_ms);
+    json.field("model", r.model)
+        .field("tick_p50_ms", r.tick_p50_ms)
+        .field("tick_p99_ms", r.tick_p99_ms);
     json.field("max_displacement_m", r.max_displacement_m);
     json.key("energy_drift");
-    if (r.energy_drift) json.value(*r.energy_drift);
-    else json.null();
+    if (r.energy_drift)
+      json.value(*r.energy_drift);
+    else
+      json.null();
     json.field("energy_start_J", r.energy_start_J).field("energy_end_J", r.energy_end_J);
     json.key("probe_displacement_m");
-    if (r.probe_displacement_m) json.value(*r.probe_displacement_m);
-    else json.null();
+    if (r.probe_displacement_m)
+      json.value(*r.probe_displacement_m);
+    else
+      json.null();
     json.key("probe");
-    if (r.probe.empty()) json.null();
-    else json.value(r.probe);
+    if (r.probe.empty())
+      json.null();
+    else
+      json.value(r.probe);
     json.field("faults", static_cast<uint64_t>(r.faults)).field("state_hash", r.state_hash);
     json.key("fault_reason");
-    if (r.fault_reason.empty()) json.null();
-    else json.value(r.fault_reason);
+    if (r.fault_reason.empty())
+      json.null();
+    else
+      json.value(r.fault_reason);
     json.field("out_dir", r.out_dir);
     json.key("displacement_ratio");
-    if (r.displacement_ratio) json.value(*r.displacement_ratio);
-    else json.null();
+    if (r.displacement_ratio)
+      json.value(*r.displacement_ratio);
+    else
+      json.null();
     json.key("difference_from_reference_m");
-    if (r.difference_from_reference_m) json.value(*r.difference_from_reference_m);
-    else json.null();
+    if (r.difference_from_reference_m)
+      json.value(*r.difference_from_reference_m);
+    else
+      json.null();
     json.end_object();
   }
   json.end_array();
@@ -115,18 +135,22 @@ void write_compare_json(const std::string& path, const CompareSummary& summary) 
 void write_compare_csv(const std::string& path, const CompareSummary& summary, bool label_faults) {
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
-  file << "model,tick_p50_ms,tick_p99_ms,max_displacement_m,energy_drift,probe_displacement_m,faults,state_hash,"
+  file << "model,tick_p50_ms,tick_p99_ms,max_displacement_m,energy_drift,probe_displacement_m,"
+          "faults,state_hash,"
           "energy_start_J,energy_end_J,displacement_ratio,difference_from_reference_m\n";
   for (const CompareRow& r : summary.rows)
-    file << csv_text(label_faults && r.faults > 0 ? r.model + " (fault)" : r.model) << ',' << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
+    file << csv_text(label_faults && r.faults > 0 ? r.model + " (fault)" : r.model) << ','
+         << csv_number(r.tick_p50_ms) << ',' << csv_number(r.tick_p99_ms) << ','
          << csv_number(r.max_displacement_m) << ',' << csv_number(r.energy_drift) << ','
          << csv_number(r.probe_displacement_m) << ',' << r.faults << ',' << r.state_hash << ','
          << csv_number(r.energy_start_J) << ',' << csv_number(r.energy_end_J) << ','
-         << csv_number(r.displacement_ratio) << ',' << csv_number(r.difference_from_reference_m) << '\n';
+         << csv_number(r.displacement_ratio) << ',' << csv_number(r.difference_from_reference_m)
+         << '\n';
   if (!file) throw std::runtime_error("cannot write " + path);
 }
 
-std::vector<std::string> write_compare_outputs(const std::string& dir, const CompareSummary& summary,
+std::vector<std::string> write_compare_outputs(const std::string& dir,
+                                               const CompareSummary& summary,
                                                std::string& warning) {
   const std::filesystem::path out(dir);
   std::filesystem::create_directories(out);
@@ -140,40 +164,55 @@ std::vector<std::string> write_compare_outputs(const std::string& dir, const Com
   // its bars (cheap ticks, a diverged energy) must not pass for a fast, sound model.
   const std::string chart_csv = (out / ".compare_chart.csv").string();
   write_compare_csv(chart_csv, summary, true);
-  const int plot_status = run_plot_script("compare_bars.py", {chart_csv, png, "--metrics", metrics});
+  const int plot_status =
+      run_plot_script("compare_bars.py", {chart_csv, png, "--metrics", metrics});
   std::filesystem::remove(chart_csv);
-  if (plot_status == 0) written.push_back(png);
-  else warning = "compare_bars.py exited with " + std::to_string(plot_status) + "; no " + png;
+  if (plot_status == 0)
+    written.push_back(png);
+  else
+    warning = "compare_bars.py exited with " + std::to_string(plot_status) + "; no " + png;
   return written;
 }
 
 void print_compare_table(std::FILE* out, const CompareSummary& summary) {
-  std::fprintf(out, "%s, %.6g s simulated per model (lockstep)\n", summary.scene.c_str(), summary.duration_s);
+  std::fprintf(out, "%s, %.6g s simulated per model (lockstep)\n", summary.scene.c_str(),
+               summary.duration_s);
   int width = 18;  // characters of the model column: the longest label
-  for (const CompareRow& r : summary.rows) width = std::max(width, static_cast<int>(r.model.size()));
+  for (const CompareRow& r : summary.rows)
+    width = std::max(width, static_cast<int>(r.model.size()));
   const bool against = !summary.reference.empty();
-  if (against) std::fprintf(out, "reference model: %s (disp ratio: max displacement / its; diff: RMS node distance at the end)\n", summary.reference.c_str());
-  std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6s  %s%s\n", width, "model", "p50 ms", "p99 ms", "max disp m",
-               "energy drift", "probe disp m", "faults", "state hash        ", against ? "  disp ratio   diff m" : "");
+  if (against)
+    std::fprintf(out,
+                 "reference model: %s (disp ratio: max displacement / its; diff: RMS node distance "
+                 "at the end)\n",
+                 summary.reference.c_str());
+  std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6s  %s%s\n", width, "model", "p50 ms", "p99 ms",
+               "max disp m", "energy drift", "probe disp m", "faults", "state hash        ",
+               against ? "  disp ratio   diff m" : "");
   for (const CompareRow& r : summary.rows) {
     std::fprintf(out, "%-*s %10s %10s %14s %13s %14s %6zu  %-18s", width, r.model.c_str(),
-                 table_number(r.tick_p50_ms, Style::Fixed4).c_str(), table_number(r.tick_p99_ms, Style::Fixed4).c_str(),
-                 table_number(r.max_displacement_m, Style::Significant6).c_str(), table_number(r.energy_drift, Style::Significant6).c_str(),
+                 table_number(r.tick_p50_ms, Style::Fixed4).c_str(),
+                 table_number(r.tick_p99_ms, Style::Fixed4).c_str(),
+                 table_number(r.max_displacement_m, Style::Significant6).c_str(),
+                 table_number(r.energy_drift, Style::Significant6).c_str(),
                  table_number(r.probe_displacement_m, Style::Significant6).c_str(), r.faults,
                  r.state_hash.empty() ? "-" : r.state_hash.c_str());
     if (against) {
-      std::fprintf(out, "  %10s %8s", table_number(r.displacement_ratio, Style::Significant6).c_str(),
+      std::fprintf(out, "  %10s %8s",
+                   table_number(r.displacement_ratio, Style::Significant6).c_str(),
                    table_number(r.difference_from_reference_m, Style::Significant6).c_str());
     }
     std::fprintf(out, "\n");
-    if (!r.fault_reason.empty()) std::fprintf(out, "  %s: %s\n", r.model.c_str(), r.fault_reason.c_str());
+    if (!r.fault_reason.empty())
+      std::fprintf(out, "  %s: %s\n", r.model.c_str(), r.fault_reason.c_str());
   }
 }
 
 std::vector<std::string> plotted_metrics(const CompareSummary& summary) {
   std::vector<std::string> metrics{"tick_p50_ms", "tick_p99_ms", "max_displacement_m"};
-  const bool any_drift = std::any_of(summary.rows.begin(), summary.rows.end(),
-                                     [](const CompareRow& r) { return r.energy_drift.has_value(); });
+  const bool any_drift =
+      std::any_of(summary.rows.begin(), summary.rows.end(),
+                  [](const CompareRow& r) { return r.energy_drift.has_value(); });
   metrics.push_back(any_drift ? "energy_drift" : "energy_end_J");
   if (std::any_of(summary.rows.begin(), summary.rows.end(),
                   [](const CompareRow& r) { return r.probe_displacement_m.has_value(); }))

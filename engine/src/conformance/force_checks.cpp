@@ -18,7 +18,8 @@ constexpr double kResponse = 1e-4;
 
 double max_norm(const std::vector<double>& f) {
   double worst = 0;
-  for (size_t i = 0; i < f.size(); i += 3) worst = std::max(worst, std::hypot(f[i], f[i + 1], f[i + 2]));
+  for (size_t i = 0; i < f.size(); i += 3)
+    worst = std::max(worst, std::hypot(f[i], f[i + 1], f[i + 2]));
   return worst;
 }
 
@@ -65,8 +66,9 @@ CheckResult check_stretch_response(const tacta_descriptor& model) {
   const double worst = max_norm(forces_at(model, stretched, how, scale));
   const double least = kResponse * scale;
   // Without it every other force check passes on a model that pushes nothing at all.
-  return {"stretch response", "max |f| under 1 % stretch " + figure(worst) + " N (" + how +
-                                  "), at least " + figure(least) + " N",
+  return {"stretch response",
+          "max |f| under 1 % stretch " + figure(worst) + " N (" + how + "), at least " +
+              figure(least) + " N",
           worst >= least && std::isfinite(worst) ? Verdict::Pass : Verdict::Fail};
 }
 
@@ -83,7 +85,8 @@ CheckResult check_rigid_translation(const tacta_descriptor& model) {
 
 CheckResult check_rigid_rotation(const tacta_descriptor& model) {
   if (!(claims_of(model) & TACTA_MODEL_CLAIM_ROTATION_INVARIANT))
-    return {"rigid rotation", "not claimed (TACTA_MODEL_CLAIM_ROTATION_INVARIANT unset)", Verdict::Skip};
+    return {"rigid rotation", "not claimed (TACTA_MODEL_CLAIM_ROTATION_INVARIANT unset)",
+            Verdict::Skip};
   // 40 degrees about (1, 2, 3) / |(1, 2, 3)| through the centre (Rodrigues' formula).
   const double angle = 40.0 * M_PI / 180.0, c = std::cos(angle), s = std::sin(angle);
   const double n = std::sqrt(14.0), a[3] = {1 / n, 2 / n, 3 / n};
@@ -93,7 +96,8 @@ CheckResult check_rigid_rotation(const tacta_descriptor& model) {
       const double dot = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
       const double cross[3] = {a[1] * p[2] - a[2] * p[1], a[2] * p[0] - a[0] * p[2],
                                a[0] * p[1] - a[1] * p[0]};
-      for (int k = 0; k < 3; ++k) x[i + k] = kCentre + p[k] * c + cross[k] * s + a[k] * dot * (1 - c);
+      for (int k = 0; k < 3; ++k)
+        x[i + k] = kCentre + p[k] * c + cross[k] * s + a[k] * dot * (1 - c);
     }
     return x;
   });
@@ -119,9 +123,11 @@ CheckResult check_net_force(const tacta_descriptor& model) {
     net[i % 3] += f[i];
     total += std::abs(f[i]);
   }
-  const double size = std::hypot(net[0], net[1], net[2]), limit = kRoundOff * std::max(total, 1e-300);
-  return {"net internal force", "|sum f| " + figure(size) + " N over sum |f| " + figure(total) +
-                                    " N (" + how + "), limit " + figure(limit) + " N",
+  const double size = std::hypot(net[0], net[1], net[2]),
+               limit = kRoundOff * std::max(total, 1e-300);
+  return {"net internal force",
+          "|sum f| " + figure(size) + " N over sum |f| " + figure(total) + " N (" + how +
+              "), limit " + figure(limit) + " N",
           size <= limit && total > 0 ? Verdict::Pass : Verdict::Fail};
 }
 

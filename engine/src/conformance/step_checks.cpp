@@ -1,8 +1,8 @@
 // Step checks: the 1 kHz contract of model_api.h. step() allocates nothing once warm, reports a
 // NaN it is handed, and gives the same state whichever thread calls it.
+#include <algorithm>
 #include <cmath>
 #include <thread>
-#include <algorithm>
 
 #include "conformance/checks.hpp"
 #include "conformance/test_body.hpp"
@@ -12,7 +12,7 @@ namespace tacta::conformance {
 
 namespace {
 
-constexpr int kWarmUpSteps = 5;    // first-touch paths (lazy factorisations, solver workspaces)
+constexpr int kWarmUpSteps = 5;  // first-touch paths (lazy factorisations, solver workspaces)
 constexpr int kCountedSteps = 20;
 
 // A clamped cube sagging under gravity: every step does real work.
@@ -59,8 +59,10 @@ CheckResult check_step_allocations(const tacta_descriptor& model, const Allocati
   std::string text = std::to_string(allocations) + " heap allocations in " +
                      std::to_string(kCountedSteps) + " steps after " +
                      std::to_string(kWarmUpSteps) + " warm-up steps, limit 0";
-  if (bits & TACTA_STEP_FAULT_MASK) text += " (the steps faulted: bits " + std::to_string(bits) + ")";
-  return {name, text, allocations == 0 && !(bits & TACTA_STEP_FAULT_MASK) ? Verdict::Pass : Verdict::Fail};
+  if (bits & TACTA_STEP_FAULT_MASK)
+    text += " (the steps faulted: bits " + std::to_string(bits) + ")";
+  return {name, text,
+          allocations == 0 && !(bits & TACTA_STEP_FAULT_MASK) ? Verdict::Pass : Verdict::Fail};
 }
 
 CheckResult check_nan_reported(const tacta_descriptor& model) {
@@ -76,11 +78,13 @@ CheckResult check_nan_reported(const tacta_descriptor& model) {
     return {name, "step returned fault bits " + std::to_string(bits), Verdict::Pass};
   // The engine checks the state after every step (body_step.cpp), so a NaN passed on is caught.
   if (!all_finite(s.x) || !all_finite(s.v))
-    return {name, "step returned " + std::to_string(bits) +
-                      "; the NaN reached the new state, where the engine's finite check faults it",
+    return {name,
+            "step returned " + std::to_string(bits) +
+                "; the NaN reached the new state, where the engine's finite check faults it",
             Verdict::Pass};
-  return {name, "step returned " + std::to_string(bits) +
-                    " with a finite state: the NaN node was silently replaced, no one can tell",
+  return {name,
+          "step returned " + std::to_string(bits) +
+              " with a finite state: the NaN node was silently replaced, no one can tell",
           Verdict::Fail};
 }
 

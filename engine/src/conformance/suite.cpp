@@ -32,8 +32,10 @@ const char* verdict_name(Verdict verdict) {
 std::vector<CheckResult> check_model(const tacta_descriptor& model, const AllocationProbe& probe) {
   std::vector<CheckResult> results;
   if (model.kind != TACTA_KIND_MODEL) {
-    results.push_back({"model kind", std::string("'") + model.name + "' is a " +
-                                         tacta_kind_name(model.kind) + " plugin", Verdict::Fail});
+    results.push_back(
+        {"model kind",
+         std::string("'") + model.name + "' is a " + tacta_kind_name(model.kind) + " plugin",
+         Verdict::Fail});
     return results;
   }
   results.push_back(check_schema(model));

@@ -9,8 +9,15 @@
 namespace tacta::conformance {
 
 tacta_model_setup TestBody::setup() const {
-  return {sizeof(tacta_model_setup), &view, &material, masses.data(), fixed.data(), params.data(),
-          params.size(), dt, nullptr};
+  return {sizeof(tacta_model_setup),
+          &view,
+          &material,
+          masses.data(),
+          fixed.data(),
+          params.data(),
+          params.size(),
+          dt,
+          nullptr};
 }
 
 std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool clamped) {
@@ -23,13 +30,20 @@ std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool cla
   body->masses = lumped_masses(body->mesh, rho);
   body->fixed.assign(body->mesh.node_count(), 0);
   if (clamped)
-    for (size_t n = 0; n < body->fixed.size(); ++n) body->fixed[n] = body->mesh.positions[3 * n + 2] == 0.0;
+    for (size_t n = 0; n < body->fixed.size(); ++n)
+      body->fixed[n] = body->mesh.positions[3 * n + 2] == 0.0;
   const VolumeMesh& m = body->mesh;
-  body->view = {static_cast<uint32_t>(m.node_count()), m.positions.data(),
-                static_cast<uint32_t>(m.tet_count()), m.tets.data(),
-                static_cast<uint32_t>(m.triangles.size() / 3), m.triangles.data(),
-                static_cast<uint32_t>(m.quads.size() / 4), m.quads.data(),
-                static_cast<uint32_t>(m.edges.size() / 2), m.edges.data(), m.dimension};
+  body->view = {static_cast<uint32_t>(m.node_count()),
+                m.positions.data(),
+                static_cast<uint32_t>(m.tet_count()),
+                m.tets.data(),
+                static_cast<uint32_t>(m.triangles.size() / 3),
+                m.triangles.data(),
+                static_cast<uint32_t>(m.quads.size() / 4),
+                m.quads.data(),
+                static_cast<uint32_t>(m.edges.size() / 2),
+                m.edges.data(),
+                m.dimension};
   body->params = defaults_of(model);
   return body;
 }

@@ -20,10 +20,10 @@ struct TestBody {
   std::vector<uint8_t> fixed;  // 1 per node
   tacta_mesh_view view{};
   tacta_material material{};
-  ParamSet params;             // the schema's defaults
-  double dt = 1e-3;            // s, the haptic tick
-  double cell = 0.05;          // m, edge of one grid cell
-  uint32_t centre_node = 13;   // the interior node
+  ParamSet params;            // the schema's defaults
+  double dt = 1e-3;           // s, the haptic tick
+  double cell = 0.05;         // m, edge of one grid cell
+  uint32_t centre_node = 13;  // the interior node
 
   // A force figure: E h^2 (N), what a unit strain puts on a node; limits are fractions of it.
   double force_scale() const { return material.youngs_modulus * cell * cell; }

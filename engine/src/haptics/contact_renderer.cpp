@@ -106,7 +106,8 @@ void ContactRenderer::update_stats(double time, double force) noexcept {
   if (stats_.first_contact_time < 0.0) return;
   const double since = time - stats_.first_contact_time;
   const ContactStatsParams& p = params_.stats;
-  if (since <= p.onset_window) stats_.first_contact_peak = std::max(stats_.first_contact_peak, force);
+  if (since <= p.onset_window)
+    stats_.first_contact_peak = std::max(stats_.first_contact_peak, force);
   if (since >= p.settle_delay && since < p.settle_delay + p.steady_window) {
     steady_sum_ += force;
     ++steady_count_;

@@ -4,7 +4,8 @@
 
 namespace tacta::haptics {
 
-Vec3 FirstContactLimiter::shape(const Vec3& stretch, bool in_contact, double dt, double max_stretch) noexcept {
+Vec3 FirstContactLimiter::shape(const Vec3& stretch, bool in_contact, double dt,
+                                double max_stretch) noexcept {
   if (!in_contact) {
     reset();
     return stretch;

@@ -32,7 +32,8 @@ void GodObjectProxy::update(const SurfaceQuery& world, const Vec3& device_positi
     SurfaceHit hit;
     double signed_distance = 0.0;
     if (world.first_hit(position_, device_position, params_.radius, hit)) {
-      position_ = on_surface(hit, add_scaled(position_, sub(device_position, position_), hit.fraction));
+      position_ =
+          on_surface(hit, add_scaled(position_, sub(device_position, position_), hit.fraction));
       contact_ = hit;
       in_contact_ = true;
     } else if (world.closest_point(device_position, params_.inside_search, hit, signed_distance) &&
@@ -83,7 +84,8 @@ bool GodObjectProxy::move_in_contact(const SurfaceQuery& world, const Vec3& devi
     position_ = goal;
     // A curved surface falls away from the tangent plane: put the proxy back on it.
     double signed_distance = 0.0;
-    if (world.closest_point(position_, params_.inside_search + params_.radius, hit, signed_distance)) {
+    if (world.closest_point(position_, params_.inside_search + params_.radius, hit,
+                            signed_distance)) {
       position_ = on_surface(hit, position_);
       contact_ = hit;
     }

@@ -2,9 +2,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <string>
-
 #include <fmt/format.h>
+#include <string>
 
 #include "mesh/readers.hpp"
 #include "tacta/embedded_surface.hpp"
@@ -16,7 +15,8 @@ namespace tacta {
 namespace {
 
 constexpr double kAutoVoxelsPerDiagonal = 20;  // voxel_size 0: at most bounding-box diagonal / 20
-constexpr double kAutoMaxBoxCells = 1e6;        // voxel_size 0: the grid's box stays under this many cells
+constexpr double kAutoMaxBoxCells =
+    1e6;  // voxel_size 0: the grid's box stays under this many cells
 
 bool is_identity(const MeshSourceDesc& d) {
   return d.scale == Vec3{1, 1, 1} && d.translate == Vec3{0, 0, 0};
@@ -24,14 +24,17 @@ bool is_identity(const MeshSourceDesc& d) {
 
 void check_transform(const MeshSourceDesc& d, const std::string& source) {
   for (size_t a = 0; a < 3; ++a) {
-    if (!std::isfinite(d.scale[a]) || d.scale[a] == 0) throw InputError({source, 0, 0, ""}, "mesh scale must be finite and non-zero on every axis");
-    if (!std::isfinite(d.translate[a])) throw InputError({source, 0, 0, ""}, "mesh translate must be finite");
+    if (!std::isfinite(d.scale[a]) || d.scale[a] == 0)
+      throw InputError({source, 0, 0, ""}, "mesh scale must be finite and non-zero on every axis");
+    if (!std::isfinite(d.translate[a]))
+      throw InputError({source, 0, 0, ""}, "mesh translate must be finite");
   }
 }
 
 // x -> scale * x + translate, component-wise, on a flat array of points.
 void transform(std::vector<double>& positions, const MeshSourceDesc& d) {
-  for (size_t i = 0; i < positions.size(); ++i) positions[i] = d.scale[i % 3] * positions[i] + d.translate[i % 3];
+  for (size_t i = 0; i < positions.size(); ++i)
+    positions[i] = d.scale[i % 3] * positions[i] + d.translate[i % 3];
 }
 
 double surface_area(const SurfaceMesh& s) {
@@ -40,8 +43,10 @@ double surface_area(const SurfaceMesh& s) {
     const double* a = &s.positions[3 * size_t{s.triangles[3 * t]}];
     const double* b = &s.positions[3 * size_t{s.triangles[3 * t + 1]}];
     const double* c = &s.positions[3 * size_t{s.triangles[3 * t + 2]}];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    area += 0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                 v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    area += 0.5 * std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                             u[0] * v[1] - u[1] * v[0]);
   }
   return area;
 }
@@ -51,10 +56,12 @@ void note_pieces(const VolumeMesh& mesh, LoadReport& r) {
   r.piece_volumes = piece_volumes(mesh);
   if (r.piece_volumes.size() < 2) return;
   std::string sizes;
-  for (size_t i = 0; i < r.piece_volumes.size() && i < 8; ++i) sizes += fmt::format("{}{:.3g}", i ? ", " : "", r.piece_volumes[i]);
-  r.warnings.push_back(fmt::format("the mesh has {} separate pieces ({} m^3): a piece with no fixed node falls freely "
-                                   "under gravity",
-                                   r.piece_volumes.size(), sizes));
+  for (size_t i = 0; i < r.piece_volumes.size() && i < 8; ++i)
+    sizes += fmt::format("{}{:.3g}", i ? ", " : "", r.piece_volumes[i]);
+  r.warnings.push_back(fmt::format(
+      "the mesh has {} separate pieces ({} m^3): a piece with no fixed node falls freely "
+      "under gravity",
+      r.piece_volumes.size(), sizes));
 }
 
 // The surface's bounding-box edge lengths, m.
@@ -84,9 +91,10 @@ double automatic_voxel_size(const SurfaceMesh& s, LoadReport& r) {
   if (h > 0 && !within_budget(s, h)) {
     const double thin = h;
     while (!within_budget(s, h)) h *= 1.1;
-    r.warnings.push_back(fmt::format("the body's thin parts ask for {:.3g} m voxels; {:.3g} m was used to keep the grid "
-                                     "under a million cells (give voxel_size, or tetrahedralize, to choose)",
-                                     thin, h));
+    r.warnings.push_back(fmt::format(
+        "the body's thin parts ask for {:.3g} m voxels; {:.3g} m was used to keep the grid "
+        "under a million cells (give voxel_size, or tetrahedralize, to choose)",
+        thin, h));
   }
   return h;
 }
@@ -103,7 +111,8 @@ VolumeMesh primitive(const MeshSourceDesc& d) {
 }
 
 // A surface file as the scene places it: scaled, translated, outward even under a mirroring scale.
-SurfaceMesh load_placed_surface(const std::string& path, const MeshSourceDesc& desc, LoadReport& r) {
+SurfaceMesh load_placed_surface(const std::string& path, const MeshSourceDesc& desc,
+                                LoadReport& r) {
   SurfaceMesh surface = load_surface(path, &r);
   transform(surface.positions, desc);
   if (desc.scale[0] * desc.scale[1] * desc.scale[2] < 0) {
@@ -144,10 +153,13 @@ VolumeMesh load_tets(const MeshSourceDesc& desc, LoadReport& r) {
     return mesh;
   }
   double voxel = desc.voxel_size;
-  if (!std::isfinite(voxel) || voxel < 0) throw InputError({desc.path, 0, 0, ""}, "voxel_size must be 0 (automatic) or positive");
+  if (!std::isfinite(voxel) || voxel < 0)
+    throw InputError({desc.path, 0, 0, ""}, "voxel_size must be 0 (automatic) or positive");
   const bool automatic = voxel == 0;
   if (automatic) voxel = automatic_voxel_size(surface, r);
-  if (!(voxel > 0)) throw InputError({desc.path, 0, 0, ""}, "the surface is flat or a point: it encloses no volume");
+  if (!(voxel > 0))
+    throw InputError({desc.path, 0, 0, ""},
+                     "the surface is flat or a point: it encloses no volume");
   // Majority keeps the body's volume, hence its mass, within a few % of the enclosed volume
   // (Cover overestimates it by about half a cell over the whole surface: 2x for liver.obj at the
   // automatic cell size).
@@ -167,9 +179,10 @@ VolumeMesh load_tets(const MeshSourceDesc& desc, LoadReport& r) {
       r = attempt;
       note_pieces(mesh, r);
       if (refinement > 0) {
-        r.warnings.push_back(fmt::format("the automatic voxel size was made {} times 1.5x finer to keep each surface shell "
-                                         "in one piece",
-                                         refinement));
+        r.warnings.push_back(fmt::format(
+            "the automatic voxel size was made {} times 1.5x finer to keep each surface shell "
+            "in one piece",
+            refinement));
       }
       return mesh;
     }
@@ -187,27 +200,36 @@ VolumeMesh load_body_mesh(const MeshSourceDesc& desc, LoadReport* report) {
     mesh.embedding.reset();
   } else if (!desc.surface_path.empty()) {
     LoadReport surface_report;
-    mesh.embedding = bind_surface_to_tets(load_placed_surface(desc.surface_path, desc, surface_report), mesh, &surface_report);
-    for (const std::string& w : surface_report.warnings) r.warnings.push_back("surface " + desc.surface_path + ": " + w);
+    mesh.embedding = bind_surface_to_tets(
+        load_placed_surface(desc.surface_path, desc, surface_report), mesh, &surface_report);
+    for (const std::string& w : surface_report.warnings)
+      r.warnings.push_back("surface " + desc.surface_path + ": " + w);
   }
   return mesh;
 }
 
 std::string describe_body_mesh(const VolumeMesh& mesh, const LoadReport& r) {
-  std::string text = mesh.dimension == 2 ? fmt::format("{} nodes, {} quads", mesh.node_count(), mesh.quads.size() / 4)
-                                          : fmt::format("{} nodes, {} tets", mesh.node_count(), mesh.tet_count());
-  if (r.voxel_size == 0 && !r.piece_volumes.empty()) text += fmt::format(", {} piece(s)", r.piece_volumes.size());
+  std::string text =
+      mesh.dimension == 2
+          ? fmt::format("{} nodes, {} quads", mesh.node_count(), mesh.quads.size() / 4)
+          : fmt::format("{} nodes, {} tets", mesh.node_count(), mesh.tet_count());
+  if (r.voxel_size == 0 && !r.piece_volumes.empty())
+    text += fmt::format(", {} piece(s)", r.piece_volumes.size());
   if (r.voxel_size > 0) {
-    text = fmt::format("voxelised: voxel {:.4g} m, {} cells, {}, volume {:.4g} m^3 = {:.1f}% of the {:.4g} m^3 enclosed, "
-                       "{} piece(s) from {} surface shell(s)",
-                       r.voxel_size, r.voxel_cells, text, r.mesh_volume,
-                       r.enclosed_volume > 0 ? 100 * r.mesh_volume / r.enclosed_volume : 0.0, r.enclosed_volume,
-                       r.piece_volumes.size(), r.shells);
+    text = fmt::format(
+        "voxelised: voxel {:.4g} m, {} cells, {}, volume {:.4g} m^3 = {:.1f}% of the {:.4g} m^3 "
+        "enclosed, "
+        "{} piece(s) from {} surface shell(s)",
+        r.voxel_size, r.voxel_cells, text, r.mesh_volume,
+        r.enclosed_volume > 0 ? 100 * r.mesh_volume / r.enclosed_volume : 0.0, r.enclosed_volume,
+        r.piece_volumes.size(), r.shells);
   } else if (r.format == "gmsh-tetrahedralize") {
     const MeshQuality q = mesh_quality(mesh);
-    text = fmt::format("tetrahedralized by Gmsh: {}, smallest dihedral angle {:.2f} degrees, radius ratio min {:.3f} "
-                       "mean {:.3f}",
-                       text, q.min_dihedral_deg, q.min_radius_ratio, q.mean_radius_ratio);
+    text = fmt::format(
+        "tetrahedralized by Gmsh: {}, smallest dihedral angle {:.2f} degrees, radius ratio min "
+        "{:.3f} "
+        "mean {:.3f}",
+        text, q.min_dihedral_deg, q.min_radius_ratio, q.mean_radius_ratio);
   } else if (!r.format.empty()) {
     text = r.format + ": " + text;
   }

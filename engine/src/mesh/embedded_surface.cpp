@@ -47,9 +47,11 @@ class TetGrid {
   TetGrid(const std::vector<Box>& boxes, double mean_diagonal) {
     Box all = boxes[0];
     for (const Box& b : boxes)
-      for (size_t a = 0; a < 3; ++a) all.lo[a] = std::min(all.lo[a], b.lo[a]), all.hi[a] = std::max(all.hi[a], b.hi[a]);
+      for (size_t a = 0; a < 3; ++a)
+        all.lo[a] = std::min(all.lo[a], b.lo[a]), all.hi[a] = std::max(all.hi[a], b.hi[a]);
     origin_ = all.lo;
-    const double extent = std::max({all.hi[0] - all.lo[0], all.hi[1] - all.lo[1], all.hi[2] - all.lo[2]});
+    const double extent =
+        std::max({all.hi[0] - all.lo[0], all.hi[1] - all.lo[1], all.hi[2] - all.lo[2]});
     h_ = std::max({mean_diagonal, extent / 128.0, 1e-300});
     for (size_t a = 0; a < 3; ++a) n_[a] = static_cast<int64_t>((all.hi[a] - all.lo[a]) / h_) + 1;
     start_.assign(static_cast<size_t>(n_[0] * n_[1] * n_[2]) + 1, 0);
@@ -57,13 +59,16 @@ class TetGrid {
       std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
       for (size_t t = 0; t < boxes.size(); ++t) {
         int64_t lo[3], hi[3];
-        for (size_t a = 0; a < 3; ++a) lo[a] = index(boxes[t].lo[a], a), hi[a] = index(boxes[t].hi[a], a);
+        for (size_t a = 0; a < 3; ++a)
+          lo[a] = index(boxes[t].lo[a], a), hi[a] = index(boxes[t].hi[a], a);
         for (int64_t k = lo[2]; k <= hi[2]; ++k)
           for (int64_t j = lo[1]; j <= hi[1]; ++j)
             for (int64_t i = lo[0]; i <= hi[0]; ++i) {
               const size_t c = cell(i, j, k);
-              if (pass == 0) ++start_[c + 1];
-              else items_[fill[c]++] = static_cast<uint32_t>(t);
+              if (pass == 0)
+                ++start_[c + 1];
+              else
+                items_[fill[c]++] = static_cast<uint32_t>(t);
             }
       }
       if (pass == 0) {
@@ -106,9 +111,12 @@ class TetGrid {
  private:
   int64_t index(double x, size_t a) const {
     const double f = std::floor((x - origin_[a]) / h_);
-    return std::clamp<int64_t>(std::isfinite(f) ? static_cast<int64_t>(std::clamp(f, -1.0, 1e9)) : 0, 0, n_[a] - 1);
+    return std::clamp<int64_t>(
+        std::isfinite(f) ? static_cast<int64_t>(std::clamp(f, -1.0, 1e9)) : 0, 0, n_[a] - 1);
   }
-  size_t cell(int64_t i, int64_t j, int64_t k) const { return static_cast<size_t>(i + n_[0] * (j + n_[1] * k)); }
+  size_t cell(int64_t i, int64_t j, int64_t k) const {
+    return static_cast<size_t>(i + n_[0] * (j + n_[1] * k));
+  }
   P3 origin_{};
   double h_ = 1;
   int64_t n_[3] = {1, 1, 1};
@@ -117,9 +125,12 @@ class TetGrid {
 
 }  // namespace
 
-Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh, LoadReport* report) {
+Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mesh,
+                               LoadReport* report) {
   const size_t tets = mesh.tet_count();
-  if (tets == 0) throw InputError({surface.source, 0, 0, ""}, "a surface can only be embedded in a mesh with tetrahedra");
+  if (tets == 0)
+    throw InputError({surface.source, 0, 0, ""},
+                     "a surface can only be embedded in a mesh with tetrahedra");
   std::vector<Box> boxes(tets);
   double mean_diagonal = 0;
   for (size_t t = 0; t < tets; ++t) {
@@ -127,7 +138,8 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
     b.lo = b.hi = point(mesh.positions, mesh.tets[4 * t]);
     for (size_t k = 1; k < 4; ++k) {
       const P3 q = point(mesh.positions, mesh.tets[4 * t + k]);
-      for (size_t a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], q[a]), b.hi[a] = std::max(b.hi[a], q[a]);
+      for (size_t a = 0; a < 3; ++a)
+        b.lo[a] = std::min(b.lo[a], q[a]), b.hi[a] = std::max(b.hi[a], q[a]);
     }
     mean_diagonal += mesh_detail::norm(b.hi - b.lo) / static_cast<double>(tets);
   }
@@ -135,7 +147,7 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
   Embedding e{surface, std::vector<uint32_t>(count), std::vector<double>(4 * count)};
   size_t outside = 0;
   const TetGrid grid(boxes, mean_diagonal);
-  std::vector<size_t> seen(tets, SIZE_MAX);  // the vertex that last looked at each tet
+  std::vector<size_t> seen(tets, SIZE_MAX);       // the vertex that last looked at each tet
   std::vector<std::pair<uint32_t, double>> near;  // tet, distance from its box (m)
   for (size_t v = 0; v < count; ++v) {
     const P3 p = point(surface.positions, static_cast<uint32_t>(v));
@@ -152,7 +164,8 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
         nearest = std::min(nearest, near.back().second);
       });
       const double reach = nearest > 0 ? nearest + mean_diagonal : 0.0;
-      if (!inside_grid || (!near.empty() && static_cast<double>(r) * grid.cell_size() > reach)) break;
+      if (!inside_grid || (!near.empty() && static_cast<double>(r) * grid.cell_size() > reach))
+        break;
     }
     const double reach = nearest > 0 ? nearest + mean_diagonal : 0.0;
     double best = -std::numeric_limits<double>::infinity();
@@ -165,19 +178,24 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
     }
     if (best < kInside) ++outside;
     e.element[v] = best_tet;
-    std::copy(best_weights.begin(), best_weights.end(), e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
+    std::copy(best_weights.begin(), best_weights.end(),
+              e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
   }
   if (outside > 0 && report != nullptr)
-    report->warnings.push_back(std::to_string(outside) + " vertices lie outside the tets and follow the nearest one by extrapolation");
+    report->warnings.push_back(
+        std::to_string(outside) +
+        " vertices lie outside the tets and follow the nearest one by extrapolation");
   return e;
 }
 
 EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh) {
-  if (!mesh.embedding) throw InputError({mesh.source, 0, 0, ""}, "the mesh carries no embedded surface");
+  if (!mesh.embedding)
+    throw InputError({mesh.source, 0, 0, ""}, "the mesh carries no embedded surface");
   const Embedding& e = *mesh.embedding;
   const size_t count = e.surface.vertex_count();
   if (e.element.size() != count || e.weights.size() != 4 * count)
-    throw InputError({e.surface.source, 0, 0, ""}, "embedded surface: one tet and 4 weights are needed per vertex");
+    throw InputError({e.surface.source, 0, 0, ""},
+                     "embedded surface: one tet and 4 weights are needed per vertex");
   EmbeddedSurface s;
   s.triangles = e.surface.triangles;
   s.corner_uvs = e.surface.corner_uvs;
@@ -188,21 +206,24 @@ EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh) {
   s.nodes.resize(4 * count);
   for (size_t v = 0; v < count; ++v) {
     if (s.tet[v] >= mesh.tet_count())
-      throw InputError({s.source, 0, 0, ""}, "embedded surface vertex " + std::to_string(v) + " names tet " +
-                                                  std::to_string(s.tet[v]) + " past the mesh's " +
-                                                  std::to_string(mesh.tet_count()));
+      throw InputError({s.source, 0, 0, ""}, "embedded surface vertex " + std::to_string(v) +
+                                                 " names tet " + std::to_string(s.tet[v]) +
+                                                 " past the mesh's " +
+                                                 std::to_string(mesh.tet_count()));
     for (size_t k = 0; k < 4; ++k) s.nodes[4 * v + k] = mesh.tets[4 * size_t{s.tet[v]} + k];
     if (lowest(&s.weights[4 * v]) < kInside) ++s.extrapolated_vertices;
   }
   for (uint32_t i : s.triangles)
-    if (i >= count) throw InputError({s.source, 0, 0, ""}, "embedded surface triangle index past its vertices");
+    if (i >= count)
+      throw InputError({s.source, 0, 0, ""}, "embedded surface triangle index past its vertices");
   s.positions.resize(3 * count);
   s.normals.resize(3 * count);
   update_embedded_surface(s, mesh.positions.data());
   return s;
 }
 
-void interpolate_to_surface(const EmbeddedSurface& s, const double* node_values, double* out) noexcept {
+void interpolate_to_surface(const EmbeddedSurface& s, const double* node_values,
+                            double* out) noexcept {
   const size_t count = s.vertex_count();
   for (size_t v = 0; v < count; ++v) {
     const uint32_t* n = &s.nodes[4 * v];
@@ -219,10 +240,13 @@ void update_embedded_surface(EmbeddedSurface& s, const double* node_positions) n
   const double* x = s.positions.data();
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     const uint32_t* i = &s.triangles[3 * t];
-    const double e1[3] = {x[3 * i[1]] - x[3 * i[0]], x[3 * i[1] + 1] - x[3 * i[0] + 1], x[3 * i[1] + 2] - x[3 * i[0] + 2]};
-    const double e2[3] = {x[3 * i[2]] - x[3 * i[0]], x[3 * i[2] + 1] - x[3 * i[0] + 1], x[3 * i[2] + 2] - x[3 * i[0] + 2]};
+    const double e1[3] = {x[3 * i[1]] - x[3 * i[0]], x[3 * i[1] + 1] - x[3 * i[0] + 1],
+                          x[3 * i[1] + 2] - x[3 * i[0] + 2]};
+    const double e2[3] = {x[3 * i[2]] - x[3 * i[0]], x[3 * i[2] + 1] - x[3 * i[0] + 1],
+                          x[3 * i[2] + 2] - x[3 * i[0] + 2]};
     // Twice the area times the unit normal: larger faces weigh more.
-    const double face[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double face[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
     for (size_t k = 0; k < 3; ++k)
       for (size_t a = 0; a < 3; ++a) s.normals[3 * i[k] + a] += face[a];
   }
@@ -233,7 +257,8 @@ void update_embedded_surface(EmbeddedSurface& s, const double* node_positions) n
   }
 }
 
-void spread_to_nodes(const EmbeddedSurface& s, uint32_t vertex, const double* force, double* node_forces) noexcept {
+void spread_to_nodes(const EmbeddedSurface& s, uint32_t vertex, const double* force,
+                     double* node_forces) noexcept {
   const uint32_t* n = &s.nodes[4 * size_t{vertex}];
   const double* w = &s.weights[4 * size_t{vertex}];
   for (size_t k = 0; k < 4; ++k)
@@ -244,7 +269,8 @@ std::array<double, 3> surface_point(const EmbeddedSurface& s, uint32_t triangle,
                                     const double* node_positions) noexcept {
   const double sum = b[0] + b[1] + b[2];
   const double third = 1.0 / 3.0;
-  const double bt[3] = {sum > 0 ? b[0] / sum : third, sum > 0 ? b[1] / sum : third, sum > 0 ? b[2] / sum : third};
+  const double bt[3] = {sum > 0 ? b[0] / sum : third, sum > 0 ? b[1] / sum : third,
+                        sum > 0 ? b[2] / sum : third};
   std::array<double, 3> p{0, 0, 0};
   for (size_t k = 0; k < 3; ++k) {
     const size_t v = s.triangles[3 * size_t{triangle} + k];

@@ -25,20 +25,22 @@ constexpr double kZeroVolume = 1e-12;  // |6V| below this times (longest edge)^3
 void check_input(const VolumeMesh& mesh) {
   if (mesh.positions.size() % 3 != 0) fail(mesh, "positions must hold 3 numbers per node");
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    if (!std::isfinite(mesh.positions[i])) fail(mesh, "node " + std::to_string(i / 3) + " has a NaN or infinite coordinate");
+    if (!std::isfinite(mesh.positions[i]))
+      fail(mesh, "node " + std::to_string(i / 3) + " has a NaN or infinite coordinate");
   }
   if (mesh.tets.size() % 4 != 0 || mesh.quads.size() % 4 != 0 || mesh.triangles.size() % 3 != 0) {
     fail(mesh, "element index arrays must hold 4 per tet or quad and 3 per triangle");
   }
   if (mesh.dimension == 3 && mesh.tets.empty()) fail(mesh, "the mesh has no tetrahedra");
-  if (mesh.dimension == 2 && mesh.quads.empty() && mesh.triangles.empty()) fail(mesh, "the planar mesh has no elements");
+  if (mesh.dimension == 2 && mesh.quads.empty() && mesh.triangles.empty())
+    fail(mesh, "the planar mesh has no elements");
   if (mesh.dimension != 2 && mesh.dimension != 3) fail(mesh, "dimension must be 2 or 3");
   const size_t n = mesh.node_count();
   auto check = [&](const std::vector<uint32_t>& indices, const char* what, size_t per) {
     for (size_t i = 0; i < indices.size(); ++i) {
       if (indices[i] >= n) {
-        fail(mesh, std::string(what) + " " + std::to_string(i / per) + " refers to node " + std::to_string(indices[i]) +
-                       ", outside [0, " + std::to_string(n) + ")");
+        fail(mesh, std::string(what) + " " + std::to_string(i / per) + " refers to node " +
+                       std::to_string(indices[i]) + ", outside [0, " + std::to_string(n) + ")");
       }
     }
   };
@@ -60,7 +62,9 @@ void remove_unreferenced(VolumeMesh& mesh, LoadReport& report) {
   uint32_t next = 0;
   for (size_t i = 0; i < n; ++i) {
     if (remap[i] == 0) {
-      for (int k = 0; k < 3; ++k) mesh.positions[3 * next + static_cast<size_t>(k)] = mesh.positions[3 * i + static_cast<size_t>(k)];
+      for (int k = 0; k < 3; ++k)
+        mesh.positions[3 * next + static_cast<size_t>(k)] =
+            mesh.positions[3 * i + static_cast<size_t>(k)];
       remap[i] = next++;
     }
   }
@@ -78,13 +82,15 @@ void orient_tets(VolumeMesh& mesh, LoadReport& report) {
   size_t inverted = 0;
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     uint32_t* v = &mesh.tets[4 * t];
-    P3 a = point(mesh.positions, v[0]), b = point(mesh.positions, v[1]), c = point(mesh.positions, v[2]),
-       d = point(mesh.positions, v[3]);
+    P3 a = point(mesh.positions, v[0]), b = point(mesh.positions, v[1]),
+       c = point(mesh.positions, v[2]), d = point(mesh.positions, v[3]);
     double six_volume = mesh_detail::triple(b - a, c - a, d - a);
-    double longest = std::max({norm(b - a), norm(c - a), norm(d - a), norm(c - b), norm(d - b), norm(d - c)});
+    double longest =
+        std::max({norm(b - a), norm(c - a), norm(d - a), norm(c - b), norm(d - b), norm(d - c)});
     if (!(std::abs(six_volume) > kZeroVolume * longest * longest * longest)) {
-      fail(mesh, "tet " + std::to_string(t) + " (nodes " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " +
-                     std::to_string(v[2]) + " " + std::to_string(v[3]) + ", counted from 0) has zero volume");
+      fail(mesh, "tet " + std::to_string(t) + " (nodes " + std::to_string(v[0]) + " " +
+                     std::to_string(v[1]) + " " + std::to_string(v[2]) + " " +
+                     std::to_string(v[3]) + ", counted from 0) has zero volume");
     }
     if (six_volume < 0) {
       std::swap(v[2], v[3]);
@@ -98,13 +104,15 @@ void orient_tets(VolumeMesh& mesh, LoadReport& report) {
   if (mesh.embedding) {
     Embedding& e = *mesh.embedding;
     for (size_t v = 0; v < e.element.size(); ++v) {
-      if (e.element[v] < swapped.size() && swapped[e.element[v]]) std::swap(e.weights[4 * v + 2], e.weights[4 * v + 3]);
+      if (e.element[v] < swapped.size() && swapped[e.element[v]])
+        std::swap(e.weights[4 * v + 2], e.weights[4 * v + 3]);
     }
   }
 }
 
 // Planar elements counter-clockwise seen from +z; a flat one is an error.
-void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per, const char* what) {
+void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per,
+                   const char* what) {
   for (size_t e = 0; e < elements.size() / per; ++e) {
     uint32_t* v = &elements[per * e];
     double twice_area = 0, longest = 0;
@@ -113,7 +121,8 @@ void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per
       twice_area += p[0] * q[1] - q[0] * p[1];
       longest = std::max(longest, norm(q - p));
     }
-    if (!(std::abs(twice_area) > kZeroVolume * longest * longest)) fail(mesh, std::string(what) + " " + std::to_string(e) + " has zero area");
+    if (!(std::abs(twice_area) > kZeroVolume * longest * longest))
+      fail(mesh, std::string(what) + " " + std::to_string(e) + " has zero area");
     if (twice_area < 0) std::reverse(v, v + per);
   }
 }
@@ -132,7 +141,8 @@ void build_edges(VolumeMesh& mesh) {
       for (size_t k = 0; k < 4; ++k) add(mesh.quads[4 * q + k], mesh.quads[4 * q + (k + 1) % 4]);
   } else {
     for (size_t t = 0; t < mesh.triangles.size() / 3; ++t)
-      for (size_t k = 0; k < 3; ++k) add(mesh.triangles[3 * t + k], mesh.triangles[3 * t + (k + 1) % 3]);
+      for (size_t k = 0; k < 3; ++k)
+        add(mesh.triangles[3 * t + k], mesh.triangles[3 * t + (k + 1) % 3]);
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -154,7 +164,8 @@ void build_boundary(VolumeMesh& mesh) {
   for (uint32_t t = 0; t < mesh.tet_count(); ++t) {
     for (uint32_t f = 0; f < 4; ++f) {
       std::array<uint32_t, 3> key;
-      for (int k = 0; k < 3; ++k) key[static_cast<size_t>(k)] = mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])];
+      for (int k = 0; k < 3; ++k)
+        key[static_cast<size_t>(k)] = mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])];
       std::sort(key.begin(), key.end());
       faces.push_back({key, 4 * t + f});
     }
@@ -172,7 +183,8 @@ void build_boundary(VolumeMesh& mesh) {
   mesh.triangles.reserve(3 * single.size());
   for (uint32_t order : single) {
     uint32_t t = order / 4, f = order % 4;
-    for (int k = 0; k < 3; ++k) mesh.triangles.push_back(mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])]);
+    for (int k = 0; k < 3; ++k)
+      mesh.triangles.push_back(mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])]);
   }
 }
 

@@ -30,7 +30,8 @@ inline double norm(const P3& a) { return std::sqrt(dot(a, a)); }
 inline double triple(const P3& a, const P3& b, const P3& c) { return dot(a, cross(b, c)); }
 
 // Barycentric weights of p in tet (a, b, c, d); they sum to 1 and reproduce p (also outside).
-inline std::array<double, 4> barycentric(const P3& p, const P3& a, const P3& b, const P3& c, const P3& d) {
+inline std::array<double, 4> barycentric(const P3& p, const P3& a, const P3& b, const P3& c,
+                                         const P3& d) {
   double six_volume = triple(b - a, c - a, d - a);
   double wb = triple(p - a, c - a, d - a) / six_volume;
   double wc = triple(b - a, p - a, d - a) / six_volume;

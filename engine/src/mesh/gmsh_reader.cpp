@@ -15,14 +15,16 @@ namespace {
 
 // Nodes per element for Gmsh element types 1..31 (0 = unknown type).
 int gmsh_nodes_per_element(int64_t type) {
-  static constexpr int kNodes[] = {0, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1,
-                                   8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56};
+  static constexpr int kNodes[] = {0, 2,  3,  4,  4, 8,  6,  5,  3,  6,  9, 10, 27, 18, 14, 1,
+                                   8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
   if (type < 1 || type > 31) return 0;
   return kNodes[type];
 }
 
 // Linear tet (4) and the higher-order ones whose first four nodes are the corners.
-bool gmsh_is_tet(int64_t type) { return type == 4 || type == 11 || type == 29 || type == 30 || type == 31; }
+bool gmsh_is_tet(int64_t type) {
+  return type == 4 || type == 11 || type == 29 || type == 30 || type == 31;
+}
 
 constexpr int64_t kMaxCount = 2'000'000'000;  // more than any mesh a haptic loop can step
 
@@ -32,7 +34,8 @@ struct GmshMesh {
   std::vector<int64_t> tet_tags;                     // 4 per tet, node tags as in the file
   std::vector<int> tet_lines;                        // file line of each tet, for messages
   std::vector<int64_t> tet_ids;                      // element tag of each tet
-  std::unordered_map<int64_t, int> element_lines;    // element tag -> its line, to refuse a tag given twice
+  std::unordered_map<int64_t, int>
+      element_lines;  // element tag -> its line, to refuse a tag given twice
   size_t skipped = 0;
   bool has_nodes = false, has_elements = false;
 };
@@ -52,7 +55,8 @@ void read_node_line(TextReader& in, GmshMesh& mesh) {
 }
 
 // Reads the node tags of one element, all on the element's own line.
-void read_element_nodes(TextReader& in, GmshMesh& mesh, int64_t element, int64_t type, int count, int line) {
+void read_element_nodes(TextReader& in, GmshMesh& mesh, int64_t element, int64_t type, int count,
+                        int line) {
   auto [first, inserted] = mesh.element_lines.emplace(element, line);
   if (!inserted) {
     in.fail_at(line, "element " + std::to_string(element) + " is defined twice (first on line " +
@@ -62,14 +66,16 @@ void read_element_nodes(TextReader& in, GmshMesh& mesh, int64_t element, int64_t
   for (int i = 0; i < count; ++i) {
     int64_t tag = in.next_int("an element node number");
     if (in.line() != line) {
-      in.fail_at(line, "element " + std::to_string(element) + " has fewer node numbers on its line than its type " +
+      in.fail_at(line, "element " + std::to_string(element) +
+                           " has fewer node numbers on its line than its type " +
                            std::to_string(type) + " needs (" + std::to_string(count) + ")");
     }
     if (i < 4) tags[i] = tag;
   }
   if (!in.next_on_new_line()) {
-    in.fail_at(line, "element " + std::to_string(element) + " has more numbers on its line than its type " +
-                         std::to_string(type) + " takes (" + std::to_string(count) + " nodes)");
+    in.fail_at(line, "element " + std::to_string(element) +
+                         " has more numbers on its line than its type " + std::to_string(type) +
+                         " takes (" + std::to_string(count) + " nodes)");
   }
   if (!gmsh_is_tet(type)) {
     ++mesh.skipped;
@@ -85,7 +91,8 @@ void read_v1_v2_nodes(TextReader& in, GmshMesh& mesh, const char* end_keyword) {
   for (int64_t i = 0; i < count; ++i) {
     if (in.peek() == end_keyword) {
       in.next("");
-      in.fail("the node count says " + std::to_string(count) + " but only " + std::to_string(i) + " nodes are given");
+      in.fail("the node count says " + std::to_string(count) + " but only " + std::to_string(i) +
+              " nodes are given");
     }
     read_node_line(in, mesh);
   }
@@ -105,21 +112,24 @@ void read_v1_v2_elements(TextReader& in, GmshMesh& mesh, bool version1, const ch
     int line = in.line();
     int64_t type = in.next_int("an element type");
     int expected = gmsh_nodes_per_element(type);
-    if (expected == 0) in.fail("element " + std::to_string(element) + " has unknown type " + std::to_string(type));
+    if (expected == 0)
+      in.fail("element " + std::to_string(element) + " has unknown type " + std::to_string(type));
     int count_nodes = expected;
     if (version1) {
       in.next_int("the physical region");
       in.next_int("the elementary region");
       int64_t given = in.next_int_in("the element's node count", 1, 64);
       if (given != expected) {
-        in.fail("element " + std::to_string(element) + " of type " + std::to_string(type) + " must have " +
-                std::to_string(expected) + " nodes, the file says " + std::to_string(given));
+        in.fail("element " + std::to_string(element) + " of type " + std::to_string(type) +
+                " must have " + std::to_string(expected) + " nodes, the file says " +
+                std::to_string(given));
       }
     } else {
       int64_t tags = in.next_int_in("the element's tag count", 0, 64);
       for (int64_t t = 0; t < tags; ++t) in.next_int("an element tag");
     }
-    if (in.line() != line) in.fail_at(line, "element " + std::to_string(element) + " is cut across lines");
+    if (in.line() != line)
+      in.fail_at(line, "element " + std::to_string(element) + " is cut across lines");
     read_element_nodes(in, mesh, element, type, count_nodes, line);
   }
   in.expect(end_keyword);
@@ -138,7 +148,8 @@ void read_v4_nodes(TextReader& in, GmshMesh& mesh) {
     in.next_int("the block's entity tag");
     int64_t parametric = in.next_int_in("the block's parametric flag", 0, 1);
     int64_t count = in.next_int_in("the block's node count", 0, kMaxCount);
-    if (seen + count > total) in.fail("the node blocks hold more nodes than the $Nodes header's " + std::to_string(total));
+    if (seen + count > total)
+      in.fail("the node blocks hold more nodes than the $Nodes header's " + std::to_string(total));
     tags.clear();
     for (int64_t i = 0; i < count; ++i) tags.push_back(in.next_int("a node tag"));
     for (int64_t i = 0; i < count; ++i) {
@@ -149,7 +160,9 @@ void read_v4_nodes(TextReader& in, GmshMesh& mesh) {
     }
     seen += count;
   }
-  if (seen != total) in.fail("the $Nodes header says " + std::to_string(total) + " nodes, the blocks hold " + std::to_string(seen));
+  if (seen != total)
+    in.fail("the $Nodes header says " + std::to_string(total) + " nodes, the blocks hold " +
+            std::to_string(seen));
   in.expect("$EndNodes");
   mesh.has_nodes = true;
 }
@@ -167,14 +180,17 @@ void read_v4_elements(TextReader& in, GmshMesh& mesh) {
     int nodes = gmsh_nodes_per_element(type);
     if (nodes == 0) in.fail("unknown element type " + std::to_string(type));
     int64_t count = in.next_int_in("the block's element count", 0, kMaxCount);
-    if (seen + count > total) in.fail("the element blocks hold more elements than the header's " + std::to_string(total));
+    if (seen + count > total)
+      in.fail("the element blocks hold more elements than the header's " + std::to_string(total));
     for (int64_t i = 0; i < count; ++i) {
       int64_t element = in.next_int("an element tag");
       read_element_nodes(in, mesh, element, type, nodes, in.line());
     }
     seen += count;
   }
-  if (seen != total) in.fail("the $Elements header says " + std::to_string(total) + " elements, the blocks hold " + std::to_string(seen));
+  if (seen != total)
+    in.fail("the $Elements header says " + std::to_string(total) + " elements, the blocks hold " +
+            std::to_string(seen));
   in.expect("$EndElements");
   mesh.has_elements = true;
 }
@@ -183,11 +199,13 @@ void read_v4_elements(TextReader& in, GmshMesh& mesh) {
 void skip_section(TextReader& in, std::string_view name) {
   std::string end = "$End" + std::string(name.substr(1));
   std::string end_v1 = end;
-  std::transform(end_v1.begin(), end_v1.end(), end_v1.begin(), [](unsigned char c) { return std::toupper(c); });
+  std::transform(end_v1.begin(), end_v1.end(), end_v1.begin(),
+                 [](unsigned char c) { return std::toupper(c); });
   for (;;) {
     std::string_view token = in.next(("'" + end + "'").c_str());
     std::string upper(token);
-    std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](unsigned char c) { return std::toupper(c); });
     if (upper == end_v1) return;
   }
 }
@@ -212,7 +230,8 @@ VolumeMesh read_gmsh(const std::string& path, std::string_view text, LoadReport&
       } else {
         in.fail("Gmsh format version " + std::string(v) + " is not supported (1, 2.2 and 4.1 are)");
       }
-      if (in.next_int("the file type (0 ASCII, 1 binary)") != 0) in.fail("binary .msh files are not supported; save as ASCII");
+      if (in.next_int("the file type (0 ASCII, 1 binary)") != 0)
+        in.fail("binary .msh files are not supported; save as ASCII");
       in.next_int("the data size");
       in.expect("$EndMeshFormat");
     } else if (section == "$NOD" && version == 1) {
@@ -230,7 +249,8 @@ VolumeMesh read_gmsh(const std::string& path, std::string_view text, LoadReport&
     } else if (section.size() > 1 && section[0] == '$') {
       skip_section(in, section);
     } else {
-      in.fail("expected a section such as $Nodes, found '" + std::string(section.substr(0, 40)) + "'");
+      in.fail("expected a section such as $Nodes, found '" + std::string(section.substr(0, 40)) +
+              "'");
     }
   }
   if (!mesh.has_nodes) in.fail("the file has no node section");
@@ -243,8 +263,9 @@ VolumeMesh read_gmsh(const std::string& path, std::string_view text, LoadReport&
   for (size_t i = 0; i < mesh.tet_tags.size(); ++i) {
     auto it = mesh.node_index.find(mesh.tet_tags[i]);
     if (it == mesh.node_index.end()) {
-      in.fail_at(mesh.tet_lines[i / 4], "element " + std::to_string(mesh.tet_ids[i / 4]) + " refers to node " +
-                                            std::to_string(mesh.tet_tags[i]) + ", which the file does not define");
+      in.fail_at(mesh.tet_lines[i / 4], "element " + std::to_string(mesh.tet_ids[i / 4]) +
+                                            " refers to node " + std::to_string(mesh.tet_tags[i]) +
+                                            ", which the file does not define");
     }
     out.tets.push_back(it->second);
   }

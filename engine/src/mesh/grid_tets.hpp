@@ -14,12 +14,14 @@ namespace tacta::mesh_detail {
 // oriented tets (for cells aligned with +x, +y, +z). mirror (bit 0: x, 1: y, 2: z) splits the cell as
 // if those axes were reversed, so the diagonal starts at another corner; the tets stay positive and
 // the split still matches a neighbour across a face perpendicular to a mirrored axis mirrored the same way.
-inline void append_cell_tets(const uint32_t corner[8], std::vector<uint32_t>& tets, unsigned mirror = 0) {
+inline void append_cell_tets(const uint32_t corner[8], std::vector<uint32_t>& tets,
+                             unsigned mirror = 0) {
   // One tet per ordering of the axes: 0 -> e_a -> e_a + e_b -> 7. Odd orderings are listed with
   // their last two nodes swapped so that all six come out positive.
   static constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 1, 7, 5}, {0, 2, 7, 3},
                                       {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 7, 6}};
-  const bool odd = ((mirror & 1) ^ ((mirror >> 1) & 1) ^ ((mirror >> 2) & 1)) != 0;  // a reflection flips orientation
+  const bool odd = ((mirror & 1) ^ ((mirror >> 1) & 1) ^ ((mirror >> 2) & 1)) !=
+                   0;  // a reflection flips orientation
   for (const auto& t : kTets) {
     uint32_t v[4];
     for (int k = 0; k < 4; ++k) v[k] = corner[static_cast<unsigned>(t[k]) ^ mirror];

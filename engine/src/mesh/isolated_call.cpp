@@ -1,14 +1,13 @@
 // call_isolated: fork, run, send the bytes back through a pipe (see isolated_call.hpp).
 #include "mesh/isolated_call.hpp"
 
+#include <cerrno>
+#include <chrono>
+#include <exception>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <cerrno>
-#include <chrono>
-#include <exception>
 
 #include "tacta/error.hpp"
 
@@ -43,7 +42,8 @@ void write_all(int fd, const std::string& bytes) {
 
 }  // namespace
 
-std::string call_isolated(const std::function<std::string()>& work, const std::string& source, double timeout_s) {
+std::string call_isolated(const std::function<std::string()>& work, const std::string& source,
+                          double timeout_s) {
   int fds[2];
   if (::pipe(fds) != 0) throw InputError({source, 0, 0, ""}, "cannot start the mesher: no pipe");
   const pid_t child = ::fork();
@@ -62,7 +62,8 @@ std::string call_isolated(const std::function<std::string()>& work, const std::s
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   bool timed_out = false;
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       timed_out = true;
       break;
@@ -81,9 +82,13 @@ std::string call_isolated(const std::function<std::string()>& work, const std::s
   int status = 0;
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  if (timed_out) throw InputError({source, 0, 0, ""}, "the mesher ran past " + std::to_string(static_cast<int>(timeout_s)) + " s and was stopped");
+  if (timed_out)
+    throw InputError({source, 0, 0, ""}, "the mesher ran past " +
+                                             std::to_string(static_cast<int>(timeout_s)) +
+                                             " s and was stopped");
   if (WIFSIGNALED(status)) {
-    throw InputError({source, 0, 0, ""}, "the mesher crashed (signal " + std::to_string(WTERMSIG(status)) + ") on this input");
+    throw InputError({source, 0, 0, ""}, "the mesher crashed (signal " +
+                                             std::to_string(WTERMSIG(status)) + ") on this input");
   }
   if (reply.empty()) throw InputError({source, 0, 0, ""}, "the mesher stopped without an answer");
   if (reply[0] == 'E') throw InputError({source, 0, 0, ""}, reply.substr(1));

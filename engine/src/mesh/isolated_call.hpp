@@ -13,7 +13,8 @@ namespace tacta::mesh_detail {
 
 // work returns its result as bytes, or throws (its message becomes the InputError's). Throws
 // InputError naming source when the child fails, crashes, or runs past timeout_s seconds.
-std::string call_isolated(const std::function<std::string()>& work, const std::string& source, double timeout_s);
+std::string call_isolated(const std::function<std::string()>& work, const std::string& source,
+                          double timeout_s);
 
 // Flat arrays in and out of a byte string: a count, then the raw elements.
 template <class T>

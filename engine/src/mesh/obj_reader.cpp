@@ -27,8 +27,8 @@ struct IndexCheck {
     }
     if (index < 0) {
       if (-index > count) {
-        lines.fail(std::string(kind) + " index " + std::to_string(index) + " reaches before the first " + kind +
-                   " (" + std::to_string(count) + " so far)");
+        lines.fail(std::string(kind) + " index " + std::to_string(index) +
+                   " reaches before the first " + kind + " (" + std::to_string(count) + " so far)");
       }
       return count + index;
     }
@@ -40,8 +40,9 @@ struct IndexCheck {
   }
   void check_final(const std::string& path) const {
     if (largest > count) {
-      throw InputError({path, largest_line, 0, ""}, std::string(kind) + " index " + std::to_string(largest) +
-                                                        " is out of range: the file has " + std::to_string(count));
+      throw InputError({path, largest_line, 0, ""},
+                       std::string(kind) + " index " + std::to_string(largest) +
+                           " is out of range: the file has " + std::to_string(count));
     }
   }
 };
@@ -53,14 +54,15 @@ PolygonSoup read_obj(const std::string& path, const std::string& bytes) {
   out.face_starts.push_back(0);
   LineWords lines(path, bytes);
   IndexCheck vertices{"vertex"}, texture{"texture coordinate"}, normals{"normal"};
-  std::vector<double> uvs;             // u v of every vt line
+  std::vector<double> uvs;              // u v of every vt line
   std::vector<int64_t> corner_texture;  // vt index of every face corner, -1 when it has none
   while (lines.next()) {
     const auto& w = lines.words();
     if (w.empty()) continue;
     const std::string_view keyword = w[0];
     if (keyword == "v") {
-      if (w.size() != 4 && w.size() != 5 && w.size() != 7) lines.fail("expected 'v x y z' (with w, or r g b, optional)");
+      if (w.size() != 4 && w.size() != 5 && w.size() != 7)
+        lines.fail("expected 'v x y z' (with w, or r g b, optional)");
       double xyz[6];
       lines.expect_numbers(1, w.size(), "a vertex coordinate", xyz);
       out.positions.insert(out.positions.end(), xyz, xyz + 3);
@@ -78,8 +80,8 @@ PolygonSoup read_obj(const std::string& path, const std::string& bytes) {
     } else if (keyword == "f" || keyword == "l" || keyword == "p") {
       const size_t least = keyword == "f" ? 3 : keyword == "l" ? 2 : 1;
       if (w.size() < least + 1) {
-        lines.fail("'" + std::string(keyword) + "' needs at least " + std::to_string(least) + " vertices, found " +
-                   std::to_string(w.size() - 1));
+        lines.fail("'" + std::string(keyword) + "' needs at least " + std::to_string(least) +
+                   " vertices, found " + std::to_string(w.size() - 1));
       }
       for (size_t i = 1; i < w.size(); ++i) {
         std::string_view ref = w[i];  // v, v/vt, v//vn or v/vt/vn
@@ -94,7 +96,9 @@ PolygonSoup read_obj(const std::string& path, const std::string& bytes) {
             if (part == 1 && keyword == "f") corner_texture.back() = index;
           }
           if (slash == std::string_view::npos) break;
-          if (part == 2) lines.fail("expected v, v/vt, v//vn or v/vt/vn, found '" + std::string(w[i].substr(0, 40)) + "'");
+          if (part == 2)
+            lines.fail("expected v, v/vt, v//vn or v/vt/vn, found '" +
+                       std::string(w[i].substr(0, 40)) + "'");
           ref.remove_prefix(slash + 1);
         }
       }

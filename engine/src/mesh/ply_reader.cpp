@@ -1,5 +1,3 @@
-#include "mesh/surface_readers.hpp"
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -7,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "mesh/surface_readers.hpp"
 #include "mesh/text_reader.hpp"
 #include "tacta/error.hpp"
 
@@ -14,8 +13,9 @@ namespace tacta::mesh_detail {
 
 namespace {
 
-constexpr int64_t kMaxItems = 1'000'000'000;   // items of one element; the file size bounds them first
-constexpr int64_t kMaxFaceSize = 1024;         // vertex indices of one face (fan-triangulated)
+constexpr int64_t kMaxItems =
+    1'000'000'000;                      // items of one element; the file size bounds them first
+constexpr int64_t kMaxFaceSize = 1024;  // vertex indices of one face (fan-triangulated)
 constexpr int64_t kMaxListLength = 1'000'000;  // items of a list in any other element
 
 enum class Type { None, Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
@@ -34,9 +34,13 @@ Type type_named(std::string_view name) {
 
 size_t size_of(Type t) {
   switch (t) {
-    case Type::Int8: case Type::UInt8: return 1;
-    case Type::Int16: case Type::UInt16: return 2;
-    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
     case Type::Float64: return 8;
     case Type::None: break;
   }
@@ -91,12 +95,15 @@ std::vector<std::string_view> words_of(std::string_view line) {
 
 // Every header line must be one of the grammar's; each pass of the loop consumes a line.
 Header parse_header(const std::string& path, const std::string& bytes) {
-  auto fail = [&](int line, const std::string& message) { throw InputError({path, line, 0, ""}, message); };
+  auto fail = [&](int line, const std::string& message) {
+    throw InputError({path, line, 0, ""}, message);
+  };
   Header h;
   size_t pos = 0;
   for (int number = 1;; ++number) {
     const size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) fail(number, "the PLY header has no end_header line (truncated?)");
+    if (end == std::string::npos)
+      fail(number, "the PLY header has no end_header line (truncated?)");
     std::string_view line(bytes.data() + pos, end - pos);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     pos = end + 1;
@@ -107,17 +114,21 @@ Header parse_header(const std::string& path, const std::string& bytes) {
     } else if (keyword == "comment" || keyword == "obj_info") {
       continue;
     } else if (keyword == "format") {
-      if (!h.format.empty() || !h.elements.empty()) fail(number, "'format' must come once, before the elements");
+      if (!h.format.empty() || !h.elements.empty())
+        fail(number, "'format' must come once, before the elements");
       if (words.size() != 3 || words[2] != "1.0" ||
-          (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian")) {
+          (words[1] != "ascii" && words[1] != "binary_little_endian" &&
+           words[1] != "binary_big_endian")) {
         fail(number, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       }
       h.format = words[1];
     } else if (keyword == "element") {
       Element e;
       if (h.format.empty()) fail(number, "expected the 'format' line before the first element");
-      if (words.size() != 3 || !parse_int(words[2], e.count) || e.count < 0 || e.count > kMaxItems) {
-        fail(number, "expected 'element NAME COUNT' with COUNT in [0, " + std::to_string(kMaxItems) + "]");
+      if (words.size() != 3 || !parse_int(words[2], e.count) || e.count < 0 ||
+          e.count > kMaxItems) {
+        fail(number,
+             "expected 'element NAME COUNT' with COUNT in [0, " + std::to_string(kMaxItems) + "]");
       }
       e.name = words[1];
       e.line = number;
@@ -128,13 +139,15 @@ Header parse_header(const std::string& path, const std::string& bytes) {
       if (words.size() == 5 && words[1] == "list") {
         p = {std::string(words[4]), type_named(words[3]), type_named(words[2])};
         if (!is_integer(p.count_type) || p.type == Type::None) {
-          fail(number, "expected 'property list COUNT_TYPE ITEM_TYPE NAME' with an integer COUNT_TYPE");
+          fail(number,
+               "expected 'property list COUNT_TYPE ITEM_TYPE NAME' with an integer COUNT_TYPE");
         }
       } else if (words.size() == 3) {
         p = {std::string(words[2]), type_named(words[1]), Type::None};
         if (p.type == Type::None) {
-          fail(number, "unknown PLY property type '" + std::string(words[1].substr(0, 40)) +
-                           "' (char, uchar, short, ushort, int, uint, float, double or int8 ... float64)");
+          fail(number,
+               "unknown PLY property type '" + std::string(words[1].substr(0, 40)) +
+                   "' (char, uchar, short, ushort, int, uint, float, double or int8 ... float64)");
         }
       } else {
         fail(number, "expected 'property TYPE NAME' or 'property list COUNT_TYPE ITEM_TYPE NAME'");
@@ -147,8 +160,10 @@ Header parse_header(const std::string& path, const std::string& bytes) {
       h.lines = number;
       return h;
     } else {
-      fail(number, "expected a PLY header line (format, element, property, comment, obj_info, end_header), found '" +
-                       std::string(line.substr(0, 40)) + "'");
+      fail(number,
+           "expected a PLY header line (format, element, property, comment, obj_info, end_header), "
+           "found '" +
+               std::string(line.substr(0, 40)) + "'");
     }
   }
 }
@@ -172,14 +187,16 @@ Layout find_layout(const std::string& path, const Header& h) {
   const Element& vertex = h.elements[layout.vertex];
   const Element& face = h.elements[layout.face];
   if (layout.face < layout.vertex) {
-    throw InputError({path, face.line, 0, ""}, "the face element must come after the vertex element");
+    throw InputError({path, face.line, 0, ""},
+                     "the face element must come after the vertex element");
   }
   const char* axes[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {
     auto it = std::find_if(vertex.properties.begin(), vertex.properties.end(),
                            [&](const Property& p) { return p.name == axes[k] && !p.is_list(); });
     if (it == vertex.properties.end()) {
-      throw InputError({path, vertex.line, 0, ""}, std::string("the vertex element has no property ") + axes[k]);
+      throw InputError({path, vertex.line, 0, ""},
+                       std::string("the vertex element has no property ") + axes[k]);
     }
     layout.xyz[k] = static_cast<size_t>(it - vertex.properties.begin());
   }
@@ -187,7 +204,8 @@ Layout find_layout(const std::string& path, const Header& h) {
     return p.is_list() && (p.name == "vertex_indices" || p.name == "vertex_index");
   });
   if (list == face.properties.end() || !is_integer(list->type)) {
-    throw InputError({path, face.line, 0, ""}, "the face element has no integer list property vertex_indices");
+    throw InputError({path, face.line, 0, ""},
+                     "the face element has no integer list property vertex_indices");
   }
   layout.face_list = static_cast<size_t>(list - face.properties.begin());
   return layout;
@@ -198,13 +216,16 @@ void check_counts_fit(const std::string& path, const Header& h, size_t data_byte
   const bool ascii = h.format == "ascii";
   for (const Element& e : h.elements) {
     size_t least = 0;  // bytes of the smallest possible item: one character per ASCII value
-    for (const Property& p : e.properties) least += ascii ? 1 : size_of(p.is_list() ? p.count_type : p.type);
+    for (const Property& p : e.properties)
+      least += ascii ? 1 : size_of(p.is_list() ? p.count_type : p.type);
     if (e.count > 0 && least == 0) {
-      throw InputError({path, e.line, 0, ""}, "element '" + e.name + "' has items but no properties");
+      throw InputError({path, e.line, 0, ""},
+                       "element '" + e.name + "' has items but no properties");
     }
     if (least > 0 && static_cast<uint64_t>(e.count) > data_bytes / least) {
-      throw InputError({path, e.line, 0, ""}, "element '" + e.name + "' declares " + std::to_string(e.count) +
-                                                  " items, more than the file's data can hold (truncated?)");
+      throw InputError({path, e.line, 0, ""},
+                       "element '" + e.name + "' declares " + std::to_string(e.count) +
+                           " items, more than the file's data can hold (truncated?)");
     }
     if (least > 0) data_bytes -= static_cast<size_t>(e.count) * least;
   }
@@ -213,7 +234,8 @@ void check_counts_fit(const std::string& path, const Header& h, size_t data_byte
 // ASCII values: tokens with their line numbers.
 class AsciiValues {
  public:
-  AsciiValues(const std::string& path, const std::string& bytes, int header_lines) : in_(path, bytes) {
+  AsciiValues(const std::string& path, const std::string& bytes, int header_lines)
+      : in_(path, bytes) {
     for (int i = 0; i < header_lines; ++i) in_.skip_line();
   }
   void at(const std::string&, int64_t) {}
@@ -238,24 +260,30 @@ class AsciiValues {
 class BinaryValues {
  public:
   BinaryValues(const std::string& path, const std::string& bytes, size_t start, bool big_endian)
-      : path_(path), bytes_(bytes), pos_(start), swap_(big_endian != (std::endian::native == std::endian::big)) {}
+      : path_(path),
+        bytes_(bytes),
+        pos_(start),
+        swap_(big_endian != (std::endian::native == std::endian::big)) {}
   void at(const std::string& element, int64_t item) {
     element_ = &element;
     item_ = item;
   }
   double value(Type t, const char* what) {
     const size_t n = size_of(t);
-    if (bytes_.size() - pos_ < n) fail(std::string("the file ends (truncated?) where ") + what + " was expected");
+    if (bytes_.size() - pos_ < n)
+      fail(std::string("the file ends (truncated?) where ") + what + " was expected");
     unsigned char b[8];
     std::memcpy(b, bytes_.data() + pos_, n);
     pos_ += n;
     if (swap_) std::reverse(b, b + n);
     double v = decode(t, b);
-    if (!std::isfinite(v)) fail(std::string("expected ") + what + " to be finite, found " + std::to_string(v));
+    if (!std::isfinite(v))
+      fail(std::string("expected ") + what + " to be finite, found " + std::to_string(v));
     return v;
   }
   [[noreturn]] void fail(const std::string& message) const {
-    std::string where = element_ ? "element '" + *element_ + "' item " + std::to_string(item_) + ": " : "";
+    std::string where =
+        element_ ? "element '" + *element_ + "' item " + std::to_string(item_) + ": " : "";
     throw InputError({path_, 0, 0, ""}, where + message);
   }
   void finish() const {
@@ -316,18 +344,21 @@ PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
         const bool face_list = e == layout.face && p == layout.face_list;
         const double n = in.value(property.count_type, "a list length");
         if (n < 0 || n > static_cast<double>(face_list ? kMaxFaceSize : kMaxListLength)) {
-          in.fail("a list length of " + std::to_string(static_cast<int64_t>(n)) + " is out of range [0, " +
+          in.fail("a list length of " + std::to_string(static_cast<int64_t>(n)) +
+                  " is out of range [0, " +
                   std::to_string(face_list ? kMaxFaceSize : kMaxListLength) + "]");
         }
         if (face_list && n < 3) {
-          in.fail("a face needs at least 3 vertex indices, found " + std::to_string(static_cast<int64_t>(n)));
+          in.fail("a face needs at least 3 vertex indices, found " +
+                  std::to_string(static_cast<int64_t>(n)));
         }
         for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) {
           const double v = in.value(property.type, face_list ? "a vertex index" : "a PLY value");
           if (!face_list) continue;
           if (v < 0 || v >= static_cast<double>(vertices)) {
-            in.fail("vertex index " + std::to_string(static_cast<int64_t>(v)) + " is out of range: the file has " +
-                    std::to_string(vertices) + " vertices (0 to " + std::to_string(vertices - 1) + ")");
+            in.fail("vertex index " + std::to_string(static_cast<int64_t>(v)) +
+                    " is out of range: the file has " + std::to_string(vertices) +
+                    " vertices (0 to " + std::to_string(vertices - 1) + ")");
           }
           out.indices.push_back(static_cast<uint32_t>(v));
         }
@@ -344,7 +375,8 @@ PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
 
 bool is_ply(const std::string& path, const std::string& bytes) {
   std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return extension == ".ply" || bytes.rfind("ply", 0) == 0;
 }
 

@@ -17,16 +17,19 @@ void check_grid(const char* name, const Vec3& size, const std::array<int, 3>& ce
     if (!(size[static_cast<size_t>(a)] > 0) || !std::isfinite(size[static_cast<size_t>(a)])) {
       throw InputError({name, 0, 0, ""}, "size must be positive and finite on every axis");
     }
-    if (cells[static_cast<size_t>(a)] < 1) throw InputError({name, 0, 0, ""}, "cells must be at least 1 on every axis");
+    if (cells[static_cast<size_t>(a)] < 1)
+      throw InputError({name, 0, 0, ""}, "cells must be at least 1 on every axis");
     nodes *= cells[static_cast<size_t>(a)] + 1;
-    if (nodes > kMaxGridNodes) throw InputError({name, 0, 0, ""}, "more than " + std::to_string(kMaxGridNodes) + " grid nodes");
+    if (nodes > kMaxGridNodes)
+      throw InputError({name, 0, 0, ""},
+                       "more than " + std::to_string(kMaxGridNodes) + " grid nodes");
   }
 }
 
 // mirror_about_centre: each octant of the grid splits its cells with the diagonal pointing away
 // from the grid centre (the ball needs it: a tet never has all four nodes on one spherical shell).
-VolumeMesh hex_grid(const char* name, const Vec3& size, const std::array<int, 3>& cells, const Vec3& origin,
-                    bool mirror_about_centre = false) {
+VolumeMesh hex_grid(const char* name, const Vec3& size, const std::array<int, 3>& cells,
+                    const Vec3& origin, bool mirror_about_centre = false) {
   check_grid(name, size, cells, 3);
   const uint32_t nx = static_cast<uint32_t>(cells[0]), ny = static_cast<uint32_t>(cells[1]),
                  nz = static_cast<uint32_t>(cells[2]);
@@ -48,7 +51,8 @@ VolumeMesh hex_grid(const char* name, const Vec3& size, const std::array<int, 3>
     for (uint32_t j = 0; j < ny; ++j) {
       for (uint32_t i = 0; i < nx; ++i) {
         uint32_t corner[8];
-        for (uint32_t c = 0; c < 8; ++c) corner[c] = node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+        for (uint32_t c = 0; c < 8; ++c)
+          corner[c] = node(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
         unsigned mirror = mesh_detail::alternating_mirror(i, j, k);
         if (mirror_about_centre) {
           mirror = (2 * i < nx ? 1u : 0u) | (2 * j < ny ? 2u : 0u) | (2 * k < nz ? 4u : 0u);
@@ -96,8 +100,10 @@ VolumeMesh make_quad_grid(const Vec3& size, const std::array<int, 3>& cells, con
 }
 
 VolumeMesh make_sphere(double radius, const Vec3& centre, int subdivisions) {
-  if (!(radius > 0) || !std::isfinite(radius)) throw InputError({"sphere", 0, 0, ""}, "radius must be positive and finite");
-  if (subdivisions < 0 || subdivisions > 4) throw InputError({"sphere", 0, 0, ""}, "subdivisions must be in [0, 4]");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw InputError({"sphere", 0, 0, ""}, "radius must be positive and finite");
+  if (subdivisions < 0 || subdivisions > 4)
+    throw InputError({"sphere", 0, 0, ""}, "subdivisions must be in [0, 4]");
   const int n = 2 << subdivisions;  // cells a side: 2, 4, 8, 16, 32
   VolumeMesh mesh = hex_grid("sphere", {2, 2, 2}, {n, n, n}, {-1, -1, -1}, true);
   // Each cube shell max(|x|,|y|,|z|) = s goes onto the sphere |p| = s: p -> p s / |p|.

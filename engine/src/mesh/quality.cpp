@@ -21,13 +21,15 @@ double tet_volume(const VolumeMesh& mesh, size_t t) {
   const uint32_t* v = &mesh.tets[4 * t];
   P3 a = point(mesh.positions, v[0]);
   return mesh_detail::triple(point(mesh.positions, v[1]) - a, point(mesh.positions, v[2]) - a,
-                             point(mesh.positions, v[3]) - a) / 6.0;
+                             point(mesh.positions, v[3]) - a) /
+         6.0;
 }
 
 double polygon_area(const VolumeMesh& mesh, const uint32_t* v, size_t count) {
   P3 sum{0, 0, 0};
   P3 a = point(mesh.positions, v[0]);
-  for (size_t k = 1; k + 1 < count; ++k) sum = sum + cross(point(mesh.positions, v[k]) - a, point(mesh.positions, v[k + 1]) - a);
+  for (size_t k = 1; k + 1 < count; ++k)
+    sum = sum + cross(point(mesh.positions, v[k]) - a, point(mesh.positions, v[k + 1]) - a);
   return 0.5 * norm(sum);
 }
 
@@ -36,7 +38,8 @@ double tet_aspect(const VolumeMesh& mesh, size_t t) {
   const uint32_t* v = &mesh.tets[4 * t];
   double longest = 0, largest_face = 0;
   for (int i = 0; i < 4; ++i) {
-    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, norm(point(mesh.positions, v[i]) - point(mesh.positions, v[j])));
+    for (int j = i + 1; j < 4; ++j)
+      longest = std::max(longest, norm(point(mesh.positions, v[i]) - point(mesh.positions, v[j])));
     uint32_t face[3];
     for (int k = 0, n = 0; k < 4; ++k)
       if (k != i) face[n++] = v[k];
@@ -51,16 +54,20 @@ double tet_aspect(const VolumeMesh& mesh, size_t t) {
 double tet_shape(const VolumeMesh& mesh, size_t t, double& min_dihedral, double& max_dihedral) {
   const uint32_t* v = &mesh.tets[4 * t];
   const P3 o = point(mesh.positions, v[0]);
-  const P3 a = point(mesh.positions, v[1]) - o, b = point(mesh.positions, v[2]) - o, c = point(mesh.positions, v[3]) - o;
+  const P3 a = point(mesh.positions, v[1]) - o, b = point(mesh.positions, v[2]) - o,
+           c = point(mesh.positions, v[3]) - o;
   const double six_volume = mesh_detail::triple(a, b, c);
-  const P3 centre_times = dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
+  const P3 centre_times =
+      dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
   const double circumradius = norm(centre_times) / (2.0 * std::abs(six_volume));
-  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // opposite vertex k
+  static constexpr int kFace[4][3] = {
+      {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // opposite vertex k
   P3 normal[4];
   double area = 0;
   for (int f = 0; f < 4; ++f) {
     const P3 p0 = point(mesh.positions, v[kFace[f][0]]);
-    const P3 n = cross(point(mesh.positions, v[kFace[f][1]]) - p0, point(mesh.positions, v[kFace[f][2]]) - p0);
+    const P3 n = cross(point(mesh.positions, v[kFace[f][1]]) - p0,
+                       point(mesh.positions, v[kFace[f][2]]) - p0);
     area += 0.5 * norm(n);
     normal[f] = (1.0 / norm(n)) * n;
   }
@@ -100,7 +107,8 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   if (mesh.dimension == 3) {
     for (size_t t = 0; t < mesh.tet_count(); ++t) take(tet_volume(mesh, t), tet_aspect(mesh, t));
     constexpr double kDegrees = 180.0 / std::numbers::pi;
-    double min_ratio = std::numeric_limits<double>::infinity(), sum_ratio = 0, lo = std::numbers::pi, hi = 0;
+    double min_ratio = std::numeric_limits<double>::infinity(), sum_ratio = 0,
+           lo = std::numbers::pi, hi = 0;
     for (size_t t = 0; t < mesh.tet_count(); ++t) {
       double tet_lo = 0, tet_hi = 0;
       const double ratio = tet_shape(mesh, t, tet_lo, tet_hi);
@@ -123,7 +131,9 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
     for (size_t e = 0; e < elements.size() / per; ++e) {
       const uint32_t* v = &elements[per * e];
       double area = polygon_area(mesh, v, per), longest = 0;
-      for (size_t k = 0; k < per; ++k) longest = std::max(longest, norm(point(mesh.positions, v[(k + 1) % per]) - point(mesh.positions, v[k])));
+      for (size_t k = 0; k < per; ++k)
+        longest = std::max(
+            longest, norm(point(mesh.positions, v[(k + 1) % per]) - point(mesh.positions, v[k])));
       take(area, longest * longest / area * (quads ? 1.0 : 0.5));
     }
   }
@@ -132,7 +142,8 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   q.worst_aspect_ratio = worst;
   double min_e = std::numeric_limits<double>::infinity(), max_e = 0;
   for (size_t e = 0; e + 1 < mesh.edges.size(); e += 2) {
-    double length = norm(point(mesh.positions, mesh.edges[e + 1]) - point(mesh.positions, mesh.edges[e]));
+    double length =
+        norm(point(mesh.positions, mesh.edges[e + 1]) - point(mesh.positions, mesh.edges[e]));
     min_e = std::min(min_e, length);
     max_e = std::max(max_e, length);
   }
@@ -145,7 +156,8 @@ std::vector<double> piece_volumes(const VolumeMesh& mesh) {
   mesh_detail::NodeUnion pieces_of(mesh.node_count());
   pieces_of.join_elements(mesh.tets, 4);
   std::vector<double> volume_of_root(mesh.node_count(), 0.0);
-  for (size_t t = 0; t < mesh.tet_count(); ++t) volume_of_root[pieces_of.root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
+  for (size_t t = 0; t < mesh.tet_count(); ++t)
+    volume_of_root[pieces_of.root(mesh.tets[4 * t])] += std::abs(tet_volume(mesh, t));
   std::vector<double> pieces;
   for (double v : volume_of_root)
     if (v > 0) pieces.push_back(v);
@@ -157,7 +169,9 @@ double enclosed_volume(const SurfaceMesh& surface) {
   double six_volume = 0;
   for (size_t t = 0; t < surface.triangle_count(); ++t) {
     const uint32_t* v = &surface.triangles[3 * t];
-    six_volume += mesh_detail::triple(point(surface.positions, v[0]), point(surface.positions, v[1]), point(surface.positions, v[2]));
+    six_volume +=
+        mesh_detail::triple(point(surface.positions, v[0]), point(surface.positions, v[1]),
+                            point(surface.positions, v[2]));
   }
   return six_volume / 6.0;
 }

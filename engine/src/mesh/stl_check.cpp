@@ -12,10 +12,12 @@ void check_stl(const std::string& path, const std::string& bytes) {
   if (bytes.size() >= 84) {
     uint32_t facets = 0;
     std::memcpy(&facets, bytes.data() + 80, sizeof facets);
-    if (84 + 50 * static_cast<uint64_t>(facets) == bytes.size()) return;  // binary; values checked after import
+    if (84 + 50 * static_cast<uint64_t>(facets) == bytes.size())
+      return;  // binary; values checked after import
     if (static_cast<uint32_t>(84 + 50 * facets) == bytes.size()) {
-      throw InputError({path, 0, 0, ""}, "binary STL with " + std::to_string(facets) + " facets cannot be " +
-                                             std::to_string(bytes.size()) + " bytes long");
+      throw InputError({path, 0, 0, ""}, "binary STL with " + std::to_string(facets) +
+                                             " facets cannot be " + std::to_string(bytes.size()) +
+                                             " bytes long");
     }
   }
   LineWords lines(path, bytes);
@@ -26,8 +28,9 @@ void check_stl(const std::string& path, const std::string& bytes) {
     if (w.empty()) continue;
     const std::string_view keyword = w[0];
     auto expect = [&](Place where) {
-      static constexpr const char* kExpected[] = {"'solid'", "'facet normal' or 'endsolid'", "'outer loop'",
-                                                  "'vertex' or 'endloop'", "'endfacet'"};
+      static constexpr const char* kExpected[] = {"'solid'", "'facet normal' or 'endsolid'",
+                                                  "'outer loop'", "'vertex' or 'endloop'",
+                                                  "'endfacet'"};
       if (place != where) {
         lines.fail("unexpected '" + std::string(keyword.substr(0, 40)) + "', expected " +
                    kExpected[static_cast<int>(place)]);
@@ -53,7 +56,8 @@ void check_stl(const std::string& path, const std::string& bytes) {
       ++loop_vertices;
     } else if (keyword == "endloop") {
       expect(Place::InLoop);
-      if (loop_vertices != 3) lines.fail("a facet needs 3 vertices, found " + std::to_string(loop_vertices));
+      if (loop_vertices != 3)
+        lines.fail("a facet needs 3 vertices, found " + std::to_string(loop_vertices));
       place = Place::AfterLoop;
     } else if (keyword == "endfacet") {
       expect(Place::AfterLoop);
@@ -63,8 +67,10 @@ void check_stl(const std::string& path, const std::string& bytes) {
       place = Place::BeforeSolid;
     } else {
       lines.fail(place == Place::BeforeSolid && !bytes.starts_with("solid")
-                     ? "neither a binary STL (84 + 50 bytes per facet) nor an ASCII STL (starting with 'solid')"
-                     : "expected an ASCII STL keyword (solid, facet, outer, vertex, endloop, endfacet, endsolid), found '" +
+                     ? "neither a binary STL (84 + 50 bytes per facet) nor an ASCII STL (starting "
+                       "with 'solid')"
+                     : "expected an ASCII STL keyword (solid, facet, outer, vertex, endloop, "
+                       "endfacet, endsolid), found '" +
                            std::string(keyword.substr(0, 40)) + "'");
     }
   }

@@ -2,13 +2,12 @@
 // assimp's own vertex joining keeps vertices apart when their normals or texture coordinates
 // differ (every STL corner, OBJ seams), so positions are welded again here, exactly, across all
 // sub-meshes: a body's surface must be one connected mesh.
+#include <algorithm>
 #include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -27,11 +26,14 @@ namespace {
 
 using mesh_detail::P3;
 
-constexpr double kDegenerateArea = 1e-12;  // |cross| below this times (longest edge)^2 is a flat triangle
+constexpr double kDegenerateArea =
+    1e-12;  // |cross| below this times (longest edge)^2 is a flat triangle
 
 struct PositionKey {
   uint64_t bits[3];
-  bool operator==(const PositionKey& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+  bool operator==(const PositionKey& o) const {
+    return std::memcmp(bits, o.bits, sizeof bits) == 0;
+  }
 };
 struct PositionHash {
   size_t operator()(const PositionKey& k) const {
@@ -49,8 +51,11 @@ class SurfaceBuilder {
     std::vector<uint32_t> local(mesh.mNumVertices);
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       aiVector3D p = transform * mesh.mVertices[v];
-      double xyz[3] = {static_cast<double>(p.x) + 0.0, static_cast<double>(p.y) + 0.0, static_cast<double>(p.z) + 0.0};
-      local[v] = add_vertex(xyz, [&] { return "vertex " + std::to_string(v) + " of mesh '" + mesh.mName.C_Str() + "'"; });
+      double xyz[3] = {static_cast<double>(p.x) + 0.0, static_cast<double>(p.y) + 0.0,
+                       static_cast<double>(p.z) + 0.0};
+      local[v] = add_vertex(xyz, [&] {
+        return "vertex " + std::to_string(v) + " of mesh '" + mesh.mName.C_Str() + "'";
+      });
     }
     const bool mirrored = transform.Determinant() < 0;  // a mirror flips the winding
     const aiVector3D* uv = mesh.HasTextureCoords(0) ? mesh.mTextureCoords[0] : nullptr;
@@ -65,7 +70,9 @@ class SurfaceBuilder {
       double corner_uv[6] = {0, 0, 0, 0, 0, 0};  // a sub-mesh without coordinates gets zeros
       for (int k = 0; k < 3; ++k) {
         unsigned i = face.mIndices[k];
-        if (i >= mesh.mNumVertices) throw InputError({out_.source, 0, 0, ""}, "a face refers to a vertex that does not exist");
+        if (i >= mesh.mNumVertices)
+          throw InputError({out_.source, 0, 0, ""},
+                           "a face refers to a vertex that does not exist");
         t[k] = local[i];
         if (uv != nullptr) corner_uv[2 * k] = uv[i].x, corner_uv[2 * k + 1] = uv[i].y;
       }
@@ -94,7 +101,9 @@ class SurfaceBuilder {
         double corner_uv[6] = {0, 0, 0, 0, 0, 0};
         for (int c = 0; c < 3; ++c) {
           t[c] = local[soup.indices[corners[c]]];
-          if (has_uv) corner_uv[2 * c] = soup.corner_uvs[2 * corners[c]], corner_uv[2 * c + 1] = soup.corner_uvs[2 * corners[c] + 1];
+          if (has_uv)
+            corner_uv[2 * c] = soup.corner_uvs[2 * corners[c]],
+                          corner_uv[2 * c + 1] = soup.corner_uvs[2 * corners[c] + 1];
         }
         add_triangle(t, corner_uv);
       }
@@ -105,10 +114,12 @@ class SurfaceBuilder {
     if (!any_uv_) out_.corner_uvs.clear();
     report_.welded_vertices += welded_;
     if (report_.degenerate_triangles > 0) {
-      report_.warnings.push_back(std::to_string(report_.degenerate_triangles) +
-                                 " degenerate triangles (zero area or a repeated vertex) were dropped");
+      report_.warnings.push_back(
+          std::to_string(report_.degenerate_triangles) +
+          " degenerate triangles (zero area or a repeated vertex) were dropped");
     }
-    if (non_triangles_ > 0) report_.warnings.push_back(std::to_string(non_triangles_) + " points or lines were ignored");
+    if (non_triangles_ > 0)
+      report_.warnings.push_back(std::to_string(non_triangles_) + " points or lines were ignored");
   }
 
  private:
@@ -159,7 +170,8 @@ class SurfaceBuilder {
 void keep_only_importers_of(Assimp::Importer& importer, const std::string& extension) {
   for (size_t i = importer.GetImporterCount(); i-- > 0;) {
     const aiImporterDesc* info = importer.GetImporterInfo(i);
-    std::istringstream names(info != nullptr && info->mFileExtensions != nullptr ? info->mFileExtensions : "");
+    std::istringstream names(
+        info != nullptr && info->mFileExtensions != nullptr ? info->mFileExtensions : "");
     bool match = false;
     for (std::string name; names >> name;) match = match || "." + name == extension;
     if (match) continue;
@@ -169,13 +181,16 @@ void keep_only_importers_of(Assimp::Importer& importer, const std::string& exten
   }
 }
 
-void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, SurfaceBuilder& builder, int depth) {
+void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
+              SurfaceBuilder& builder, int depth) {
   if (depth > 256) throw InputError({"", 0, 0, ""}, "scene graph nested deeper than 256 nodes");
   aiMatrix4x4 transform = parent * node.mTransformation;
   for (unsigned m = 0; m < node.mNumMeshes; ++m) {
-    if (node.mMeshes[m] < scene.mNumMeshes) builder.add_mesh(*scene.mMeshes[node.mMeshes[m]], transform);
+    if (node.mMeshes[m] < scene.mNumMeshes)
+      builder.add_mesh(*scene.mMeshes[node.mMeshes[m]], transform);
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c) add_node(scene, *node.mChildren[c], transform, builder, depth + 1);
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    add_node(scene, *node.mChildren[c], transform, builder, depth + 1);
 }
 
 }  // namespace
@@ -184,9 +199,11 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
   LoadReport local;
   LoadReport& r = report ? *report : local;
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError({path, 0, 0, ""}, "no such file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError({path, 0, 0, ""}, "no such file");
   std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   r.format = "surface:" + (extension.empty() ? std::string("?") : extension.substr(1));
 
   SurfaceMesh out;
@@ -205,8 +222,9 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
     } else if (extension == ".gltf" || extension == ".glb") {
       mesh_detail::check_gltf(path, bytes);
     } else {
-      throw InputError({path, 0, 0, ""}, "unsupported surface format '" + extension +
-                                             "': expected .obj, .stl, .ply, .gltf or .glb (or a volume mesh)");
+      throw InputError({path, 0, 0, ""},
+                       "unsupported surface format '" + extension +
+                           "': expected .obj, .stl, .ply, .gltf or .glb (or a volume mesh)");
     }
     Assimp::Importer importer;
     keep_only_importers_of(importer, extension);
@@ -217,7 +235,8 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
       throw InputError({path, 0, 0, ""}, std::string("the surface importer failed: ") + e.what());
     }
     if (!scene || !scene->mRootNode) {
-      throw InputError({path, 0, 0, ""}, std::string("cannot read as a surface mesh: ") + importer.GetErrorString());
+      throw InputError({path, 0, 0, ""},
+                       std::string("cannot read as a surface mesh: ") + importer.GetErrorString());
     }
     try {
       add_node(*scene, *scene->mRootNode, aiMatrix4x4(), builder, 0);
@@ -227,7 +246,8 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
     }
   }
   builder.finish();
-  if (out.triangles.empty()) throw InputError({path, 0, 0, ""}, "the file holds no (non-degenerate) triangles");
+  if (out.triangles.empty())
+    throw InputError({path, 0, 0, ""}, "the file holds no (non-degenerate) triangles");
   check_closed(out, r);
   return out;
 }

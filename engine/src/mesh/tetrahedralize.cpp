@@ -3,14 +3,13 @@
 // user's surface) and the inside is meshed by Gmsh's 3D Delaunay, then optimised by Gmsh.
 // The input is checked here first, so that Gmsh only ever sees a closed, outward, manifold shell.
 #include <cmath>
-#include <stdexcept>
+#include <fmt/format.h>
+#include <gmsh.h>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <fmt/format.h>
-#include <gmsh.h>
 
 #include "mesh/isolated_call.hpp"
 #include "tacta/mesh_build.hpp"
@@ -46,7 +45,8 @@ std::string gmsh_error(const std::exception* e) {
 }
 
 const std::string kGmshFailed =
-    "Gmsh could not tetrahedralize the surface (are triangles crossing or touching? repair it in a mesh "
+    "Gmsh could not tetrahedralize the surface (are triangles crossing or touching? repair it in a "
+    "mesh "
     "editor, or fill it with voxel_size instead): ";
 
 // Gmsh numbers nodes from 1: tags 1..n for the nodes, and each element's node tags.
@@ -66,27 +66,39 @@ double regular_edge(double volume) { return std::cbrt(6.0 * std::numbers::sqrt2 
 
 void check_surface(SurfaceMesh& s, LoadReport& r) {
   const std::string& source = s.source;
-  if (s.triangle_count() < 4) throw InputError({source, 0, 0, ""}, "tetrahedralize needs a closed surface; this one has fewer than 4 triangles");
+  if (s.triangle_count() < 4)
+    throw InputError({source, 0, 0, ""},
+                     "tetrahedralize needs a closed surface; this one has fewer than 4 triangles");
   check_closed(s, r);
   if (!r.closed()) {
-    throw InputError({source, 0, 0, ""},
-                     fmt::format("tetrahedralize needs a closed, manifold surface; this one has {} open edges and {} "
-                                 "non-manifold edges (close the holes in a mesh editor, or use voxel_size, which "
-                                 "fills an open surface as a best guess)",
-                                 r.boundary_edges, r.nonmanifold_edges));
+    throw InputError(
+        {source, 0, 0, ""},
+        fmt::format(
+            "tetrahedralize needs a closed, manifold surface; this one has {} open edges and {} "
+            "non-manifold edges (close the holes in a mesh editor, or use voxel_size, which "
+            "fills an open surface as a best guess)",
+            r.boundary_edges, r.nonmanifold_edges));
   }
   const double volume = enclosed_volume(s);
-  if (!(std::abs(volume) > 0) || !std::isfinite(volume)) throw InputError({source, 0, 0, ""}, "the surface encloses no volume");
+  if (!(std::abs(volume) > 0) || !std::isfinite(volume))
+    throw InputError({source, 0, 0, ""}, "the surface encloses no volume");
   if (volume < 0) {  // inward triangles: Gmsh wants them outward
-    for (size_t t = 0; t < s.triangle_count(); ++t) std::swap(s.triangles[3 * t + 1], s.triangles[3 * t + 2]);
+    for (size_t t = 0; t < s.triangle_count(); ++t)
+      std::swap(s.triangles[3 * t + 1], s.triangles[3 * t + 2]);
     r.warnings.push_back("the surface's triangles faced inward; they were flipped");
   }
 }
 
 void check_options(const TetrahedralizeDesc& o, const std::string& source) {
-  if (!(o.max_volume >= 0) || !std::isfinite(o.max_volume)) throw InputError({source, 0, 0, ""}, "tetrahedralize.max_volume must be 0 (automatic) or a positive volume in m^3");
-  if (!(o.min_dihedral_deg >= 0 && o.min_dihedral_deg < 70)) throw InputError({source, 0, 0, ""}, "tetrahedralize.min_dihedral must be in [0, 70) degrees (the regular tet has 70.5)");
-  if (!(o.min_radius_ratio >= 0 && o.min_radius_ratio < 1)) throw InputError({source, 0, 0, ""}, "tetrahedralize.min_radius_ratio must be in [0, 1)");
+  if (!(o.max_volume >= 0) || !std::isfinite(o.max_volume))
+    throw InputError({source, 0, 0, ""},
+                     "tetrahedralize.max_volume must be 0 (automatic) or a positive volume in m^3");
+  if (!(o.min_dihedral_deg >= 0 && o.min_dihedral_deg < 70))
+    throw InputError(
+        {source, 0, 0, ""},
+        "tetrahedralize.min_dihedral must be in [0, 70) degrees (the regular tet has 70.5)");
+  if (!(o.min_radius_ratio >= 0 && o.min_radius_ratio < 1))
+    throw InputError({source, 0, 0, ""}, "tetrahedralize.min_radius_ratio must be in [0, 1)");
 }
 
 // The tets Gmsh holds now, as raw positions and 0-based tets (Gmsh's node tags renumbered).
@@ -120,12 +132,14 @@ std::string mesh_in_gmsh(const SurfaceMesh& s, const TetrahedralizeDesc& options
   try {
     const int surface = gmsh::model::addDiscreteEntity(2);
     gmsh::model::mesh::addNodes(2, surface, gmsh_node_tags(s.vertex_count()), s.positions);
-    gmsh::model::mesh::addElementsByType(surface, 2, {}, gmsh_element_nodes(s.triangles));  // 2: 3-node triangles
+    gmsh::model::mesh::addElementsByType(surface, 2, {},
+                                         gmsh_element_nodes(s.triangles));  // 2: 3-node triangles
     std::vector<int> shell_surfaces{surface};
     if (options.max_volume > 0) {
       // A size inside asks for a new surface mesh too: the surface is split into patches at 40
       // degree creases, each reparametrised and remeshed at that size (Gmsh's STL remeshing).
-      gmsh::model::mesh::classifySurfaces(40 * std::numbers::pi / 180, true, true, std::numbers::pi);
+      gmsh::model::mesh::classifySurfaces(40 * std::numbers::pi / 180, true, true,
+                                          std::numbers::pi);
       gmsh::model::mesh::createGeometry();
       gmsh::vectorpair patches;
       gmsh::model::getEntities(patches, 2);
@@ -162,27 +176,34 @@ std::string mesh_in_gmsh(const SurfaceMesh& s, const TetrahedralizeDesc& options
 
 }  // namespace
 
-VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options, LoadReport* report) {
+VolumeMesh tetrahedralize(const SurfaceMesh& closed, const TetrahedralizeDesc& options,
+                          LoadReport* report) {
   LoadReport local;
   LoadReport& r = report ? *report : local;
   SurfaceMesh s = closed;
   check_options(options, s.source);
   check_surface(s, r);
-  const std::string bytes = mesh_detail::call_isolated([&] { return mesh_in_gmsh(s, options); }, s.source, kMesherTimeout);
+  const std::string bytes = mesh_detail::call_isolated([&] { return mesh_in_gmsh(s, options); },
+                                                       s.source, kMesherTimeout);
   VolumeMesh mesh;
   mesh.source = s.source + " (tetrahedralized)";
   size_t at = 0;
   mesh.positions = mesh_detail::take_array<double>(bytes, at);
   mesh.tets = mesh_detail::take_array<uint32_t>(bytes, at);
-  if (mesh.tets.empty() || at != bytes.size()) throw InputError({s.source, 0, 0, ""}, "the mesher's answer was cut short");
+  if (mesh.tets.empty() || at != bytes.size())
+    throw InputError({s.source, 0, 0, ""}, "the mesher's answer was cut short");
   finalize(mesh, &r);
   const MeshQuality q = mesh_quality(mesh);
-  if (q.min_dihedral_deg < options.min_dihedral_deg || q.min_radius_ratio < options.min_radius_ratio) {
-    throw InputError({s.source, 0, 0, ""},
-                     fmt::format("tetrahedralize reached a smallest dihedral angle of {:.2f} degrees and a smallest "
-                                 "radius ratio of {:.3f}, short of the {:.2f} degrees and {:.3f} asked for (the surface "
-                                 "triangles bound the quality: remesh the surface finer or ask for less)",
-                                 q.min_dihedral_deg, q.min_radius_ratio, options.min_dihedral_deg, options.min_radius_ratio));
+  if (q.min_dihedral_deg < options.min_dihedral_deg ||
+      q.min_radius_ratio < options.min_radius_ratio) {
+    throw InputError(
+        {s.source, 0, 0, ""},
+        fmt::format(
+            "tetrahedralize reached a smallest dihedral angle of {:.2f} degrees and a smallest "
+            "radius ratio of {:.3f}, short of the {:.2f} degrees and {:.3f} asked for (the surface "
+            "triangles bound the quality: remesh the surface finer or ask for less)",
+            q.min_dihedral_deg, q.min_radius_ratio, options.min_dihedral_deg,
+            options.min_radius_ratio));
   }
   r.format = "gmsh-tetrahedralize";
   return mesh;
@@ -195,7 +216,8 @@ void write_gmsh(const VolumeMesh& mesh, const std::string& path) {
         try {
           const int volume = gmsh::model::addDiscreteEntity(3);
           gmsh::model::mesh::addNodes(3, volume, gmsh_node_tags(mesh.node_count()), mesh.positions);
-          gmsh::model::mesh::addElementsByType(volume, 4, {}, gmsh_element_nodes(mesh.tets));  // 4: 4-node tets
+          gmsh::model::mesh::addElementsByType(volume, 4, {},
+                                               gmsh_element_nodes(mesh.tets));  // 4: 4-node tets
           gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
           gmsh::option::setNumber("Mesh.Binary", 0);
           gmsh::write(path);

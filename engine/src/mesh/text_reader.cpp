@@ -9,7 +9,9 @@
 namespace tacta::mesh_detail {
 
 namespace {
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
 
 std::string quoted(std::string_view token) {
   constexpr size_t kShown = 40;  // long garbage is cut so that a message stays one line
@@ -80,7 +82,8 @@ void TextReader::skip_line() {
 
 std::string_view TextReader::next(const char* what) {
   skip_space();
-  if (pos_ >= text_.size()) fail_at(line_, std::string("unexpected end of file (truncated?), expected ") + what);
+  if (pos_ >= text_.size())
+    fail_at(line_, std::string("unexpected end of file (truncated?), expected ") + what);
   size_t start = pos_;
   while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
   token_line_ = line_;
@@ -90,15 +93,16 @@ std::string_view TextReader::next(const char* what) {
 int64_t TextReader::next_int(const char* what) {
   std::string_view token = next(what);
   int64_t value = 0;
-  if (!parse_int(token, value)) fail(std::string("expected ") + what + " (an integer), found " + quoted(token));
+  if (!parse_int(token, value))
+    fail(std::string("expected ") + what + " (an integer), found " + quoted(token));
   return value;
 }
 
 int64_t TextReader::next_int_in(const char* what, int64_t min, int64_t max) {
   int64_t value = next_int(what);
   if (value < min || value > max) {
-    fail(std::string("expected ") + what + " in [" + std::to_string(min) + ", " + std::to_string(max) +
-         "], found " + std::to_string(value));
+    fail(std::string("expected ") + what + " in [" + std::to_string(min) + ", " +
+         std::to_string(max) + "], found " + std::to_string(value));
   }
   return value;
 }
@@ -106,8 +110,10 @@ int64_t TextReader::next_int_in(const char* what, int64_t min, int64_t max) {
 double TextReader::next_double(const char* what) {
   std::string_view token = next(what);
   double value = 0;
-  if (!parse_double(token, value)) fail(std::string("expected ") + what + " (a number), found " + quoted(token));
-  if (!std::isfinite(value)) fail(std::string("expected ") + what + " to be finite, found " + quoted(token));
+  if (!parse_double(token, value))
+    fail(std::string("expected ") + what + " (a number), found " + quoted(token));
+  if (!std::isfinite(value))
+    fail(std::string("expected ") + what + " to be finite, found " + quoted(token));
   return value;
 }
 
@@ -140,7 +146,9 @@ bool LineWords::next() {
   return true;
 }
 
-void LineWords::fail(const std::string& message) const { throw InputError({path_, number_, 0, ""}, message); }
+void LineWords::fail(const std::string& message) const {
+  throw InputError({path_, number_, 0, ""}, message);
+}
 
 void LineWords::expect_numbers(size_t first, size_t last, const char* what, double* out) const {
   for (size_t i = first; i < last; ++i) {

@@ -14,8 +14,8 @@ namespace tacta {
 namespace {
 
 MeshFormat detect_text_format(std::string_view head) {
-  if (head.size() >= 3 && static_cast<unsigned char>(head[0]) == 0xEF && static_cast<unsigned char>(head[1]) == 0xBB &&
-      static_cast<unsigned char>(head[2]) == 0xBF) {
+  if (head.size() >= 3 && static_cast<unsigned char>(head[0]) == 0xEF &&
+      static_cast<unsigned char>(head[1]) == 0xBB && static_cast<unsigned char>(head[2]) == 0xBF) {
     head.remove_prefix(3);  // UTF-8 byte order mark
   }
   size_t start = head.find_first_not_of(" \t\r\n");
@@ -64,7 +64,8 @@ namespace mesh_detail {
 namespace {
 VolumeMesh read_by_format(const std::string& path, LoadReport& report) {
   std::string text = read_file_bytes(path);
-  if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError({path, 0, 0, ""}, "the file is empty");
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw InputError({path, 0, 0, ""}, "the file is empty");
   switch (detect_text_format(text)) {
     case MeshFormat::GmshV1:
     case MeshFormat::GmshV2:
@@ -73,19 +74,22 @@ VolumeMesh read_by_format(const std::string& path, LoadReport& report) {
     case MeshFormat::VtkXml: return read_vtk_xml(path, text, report);
     case MeshFormat::Other: break;
   }
-  throw InputError({path, 1, 0, ""},
-                   "unknown volume mesh format: expected Gmsh .msh (v1 $NOD, v2.2 or v4.1 $MeshFormat), "
-                   "VTK legacy ('# vtk DataFile') or VTK XML (<VTKFile>)");
+  throw InputError(
+      {path, 1, 0, ""},
+      "unknown volume mesh format: expected Gmsh .msh (v1 $NOD, v2.2 or v4.1 $MeshFormat), "
+      "VTK legacy ('# vtk DataFile') or VTK XML (<VTKFile>)");
 }
 }  // namespace
 
 VolumeMesh read_volume_raw(const std::string& path, LoadReport& report) {
   VolumeMesh mesh = read_by_format(path, report);
   if (report.skipped_elements > 0) {
-    report.warnings.push_back(std::to_string(report.skipped_elements) + " elements that are not tetrahedra were skipped");
+    report.warnings.push_back(std::to_string(report.skipped_elements) +
+                              " elements that are not tetrahedra were skipped");
   }
   if (mesh.tets.empty()) {
-    throw InputError({path, 0, 0, ""}, "the file holds no tetrahedra (" + std::to_string(report.skipped_elements) +
+    throw InputError({path, 0, 0, ""}, "the file holds no tetrahedra (" +
+                                           std::to_string(report.skipped_elements) +
                                            " other elements); a volume mesh needs tets");
   }
   return mesh;

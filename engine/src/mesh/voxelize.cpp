@@ -5,12 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "mesh/geometry.hpp"
 #include "mesh/grid_tets.hpp"
@@ -49,7 +48,8 @@ bool triangle_touches_box(const P3 tri[3], double half) {
 double winding_number(const SurfaceMesh& s, const P3& p) {
   double total = 0;
   for (size_t t = 0; t < s.triangle_count(); ++t) {
-    P3 a = point(s.positions, s.triangles[3 * t]) - p, b = point(s.positions, s.triangles[3 * t + 1]) - p,
+    P3 a = point(s.positions, s.triangles[3 * t]) - p,
+       b = point(s.positions, s.triangles[3 * t + 1]) - p,
        c = point(s.positions, s.triangles[3 * t + 2]) - p;
     double la = norm(a), lb = norm(b), lc = norm(c);
     double numerator = mesh_detail::triple(a, b, c);
@@ -71,10 +71,12 @@ struct Grid {
 };
 
 void mark_touched_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& active) {
-  const double half = 0.5 * g.h * (1 + 1e-9);  // a hair larger: a vertex on a cell face touches both cells
+  const double half =
+      0.5 * g.h * (1 + 1e-9);  // a hair larger: a vertex on a cell face touches both cells
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     P3 tri[3];
-    for (int k = 0; k < 3; ++k) tri[k] = point(s.positions, s.triangles[3 * t + static_cast<size_t>(k)]);
+    for (int k = 0; k < 3; ++k)
+      tri[k] = point(s.positions, s.triangles[3 * t + static_cast<size_t>(k)]);
     int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       auto ua = static_cast<size_t>(a);
@@ -86,7 +88,8 @@ void mark_touched_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& 
         for (int64_t i = lo[0]; i <= hi[0]; ++i) {
           int64_t c = g.cell(i, j, k);
           if (active[static_cast<size_t>(c)]) continue;
-          P3 centre = g.origin + P3{{(static_cast<double>(i) + 0.5) * g.h, (static_cast<double>(j) + 0.5) * g.h,
+          P3 centre = g.origin + P3{{(static_cast<double>(i) + 0.5) * g.h,
+                                     (static_cast<double>(j) + 0.5) * g.h,
                                      (static_cast<double>(k) + 0.5) * g.h}};
           P3 local[3] = {tri[0] - centre, tri[1] - centre, tri[2] - centre};
           if (triangle_touches_box(local, half)) active[static_cast<size_t>(c)] = 1;
@@ -108,8 +111,9 @@ void mark_inside_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& a
         }
         int64_t end = i;
         while (end < g.n[0] && !touched[static_cast<size_t>(g.cell(end, j, k))]) ++end;
-        P3 centre = g.origin + P3{{(static_cast<double>(i) + 0.5) * g.h, (static_cast<double>(j) + 0.5) * g.h,
-                                   (static_cast<double>(k) + 0.5) * g.h}};
+        P3 centre = g.origin +
+                    P3{{(static_cast<double>(i) + 0.5) * g.h, (static_cast<double>(j) + 0.5) * g.h,
+                        (static_cast<double>(k) + 0.5) * g.h}};
         if (std::abs(winding_number(s, centre)) > 0.5) {
           for (int64_t r = i; r < end; ++r) active[static_cast<size_t>(g.cell(r, j, k))] = 1;
         }
@@ -121,22 +125,29 @@ void mark_inside_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& a
 
 // Majority rule for the cells the surface cuts: keep a cell when at least 5 of 9 samples (its
 // centre and its 8 corners, corners cached since neighbours share them) are inside.
-void keep_majority_cells(const SurfaceMesh& s, const Grid& g, const std::vector<char>& touched, std::vector<char>& active) {
+void keep_majority_cells(const SurfaceMesh& s, const Grid& g, const std::vector<char>& touched,
+                         std::vector<char>& active) {
   const int64_t nodes_x = g.n[0] + 1, nodes_y = g.n[1] + 1;
-  std::vector<signed char> node_inside(static_cast<size_t>(nodes_x * nodes_y * (g.n[2] + 1)), -1);  // -1: not yet known
+  std::vector<signed char> node_inside(static_cast<size_t>(nodes_x * nodes_y * (g.n[2] + 1)),
+                                       -1);  // -1: not yet known
   auto inside = [&](const P3& p) { return std::abs(winding_number(s, p)) > 0.5; };
   for (int64_t k = 0; k < g.n[2]; ++k) {
     for (int64_t j = 0; j < g.n[1]; ++j) {
       for (int64_t i = 0; i < g.n[0]; ++i) {
         const auto c = static_cast<size_t>(g.cell(i, j, k));
         if (!touched[c]) continue;
-        P3 base = g.origin + P3{{static_cast<double>(i) * g.h, static_cast<double>(j) * g.h, static_cast<double>(k) * g.h}};
+        P3 base = g.origin + P3{{static_cast<double>(i) * g.h, static_cast<double>(j) * g.h,
+                                 static_cast<double>(k) * g.h}};
         int votes = inside(base + P3{{0.5 * g.h, 0.5 * g.h, 0.5 * g.h}}) ? 1 : 0;
         for (int64_t corner = 0; corner < 8; ++corner) {
           int64_t di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
-          signed char& known = node_inside[static_cast<size_t>((i + di) + nodes_x * ((j + dj) + nodes_y * (k + dk)))];
+          signed char& known = node_inside[static_cast<size_t>(
+              (i + di) + nodes_x * ((j + dj) + nodes_y * (k + dk)))];
           if (known < 0) {
-            known = inside(base + P3{{static_cast<double>(di) * g.h, static_cast<double>(dj) * g.h, static_cast<double>(dk) * g.h}}) ? 1 : 0;
+            known = inside(base + P3{{static_cast<double>(di) * g.h, static_cast<double>(dj) * g.h,
+                                      static_cast<double>(dk) * g.h}})
+                        ? 1
+                        : 0;
           }
           votes += known;
         }
@@ -148,7 +159,8 @@ void keep_majority_cells(const SurfaceMesh& s, const Grid& g, const std::vector<
 
 // The kept cell nearest to cell (i, j, k): rings of growing Chebyshev radius, nearest centre first;
 // one more ring is searched after the first hit, since a cell of it can still be nearer.
-int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet, const int64_t at[3]) {
+int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet,
+                          const int64_t at[3]) {
   int64_t best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   int64_t found_radius = -1;
@@ -156,10 +168,13 @@ int64_t nearest_kept_cell(const Grid& g, const std::vector<uint32_t>& first_tet,
   for (int64_t r = 1; r <= max_radius && (found_radius < 0 || r <= found_radius + 1); ++r) {
     for (int64_t k = std::max<int64_t>(0, at[2] - r); k <= std::min(g.n[2] - 1, at[2] + r); ++k) {
       for (int64_t j = std::max<int64_t>(0, at[1] - r); j <= std::min(g.n[1] - 1, at[1] + r); ++j) {
-        for (int64_t i = std::max<int64_t>(0, at[0] - r); i <= std::min(g.n[0] - 1, at[0] + r); ++i) {
-          if (std::max({std::abs(i - at[0]), std::abs(j - at[1]), std::abs(k - at[2])}) != r) continue;  // ring only
+        for (int64_t i = std::max<int64_t>(0, at[0] - r); i <= std::min(g.n[0] - 1, at[0] + r);
+             ++i) {
+          if (std::max({std::abs(i - at[0]), std::abs(j - at[1]), std::abs(k - at[2])}) != r)
+            continue;  // ring only
           if (first_tet[static_cast<size_t>(g.cell(i, j, k))] == UINT32_MAX) continue;
-          double d = std::hypot(static_cast<double>(i - at[0]), static_cast<double>(j - at[1]), static_cast<double>(k - at[2]));
+          double d = std::hypot(static_cast<double>(i - at[0]), static_cast<double>(j - at[1]),
+                                static_cast<double>(k - at[2]));
           if (d < best_distance) {
             best_distance = d;
             best = g.cell(i, j, k);
@@ -222,7 +237,8 @@ std::vector<size_t> piece_sizes(const Grid& g, const std::vector<char>& active) 
 
 std::string volumes_text(const std::vector<double>& volumes) {
   std::string text;
-  for (size_t i = 0; i < volumes.size() && i < 8; ++i) text += (i ? ", " : "") + fmt::format("{:.3g}", volumes[i]);
+  for (size_t i = 0; i < volumes.size() && i < 8; ++i)
+    text += (i ? ", " : "") + fmt::format("{:.3g}", volumes[i]);
   if (volumes.size() > 8) text += ", ...";
   return text + " m^3";
 }
@@ -237,32 +253,40 @@ void keep_one_piece_per_shell(const SurfaceMesh& s, const Grid& g, const std::ve
   r.split_pieces = pieces_before;
   for (size_t c = 0; c < active.size(); ++c) active[c] = static_cast<char>(active[c] | touched[c]);
   const size_t pieces_after = piece_sizes(g, active).size();
-  r.warnings.push_back(fmt::format("the voxels inside the surface fell into {} pieces for {} surface shell(s); the cells "
-                                   "the surface crosses were kept too, which joined them into {}",
-                                   pieces_before, r.shells, pieces_after));
+  r.warnings.push_back(fmt::format(
+      "the voxels inside the surface fell into {} pieces for {} surface shell(s); the cells "
+      "the surface crosses were kept too, which joined them into {}",
+      pieces_before, r.shells, pieces_after));
   if (pieces_after > r.shells) {
     std::vector<double> volumes;
-    for (size_t cells : piece_sizes(g, active)) volumes.push_back(static_cast<double>(cells) * g.h * g.h * g.h);
-    throw InputError({s.source, 0, 0, ""}, fmt::format("voxel size {:.4g} m cuts the body into {} pieces ({}), more than "
-                                                       "its {} surface shell(s); give a smaller voxel_size",
-                                                       g.h, volumes.size(), volumes_text(volumes), r.shells));
+    for (size_t cells : piece_sizes(g, active))
+      volumes.push_back(static_cast<double>(cells) * g.h * g.h * g.h);
+    throw InputError({s.source, 0, 0, ""},
+                     fmt::format("voxel size {:.4g} m cuts the body into {} pieces ({}), more than "
+                                 "its {} surface shell(s); give a smaller voxel_size",
+                                 g.h, volumes.size(), volumes_text(volumes), r.shells));
   }
 }
 
 }  // namespace
 
-VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report, VoxelFill fill) {
+VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* report,
+                    VoxelFill fill) {
   LoadReport local;
   LoadReport& r = report ? *report : local;
   const std::string& source = closed.source;
-  if (!(cell_size > 0) || !std::isfinite(cell_size)) throw InputError({source, 0, 0, ""}, "voxel size must be positive and finite");
-  if (closed.triangle_count() == 0) throw InputError({source, 0, 0, ""}, "cannot voxelise a surface with no triangles");
+  if (!(cell_size > 0) || !std::isfinite(cell_size))
+    throw InputError({source, 0, 0, ""}, "voxel size must be positive and finite");
+  if (closed.triangle_count() == 0)
+    throw InputError({source, 0, 0, ""}, "cannot voxelise a surface with no triangles");
   check_closed(closed, r);
   if (!r.closed()) {
-    r.warnings.push_back("the surface is not closed (" + std::to_string(r.boundary_edges) + " open edges, " +
-                         std::to_string(r.nonmanifold_edges) + " non-manifold edges); its inside is a best guess");
+    r.warnings.push_back("the surface is not closed (" + std::to_string(r.boundary_edges) +
+                         " open edges, " + std::to_string(r.nonmanifold_edges) +
+                         " non-manifold edges); its inside is a best guess");
   }
-  P3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}};
+  P3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::infinity()}};
   P3 hi = -1.0 * lo;
   for (size_t v = 0; v < closed.vertex_count(); ++v) {
     for (size_t a = 0; a < 3; ++a) {
@@ -274,13 +298,16 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
   g.h = cell_size;
   int64_t cells = 1;
   for (size_t a = 0; a < 3; ++a) {
-    g.origin[a] = lo[a] - 0.5 * cell_size;  // half a cell of margin: no vertex on the grid's outer faces
+    g.origin[a] =
+        lo[a] - 0.5 * cell_size;  // half a cell of margin: no vertex on the grid's outer faces
     double count = std::ceil((hi[a] - lo[a]) / cell_size) + 1;
-    if (!(count <= static_cast<double>(kMaxCells))) throw InputError({source, 0, 0, ""}, "voxel size too small for the surface");
+    if (!(count <= static_cast<double>(kMaxCells)))
+      throw InputError({source, 0, 0, ""}, "voxel size too small for the surface");
     g.n[a] = static_cast<int64_t>(count);
     cells *= g.n[a];
     if (cells > kMaxCells) {
-      throw InputError({source, 0, 0, ""}, "voxel size " + std::to_string(cell_size) + " m gives more than 2 million cells");
+      throw InputError({source, 0, 0, ""}, "voxel size " + std::to_string(cell_size) +
+                                               " m gives more than 2 million cells");
     }
   }
   std::vector<char> touched(static_cast<size_t>(cells), 0);
@@ -295,7 +322,8 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
     keep_one_piece_per_shell(closed, g, touched, active, r);
   }
   if (std::find(active.begin(), active.end(), 1) == active.end()) {
-    throw InputError({source, 0, 0, ""}, "no voxel cell is mostly inside the surface; use a smaller voxel size");
+    throw InputError({source, 0, 0, ""},
+                     "no voxel cell is mostly inside the surface; use a smaller voxel size");
   }
 
   VolumeMesh mesh;
@@ -313,9 +341,10 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
           uint32_t& id = node_of[static_cast<size_t>(ni + nodes_x * (nj + nodes_y * nk))];
           if (id == UINT32_MAX) {
             id = static_cast<uint32_t>(mesh.node_count());
-            mesh.positions.insert(mesh.positions.end(), {g.origin[0] + static_cast<double>(ni) * g.h,
-                                                         g.origin[1] + static_cast<double>(nj) * g.h,
-                                                         g.origin[2] + static_cast<double>(nk) * g.h});
+            mesh.positions.insert(mesh.positions.end(),
+                                  {g.origin[0] + static_cast<double>(ni) * g.h,
+                                   g.origin[1] + static_cast<double>(nj) * g.h,
+                                   g.origin[2] + static_cast<double>(nk) * g.h});
           }
           corner[c] = id;
         }
@@ -342,23 +371,27 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
       int64_t at[3] = {idx[0], idx[1], idx[2]};
       double in_cell[3];
       for (int a = 0; a < 3; ++a) {
-        in_cell[a] = (p[static_cast<size_t>(a)] - g.origin[static_cast<size_t>(a)]) / g.h - static_cast<double>(at[a]);
+        in_cell[a] = (p[static_cast<size_t>(a)] - g.origin[static_cast<size_t>(a)]) / g.h -
+                     static_cast<double>(at[a]);
       }
       const unsigned mirror = mesh_detail::alternating_mirror(at[0], at[1], at[2]);
-      tet = first_tet[static_cast<size_t>(cell)] +
-            static_cast<uint32_t>(mesh_detail::cell_tet_of(in_cell[0], in_cell[1], in_cell[2], mirror));
+      tet = first_tet[static_cast<size_t>(cell)] + static_cast<uint32_t>(mesh_detail::cell_tet_of(
+                                                       in_cell[0], in_cell[1], in_cell[2], mirror));
       const uint32_t* n = &mesh.tets[4 * size_t{tet}];
-      weights = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
-                                         point(mesh.positions, n[2]), point(mesh.positions, n[3]));
+      weights =
+          mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
+                                   point(mesh.positions, n[2]), point(mesh.positions, n[3]));
     } else {
       // Outside every kept cell: the tet of the nearest kept cell that needs the least extrapolation.
       ++outside;
       cell = nearest_kept_cell(g, first_tet, idx);
       double best = -std::numeric_limits<double>::infinity();
-      for (uint32_t t = first_tet[static_cast<size_t>(cell)]; t < first_tet[static_cast<size_t>(cell)] + 6; ++t) {
+      for (uint32_t t = first_tet[static_cast<size_t>(cell)];
+           t < first_tet[static_cast<size_t>(cell)] + 6; ++t) {
         const uint32_t* n = &mesh.tets[4 * size_t{t}];
-        auto w = mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
-                                          point(mesh.positions, n[2]), point(mesh.positions, n[3]));
+        auto w =
+            mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
+                                     point(mesh.positions, n[2]), point(mesh.positions, n[3]));
         double lowest = std::min({w[0], w[1], w[2], w[3]});
         if (lowest > best) {
           best = lowest;
@@ -368,20 +401,25 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
       }
     }
     e.element[v] = tet;
-    std::copy(weights.begin(), weights.end(), e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
+    std::copy(weights.begin(), weights.end(),
+              e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
   }
   if (outside > 0) {
-    r.warnings.push_back(std::to_string(outside) + " surface vertices lie outside the voxel tets and follow them by extrapolation");
+    r.warnings.push_back(
+        std::to_string(outside) +
+        " surface vertices lie outside the voxel tets and follow them by extrapolation");
   }
   mesh.embedding = std::move(e);
   finalize(mesh, &r);
   const double cell_volume = g.h * g.h * g.h;
   r.voxel_cells = mesh.tet_count() / 6;
   r.mesh_volume = static_cast<double>(r.voxel_cells) * cell_volume;
-  if (r.enclosed_volume > 0 && (r.mesh_volume < 0.8 * r.enclosed_volume || r.mesh_volume > 1.25 * r.enclosed_volume)) {
-    r.warnings.push_back(fmt::format("the voxels hold {:.0f}% of the volume the surface encloses; a smaller voxel_size "
-                                     "follows it closer",
-                                     100 * r.mesh_volume / r.enclosed_volume));
+  if (r.enclosed_volume > 0 &&
+      (r.mesh_volume < 0.8 * r.enclosed_volume || r.mesh_volume > 1.25 * r.enclosed_volume)) {
+    r.warnings.push_back(fmt::format(
+        "the voxels hold {:.0f}% of the volume the surface encloses; a smaller voxel_size "
+        "follows it closer",
+        100 * r.mesh_volume / r.enclosed_volume));
   }
   return mesh;
 }

@@ -41,26 +41,35 @@ void read_classic_cells(TextReader& in, LegacyCells& cells, int64_t count, int64
   for (int64_t c = 0; c < count; ++c) {
     int64_t n = in.next_int_in("a cell's point count", 0, 1'000'000);
     used += n + 1;
-    if (used > size) in.fail("CELLS says the cell list holds " + std::to_string(size) + " numbers, cell " + std::to_string(c) + " goes past that");
+    if (used > size)
+      in.fail("CELLS says the cell list holds " + std::to_string(size) + " numbers, cell " +
+              std::to_string(c) + " goes past that");
     for (int64_t k = 0; k < n; ++k) cells.connectivity.push_back(in.next_int("a cell point index"));
     cells.offsets.push_back(static_cast<int64_t>(cells.connectivity.size()));
   }
-  if (used != size) in.fail("CELLS says the cell list holds " + std::to_string(size) + " numbers, the cells use " + std::to_string(used));
+  if (used != size)
+    in.fail("CELLS says the cell list holds " + std::to_string(size) + " numbers, the cells use " +
+            std::to_string(used));
 }
 
-void read_offset_cells(TextReader& in, LegacyCells& cells, int64_t offset_count, int64_t connectivity_count) {
+void read_offset_cells(TextReader& in, LegacyCells& cells, int64_t offset_count,
+                       int64_t connectivity_count) {
   in.expect("OFFSETS");
   in.next("the offset data type");
   cells.offsets.clear();
   for (int64_t i = 0; i < offset_count; ++i) cells.offsets.push_back(in.next_int("a cell offset"));
   in.expect("CONNECTIVITY");
   in.next("the connectivity data type");
-  for (int64_t i = 0; i < connectivity_count; ++i) cells.connectivity.push_back(in.next_int("a cell point index"));
-  if (cells.offsets.empty() || cells.offsets.front() != 0 || cells.offsets.back() != connectivity_count) {
-    in.fail("OFFSETS must start at 0 and end at the connectivity size " + std::to_string(connectivity_count));
+  for (int64_t i = 0; i < connectivity_count; ++i)
+    cells.connectivity.push_back(in.next_int("a cell point index"));
+  if (cells.offsets.empty() || cells.offsets.front() != 0 ||
+      cells.offsets.back() != connectivity_count) {
+    in.fail("OFFSETS must start at 0 and end at the connectivity size " +
+            std::to_string(connectivity_count));
   }
   for (size_t i = 1; i < cells.offsets.size(); ++i) {
-    if (cells.offsets[i] < cells.offsets[i - 1]) in.fail("OFFSETS must not decrease (offset " + std::to_string(i) + ")");
+    if (cells.offsets[i] < cells.offsets[i - 1])
+      in.fail("OFFSETS must not decrease (offset " + std::to_string(i) + ")");
   }
 }
 
@@ -78,12 +87,16 @@ VolumeMesh read_vtk_legacy(const std::string& path, std::string_view text, LoadR
   in.skip_line();  // "# vtk DataFile Version x.y"
   in.skip_line();  // title, free text
   std::string_view encoding = in.next("ASCII or BINARY");
-  if (encoding == "BINARY") in.fail("binary legacy VTK files are not supported; save as ASCII or .vtu");
-  if (encoding != "ASCII") in.fail("expected ASCII or BINARY on line 3, found '" + std::string(encoding.substr(0, 40)) + "'");
+  if (encoding == "BINARY")
+    in.fail("binary legacy VTK files are not supported; save as ASCII or .vtu");
+  if (encoding != "ASCII")
+    in.fail("expected ASCII or BINARY on line 3, found '" + std::string(encoding.substr(0, 40)) +
+            "'");
   in.expect("DATASET");
   std::string_view dataset = in.next("the dataset type");
   if (dataset != "UNSTRUCTURED_GRID") {
-    in.fail("only DATASET UNSTRUCTURED_GRID holds tetrahedra, found '" + std::string(dataset.substr(0, 40)) + "'");
+    in.fail("only DATASET UNSTRUCTURED_GRID holds tetrahedra, found '" +
+            std::string(dataset.substr(0, 40)) + "'");
   }
 
   VolumeMesh out;
@@ -117,7 +130,8 @@ VolumeMesh read_vtk_legacy(const std::string& path, std::string_view text, LoadR
     } else if (keyword == "POINT_DATA" || keyword == "CELL_DATA" || keyword == "FIELD") {
       break;
     } else {
-      in.fail("expected POINTS, CELLS or CELL_TYPES, found '" + std::string(keyword.substr(0, 40)) + "'");
+      in.fail("expected POINTS, CELLS or CELL_TYPES, found '" + std::string(keyword.substr(0, 40)) +
+              "'");
     }
   }
   if (!has_points) in.fail("the file has no POINTS section");
@@ -131,7 +145,8 @@ VolumeMesh read_vtk_legacy(const std::string& path, std::string_view text, LoadR
   size_t points = out.positions.size() / 3;
   std::vector<int64_t> tet;
   for (size_t c = 0; c < cell_count; ++c) {
-    tet.assign(cells.connectivity.begin() + cells.offsets[c], cells.connectivity.begin() + cells.offsets[c + 1]);
+    tet.assign(cells.connectivity.begin() + cells.offsets[c],
+               cells.connectivity.begin() + cells.offsets[c + 1]);
     check_vtk_cell(path, cells.line, c, types[c], tet, points);
     if (types[c] != kVtkTetra) {
       ++report.skipped_elements;

@@ -1,14 +1,13 @@
 // VTK XML UnstructuredGrid (.vtu) through tinyxml2: DataArrays in ascii, or inline binary (base64
 // of a byte-count header, UInt32 or UInt64, then the data), optionally zlib-compressed in blocks.
 // Appended data is not supported. Facts from "VTK File Formats" (Kitware), XML section.
-#include <tinyxml2.h>
-#include <zlib.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <tinyxml2.h>
 #include <vector>
+#include <zlib.h>
 
 #include "mesh/readers.hpp"
 #include "mesh/text_reader.hpp"
@@ -43,12 +42,14 @@ int base64_value(char c) {
 
 // Decodes base64 group by group, so that separately padded streams (header, then data) written
 // one after the other decode to their concatenation.
-std::vector<unsigned char> decode_base64(const XmlContext& ctx, const XMLElement* where, const char* text) {
+std::vector<unsigned char> decode_base64(const XmlContext& ctx, const XMLElement* where,
+                                         const char* text) {
   std::string clean;
   for (const char* p = text; *p; ++p) {
     if (!std::isspace(static_cast<unsigned char>(*p))) clean += *p;
   }
-  if (clean.size() % 4 != 0) ctx.fail(where, "base64 data length is not a multiple of 4 (truncated?)");
+  if (clean.size() % 4 != 0)
+    ctx.fail(where, "base64 data length is not a multiple of 4 (truncated?)");
   std::vector<unsigned char> bytes;
   bytes.reserve(clean.size() / 4 * 3);
   for (size_t g = 0; g < clean.size(); g += 4) {
@@ -122,42 +123,53 @@ double to_double(const unsigned char* p, ScalarType type, bool big_endian) {
   return type.is_signed ? static_cast<double>(static_cast<int64_t>(raw)) : static_cast<double>(raw);
 }
 
-std::vector<unsigned char> binary_payload(const XmlContext& ctx, const XMLElement* array, size_t expected_bytes) {
+std::vector<unsigned char> binary_payload(const XmlContext& ctx, const XMLElement* array,
+                                          size_t expected_bytes) {
   const char* text = array->GetText();
   std::vector<unsigned char> bytes = decode_base64(ctx, array, text ? text : "");
   const size_t h = static_cast<size_t>(ctx.header_bytes);
   auto header_word = [&](size_t index) {
-    if ((index + 1) * h > bytes.size()) ctx.fail(array, "binary data ends inside its header (truncated?)");
+    if ((index + 1) * h > bytes.size())
+      ctx.fail(array, "binary data ends inside its header (truncated?)");
     return read_unsigned(bytes.data() + index * h, ctx.header_bytes, ctx.big_endian);
   };
   if (!ctx.zlib) {
     uint64_t size = header_word(0);
     if (size != expected_bytes) {
-      ctx.fail(array, "binary header says " + std::to_string(size) + " bytes, the array needs " + std::to_string(expected_bytes));
+      ctx.fail(array, "binary header says " + std::to_string(size) + " bytes, the array needs " +
+                          std::to_string(expected_bytes));
     }
-    if (h + size > bytes.size()) ctx.fail(array, "binary data is shorter than its header says (truncated?)");
-    return {bytes.begin() + static_cast<std::ptrdiff_t>(h), bytes.begin() + static_cast<std::ptrdiff_t>(h + size)};
+    if (h + size > bytes.size())
+      ctx.fail(array, "binary data is shorter than its header says (truncated?)");
+    return {bytes.begin() + static_cast<std::ptrdiff_t>(h),
+            bytes.begin() + static_cast<std::ptrdiff_t>(h + size)};
   }
   uint64_t blocks = header_word(0), block_size = header_word(1), last_size = header_word(2);
   if (blocks > bytes.size()) ctx.fail(array, "compressed header gives an impossible block count");
-  uint64_t total = blocks == 0 ? 0 : (blocks - 1) * block_size + (last_size == 0 ? block_size : last_size);
+  uint64_t total =
+      blocks == 0 ? 0 : (blocks - 1) * block_size + (last_size == 0 ? block_size : last_size);
   if (total != expected_bytes) {
-    ctx.fail(array, "compressed header says " + std::to_string(total) + " bytes, the array needs " + std::to_string(expected_bytes));
+    ctx.fail(array, "compressed header says " + std::to_string(total) + " bytes, the array needs " +
+                        std::to_string(expected_bytes));
   }
   std::vector<unsigned char> out(expected_bytes);
   size_t src = (3 + blocks) * h, dst = 0;
   for (uint64_t b = 0; b < blocks; ++b) {
     uint64_t compressed = header_word(3 + b);
-    if (src + compressed > bytes.size()) ctx.fail(array, "compressed block " + std::to_string(b) + " is cut short (truncated?)");
-    uLongf produced = static_cast<uLongf>(b + 1 == blocks && last_size != 0 ? last_size : block_size);
-    if (dst + produced > out.size() ||
-        uncompress(out.data() + dst, &produced, bytes.data() + src, static_cast<uLong>(compressed)) != Z_OK) {
-      ctx.fail(array, "compressed block " + std::to_string(b) + " does not inflate (corrupt zlib data)");
+    if (src + compressed > bytes.size())
+      ctx.fail(array, "compressed block " + std::to_string(b) + " is cut short (truncated?)");
+    uLongf produced =
+        static_cast<uLongf>(b + 1 == blocks && last_size != 0 ? last_size : block_size);
+    if (dst + produced > out.size() || uncompress(out.data() + dst, &produced, bytes.data() + src,
+                                                  static_cast<uLong>(compressed)) != Z_OK) {
+      ctx.fail(array,
+               "compressed block " + std::to_string(b) + " does not inflate (corrupt zlib data)");
     }
     src += compressed;
     dst += produced;
   }
-  if (dst != expected_bytes) ctx.fail(array, "compressed blocks inflate to fewer bytes than the header says");
+  if (dst != expected_bytes)
+    ctx.fail(array, "compressed blocks inflate to fewer bytes than the header says");
   return out;
 }
 
@@ -175,16 +187,21 @@ std::vector<double> read_array(const XmlContext& ctx, const XMLElement* array, s
       if (values.size() > count) break;
     }
   } else if (format == "binary") {
-    std::vector<unsigned char> bytes = binary_payload(ctx, array, count * static_cast<size_t>(type.size));
+    std::vector<unsigned char> bytes =
+        binary_payload(ctx, array, count * static_cast<size_t>(type.size));
     values.resize(count);
-    for (size_t i = 0; i < count; ++i) values[i] = to_double(bytes.data() + i * static_cast<size_t>(type.size), type, ctx.big_endian);
+    for (size_t i = 0; i < count; ++i)
+      values[i] =
+          to_double(bytes.data() + i * static_cast<size_t>(type.size), type, ctx.big_endian);
   } else {
-    ctx.fail(array, "DataArray format '" + format + "' is not supported (ascii and inline binary are)");
+    ctx.fail(array,
+             "DataArray format '" + format + "' is not supported (ascii and inline binary are)");
   }
   if (values.size() != count) {
     const char* name = array->Attribute("Name");
-    ctx.fail(array, std::string("DataArray ") + (name ? name : "") + " must hold " + std::to_string(count) +
-                        " values, it holds " + (values.size() > count ? "more" : std::to_string(values.size())));
+    ctx.fail(array, std::string("DataArray ") + (name ? name : "") + " must hold " +
+                        std::to_string(count) + " values, it holds " +
+                        (values.size() > count ? "more" : std::to_string(values.size())));
   }
   for (double v : values) {
     if (!std::isfinite(v)) ctx.fail(array, "DataArray holds a NaN or infinite value");
@@ -194,7 +211,8 @@ std::vector<double> read_array(const XmlContext& ctx, const XMLElement* array, s
 }
 
 const XMLElement* named_array(const XmlContext& ctx, const XMLElement* parent, const char* name) {
-  for (const XMLElement* a = parent->FirstChildElement("DataArray"); a; a = a->NextSiblingElement("DataArray")) {
+  for (const XMLElement* a = parent->FirstChildElement("DataArray"); a;
+       a = a->NextSiblingElement("DataArray")) {
     const char* n = a->Attribute("Name");
     if (n && std::strcmp(n, name) == 0) return a;
   }
@@ -209,13 +227,15 @@ const XMLElement* child(const XmlContext& ctx, const XMLElement* parent, const c
 
 int64_t count_attribute(const XmlContext& ctx, const XMLElement* e, const char* name) {
   int64_t value = -1;
-  if (e->QueryInt64Attribute(name, &value) != tinyxml2::XML_SUCCESS || value < 0 || value > 2'000'000'000) {
+  if (e->QueryInt64Attribute(name, &value) != tinyxml2::XML_SUCCESS || value < 0 ||
+      value > 2'000'000'000) {
     ctx.fail(e, std::string("<") + e->Name() + "> needs a non-negative integer attribute " + name);
   }
   return value;
 }
 
-void read_piece(const XmlContext& ctx, const XMLElement* piece, VolumeMesh& out, LoadReport& report) {
+void read_piece(const XmlContext& ctx, const XMLElement* piece, VolumeMesh& out,
+                LoadReport& report) {
   size_t points = static_cast<size_t>(count_attribute(ctx, piece, "NumberOfPoints"));
   size_t cells = static_cast<size_t>(count_attribute(ctx, piece, "NumberOfCells"));
   size_t first_point = out.positions.size() / 3;
@@ -232,11 +252,13 @@ void read_piece(const XmlContext& ctx, const XMLElement* piece, VolumeMesh& out,
   double previous = 0;
   for (double o : offsets) {
     if (o < previous) ctx.fail(offsets_array, "cell offsets must not decrease");
-    if (o > kMaxIndex) ctx.fail(offsets_array, "cell offset " + std::to_string(o) + " is too large");
+    if (o > kMaxIndex)
+      ctx.fail(offsets_array, "cell offset " + std::to_string(o) + " is too large");
     previous = o;
   }
   const XMLElement* connectivity_array = named_array(ctx, cell_node, "connectivity");
-  std::vector<double> connectivity = read_array(ctx, connectivity_array, static_cast<size_t>(previous));
+  std::vector<double> connectivity =
+      read_array(ctx, connectivity_array, static_cast<size_t>(previous));
   std::vector<int64_t> indices;
   size_t begin = 0;
   for (size_t c = 0; c < cells; ++c) {
@@ -254,7 +276,8 @@ void read_piece(const XmlContext& ctx, const XMLElement* piece, VolumeMesh& out,
       ++report.skipped_elements;
       continue;
     }
-    for (int64_t i : indices) out.tets.push_back(static_cast<uint32_t>(first_point + static_cast<size_t>(i)));
+    for (int64_t i : indices)
+      out.tets.push_back(static_cast<uint32_t>(first_point + static_cast<size_t>(i)));
   }
 }
 
@@ -266,13 +289,15 @@ VolumeMesh read_vtk_xml(const std::string& path, const std::string& text, LoadRe
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) {
     const char* message = doc.ErrorStr();
-    throw InputError({path, doc.ErrorLineNum(), 0, ""}, std::string("malformed XML (truncated?): ") + (message ? message : ""));
+    throw InputError({path, doc.ErrorLineNum(), 0, ""},
+                     std::string("malformed XML (truncated?): ") + (message ? message : ""));
   }
   const XMLElement* root = doc.FirstChildElement("VTKFile");
   if (!root) ctx.fail(nullptr, "no <VTKFile> element");
   const char* type = root->Attribute("type");
   if (!type || std::strcmp(type, "UnstructuredGrid") != 0) {
-    ctx.fail(root, std::string("VTKFile type '") + (type ? type : "") + "' holds no tetrahedra; UnstructuredGrid does");
+    ctx.fail(root, std::string("VTKFile type '") + (type ? type : "") +
+                       "' holds no tetrahedra; UnstructuredGrid does");
   }
   const char* order = root->Attribute("byte_order");
   ctx.big_endian = order && std::strcmp(order, "BigEndian") == 0;
@@ -286,13 +311,15 @@ VolumeMesh read_vtk_xml(const std::string& path, const std::string& text, LoadRe
   if (compressor && std::strcmp(compressor, "vtkZLibDataCompressor") == 0) {
     ctx.zlib = true;
   } else if (compressor && *compressor) {
-    ctx.fail(root, std::string("compressor '") + compressor + "' is not supported (vtkZLibDataCompressor is)");
+    ctx.fail(root, std::string("compressor '") + compressor +
+                       "' is not supported (vtkZLibDataCompressor is)");
   }
   const XMLElement* grid = child(ctx, root, "UnstructuredGrid");
   VolumeMesh out;
   out.source = path;
   int pieces = 0;
-  for (const XMLElement* piece = grid->FirstChildElement("Piece"); piece; piece = piece->NextSiblingElement("Piece")) {
+  for (const XMLElement* piece = grid->FirstChildElement("Piece"); piece;
+       piece = piece->NextSiblingElement("Piece")) {
     read_piece(ctx, piece, out, report);
     ++pieces;
   }

@@ -55,7 +55,8 @@ void write_array(std::ostream& os, const char* type, const std::string& name, in
     char text[32];
     for (size_t i = 0; i < count; ++i) {
       if constexpr (std::is_floating_point_v<T>)
-        std::snprintf(text, sizeof text, "%.17g", static_cast<double>(values[i]));  // exact round trip
+        std::snprintf(text, sizeof text, "%.17g",
+                      static_cast<double>(values[i]));  // exact round trip
       else
         std::snprintf(text, sizeof text, "%lld", static_cast<long long>(values[i]));
       os << text;
@@ -87,26 +88,29 @@ void check_field(const std::filesystem::path& file, const VtkField& field, size_
   const size_t expected = count * static_cast<size_t>(field.components);
   if (field.values.size() != expected)
     fail(file, std::string(where) + " field \"" + field.name + "\" has " +
-                   std::to_string(field.values.size()) + " values; expected " + std::to_string(expected) +
-                   " (" + std::to_string(count) + " x " + std::to_string(field.components) + ")");
+                   std::to_string(field.values.size()) + " values; expected " +
+                   std::to_string(expected) + " (" + std::to_string(count) + " x " +
+                   std::to_string(field.components) + ")");
 }
 
-void check_indices(const std::filesystem::path& file, std::span<const uint32_t> indices, size_t per_cell,
-                   size_t point_count, const char* kind) {
+void check_indices(const std::filesystem::path& file, std::span<const uint32_t> indices,
+                   size_t per_cell, size_t point_count, const char* kind) {
   if (indices.size() % per_cell != 0)
-    fail(file, std::string(kind) + " hold " + std::to_string(indices.size()) + " indices; expected a multiple of " +
-                   std::to_string(per_cell));
+    fail(file, std::string(kind) + " hold " + std::to_string(indices.size()) +
+                   " indices; expected a multiple of " + std::to_string(per_cell));
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] >= point_count)
-      fail(file, std::string(kind) + " index " + std::to_string(indices[i]) + " (entry " + std::to_string(i) +
-                     ") is past the " + std::to_string(point_count) + " points");
+      fail(file, std::string(kind) + " index " + std::to_string(indices[i]) + " (entry " +
+                     std::to_string(i) + ") is past the " + std::to_string(point_count) +
+                     " points");
 }
 
 void write_fields(std::ostream& os, const char* element, const std::vector<VtkField>& fields,
                   VtkEncoding encoding) {
   os << "      <" << element << ">\n";
   for (const VtkField& f : fields)
-    write_array(os, "Float64", f.name, f.components, f.values.data(), f.values.size(), encoding, "        ");
+    write_array(os, "Float64", f.name, f.components, f.values.data(), f.values.size(), encoding,
+                "        ");
   os << "      </" << element << ">\n";
 }
 
@@ -114,7 +118,8 @@ void write_fields(std::ostream& os, const char* element, const std::vector<VtkFi
 
 VtkGrid grid_of(const VolumeMesh& mesh, std::span<const double> current_positions) {
   VtkGrid grid;
-  grid.points = current_positions.empty() ? std::span<const double>(mesh.positions) : current_positions;
+  grid.points =
+      current_positions.empty() ? std::span<const double>(mesh.positions) : current_positions;
   if (!mesh.tets.empty())
     grid.tets = mesh.tets;
   else if (!mesh.quads.empty())
@@ -131,7 +136,8 @@ void write_vtu(const std::filesystem::path& file, const VtkGrid& grid, VtkEncodi
   check_indices(file, grid.tets, 4, point_count, "tets");
   check_indices(file, grid.quads, 4, point_count, "quads");
   check_indices(file, grid.triangles, 3, point_count, "triangles");
-  const size_t cell_count = grid.tets.size() / 4 + grid.quads.size() / 4 + grid.triangles.size() / 3;
+  const size_t cell_count =
+      grid.tets.size() / 4 + grid.quads.size() / 4 + grid.triangles.size() / 3;
   for (const VtkField& f : grid.point_data) check_field(file, f, point_count, "point");
   for (const VtkField& f : grid.cell_data) check_field(file, f, cell_count, "cell");
 
@@ -157,13 +163,16 @@ void write_vtu(const std::filesystem::path& file, const VtkGrid& grid, VtkEncodi
      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
         "header_type=\"UInt64\">\n"
      << "  <UnstructuredGrid>\n"
-     << "    <Piece NumberOfPoints=\"" << point_count << "\" NumberOfCells=\"" << cell_count << "\">\n";
+     << "    <Piece NumberOfPoints=\"" << point_count << "\" NumberOfCells=\"" << cell_count
+     << "\">\n";
   write_fields(os, "PointData", grid.point_data, encoding);
   write_fields(os, "CellData", grid.cell_data, encoding);
   os << "      <Points>\n";
-  write_array(os, "Float64", "Points", 3, grid.points.data(), grid.points.size(), encoding, "        ");
+  write_array(os, "Float64", "Points", 3, grid.points.data(), grid.points.size(), encoding,
+              "        ");
   os << "      </Points>\n      <Cells>\n";
-  write_array(os, "Int64", "connectivity", 1, connectivity.data(), connectivity.size(), encoding, "        ");
+  write_array(os, "Int64", "connectivity", 1, connectivity.data(), connectivity.size(), encoding,
+              "        ");
   write_array(os, "Int64", "offsets", 1, offsets.data(), offsets.size(), encoding, "        ");
   write_array(os, "UInt8", "types", 1, types.data(), types.size(), encoding, "        ");
   os << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
@@ -202,7 +211,8 @@ void VtkSeries::write_pvd() const {
   char time[40];
   for (const Step& s : steps_) {
     std::snprintf(time, sizeof time, "%.17g", s.time_s);
-    os << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << s.file << "\"/>\n";
+    os << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << s.file
+       << "\"/>\n";
   }
   os << "  </Collection>\n</VTKFile>\n";
   std::ofstream out(pvd_file_, std::ios::binary | std::ios::trunc);

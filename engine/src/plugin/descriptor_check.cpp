@@ -48,7 +48,8 @@ std::optional<std::string> check_range(const tacta_param_spec& spec, bool check_
   if (std::isnan(spec.min_value) || std::isnan(spec.max_value) || spec.min_value > spec.max_value)
     return "range [" + number(spec.min_value) + ", " + number(spec.max_value) +
            "] is empty (min must be <= max)";
-  if (check_default && !(spec.default_value >= spec.min_value && spec.default_value <= spec.max_value))
+  if (check_default &&
+      !(spec.default_value >= spec.min_value && spec.default_value <= spec.max_value))
     return "default " + number(spec.default_value) + " is outside [" + number(spec.min_value) +
            ", " + number(spec.max_value) + "]";
   return std::nullopt;
@@ -69,7 +70,8 @@ std::optional<std::string> check_vector_default(const tacta_param_spec& spec) {
     cursor = end;
   }
   while (*cursor == ' ' || *cursor == ',') ++cursor;
-  if (*cursor != '\0') return std::string("default '") + spec.default_text + "' is not a list of numbers";
+  if (*cursor != '\0')
+    return std::string("default '") + spec.default_text + "' is not a list of numbers";
   if (count % spec.vector_stride != 0)
     return "default has " + std::to_string(count) + " numbers, not a multiple of the stride " +
            std::to_string(spec.vector_stride);
@@ -109,7 +111,8 @@ std::optional<std::string> check_live_params(const tacta_descriptor& d) {
     const uint32_t index = param_index(d, name);
     if (index == d.param_count) return "live_params names '" + name + "', which is not a parameter";
     const tacta_param_spec* spec = &d.params[index];
-    if (spec->type != TACTA_PARAM_REAL && spec->type != TACTA_PARAM_INT && spec->type != TACTA_PARAM_BOOL)
+    if (spec->type != TACTA_PARAM_REAL && spec->type != TACTA_PARAM_INT &&
+        spec->type != TACTA_PARAM_BOOL)
       return "live parameter '" + name + "' is not a number (REAL, INT or BOOL)";
   }
   return std::nullopt;
@@ -152,7 +155,8 @@ std::optional<std::string> check_descriptor(const tacta_descriptor* d, uint64_t 
   char abi_message[256] = {0};
   if (!tacta_abi_check(host_abi, d->abi, abi_message, sizeof abi_message))
     return "descriptor" + who + ": ABI refused: " + abi_message;
-  if (d->kind != TACTA_KIND_MODEL && d->kind != TACTA_KIND_COLLISION && d->kind != TACTA_KIND_DEVICE)
+  if (d->kind != TACTA_KIND_MODEL && d->kind != TACTA_KIND_COLLISION &&
+      d->kind != TACTA_KIND_DEVICE)
     return "descriptor" + who + ": unknown kind " + std::to_string(d->kind);
   const std::string label = std::string(tacta_kind_name(d->kind)) + who;
   if (d->name == nullptr || d->name[0] == '\0') return label + ": empty name";

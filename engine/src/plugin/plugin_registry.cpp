@@ -2,14 +2,13 @@
 // what each file registered or why it was refused.
 #include "tacta/plugin_registry.hpp"
 
-#include <dlfcn.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 #include <set>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include "plugin/descriptor_check.hpp"
 #include "tacta/error.hpp"
@@ -34,7 +33,7 @@ struct Registration {
   const std::vector<LoadedDescriptor>* existing = nullptr;
   std::string file;
   std::vector<const tacta_descriptor*> pending;  // committed only if the whole file is accepted
-  std::string error;                              // first refusal reason, empty if none
+  std::string error;                             // first refusal reason, empty if none
 };
 
 bool same_name(const tacta_descriptor* a, const tacta_descriptor* b) {
@@ -104,7 +103,8 @@ PluginRegistry::~PluginRegistry() {
 void PluginRegistry::add_path(const std::string& directory) {
   std::error_code ec;
   if (!fs::is_directory(directory, ec))
-    throw InputError({directory, 0, 0, ""}, "plugin path is not a folder (from --path or add_path)");
+    throw InputError({directory, 0, 0, ""},
+                     "plugin path is not a folder (from --path or add_path)");
   state_->added_paths.push_back(directory);
 }
 
@@ -149,7 +149,8 @@ void PluginRegistry::load_directory(const std::string& directory) {
   std::error_code ec;
   std::vector<std::string> files;
   for (const auto& item : fs::directory_iterator(directory, ec))
-    if (item.path().extension() == ".so" && !item.is_directory(ec)) files.push_back(item.path().string());
+    if (item.path().extension() == ".so" && !item.is_directory(ec))
+      files.push_back(item.path().string());
   if (ec) {
     state_->refused.push_back({directory, "cannot list folder: " + ec.message()});
     return;

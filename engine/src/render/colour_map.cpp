@@ -11,14 +11,14 @@ namespace {
 // (#440154 #482878 #3E4A89 #31688E #26828E #1F9E89 #35B779 #6DCD59 #FDE725), linearly
 // interpolated between anchors.
 constexpr std::array<std::array<int, 3>, 9> kAnchors{{{0x44, 0x01, 0x54},
-                                                       {0x48, 0x28, 0x78},
-                                                       {0x3E, 0x4A, 0x89},
-                                                       {0x31, 0x68, 0x8E},
-                                                       {0x26, 0x82, 0x8E},
-                                                       {0x1F, 0x9E, 0x89},
-                                                       {0x35, 0xB7, 0x79},
-                                                       {0x6D, 0xCD, 0x59},
-                                                       {0xFD, 0xE7, 0x25}}};
+                                                      {0x48, 0x28, 0x78},
+                                                      {0x3E, 0x4A, 0x89},
+                                                      {0x31, 0x68, 0x8E},
+                                                      {0x26, 0x82, 0x8E},
+                                                      {0x1F, 0x9E, 0x89},
+                                                      {0x35, 0xB7, 0x79},
+                                                      {0x6D, 0xCD, 0x59},
+                                                      {0xFD, 0xE7, 0x25}}};
 }  // namespace
 
 Rgb colour_map(double t) {

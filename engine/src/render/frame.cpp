@@ -1,9 +1,10 @@
+#include "tacta/render/frame.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "math.hpp"
-#include "tacta/render/frame.hpp"
 
 namespace tacta::render {
 

@@ -55,11 +55,11 @@ std::vector<Vec3d> vertex_normals(const std::vector<double>& positions,
 
 void append_body(const BodyDraw& body, size_t body_index, double marker_m, DrawLists& out) {
   if (body.positions.size() % 3 != 0)
-    fail(body_index, "positions must hold 3 values a vertex; found " +
-                         std::to_string(body.positions.size()));
+    fail(body_index,
+         "positions must hold 3 values a vertex; found " + std::to_string(body.positions.size()));
   if (body.triangles.size() % 3 != 0)
-    fail(body_index, "triangles must hold 3 indices each; found " +
-                         std::to_string(body.triangles.size()));
+    fail(body_index,
+         "triangles must hold 3 indices each; found " + std::to_string(body.triangles.size()));
   const size_t vertex_count = body.positions.size() / 3;
   for (uint32_t index : body.triangles)
     if (index >= vertex_count)
@@ -105,8 +105,8 @@ void append_sphere(const Vec3d& centre, double radius_m, const Rgb& colour, Draw
   };
   for (int stack = 0; stack < kSphereStacks; ++stack)
     for (int slice = 0; slice < kSphereSlices; ++slice) {
-      const Vec3d n[4] = {point(stack, slice), point(stack + 1, slice),
-                          point(stack + 1, slice + 1), point(stack, slice + 1)};
+      const Vec3d n[4] = {point(stack, slice), point(stack + 1, slice), point(stack + 1, slice + 1),
+                          point(stack, slice + 1)};
       const int quad[6] = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from outside
       for (int k : quad) {
         const Vec3d& nk = n[k];
@@ -123,10 +123,9 @@ void append_cube(const Vec3d& centre, double half_size_m, const Rgb& colour, Dra
       const Vec3d u = perpendicular(n);
       const Vec3d v = cross(n, u);
       const Vec3d c = add(centre, scaled(n, half_size_m));
-      const Vec3d p[4] = {add(c, scaled(add(u, v), -half_size_m)),
-                          add(c, scaled(sub(u, v), half_size_m)),
-                          add(c, scaled(add(u, v), half_size_m)),
-                          add(c, scaled(sub(v, u), half_size_m))};
+      const Vec3d p[4] = {
+          add(c, scaled(add(u, v), -half_size_m)), add(c, scaled(sub(u, v), half_size_m)),
+          add(c, scaled(add(u, v), half_size_m)), add(c, scaled(sub(v, u), half_size_m))};
       push_triangle(out, p[0], p[1], p[2], colour);
       push_triangle(out, p[0], p[2], p[3], colour);
     }
@@ -151,8 +150,10 @@ void append_arrow(const Vec3d& from, const Vec3d& vector, double shaft_radius_m,
     const Vec3d r0 = ring(side);
     const Vec3d r1 = ring(side + 1);
     // Shaft: two triangles with radial normals.
-    const Vec3d a0 = add(from, scaled(r0, shaft_radius_m)), a1 = add(from, scaled(r1, shaft_radius_m));
-    const Vec3d b0 = add(neck, scaled(r0, shaft_radius_m)), b1 = add(neck, scaled(r1, shaft_radius_m));
+    const Vec3d a0 = add(from, scaled(r0, shaft_radius_m)),
+                a1 = add(from, scaled(r1, shaft_radius_m));
+    const Vec3d b0 = add(neck, scaled(r0, shaft_radius_m)),
+                b1 = add(neck, scaled(r1, shaft_radius_m));
     out.triangles.push_back({to_f(a0), to_f(r0), colour});
     out.triangles.push_back({to_f(a1), to_f(r1), colour});
     out.triangles.push_back({to_f(b1), to_f(r1), colour});
@@ -176,8 +177,9 @@ void append_tool(const ToolDraw& tool, const Rgb& colour, DrawLists& out) {
   std::vector<double> world(mesh.positions.size());
   const std::array<double, 4> q = unit_quaternion(tool.orientation);
   for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3) {
-    const Vec3d p = add(tool.position, rotate(q, {mesh.positions[i], mesh.positions[i + 1],
-                                                  mesh.positions[i + 2]}));
+    const Vec3d p =
+        add(tool.position,
+            rotate(q, {mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]}));
     world[i] = p[0];
     world[i + 1] = p[1];
     world[i + 2] = p[2];
@@ -190,7 +192,8 @@ void append_tool(const ToolDraw& tool, const Rgb& colour, DrawLists& out) {
 }
 
 void append_floor_grid(double height_m, const Bounds& bounds, DrawLists& out) {
-  const double extent = std::max({bounds.max[0] - bounds.min[0], bounds.max[2] - bounds.min[2], 1e-3});
+  const double extent =
+      std::max({bounds.max[0] - bounds.min[0], bounds.max[2] - bounds.min[2], 1e-3});
   const double spacing = std::pow(10.0, std::floor(std::log10(extent)));
   const double margin = 2 * spacing;
   const double x0 = std::floor((bounds.min[0] - margin) / spacing) * spacing;

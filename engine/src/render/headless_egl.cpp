@@ -1,6 +1,5 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -26,12 +25,18 @@ std::string egl_error_name(EGLint code) {
     case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
     case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
     case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    default: return "EGL error 0x" + [&] { char b[16]; std::snprintf(b, sizeof b, "%x", static_cast<unsigned>(code)); return std::string(b); }();
+    default:
+      return "EGL error 0x" + [&] {
+        char b[16];
+        std::snprintf(b, sizeof b, "%x", static_cast<unsigned>(code));
+        return std::string(b);
+      }();
   }
 }
 
 [[noreturn]] void fail(const std::string& step) {
-  throw std::runtime_error("headless render: " + step + " failed (" + egl_error_name(eglGetError()) +
+  throw std::runtime_error("headless render: " + step + " failed (" +
+                           egl_error_name(eglGetError()) +
                            "); needs Mesa's EGL (libegl-mesa0, libgl1-mesa-dri)");
 }
 
@@ -55,7 +60,8 @@ EGLDisplay open_display(std::string& platform) {
   auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (get_platform_display != nullptr && has_extension(client, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay display =
+        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr) == EGL_TRUE) {
       platform = "surfaceless";
       return display;
@@ -93,13 +99,15 @@ struct HeadlessRenderer::State {
   void release();  // frees GL objects, the context and this renderer's use of the display
 };
 
-HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std::make_unique<State>()) {
+HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options)
+    : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.options = options;
-  if (options.width <= 0 || options.height <= 0 || options.width > kMaxFrameSide || options.height > kMaxFrameSide)
+  if (options.width <= 0 || options.height <= 0 || options.width > kMaxFrameSide ||
+      options.height > kMaxFrameSide)
     throw std::invalid_argument("headless render: size " + std::to_string(options.width) + "x" +
-                                std::to_string(options.height) + " is outside 1.." + std::to_string(kMaxFrameSide) +
-                                " pixels");
+                                std::to_string(options.height) + " is outside 1.." +
+                                std::to_string(kMaxFrameSide) + " pixels");
   if (options.deterministic) {
     // Before the driver loads: Mesa reads these once.
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
@@ -117,11 +125,16 @@ HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std:
     EGLConfig config = nullptr;
     EGLint config_count = 0;
     eglChooseConfig(s.display, config_attributes, &config, 1, &config_count);
-    const bool no_config = has_extension(eglQueryString(s.display, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
+    const bool no_config =
+        has_extension(eglQueryString(s.display, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
     if (config_count < 1 && !no_config) fail("eglChooseConfig(OpenGL)");
-    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                         3,
+                                         EGL_CONTEXT_MINOR_VERSION,
+                                         3,
                                          EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                         EGL_NONE};
     s.context = eglCreateContext(s.display, config_count > 0 ? config : EGL_NO_CONFIG_KHR,
                                  EGL_NO_CONTEXT, context_attributes);
     if (s.context == EGL_NO_CONTEXT) fail("creating an OpenGL 3.3 core context");
@@ -133,7 +146,8 @@ HeadlessRenderer::HeadlessRenderer(const HeadlessOptions& options) : state_(std:
     glGenRenderbuffers(1, &s.colour_buffer);
     glBindRenderbuffer(GL_RENDERBUFFER, s.colour_buffer);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, options.width, options.height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, s.colour_buffer);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              s.colour_buffer);
     glGenRenderbuffers(1, &s.depth_buffer);
     glBindRenderbuffer(GL_RENDERBUFFER, s.depth_buffer);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, options.width, options.height);
@@ -204,7 +218,8 @@ std::string HeadlessRenderer::description() const {
     const GLubyte* s = glGetString(name);
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
   };
-  const std::string what = "OpenGL " + text(GL_VERSION) + " / " + text(GL_RENDERER) + " via " + state_->platform;
+  const std::string what =
+      "OpenGL " + text(GL_VERSION) + " / " + text(GL_RENDERER) + " via " + state_->platform;
   eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   return what;
 }

@@ -51,7 +51,8 @@ inline Mat4 multiply(const Mat4& a, const Mat4& b) {
   for (int c = 0; c < 4; ++c)
     for (int row = 0; row < 4; ++row) {
       float s = 0;
-      for (int k = 0; k < 4; ++k) s += a[static_cast<size_t>(k * 4 + row)] * b[static_cast<size_t>(c * 4 + k)];
+      for (int k = 0; k < 4; ++k)
+        s += a[static_cast<size_t>(k * 4 + row)] * b[static_cast<size_t>(c * 4 + k)];
       r[static_cast<size_t>(c * 4 + row)] = s;
     }
   return r;
@@ -62,9 +63,15 @@ inline Mat4 look_at(const Vec3d& eye, const Vec3d& target, const Vec3d& up) {
   const Vec3d s = normalized(cross(f, up), perpendicular(f));
   const Vec3d u = cross(s, f);
   Mat4 m{};
-  m[0] = static_cast<float>(s[0]); m[4] = static_cast<float>(s[1]); m[8] = static_cast<float>(s[2]);
-  m[1] = static_cast<float>(u[0]); m[5] = static_cast<float>(u[1]); m[9] = static_cast<float>(u[2]);
-  m[2] = static_cast<float>(-f[0]); m[6] = static_cast<float>(-f[1]); m[10] = static_cast<float>(-f[2]);
+  m[0] = static_cast<float>(s[0]);
+  m[4] = static_cast<float>(s[1]);
+  m[8] = static_cast<float>(s[2]);
+  m[1] = static_cast<float>(u[0]);
+  m[5] = static_cast<float>(u[1]);
+  m[9] = static_cast<float>(u[2]);
+  m[2] = static_cast<float>(-f[0]);
+  m[6] = static_cast<float>(-f[1]);
+  m[10] = static_cast<float>(-f[2]);
   m[12] = static_cast<float>(-dot(s, eye));
   m[13] = static_cast<float>(-dot(u, eye));
   m[14] = static_cast<float>(dot(f, eye));

@@ -12,9 +12,9 @@ namespace tacta::render::detail {
 
 namespace {
 
-constexpr float kMargin = 8;         // pixels from the viewport edge
-constexpr float kLineHeight = 11;    // glyph pixels a line, before scaling
-constexpr float kPanelPadding = 6;   // pixels around the text
+constexpr float kMargin = 8;            // pixels from the viewport edge
+constexpr float kLineHeight = 11;       // glyph pixels a line, before scaling
+constexpr float kPanelPadding = 6;      // pixels around the text
 constexpr size_t kStbVertexBytes = 16;  // x, y, z floats and 4 colour bytes
 
 void push_quad(std::vector<OverlayVertex>& out, float x0, float y0, float x1, float y1,
@@ -52,8 +52,9 @@ void append_line(const std::string& line, float x, float y, float glyph_scale,
     float corner[4][2];
     for (int k = 0; k < 4; ++k) {
       float xy[2];
-      std::copy_n(buffer.data() + (static_cast<size_t>(q) * 4 + static_cast<size_t>(k)) * kStbVertexBytes,
-                  sizeof xy, reinterpret_cast<char*>(xy));
+      std::copy_n(
+          buffer.data() + (static_cast<size_t>(q) * 4 + static_cast<size_t>(k)) * kStbVertexBytes,
+          sizeof xy, reinterpret_cast<char*>(xy));
       corner[k][0] = x + xy[0] * glyph_scale;
       corner[k][1] = y + xy[1] * glyph_scale;
     }
@@ -70,8 +71,8 @@ void append_text_panel(const std::vector<std::string>& lines, float glyph_scale,
   for (const std::string& line : lines) widest = std::max(widest, text_width(line));
   const float line_step = kLineHeight * glyph_scale;
   const float x1 = kMargin + 2 * kPanelPadding + widest * glyph_scale;
-  const float y1 = kMargin + 2 * kPanelPadding + line_step * static_cast<float>(lines.size()) -
-                   3 * glyph_scale;
+  const float y1 =
+      kMargin + 2 * kPanelPadding + line_step * static_cast<float>(lines.size()) - 3 * glyph_scale;
   push_quad(out, kMargin, kMargin, x1, y1, {0, 0, 0, 0.55f}, {0, 0, 0, 0.55f});
   const std::array<float, 4> ink{0.95f, 0.95f, 0.92f, 1};
   for (size_t i = 0; i < lines.size(); ++i)
@@ -97,7 +98,8 @@ void append_colour_bar(double low, double high, int viewport_width, int viewport
     const float yb = y0 + height * static_cast<float>(i + 1) / kSteps;
     const Rgb top = colour_map(1.0 - static_cast<double>(i) / kSteps);
     const Rgb bottom = colour_map(1.0 - static_cast<double>(i + 1) / kSteps);
-    push_quad(out, x0, ya, x1, yb, {top[0], top[1], top[2], 1}, {bottom[0], bottom[1], bottom[2], 1});
+    push_quad(out, x0, ya, x1, yb, {top[0], top[1], top[2], 1},
+              {bottom[0], bottom[1], bottom[2], 1});
   }
   const std::array<float, 4> ink{0.95f, 0.95f, 0.92f, 1};
   append_line(high_text, x1 + 6, y0, glyph_scale, ink, out);

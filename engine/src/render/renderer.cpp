@@ -93,7 +93,7 @@ class GlResources {
   StreamBuffer lit;
   StreamBuffer lines;
   StreamBuffer overlay;
-  DrawLists scene;                             // reused so capacity carries across frames
+  DrawLists scene;  // reused so capacity carries across frames
   std::vector<OverlayVertex> overlay_vertices;
 };
 
@@ -112,7 +112,8 @@ void build_scene(const RenderFrame& frame, const Bounds& bounds, DrawLists& out)
   const double marker = std::max(diagonal * 0.006, 1e-5);  // m, half-size of node markers
   for (size_t i = 0; i < frame.bodies.size(); ++i) append_body(frame.bodies[i], i, marker, out);
   append_tool(frame.tool, kToolColour, out);
-  if (frame.proxy) append_sphere(*frame.proxy, std::max(frame.tool.radius * 0.6, marker), kProxyColour, out);
+  if (frame.proxy)
+    append_sphere(*frame.proxy, std::max(frame.tool.radius * 0.6, marker), kProxyColour, out);
   for (const ContactDraw& contact : frame.contacts) {
     append_sphere(contact.point, marker * 1.2, kContactColour, out);
     const Vec3d tip = add(contact.point, scaled(normalized(contact.normal), diagonal * 0.06));
@@ -149,8 +150,9 @@ void Renderer::draw(const RenderFrame& frame, int width, int height) {
   const double far_m = distance + 6 * radius;
   const double near_m = std::max({far_m * 1e-4, distance - 6 * radius, 1e-5});
   const Mat4 view = look_at(frame.camera.eye, frame.camera.target, frame.camera.up);
-  const Mat4 projection = perspective(frame.camera.vertical_fov_rad,
-                                      static_cast<double>(width) / std::max(height, 1), near_m, far_m);
+  const Mat4 projection =
+      perspective(frame.camera.vertical_fov_rad, static_cast<double>(width) / std::max(height, 1),
+                  near_m, far_m);
 
   if (!g.scene.triangles.empty()) {
     glUseProgram(g.lit_program);
@@ -176,7 +178,8 @@ void Renderer::draw(const RenderFrame& frame, int width, int height) {
   append_text_panel(frame.overlay_lines, glyph_scale, g.overlay_vertices);
   for (const BodyDraw& body : frame.bodies)
     if (!body.scalar.empty()) {
-      append_colour_bar(body.scalar_min, body.scalar_max, width, height, glyph_scale, g.overlay_vertices);
+      append_colour_bar(body.scalar_min, body.scalar_max, width, height, glyph_scale,
+                        g.overlay_vertices);
       break;  // one bar: the first coloured body's range
     }
   if (!g.overlay_vertices.empty()) {

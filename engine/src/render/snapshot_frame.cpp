@@ -14,7 +14,8 @@ namespace {
 
 // What a body shows: its embedded surface when it has one, else the boundary of its tets.
 bool shows_embedded(const BodyStatic& b, const BodySnapshot& s) {
-  return !b.surface_triangles.empty() && s.surface_positions.size() == b.surface_rest_positions.size();
+  return !b.surface_triangles.empty() &&
+         s.surface_positions.size() == b.surface_rest_positions.size();
 }
 
 // Rest bounds of every body, for a camera that stays put while the bodies move.
@@ -33,7 +34,8 @@ void fit_to_rest(RenderFrame& frame, const SceneStatic& scene) {
 
 }  // namespace
 
-RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot, const SnapshotStyle& style) {
+RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot,
+                              const SnapshotStyle& style) {
   RenderFrame frame;
   double max_displacement = 1e-4;  // m: the colour map's upper end at least 0.1 mm
   double floor = 1e300;
@@ -62,8 +64,10 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
     }
     if (s.frozen) d.base_colour = {0.5f, 0.5f, 0.5f};
     for (uint32_t n : b.fixed_nodes)
-      for (int a = 0; a < 3; ++a) d.fixed_positions.push_back(s.positions[3 * n + static_cast<size_t>(a)]);
-    for (size_t k = 1; k < b.rest_positions.size(); k += 3) floor = std::min(floor, b.rest_positions[k]);
+      for (int a = 0; a < 3; ++a)
+        d.fixed_positions.push_back(s.positions[3 * n + static_cast<size_t>(a)]);
+    for (size_t k = 1; k < b.rest_positions.size(); k += 3)
+      floor = std::min(floor, b.rest_positions[k]);
     frame.bodies.push_back(std::move(d));
   }
   for (BodyDraw& d : frame.bodies) d.scalar_max = max_displacement;
@@ -71,7 +75,8 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
   fit_to_rest(frame, scene);
 
   char line[160];
-  std::snprintf(line, sizeof line, "t = %.3f s   tick %.3f ms", snapshot.time_s, snapshot.last_tick_ms);
+  std::snprintf(line, sizeof line, "t = %.3f s   tick %.3f ms", snapshot.time_s,
+                snapshot.last_tick_ms);
   frame.overlay_lines.emplace_back(line);
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     std::snprintf(line, sizeof line, "%s: %s%s  max |u| %.2f mm", scene.bodies[i].name.c_str(),
@@ -87,8 +92,10 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
     frame.tool.radius = scene.devices[0].tool_radius_m;
     frame.proxy = dev.proxy;
     frame.force = dev.force;
-    const double f = std::sqrt(dev.force[0] * dev.force[0] + dev.force[1] * dev.force[1] + dev.force[2] * dev.force[2]);
-    std::snprintf(line, sizeof line, "%s: force %.2f N%s", scene.devices[0].name.c_str(), f, dev.contact ? " (contact)" : "");
+    const double f = std::sqrt(dev.force[0] * dev.force[0] + dev.force[1] * dev.force[1] +
+                               dev.force[2] * dev.force[2]);
+    std::snprintf(line, sizeof line, "%s: force %.2f N%s", scene.devices[0].name.c_str(), f,
+                  dev.contact ? " (contact)" : "");
     frame.overlay_lines.emplace_back(line);
     if (dev.contact) frame.contacts.push_back({dev.proxy, {0, 1, 0}});
   }
@@ -104,8 +111,8 @@ std::string models_label(const Snapshot& snapshot) {
   return label;
 }
 
-Image write_snapshot_png(HeadlessRenderer& renderer, const SceneStatic& scene, const Snapshot& snapshot,
-                         const std::string& path, SnapshotStyle style) {
+Image write_snapshot_png(HeadlessRenderer& renderer, const SceneStatic& scene,
+                         const Snapshot& snapshot, const std::string& path, SnapshotStyle style) {
   if (style.model_label.empty()) style.model_label = models_label(snapshot);
   Image image = renderer.render(make_render_frame(scene, snapshot, style));
   const std::filesystem::path file(path);
@@ -157,8 +164,9 @@ class PngFrameWriter final : public FrameObserver {
 
 }  // namespace
 
-std::unique_ptr<FrameObserver> make_png_frame_writer(const std::string& directory, std::vector<double> times,
-                                                     int width, int height) {
+std::unique_ptr<FrameObserver> make_png_frame_writer(const std::string& directory,
+                                                     std::vector<double> times, int width,
+                                                     int height) {
   return std::make_unique<PngFrameWriter>(directory, std::move(times), width, height);
 }
 

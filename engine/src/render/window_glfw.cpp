@@ -2,7 +2,6 @@
 #include "gl.hpp"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -38,7 +37,8 @@ Window::Window(const WindowOptions& options) : state_(std::make_unique<State>())
   {
     std::lock_guard lock(glfw_mutex);
     if (!glfw_ready && glfwInit() != GLFW_TRUE)
-      throw std::runtime_error("window: cannot start GLFW (" + glfw_reason() + "); is DISPLAY set?");
+      throw std::runtime_error("window: cannot start GLFW (" + glfw_reason() +
+                               "); is DISPLAY set?");
     glfw_ready = true;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -46,7 +46,8 @@ Window::Window(const WindowOptions& options) : state_(std::make_unique<State>())
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_SAMPLES, 0);
-  state_->window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  state_->window =
+      glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
   if (state_->window == nullptr) {
     const std::string reason = glfw_reason();
     throw std::runtime_error("window: cannot open an OpenGL 3.3 core window (" + reason + ")");

@@ -1,12 +1,11 @@
 // The public plot-script runner (tacta/output/plot_script.hpp): child processes by posix_spawn.
 #include "tacta/output/plot_script.hpp"
 
+#include <cstdlib>
+#include <filesystem>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
 
 extern char** environ;
 
@@ -20,7 +19,8 @@ std::string plot_python() {
 std::string plot_scripts_dir() {
   if (const char* d = std::getenv("TACTA_PLOT_SCRIPTS")) return d;
 #ifdef TACTA_SOURCE_DIR
-  if (std::filesystem::exists(TACTA_SOURCE_DIR "/scripts/plots")) return TACTA_SOURCE_DIR "/scripts/plots";
+  if (std::filesystem::exists(TACTA_SOURCE_DIR "/scripts/plots"))
+    return TACTA_SOURCE_DIR "/scripts/plots";
 #endif
   return TACTA_INSTALL_PLUGIN_DIR "/../../../share/tacta/plots";
 }

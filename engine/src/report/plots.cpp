@@ -12,13 +12,15 @@ namespace {
 // The paper's corner names for the nodes of a 4-node planar square, else "node N".
 std::string node_label(const SoftBody& body, uint32_t node) {
   static const char* const corners[] = {"SW", "SE", "NW", "NE"};
-  if (body.topology->mesh.dimension == 2 && body.node_count() == 4) return std::string(corners[node]) + " (node " + std::to_string(node) + ")";
+  if (body.topology->mesh.dimension == 2 && body.node_count() == 4)
+    return std::string(corners[node]) + " (node " + std::to_string(node) + ")";
   return "node " + std::to_string(node);
 }
 
 }  // namespace
 
-void write_plots(const std::string& dir, const World& world, RunResult& result, std::vector<std::string>& warnings) {
+void write_plots(const std::string& dir, const World& world, RunResult& result,
+                 std::vector<std::string>& warnings) {
   const OutputDesc& out = world.scene().output;
   const std::string scripts = plot_scripts_dir();
   for (const std::string& plot : out.plots) {
@@ -26,10 +28,12 @@ void write_plots(const std::string& dir, const World& world, RunResult& result, 
     std::string png = dir + "/" + plot + ".png";
     if (plot == "phase_portrait") {
       if (!std::filesystem::exists(dir + "/trajectory.csv")) {
-        warnings.push_back("phase_portrait: no trajectory was recorded (set output.plot_nodes or probe_node)");
+        warnings.push_back(
+            "phase_portrait: no trajectory was recorded (set output.plot_nodes or probe_node)");
         continue;
       }
-      args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png, "--title", world.scene().name});
+      args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png,
+                               "--title", world.scene().name});
       const SoftBody* body = nullptr;
       for (size_t i = 0; i < world.body_count() && body == nullptr; ++i)
         if (!world.body(i).recorded_nodes.empty()) body = &world.body(i);
@@ -47,16 +51,22 @@ void write_plots(const std::string& dir, const World& world, RunResult& result, 
       png = dir + "/force_vs_time.png";
       args.insert(args.end(), {scripts + "/force_vs_time.py", dir + "/trace.csv", png});
       if (world.device_count() > 0)
-        args.insert(args.end(), {"--peak-force", std::to_string(world.device(0).device->capabilities().peak_force)});
+        args.insert(
+            args.end(),
+            {"--peak-force", std::to_string(world.device(0).device->capabilities().peak_force)});
     } else if (plot == "energy" || plot == "displacement") {
-      args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot, "--title", world.scene().name});
+      args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot,
+                               "--title", world.scene().name});
     } else {
       warnings.push_back("unknown plot '" + plot + "'");
       continue;
     }
     const int status = run_plot_process(args);
-    if (status == 0 && std::filesystem::exists(png)) result.outputs.push_back(png);
-    else warnings.push_back("plot " + plot + " failed (" + args[1] + " exited with " + std::to_string(status) + ")");
+    if (status == 0 && std::filesystem::exists(png))
+      result.outputs.push_back(png);
+    else
+      warnings.push_back("plot " + plot + " failed (" + args[1] + " exited with " +
+                         std::to_string(status) + ")");
   }
 }
 

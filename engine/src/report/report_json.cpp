@@ -23,7 +23,8 @@ void write_mesh_origin(JsonWriter& j, const BodyResult& b, const LoadReport& loa
   j.key("mesh").begin_object();
   j.field("summary", b.mesh).field("format", load.format);
   if (load.voxel_size > 0) {
-    j.field("voxel_size_m", load.voxel_size).field("voxel_cells", static_cast<uint64_t>(load.voxel_cells));
+    j.field("voxel_size_m", load.voxel_size)
+        .field("voxel_cells", static_cast<uint64_t>(load.voxel_cells));
     j.field("surface_shells", static_cast<uint64_t>(load.shells));
     j.field("enclosed_volume_m3", load.enclosed_volume).field("volume_m3", load.mesh_volume);
     j.key("piece_volumes_m3").begin_array();
@@ -41,7 +42,9 @@ void write_status_bits(JsonWriter& j, const std::vector<StatusBitCount>& bits) {
   j.key("status").begin_array();
   for (const StatusBitCount& b : bits) {
     j.begin_object().field("bit", b.name).field("value", static_cast<uint64_t>(b.bit));
-    j.field("severity", severity_name(b.severity)).field("ticks", b.ticks).field("first_time_s", b.first_time_s);
+    j.field("severity", severity_name(b.severity))
+        .field("ticks", b.ticks)
+        .field("first_time_s", b.first_time_s);
     j.field("remedy", b.remedy).end_object();
   }
   j.end_array();
@@ -74,7 +77,8 @@ void write_collision(JsonWriter& j, const RunStatus& s) {
   }
   j.end_array();
   j.key("capacity").begin_object();
-  j.field("pairs", static_cast<uint64_t>(s.pairs_capacity)).field("pairs_max_used", static_cast<uint64_t>(s.pairs_high_water));
+  j.field("pairs", static_cast<uint64_t>(s.pairs_capacity))
+      .field("pairs_max_used", static_cast<uint64_t>(s.pairs_high_water));
   j.field("contacts", static_cast<uint64_t>(s.contacts_capacity));
   j.field("contacts_max_used", static_cast<uint64_t>(s.contacts_high_water));
   j.end_object();
@@ -95,15 +99,20 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     if (b.pending) j.field("pending", true);
     // Every model the body ran, with the simulated time it took over (s): the scene's scheduled
     // swaps and the ones requested while running, in time order.
-    std::vector<std::pair<double, std::string>> runs{{std::max(0.0, b.added_s), body.initial_model}};
-    for (size_t s = 0; s < body.next_swap; ++s) runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
+    std::vector<std::pair<double, std::string>> runs{
+        {std::max(0.0, b.added_s), body.initial_model}};
+    for (size_t s = 0; s < body.next_swap; ++s)
+      runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
     for (const RuntimeSwap& r : body.runtime_swaps) runs.emplace_back(r.time_s, r.model);
-    std::stable_sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::stable_sort(runs.begin(), runs.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     j.key("models_run").begin_array();
-    for (const auto& [time, model] : runs) j.begin_object().field("time_s", time).field("model", model).end_object();
+    for (const auto& [time, model] : runs)
+      j.begin_object().field("time_s", time).field("model", model).end_object();
     j.end_array();
     j.field("models_run_unlisted", body.runtime_swaps_unlisted);
-    j.field("nodes", static_cast<uint64_t>(b.nodes)).field("elements", static_cast<uint64_t>(b.elements));
+    j.field("nodes", static_cast<uint64_t>(b.nodes))
+        .field("elements", static_cast<uint64_t>(b.elements));
     write_mesh_origin(j, b, body.topology->load);
     j.field("model_notes", body.model->describe());
     j.field("max_displacement_m", b.max_displacement_m);
@@ -127,7 +136,9 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
       j.key("worker").begin_object();
       j.field("steps", b.worker_steps);
       j.key("step_ms").begin_object();
-      j.field("p50", b.worker_step_ms.p50_ms).field("p99", b.worker_step_ms.p99_ms).field("max", b.worker_step_ms.max_ms);
+      j.field("p50", b.worker_step_ms.p50_ms)
+          .field("p99", b.worker_step_ms.p99_ms)
+          .field("max", b.worker_step_ms.max_ms);
       j.end_object();
       j.field("late_boundaries", b.late_boundaries).field("max_lateness_s", b.max_lateness_s);
       j.end_object();
@@ -179,7 +190,8 @@ void write_devices(JsonWriter& j, const World& world, const RunStatus& status) {
                      : s.state == TACTA_DEVICE_FINISHED     ? "finished"
                      : s.state == TACTA_DEVICE_DISCONNECTED ? "disconnected"
                                                             : "fault");
-    if (s.status_time_s >= 0) j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
+    if (s.status_time_s >= 0)
+      j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
     j.field("reconnections", st.reconnections);
     if (d < status.devices.size()) write_status_bits(j, status.devices[d]);
     // The plugin's own figures (network devices: packets, drops, watchdog trips, round trip).
@@ -210,13 +222,15 @@ void write_realtime(JsonWriter& j, const RunResult& result) {
   j.field("demoted_at_tick", g.demoted_at_tick);
   j.field("memory_locked", g.memory_locked).field("memory_note", g.memory_note);
   j.field("haptic_cpu", g.cpu).field("cpu_note", g.cpu_note);
-  j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered)).field("spin_us", g.spin_us);
+  j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered))
+      .field("spin_us", g.spin_us);
   j.end_object();
 }
 
 }  // namespace
 
-void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result) {
+void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world,
+                       RunResult& result) {
   const std::string path = dir + "/report.json";
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);
@@ -254,7 +268,8 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
     j.end_object();
   }
   j.end_array();
-  j.field("dropped_records", loop.trace().dropped() + loop.trajectory().dropped() + loop.energy().dropped());
+  j.field("dropped_records",
+          loop.trace().dropped() + loop.trajectory().dropped() + loop.energy().dropped());
   j.field("dropped_faults", loop.faults().dropped());
   j.field("state_hash", result.state_hash);
   j.key("outputs").begin_array();

@@ -10,13 +10,16 @@
 namespace tacta {
 
 // trace.csv, trajectory.csv, energy.csv (those with rows); appends the paths to result.outputs.
-void write_csv_records(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result);
+void write_csv_records(const std::string& dir, const HapticLoop& loop, const World& world,
+                       RunResult& result);
 
 // report.json (see docs/REPORT.md); appends the path to result.outputs.
-void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result);
+void write_report_json(const std::string& dir, const HapticLoop& loop, const World& world,
+                       RunResult& result);
 
 // The plots the scene asks for (output.plots), made by scripts/plots/*.py with /usr/bin/python3.
 // A plot that cannot be made is a warning in the result, not a failed run.
-void write_plots(const std::string& dir, const World& world, RunResult& result, std::vector<std::string>& warnings);
+void write_plots(const std::string& dir, const World& world, RunResult& result,
+                 std::vector<std::string>& warnings);
 
 }  // namespace tacta

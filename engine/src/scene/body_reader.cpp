@@ -1,12 +1,11 @@
 // Bodies: mesh source (file or primitive), material, model, fixed regions, initial state.
 #include <algorithm>
+#include <fmt/format.h>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "scene/plugin_params.hpp"
-#include "tacta/mesh_build.hpp"
 #include "scene/readers.hpp"
+#include "tacta/mesh_build.hpp"
 
 namespace tacta::scene_detail {
 
@@ -15,12 +14,13 @@ namespace {
 constexpr int64_t kMaxCellsPerAxis = 1000;  // keeps a typo from asking for a billion nodes
 
 std::array<int, 3> read_cells(const Field& field, size_t axes) {
-  const std::string expected = axes == 3 ? "a list of 3 cell counts [nx, ny, nz]"
-                                         : "a list of 2 cell counts [nx, ny]";
+  const std::string expected =
+      axes == 3 ? "a list of 3 cell counts [nx, ny, nz]" : "a list of 2 cell counts [nx, ny]";
   const std::vector<Field> items = field.items(expected);
   if (items.size() != axes) field.fail_expected(expected);
   std::array<int, 3> cells{0, 0, 0};
-  for (size_t i = 0; i < axes; ++i) cells[i] = static_cast<int>(items[i].integer(1, kMaxCellsPerAxis));
+  for (size_t i = 0; i < axes; ++i)
+    cells[i] = static_cast<int>(items[i].integer(1, kMaxCellsPerAxis));
   return cells;
 }
 
@@ -35,11 +35,12 @@ void read_grid(const Field& field, MeshSourceDesc& mesh, size_t axes) {
   uint64_t nodes = 1;
   for (size_t a = 0; a < axes; ++a) nodes *= static_cast<uint64_t>(mesh.cells[a]) + 1;
   if (nodes > static_cast<uint64_t>(kMaxGridNodes))
-    cells.fail(fmt::format("{} cells give {} grid nodes; at most {} are allowed (far past what a haptic loop "
-                           "steps, and a typo here would allocate gigabytes before the run)",
-                           axes == 3 ? fmt::format("{} x {} x {}", mesh.cells[0], mesh.cells[1], mesh.cells[2])
-                                     : fmt::format("{} x {}", mesh.cells[0], mesh.cells[1]),
-                           nodes, kMaxGridNodes));
+    cells.fail(fmt::format(
+        "{} cells give {} grid nodes; at most {} are allowed (far past what a haptic loop "
+        "steps, and a typo here would allocate gigabytes before the run)",
+        axes == 3 ? fmt::format("{} x {} x {}", mesh.cells[0], mesh.cells[1], mesh.cells[2])
+                  : fmt::format("{} x {}", mesh.cells[0], mesh.cells[1]),
+        nodes, kMaxGridNodes));
   if (auto origin = field.get("origin")) mesh.origin = origin->vec3();
 }
 
@@ -54,7 +55,8 @@ void read_sphere(const Field& field, MeshSourceDesc& mesh) {
 TetrahedralizeDesc read_tetrahedralize(const Field& field) {
   TetrahedralizeDesc t;
   if (field.is_scalar()) {  // `tetrahedralize: true` takes every default
-    if (!field.boolean()) field.fail("'tetrahedralize: false' is the same as leaving it out; remove it");
+    if (!field.boolean())
+      field.fail("'tetrahedralize: false' is the same as leaving it out; remove it");
     return t;
   }
   field.expect_map("true, or a map {max_volume, min_dihedral, min_radius_ratio, optimize}");
@@ -88,7 +90,8 @@ std::vector<BodyDesc::NodeVector> read_node_vectors(const Field& field,
 void read_initial(const Field& field, BodyDesc& body, std::optional<uint64_t> node_count) {
   field.expect_map("a map {displacement, velocity, uniform_velocity}");
   field.check_keys({"displacement", "velocity", "uniform_velocity"});
-  if (auto f = field.get("displacement")) body.initial_displacement = read_node_vectors(*f, node_count);
+  if (auto f = field.get("displacement"))
+    body.initial_displacement = read_node_vectors(*f, node_count);
   if (auto f = field.get("velocity")) body.initial_velocity = read_node_vectors(*f, node_count);
   if (auto f = field.get("uniform_velocity")) body.uniform_velocity = f->vec3();
 }
@@ -103,7 +106,8 @@ uint32_t read_node(const Field& field, std::optional<uint64_t> node_count) {
 
 std::vector<uint32_t> read_nodes(const Field& field, std::optional<uint64_t> node_count) {
   std::vector<uint32_t> out;
-  for (const Field& item : field.items("a list of node indices")) out.push_back(read_node(item, node_count));
+  for (const Field& item : field.items("a list of node indices"))
+    out.push_back(read_node(item, node_count));
   if (out.empty()) field.fail_expected("a non-empty list of node indices");
   return out;
 }
@@ -137,7 +141,8 @@ std::string exactly_one_of(const Field& field, const std::vector<std::string>& a
   for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
   if (present.size() != 1)
     field.fail("expected exactly one of: " + list + "; found " +
-               (present.empty() ? std::string("none") : "several (" + present[0] + ", " + present[1] + ")"));
+               (present.empty() ? std::string("none")
+                                : "several (" + present[0] + ", " + present[1] + ")"));
   return present[0];
 }
 
@@ -158,12 +163,13 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     mesh.where = field.where();
     return mesh;
   }
-  field.expect_map("a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
-                   "unit_square, sphere), or 'unit_square'");
-  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "tetrahedralize", "box_grid", "beam_grid",
-                    "quad_grid", "unit_square", "sphere"});
-  const std::string source =
-      exactly_one_of(field, {"file", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
+  field.expect_map(
+      "a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
+      "unit_square, sphere), or 'unit_square'");
+  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "tetrahedralize",
+                    "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
+  const std::string source = exactly_one_of(
+      field, {"file", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
   if (source != "file") {
     for (const char* file_only : {"scale", "translate", "voxel_size", "tetrahedralize"})
       if (auto f = field.get(file_only))
@@ -185,11 +191,13 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     if (auto f = field.get("translate")) mesh.translate = f->vec3();
     if (auto f = field.get("voxel_size")) mesh.voxel_size = f->real(Range::non_negative());
     if (auto f = field.get("tetrahedralize")) {
-      if (field.get("voxel_size")) f->fail("give `voxel_size` (voxel tets) or `tetrahedralize` (Gmsh), not both");
+      if (field.get("voxel_size"))
+        f->fail("give `voxel_size` (voxel tets) or `tetrahedralize` (Gmsh), not both");
       mesh.tetrahedralize = read_tetrahedralize(*f);
     }
   } else if (source == "box_grid" || source == "beam_grid") {
-    mesh.kind = source == "box_grid" ? MeshSourceDesc::Kind::BoxGrid : MeshSourceDesc::Kind::BeamGrid;
+    mesh.kind =
+        source == "box_grid" ? MeshSourceDesc::Kind::BoxGrid : MeshSourceDesc::Kind::BeamGrid;
     read_grid(value, mesh, 3);
   } else if (source == "quad_grid") {
     mesh.kind = MeshSourceDesc::Kind::QuadGrid;
@@ -206,9 +214,12 @@ MeshSourceDesc read_mesh_source(const Field& field) {
     read_sphere(value, mesh);
   }
   if (auto f = field.get("surface")) {
-    if (mesh.kind == MeshSourceDesc::Kind::QuadGrid) f->fail("a surface can only be embedded in tetrahedra, not in a planar quad_grid");
-    if (f->is_scalar() && f->yaml().Scalar() == "tet_boundary") mesh.surface_tet_boundary = true;
-    else mesh.surface_path = f->file_path();
+    if (mesh.kind == MeshSourceDesc::Kind::QuadGrid)
+      f->fail("a surface can only be embedded in tetrahedra, not in a planar quad_grid");
+    if (f->is_scalar() && f->yaml().Scalar() == "tet_boundary")
+      mesh.surface_tet_boundary = true;
+    else
+      mesh.surface_path = f->file_path();
     mesh.surface_where = f->where();
   }
   return mesh;
@@ -217,8 +228,8 @@ MeshSourceDesc read_mesh_source(const Field& field) {
 BodyDesc read_body(const Field& field) {
   field.expect_map("a body: a map {name, mesh, material, model, ...}");
   field.check_keys({"name", "mesh", "material", "model", "fixed", "initial", "probe_node",
-                    "prescribed", "plates", "probes", "step_rate_hz", "step_thread", "local_contact",
-                    "collide"});
+                    "prescribed", "plates", "probes", "step_rate_hz", "step_thread",
+                    "local_contact", "collide"});
   BodyDesc body;
   body.where = field.where();
   body.name = field.require("name").text();
@@ -240,9 +251,11 @@ BodyDesc read_body(const Field& field) {
   if (auto f = field.get("step_thread")) {
     body.own_thread = f->choice({"haptic", "own"}) == "own";
     if (body.own_thread && body.step_rate_hz <= 0)
-      f->fail("step_rate_hz > 0 with step_thread: own (the rate the worker thread steps the body at)");
+      f->fail(
+          "step_rate_hz > 0 with step_thread: own (the rate the worker thread steps the body at)");
   }
-  if (auto f = field.get("local_contact")) body.local_contact_yielding = f->choice({"yielding", "rigid"}) == "yielding";
+  if (auto f = field.get("local_contact"))
+    body.local_contact_yielding = f->choice({"yielding", "rigid"}) == "yielding";
   if (auto f = field.get("collide")) body.collide = f->boolean();
   return body;
 }

@@ -1,7 +1,6 @@
 // Materials: E, nu or Lamé lambda, mu (the other pair derived), density and Rayleigh damping.
-#include <string>
-
 #include <fmt/format.h>
+#include <string>
 
 #include "scene/readers.hpp"
 #include "tacta/scene_loader.hpp"
@@ -29,8 +28,10 @@ constexpr double kMaxPoissonRatio = 0.499;
 
 std::string too_incompressible(double nu) {
   return fmt::format(
-      "a Poisson ratio of {:.9g} is closer to 0.5 than the models handle: at most {} (lambda = 499 mu); nearer "
-      "to 0.5 linear tetrahedra lock and the step diverges. For nearly incompressible tissue use 0.45 to 0.49",
+      "a Poisson ratio of {:.9g} is closer to 0.5 than the models handle: at most {} (lambda = 499 "
+      "mu); nearer "
+      "to 0.5 linear tetrahedra lock and the step diverges. For nearly incompressible tissue use "
+      "0.45 to 0.49",
       nu, kMaxPoissonRatio);
 }
 
@@ -43,11 +44,13 @@ MaterialDesc read_material(const Field& field) {
   const bool engineering = field.has("youngs_modulus") || field.has("poisson_ratio");
   const bool lame = field.has("lame_lambda") || field.has("lame_mu");
   if (engineering && lame)
-    field.fail("expected exactly one of the pairs {youngs_modulus, poisson_ratio} or "
-               "{lame_lambda, lame_mu}, found keys of both");
+    field.fail(
+        "expected exactly one of the pairs {youngs_modulus, poisson_ratio} or "
+        "{lame_lambda, lame_mu}, found keys of both");
   if (!engineering && !lame)
-    field.fail("expected exactly one of the pairs {youngs_modulus, poisson_ratio} or "
-               "{lame_lambda, lame_mu}, found neither");
+    field.fail(
+        "expected exactly one of the pairs {youngs_modulus, poisson_ratio} or "
+        "{lame_lambda, lame_mu}, found neither");
 
   MaterialDesc material;
   if (engineering) {
@@ -55,7 +58,8 @@ MaterialDesc read_material(const Field& field) {
     // nu = 0.5 is incompressible (lambda infinite); below -1 the material is unstable.
     const Field nu = field.require("poisson_ratio");
     material.poisson_ratio = nu.real(Range::open(-1.0, 0.5));
-    if (material.poisson_ratio > kMaxPoissonRatio) nu.fail(too_incompressible(material.poisson_ratio));
+    if (material.poisson_ratio > kMaxPoissonRatio)
+      nu.fail(too_incompressible(material.poisson_ratio));
     const LameParameters l = lame_from_engineering(material.youngs_modulus, material.poisson_ratio);
     material.lame_lambda = l.lambda;
     material.lame_mu = l.mu;
@@ -63,8 +67,8 @@ MaterialDesc read_material(const Field& field) {
     material.lame_mu = field.require("lame_mu").real(Range::positive());
     // A positive bulk modulus K = lambda + 2 mu / 3 keeps E > 0 and nu in (-1, 0.5).
     const Field lambda = field.require("lame_lambda");
-    material.lame_lambda =
-        lambda.real(Range{-2.0 * material.lame_mu / 3.0, std::numeric_limits<double>::infinity(), true, false});
+    material.lame_lambda = lambda.real(
+        Range{-2.0 * material.lame_mu / 3.0, std::numeric_limits<double>::infinity(), true, false});
     const EngineeringConstants c = engineering_from_lame(material.lame_lambda, material.lame_mu);
     if (c.poisson_ratio > kMaxPoissonRatio) lambda.fail(too_incompressible(c.poisson_ratio));
     material.youngs_modulus = c.youngs_modulus;

@@ -76,7 +76,8 @@ void apply_at(YAML::Node node, const Override& o, size_t depth, const std::strin
                      "' cannot select inside it");
   if (!node.IsMap() && parse_index(segment))
     o.fail(child_path(path, segment), "'" + (path.empty() ? std::string("<scene>") : path) +
-                                          "' is not a list, so index " + segment + " selects nothing");
+                                          "' is not a list, so index " + segment +
+                                          " selects nothing");
   if (segment == "*") {
     if (!node.IsMap() || node.size() == 0) o.fail(path, "'*' selects nothing here");
     for (auto entry : node) descend(entry.second, child_path(path, entry.first.Scalar()));

@@ -1,10 +1,9 @@
 // --set overrides: "key.path=value" strings applied to the scene's YAML tree before validation.
 #pragma once
 
-#include <yaml-cpp/yaml.h>
-
 #include <string>
 #include <vector>
+#include <yaml-cpp/yaml.h>
 
 #include "scene/yaml_field.hpp"
 

@@ -25,9 +25,9 @@ void add_given(ParamSet& set, const tacta_param_spec& spec, const Field& value) 
   switch (spec.type) {
     case TACTA_PARAM_REAL: set.add_number(spec.name, value.real(range)); return;
     case TACTA_PARAM_INT:
-      set.add_number(spec.name, static_cast<double>(value.integer(
-                                    clamp_to_int64(std::ceil(spec.min_value)),
-                                    clamp_to_int64(std::floor(spec.max_value)))));
+      set.add_number(spec.name, static_cast<double>(
+                                    value.integer(clamp_to_int64(std::ceil(spec.min_value)),
+                                                  clamp_to_int64(std::floor(spec.max_value)))));
       return;
     case TACTA_PARAM_BOOL: set.add_number(spec.name, value.boolean() ? 1.0 : 0.0); return;
     case TACTA_PARAM_CHOICE: {
@@ -51,8 +51,9 @@ void add_given(ParamSet& set, const tacta_param_spec& spec, const Field& value) 
       set.add_vector(spec.name, std::move(values));
       return;
     }
-    default: value.fail("the plugin declares an unknown type for parameter '" +
-                        std::string(spec.name) + "'");
+    default:
+      value.fail("the plugin declares an unknown type for parameter '" + std::string(spec.name) +
+                 "'");
   }
 }
 
@@ -68,7 +69,8 @@ ParamSet resolve_params(std::span<const tacta_param_spec> schema,
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;
     std::string message = "unknown parameter '" + name + "' for plugin '" + plugin_name + "'";
     if (auto hint = closest_match(name, known)) message += "; did you mean '" + *hint + "'?";
-    message += known.empty() ? " (it takes no parameters)" : " (its parameters: " + join(known) + ")";
+    message +=
+        known.empty() ? " (it takes no parameters)" : " (its parameters: " + join(known) + ")";
     key.fail(message);
   }
   ParamSet set;
@@ -102,7 +104,8 @@ PluginRef read_plugin(const Field& field, tacta_kind kind, const std::optional<F
   } else if (field.is_scalar()) {
     name_field = field;
   } else {
-    field.fail_expected("a " + noun + " name, or a map {name: <plugin>, <parameter>: <value>, ...}");
+    field.fail_expected("a " + noun +
+                        " name, or a map {name: <plugin>, <parameter>: <value>, ...}");
   }
   ref.name = name_field->text();
   if (extra_params) {
@@ -119,7 +122,8 @@ PluginRef read_plugin(const Field& field, tacta_kind kind, const std::optional<F
     if (!must_exist) return ref;
     const std::vector<std::string> available = lookup.names(kind);
     std::string message = "unknown " + noun + " '" + ref.name + "'";
-    if (auto hint = closest_match(ref.name, available)) message += "; did you mean '" + *hint + "'?";
+    if (auto hint = closest_match(ref.name, available))
+      message += "; did you mean '" + *hint + "'?";
     message += available.empty() ? " (no " + noun + "s are available)"
                                  : " (available: " + join(available) + ")";
     name_field->fail(message);

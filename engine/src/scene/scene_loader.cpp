@@ -1,13 +1,11 @@
 // The scene loader's entry points and top level: clock, outputs, and the sections in order.
 #include "tacta/scene_loader.hpp"
 
-#include <unistd.h>
-
-#include <fmt/format.h>
-
 #include <algorithm>
+#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
+#include <unistd.h>
 
 #include "scene/did_you_mean.hpp"
 #include "scene/overrides.hpp"
@@ -21,24 +19,28 @@ std::string duration_limit_problem(double duration_s, double haptic_rate_hz, siz
   if (ticks * rows_per_tick <= static_cast<double>(kMaxRunTicks)) return {};
   const double longest_s = static_cast<double>(kMaxRunTicks) / rows_per_tick / haptic_rate_hz;
   return fmt::format(
-      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks{}; at most {} are allowed ({:g} s here), because the "
-      "run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it starts so that the "
+      "a duration of {:g} s at {:g} Hz is {:.3g} haptic ticks{}; at most {} are allowed ({:g} s "
+      "here), because the "
+      "run's per-tick records (trace, tick timings, ~150 bytes a tick) are reserved before it "
+      "starts so that the "
       "haptic loop never allocates",
       duration_s, haptic_rate_hz, ticks,
-      devices > 1 ? fmt::format(" x {} devices = {:.3g} trace rows", devices, ticks * rows_per_tick) : std::string(),
+      devices > 1 ? fmt::format(" x {} devices = {:.3g} trace rows", devices, ticks * rows_per_tick)
+                  : std::string(),
       devices > 1 ? "3600000 trace rows" : "3600000 ticks", longest_s);
 }
 
 namespace scene_detail {
 
 ClockDesc read_clock(const Field& field) {
-  field.expect_map("a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
-  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority", "haptic_cpu",
-                    "lock_memory", "spin_us"});
+  field.expect_map(
+      "a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
+  field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority",
+                    "haptic_cpu", "lock_memory", "spin_us"});
   ClockDesc clock;
   if (auto f = field.get("mode"))
     clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
-                                                                    : ClockDesc::Mode::Lockstep;
+                                                                   : ClockDesc::Mode::Lockstep;
   // Upper bounds: 100 kHz is beyond any haptic device; 1 kHz beyond any display.
   if (auto f = field.get("haptic_rate_hz")) clock.haptic_rate_hz = f->real({0, 1e5, true, false});
   if (auto f = field.get("render_rate_hz")) {
@@ -49,10 +51,12 @@ ClockDesc read_clock(const Field& field) {
   }
   if (auto f = field.get("duration_s")) {
     clock.duration_s = f->real(Range::positive());
-    if (const std::string problem = duration_limit_problem(clock.duration_s, clock.haptic_rate_hz); !problem.empty())
+    if (const std::string problem = duration_limit_problem(clock.duration_s, clock.haptic_rate_hz);
+        !problem.empty())
       f->fail(problem);
   }
-  if (auto f = field.get("haptic_priority")) clock.haptic_priority = static_cast<int>(f->integer(0, 99));
+  if (auto f = field.get("haptic_priority"))
+    clock.haptic_priority = static_cast<int>(f->integer(0, 99));
   if (auto f = field.get("haptic_cpu")) {
     const long cpus = sysconf(_SC_NPROCESSORS_CONF);
     clock.haptic_cpu = static_cast<int>(f->integer(-1, cpus > 0 ? cpus - 1 : 1023));
@@ -77,9 +81,10 @@ OutputDesc read_output(const Field& field) {
     const auto side = [](const Field& item) {
       const int64_t pixels = item.integer(1, INT32_MAX);
       if (pixels > kMaxFrameSide)
-        item.fail_expected(fmt::format("pixels in [1, {}] (the off-screen renderer's largest framebuffer; "
-                                       "an 8192 x 8192 picture is already 256 MB)",
-                                       kMaxFrameSide));
+        item.fail_expected(
+            fmt::format("pixels in [1, {}] (the off-screen renderer's largest framebuffer; "
+                        "an 8192 x 8192 picture is already 256 MB)",
+                        kMaxFrameSide));
       return static_cast<int>(pixels);
     };
     output.frame_width = side(items[0]);
@@ -132,10 +137,12 @@ void read_events(const Field& field, const std::vector<Field>& body_items, Scene
       const Field f = item.require("remove");
       event.remove = f.text();
       if (std::find(names.begin(), names.end(), event.remove) == names.end())
-        f.fail("no body named '" + event.remove + "' among the scene's bodies and the events' adds");
+        f.fail("no body named '" + event.remove +
+               "' among the scene's bodies and the events' adds");
     }
     if (!scene.events.empty() && event.time < scene.events.back().time)
-      item.require("time").fail("events are listed in time order (this one is earlier than the one before)");
+      item.require("time").fail(
+          "events are listed in time order (this one is earlier than the one before)");
     scene.events.push_back(std::move(event));
   }
 }
@@ -184,8 +191,8 @@ SceneDesc read_scene(const Field& root) {
   if (scene.devices.size() > 1)  // one trace row per device per tick: the bound tightens
     if (auto clock = root.get("clock"))
       if (auto f = clock->get("duration_s"))
-        if (const std::string problem = duration_limit_problem(scene.clock.duration_s, scene.clock.haptic_rate_hz,
-                                                               scene.devices.size());
+        if (const std::string problem = duration_limit_problem(
+                scene.clock.duration_s, scene.clock.haptic_rate_hz, scene.devices.size());
             !problem.empty())
           f->fail(problem);
   if (auto f = root.get("collision")) scene.collision = read_collision(*f);
@@ -203,7 +210,8 @@ SceneDesc read_scene(const Field& root) {
       size_t needed = scene.bodies.size();
       for (const BodyEventDesc& e : scene.events) needed += e.add ? 1 : 0;
       if (scene.body_capacity < needed)
-        b->fail_expected("at least " + std::to_string(needed) + " (the scene's bodies and the bodies its events add)");
+        b->fail_expected("at least " + std::to_string(needed) +
+                         " (the scene's bodies and the bodies its events add)");
     }
   }
   return scene;
@@ -227,7 +235,8 @@ namespace {
 // Parses `text` and hands its root to `read` with a context anchored at `virtual_path`; YAML
 // errors become InputErrors at their mark.
 template <class Read>
-auto read_text(const std::string& text, const std::string& virtual_path, const SchemaLookup& schemas, Read&& read) {
+auto read_text(const std::string& text, const std::string& virtual_path,
+               const SchemaLookup& schemas, Read&& read) {
   LoadContext context;
   context.file = virtual_path;
   context.directory = std::filesystem::absolute(virtual_path).parent_path().lexically_normal();

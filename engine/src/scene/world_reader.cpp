@@ -144,7 +144,8 @@ CollisionDesc read_collision(const Field& field) {
     f->check_keys({kRoles[0], kRoles[1], kRoles[2], kRoles[3]});
     for (size_t r = 0; r < 4; ++r) {
       if (auto role = f->get(kRoles[r])) {
-        PluginRef plugin = read_plugin(*role, TACTA_KIND_COLLISION, std::nullopt, collision.enabled);
+        PluginRef plugin =
+            read_plugin(*role, TACTA_KIND_COLLISION, std::nullopt, collision.enabled);
         collision.role_plugins[r] = std::move(plugin.name);
         collision.role_params[r] = std::move(plugin.params);
         collision.role_where[r] = role->where();

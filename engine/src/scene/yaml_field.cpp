@@ -1,11 +1,10 @@
 // Typed, located reading of scene YAML nodes.
 #include "scene/yaml_field.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fmt/format.h>
 #include <set>
 
 #include "scene/did_you_mean.hpp"
@@ -72,7 +71,8 @@ Field::Field(const LoadContext& context, YAML::Node node, std::string path, YAML
 SourceLocation Field::where() const {
   // A value written by --set is reported at that override, not at the file position it replaced.
   for (auto it = context_->overrides.rbegin(); it != context_->overrides.rend(); ++it)
-    if (is_path_prefix(it->key_path, path_)) return SourceLocation{"--set " + it->text, 0, 0, path_};
+    if (is_path_prefix(it->key_path, path_))
+      return SourceLocation{"--set " + it->text, 0, 0, path_};
   SourceLocation where{context_->file, 0, 0, path_};
   if (!mark_.is_null()) {
     where.line = mark_.line + 1;  // yaml-cpp marks are 0-based
@@ -161,7 +161,8 @@ std::vector<Field> Field::items(const std::string& what) const {
 }
 
 double Field::real(Range range) const {
-  const std::string expected = "a number" + (range.describe().empty() ? "" : " " + range.describe());
+  const std::string expected =
+      "a number" + (range.describe().empty() ? "" : " " + range.describe());
   if (!node_.IsScalar()) fail_expected(expected);
   auto value = parse_real(node_.Scalar());
   if (!value || !range.contains(*value)) fail_expected(expected);

@@ -3,8 +3,6 @@
 // was expected and what was found. Only the scene loader uses it.
 #pragma once
 
-#include <yaml-cpp/yaml.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -12,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include <yaml-cpp/yaml.h>
 
 #include "tacta/error.hpp"
 #include "tacta/scene.hpp"
@@ -30,8 +29,8 @@ struct OverrideOrigin {
 
 // What every reader of one load shares.
 struct LoadContext {
-  std::string file;                  // the scene path as the user gave it
-  std::filesystem::path directory;   // absolute folder of the scene
+  std::string file;                 // the scene path as the user gave it
+  std::filesystem::path directory;  // absolute folder of the scene
   std::vector<OverrideOrigin> overrides;
   const SchemaLookup* schemas = nullptr;
 };
@@ -45,7 +44,9 @@ struct Range {
 
   static Range any() { return {}; }
   static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range non_negative() {
+    return {0.0, std::numeric_limits<double>::infinity(), false, false};
+  }
   static Range closed(double a, double b) { return {a, b, false, false}; }
   static Range open(double a, double b) { return {a, b, true, true}; }
   bool contains(double x) const;
@@ -56,7 +57,8 @@ using KeyList = std::initializer_list<std::string_view>;
 
 class Field {
  public:
-  Field(const LoadContext& context, YAML::Node node, std::string path, YAML::Mark fallback = YAML::Mark::null_mark());
+  Field(const LoadContext& context, YAML::Node node, std::string path,
+        YAML::Mark fallback = YAML::Mark::null_mark());
 
   const std::string& path() const { return path_; }
   const YAML::Node& yaml() const { return node_; }

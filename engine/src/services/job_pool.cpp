@@ -1,11 +1,10 @@
 #include "job_pool.hpp"
 
-#include <pthread.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <pthread.h>
 #include <string>
 
 namespace tacta {
@@ -85,7 +84,8 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
   busy_.store(false);
 }
 
-void JobPool::parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body, void* user) {
+void JobPool::parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body,
+                                 void* user) {
   static_cast<JobPool*>(jobs)->parallel_for(count, grain, body, user);
 }
 

@@ -30,8 +30,8 @@ class JobPool {
   void work(uint32_t worker) noexcept;
   void run_chunks(uint32_t job, uint32_t worker) noexcept;
 
-  std::atomic<bool> busy_{false};         // a job is running
-  std::atomic<uint64_t> generation_{0};   // bumped per job; workers wait on it
+  std::atomic<bool> busy_{false};        // a job is running
+  std::atomic<uint64_t> generation_{0};  // bumped per job; workers wait on it
   std::atomic<bool> quit_{false};
   // The current job (all seq_cst): a chunk is taken by a compare-exchange on ticket_, which
   // holds the job's number (high 32 bits) and its next index, so a worker late from an earlier
@@ -40,7 +40,7 @@ class JobPool {
   std::atomic<Body> body_{nullptr};
   std::atomic<void*> user_{nullptr};
   std::atomic<uint32_t> count_{0}, grain_{1};
-  std::atomic<uint32_t> done_{0};         // indices finished
+  std::atomic<uint32_t> done_{0};  // indices finished
   std::vector<std::thread> workers_;
 };
 

@@ -15,13 +15,14 @@ bool all_finite(std::span<const double> x) noexcept {
 
 }  // namespace
 
-StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology, const Vec3& gravity,
-                             double divergence_limit_m, const StepArrays& a, double time, double dt,
-                             BoundaryMotion* boundary) noexcept {
+StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology,
+                             const Vec3& gravity, double divergence_limit_m, const StepArrays& a,
+                             double time, double dt, BoundaryMotion* boundary) noexcept {
   const std::vector<double>& m = topology.masses;
   const std::vector<double>& rest = topology.mesh.positions;
   for (size_t n = 0; n < m.size(); ++n)
-    for (size_t k = 0; k < 3; ++k) a.external_forces[3 * n + k] = m[n] * gravity[k] + a.contact[3 * n + k];
+    for (size_t k = 0; k < 3; ++k)
+      a.external_forces[3 * n + k] = m[n] * gravity[k] + a.contact[3 * n + k];
   if (boundary != nullptr) boundary->before_step(a.positions, a.velocities, time);
   std::copy(a.positions.begin(), a.positions.end(), a.saved_positions.begin());
   tacta_body_state state{static_cast<uint32_t>(m.size()), a.positions.data(), a.velocities.data(),

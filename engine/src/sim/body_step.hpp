@@ -32,8 +32,9 @@ struct StepOutcome {
 };
 
 // `boundary` (may be null) moves the body's prescribed and plate-pressed nodes around the step.
-StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology, const Vec3& gravity,
-                             double divergence_limit_m, const StepArrays& arrays, double time,
-                             double dt, BoundaryMotion* boundary = nullptr) noexcept;
+StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology,
+                             const Vec3& gravity, double divergence_limit_m,
+                             const StepArrays& arrays, double time, double dt,
+                             BoundaryMotion* boundary = nullptr) noexcept;
 
 }  // namespace tacta

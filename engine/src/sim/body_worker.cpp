@@ -1,13 +1,13 @@
 #include "body_worker.hpp"
 
-#include <pthread.h>
-
 #include <algorithm>
 #include <chrono>
+#include <pthread.h>
 
 namespace tacta {
 
-BodyWorker::BodyWorker(SoftBody& body, const Vec3& gravity, bool wait_at_boundaries, size_t expected_steps)
+BodyWorker::BodyWorker(SoftBody& body, const Vec3& gravity, bool wait_at_boundaries,
+                       size_t expected_steps)
     : body_(body), gravity_(gravity), wait_at_boundaries_(wait_at_boundaries) {
   const size_t n3 = body.positions.size();
   positions_ = body.positions;
@@ -42,8 +42,8 @@ void BodyWorker::stop() noexcept {
   if (in_flight_) {
     // The run ended mid-period: the step in flight finishes and becomes the body's final state,
     // so a later run continues from where the model is.
-    for (uint32_t d = done_.load(std::memory_order_acquire); d != posted_.load(std::memory_order_relaxed);
-         d = done_.load(std::memory_order_acquire))
+    for (uint32_t d = done_.load(std::memory_order_acquire);
+         d != posted_.load(std::memory_order_relaxed); d = done_.load(std::memory_order_acquire))
       done_.wait(d, std::memory_order_acquire);
     collect();
   }
@@ -126,15 +126,17 @@ void BodyWorker::run() noexcept {
 
 void BodyWorker::step_job() noexcept {
   const auto start = std::chrono::steady_clock::now();
-  const StepArrays arrays{positions_, velocities_, external_forces_, saved_positions_, contact_mean_};
-  job_outcome_ = step_body_arrays(*job_model_, *body_.topology, gravity_, body_.divergence_limit_m, arrays,
-                                  job_time_, job_dt_, body_.boundary.get());
+  const StepArrays arrays{positions_, velocities_, external_forces_, saved_positions_,
+                          contact_mean_};
+  job_outcome_ = step_body_arrays(*job_model_, *body_.topology, gravity_, body_.divergence_limit_m,
+                                  arrays, job_time_, job_dt_, body_.boundary.get());
   // What snapshots want from the model is computed here, where the model lives during a step.
   job_elastic_J_ = job_model_->elastic_energy(positions_.data());
   job_has_stress_ = job_model_->has_stress();
   if (job_has_stress_) job_model_->node_stress(positions_.data(), job_von_mises_.data());
   ++stats_.steps;
-  step_ms_.record(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  step_ms_.record(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace tacta

@@ -30,9 +30,9 @@
 namespace tacta {
 
 struct WorkerStats {
-  uint64_t steps = 0;           // steps finished
-  uint64_t late_boundaries = 0; // realtime: boundaries at which the step in flight was not done
-  double max_lateness_s = 0;    // realtime: longest wait past a boundary for a step, s
+  uint64_t steps = 0;            // steps finished
+  uint64_t late_boundaries = 0;  // realtime: boundaries at which the step in flight was not done
+  double max_lateness_s = 0;     // realtime: longest wait past a boundary for a step, s
 };
 
 class BodyWorker {
@@ -43,8 +43,8 @@ class BodyWorker {
   BodyWorker(const BodyWorker&) = delete;
   BodyWorker& operator=(const BodyWorker&) = delete;
 
-  void start();           // launches the thread (start of a run)
-  void stop() noexcept;   // lets a step in flight finish, collects it, joins (end of a run)
+  void start();          // launches the thread (start of a run)
+  void stop() noexcept;  // lets a step in flight finish, collects it, joins (end of a run)
 
   // Haptic thread, every tick: this tick's contact forces (N) over its dt (s) join the period's
   // impulse.
@@ -68,9 +68,9 @@ class BodyWorker {
   const TickRecorder& step_ms() const noexcept { return step_ms_; }
 
  private:
-  void run() noexcept;           // the worker thread
-  void step_job() noexcept;      // one step on the private arrays
-  void collect() noexcept;       // haptic thread, worker idle: private state -> SoftBody
+  void run() noexcept;       // the worker thread
+  void step_job() noexcept;  // one step on the private arrays
+  void collect() noexcept;   // haptic thread, worker idle: private state -> SoftBody
 
   SoftBody& body_;
   Vec3 gravity_;
@@ -89,7 +89,7 @@ class BodyWorker {
   std::vector<double> impulse_;  // N s per node component, summed since the last post
   double impulse_time_ = 0;      // s summed since the last post
   bool in_flight_ = false;
-  double due_time_ = 0;          // s, the boundary the step in flight was due at
+  double due_time_ = 0;  // s, the boundary the step in flight was due at
   StepOutcome collected_{};
   WorkerStats stats_;
   TickRecorder step_ms_;

@@ -1,7 +1,6 @@
 #include "boundary_motion.hpp"
 
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 
@@ -17,9 +16,12 @@ using V3 = Eigen::Vector3d;
 // K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g the shape gradients. With it
 // 2D - K is positive definite, the condition for the engine's per-node (Jacobi) updates of the
 // managed nodes, and for the sweep between them and the model's solve, to converge.
-std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, const MaterialDesc& material) {
+std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh,
+                                                   const MaterialDesc& material) {
   std::vector<std::array<double, 3>> bound(mesh.node_count(), std::array<double, 3>{});
-  const auto x = [&](uint32_t i) { return V3(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]); };
+  const auto x = [&](uint32_t i) {
+    return V3(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]);
+  };
   const double lambda = material.lame_lambda, mu = material.lame_mu;
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     const uint32_t* n = &mesh.tets[4 * t];
@@ -35,7 +37,8 @@ std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, const
       for (int b = 0; b < 4; ++b) {
         const Mat3 k = volume * (lambda * g[a] * g[b].transpose() + mu * g[b] * g[a].transpose() +
                                  mu * g[a].dot(g[b]) * Mat3::Identity());
-        for (int r = 0; r < 3; ++r) bound[n[a]][static_cast<size_t>(r)] += k.row(r).cwiseAbs().sum();
+        for (int r = 0; r < 3; ++r)
+          bound[n[a]][static_cast<size_t>(r)] += k.row(r).cwiseAbs().sum();
       }
   }
   return bound;
@@ -43,8 +46,8 @@ std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, const
 
 }  // namespace
 
-std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh, const SourceLocation& where,
-                                   const char* what) {
+std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh,
+                                   const SourceLocation& where, const char* what) {
   const auto inside = [&](const double* p) {
     for (size_t a = 0; a < 3; ++a)
       if (p[a] < (*region.box)[0][a] || p[a] > (*region.box)[1][a]) return false;
@@ -57,12 +60,15 @@ std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMe
       if (inside(&mesh.positions[3 * i])) nodes.push_back(static_cast<uint32_t>(i));
   for (uint32_t node : region.indices) {
     if (node >= n)
-      throw InputError(where, std::string(what) + ": node " + std::to_string(node) + " is out of range (the mesh has " +
-                                  std::to_string(n) + " nodes)");
+      throw InputError(where, std::string(what) + ": node " + std::to_string(node) +
+                                  " is out of range (the mesh has " + std::to_string(n) +
+                                  " nodes)");
     nodes.push_back(node);
   }
   if (nodes.empty())
-    throw InputError(where, std::string(what) + ": a region holds no node of the mesh (check its box against the mesh bounds)");
+    throw InputError(
+        where, std::string(what) +
+                   ": a region holds no node of the mesh (check its box against the mesh bounds)");
   return nodes;
 }
 
@@ -91,7 +97,8 @@ Vec3 TimeSeries::rate(double t) const noexcept {
 }
 
 std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, const VolumeMesh& mesh,
-                                                      const MaterialDesc& material, std::span<const double> masses,
+                                                      const MaterialDesc& material,
+                                                      std::span<const double> masses,
                                                       std::vector<uint8_t>& fixed) {
   if (desc.prescribed.empty() && desc.plates.empty()) return nullptr;
   auto motion = std::unique_ptr<BoundaryMotion>(new BoundaryMotion());
@@ -127,8 +134,10 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
       m.held_.push_back({i, s});
     } else if (some || plate_of[i] >= 0) {
       if (mesh.tets.empty())
-        throw InputError(desc.where, "prescribed/plates: nodes with free axes (per-axis constraints, plates) need a "
-                                     "tetrahedral mesh");
+        throw InputError(
+            desc.where,
+            "prescribed/plates: nodes with free axes (per-axis constraints, plates) need a "
+            "tetrahedral mesh");
       if (stiffness.empty()) stiffness = stiffness_bound(mesh, material);
       Managed node;
       node.node = i;
@@ -201,7 +210,8 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
   const V3 v0(node.saved_velocity[0], node.saved_velocity[1], node.saved_velocity[2]);
   const V3 x0(x[0], x[1], x[2]);
   const Mat3 a = node.mass * (1.0 + h * alpha_) * Mat3::Identity() + h * (h + beta_) * k;
-  const V3 rhs = h * (V3(force[0], force[1], force[2]) - alpha_ * node.mass * v0 - (h + beta_) * (k * v0));
+  const V3 rhs =
+      h * (V3(force[0], force[1], force[2]) - alpha_ * node.mass * v0 - (h + beta_) * (k * v0));
 
   // Constraints at time + dt: rows d . x = s, d . v = w (at most 3 independent rows).
   Mat3 d = Mat3::Zero();
@@ -209,7 +219,8 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
   int rows = 0;
   const auto add = [&](const V3& dir, double position, double velocity) {
     V3 rest_part = dir;
-    for (int r = 0; r < rows; ++r) rest_part -= d.row(r).dot(dir) / d.row(r).squaredNorm() * d.row(r).transpose();
+    for (int r = 0; r < rows; ++r)
+      rest_part -= d.row(r).dot(dir) / d.row(r).squaredNorm() * d.row(r).transpose();
     if (rows >= 3 || rest_part.norm() < 1e-9) return;  // implied by the rows already there
     d.row(rows) = dir.transpose();
     s[rows] = position;
@@ -220,7 +231,8 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
     const int32_t series = node.series[ax];
     if (series < 0) continue;
     const size_t k3 = 3 * size_t{node.node} + ax;
-    add(V3::Unit(static_cast<Eigen::Index>(ax)), rest_[k3] + series_[static_cast<size_t>(series)].value(time + h)[ax],
+    add(V3::Unit(static_cast<Eigen::Index>(ax)),
+        rest_[k3] + series_[static_cast<size_t>(series)].value(time + h)[ax],
         series_[static_cast<size_t>(series)].rate(time + h)[ax]);
   }
   // Solves for the new velocity with the current rows: free components from the implicit
@@ -232,8 +244,9 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
   };
   const auto solve = [&]() -> V3 {
     if (rows == 0) return v0 + a.ldlt().solve(rhs);
-    const V3 target_v = d.transpose() * row_gram().ldlt().solve(w);  // in span(d), satisfies d v = w
-    Mat3 q = Mat3::Zero();  // orthonormal basis of the rows, as columns
+    const V3 target_v =
+        d.transpose() * row_gram().ldlt().solve(w);  // in span(d), satisfies d v = w
+    Mat3 q = Mat3::Zero();                           // orthonormal basis of the rows, as columns
     Eigen::HouseholderQR<Mat3> qr(d.transpose());
     const Mat3 full_q = qr.householderQ();
     q.leftCols(rows) = full_q.leftCols(rows);
@@ -259,7 +272,8 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
     if (node.stuck) {
       rows = 0;
       for (int ax = 0; ax < 3; ++ax)
-        add(V3::Unit(ax), node.anchor[static_cast<size_t>(ax)] + shift[static_cast<size_t>(ax)], pv[ax]);
+        add(V3::Unit(ax), node.anchor[static_cast<size_t>(ax)] + shift[static_cast<size_t>(ax)],
+            pv[ax]);
       v1 = solve();
     } else if (gap < 0) {
       add(n, n.dot(p), n.dot(pv));
@@ -268,7 +282,8 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
   }
   // Free components move by h v; constrained ones sit on their targets.
   V3 x1 = x0 + h * v1;
-  if (rows > 0) x1 += d.transpose() * row_gram().ldlt().solve(s - d * x1);  // nearest point with d x = s
+  if (rows > 0)
+    x1 += d.transpose() * row_gram().ldlt().solve(s - d * x1);  // nearest point with d x = s
   for (int ax = 0; ax < 3; ++ax) {
     x[ax] = x1[ax];
     v[ax] = v1[ax];

@@ -26,8 +26,8 @@ namespace tacta {
 
 // The nodes a region ({box} or {nodes}) selects. Throws InputError naming `what` for an index
 // out of range or a region that holds no node.
-std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh, const SourceLocation& where,
-                                   const char* what);
+std::vector<uint32_t> select_nodes(const FixedRegionDesc& region, const VolumeMesh& mesh,
+                                   const SourceLocation& where, const char* what);
 
 // A vector series evaluated without allocation: piecewise linear, held outside its points.
 class TimeSeries {
@@ -48,7 +48,8 @@ class BoundaryMotion {
   // moves in `fixed` (the model's held-node mask). Throws InputError (a region holding no node,
   // managed nodes on a mesh without tetrahedra).
   static std::unique_ptr<BoundaryMotion> build(const BodyDesc& desc, const VolumeMesh& mesh,
-                                               const MaterialDesc& material, std::span<const double> masses,
+                                               const MaterialDesc& material,
+                                               std::span<const double> masses,
                                                std::vector<uint8_t>& fixed);
 
   // Whether after_step needs the model's internal forces (some node has free components).
@@ -73,13 +74,13 @@ class BoundaryMotion {
   };
   struct Managed {  // some axes free
     uint32_t node;
-    std::array<int32_t, 3> series;  // per axis: index into series_, -1 = free
-    int32_t plate = -1;             // index into plates_, -1 = none
+    std::array<int32_t, 3> series;      // per axis: index into series_, -1 = free
+    int32_t plate = -1;                 // index into plates_, -1 = none
     std::array<double, 3> stiffness{};  // diagonal bound of the rest stiffness, N/m
     double mass = 0;                    // kg
     Vec3 saved_velocity{};              // m/s, before the model zeroed it
     bool stuck = false;                 // glued to its stuck plate
-    Vec3 anchor{};                      // stuck: position in the plate's frame (minus its motion), m
+    Vec3 anchor{};  // stuck: position in the plate's frame (minus its motion), m
   };
   struct Plate {
     Vec3 point, normal;
@@ -87,14 +88,15 @@ class BoundaryMotion {
     bool stuck;
   };
 
-  void advance(Managed& node, const double* force, double* x, double* v, double time, double dt) const noexcept;
+  void advance(Managed& node, const double* force, double* x, double* v, double time,
+               double dt) const noexcept;
 
   std::vector<double> rest_;  // 3 per node, m
   std::vector<TimeSeries> series_;
   std::vector<Held> held_;
   std::vector<Managed> managed_;
   std::vector<Plate> plates_;
-  std::vector<double> forces_;  // 3 per node, N: the model's internal forces (sized at load)
+  std::vector<double> forces_;   // 3 per node, N: the model's internal forces (sized at load)
   double alpha_ = 0, beta_ = 0;  // Rayleigh damping of the body's material
 };
 

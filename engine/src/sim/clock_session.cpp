@@ -111,14 +111,14 @@ void ClockSession::reserve(uint64_t ticks) {
 }
 
 void ClockSession::attach(FrameObserver* observer) {
-  if (std::find(render_.observers.begin(), render_.observers.end(), observer) != render_.observers.end()) return;
+  if (std::find(render_.observers.begin(), render_.observers.end(), observer) !=
+      render_.observers.end())
+    return;
   observer->on_start(scene_static_);
   render_.observers.push_back(observer);
 }
 
-void ClockSession::detach(FrameObserver* observer) {
-  std::erase(render_.observers, observer);
-}
+void ClockSession::detach(FrameObserver* observer) { std::erase(render_.observers, observer); }
 
 void ClockSession::start_workers(bool lockstep, uint64_t ticks) {
   const int mode = lockstep ? 1 : 0;
@@ -158,7 +158,8 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
 }
 
 ScheduleResult ClockSession::run(const ScheduleOptions& options) {
-  const auto ticks = static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
+  const auto ticks =
+      static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
   reserve(ticks + 1);
   start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
   OffsetTask task(loop_, tick_, dt_);

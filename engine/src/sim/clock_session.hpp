@@ -80,8 +80,8 @@ class ClockSession {
   ObserverRenderTask render_;
   std::unique_ptr<FrameObserver> surface_feed_;  // remote devices' surface, when any
   TickStatus step_status_;
-  TickRecorder step_ms_;                         // durations of stepped ticks
-  ScheduleResult last_run_;                      // the last run()'s schedule figures
+  TickRecorder step_ms_;     // durations of stepped ticks
+  ScheduleResult last_run_;  // the last run()'s schedule figures
   uint64_t frames_ = 0;
   int workers_mode_ = -1;  // -1 none, 0 realtime, 1 lockstep
 };

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <fmt/format.h>
 
 #include "embedded_collision.hpp"
@@ -21,15 +20,18 @@ constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x t
 // RAII owner of one collision plugin instance.
 class CollisionInstance {
  public:
-  CollisionInstance(const LoadedDescriptor& found, const ParamSet& params, double dt, const SourceLocation& where)
-      : descriptor(*found.descriptor), api(*static_cast<const tacta_collision_api*>(found.descriptor->api)) {
+  CollisionInstance(const LoadedDescriptor& found, const ParamSet& params, double dt,
+                    const SourceLocation& where)
+      : descriptor(*found.descriptor),
+        api(*static_cast<const tacta_collision_api*>(found.descriptor->api)) {
     tacta_collision_setup setup{sizeof(tacta_collision_setup), params.data(), params.size(), dt};
     char message[kMessageCapacity] = {0};
     int guessed = 0;
     roles = tacta_collision_roles(&descriptor, &guessed);
     roles_guessed = guessed != 0;
     if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK || instance == nullptr)
-      throw InputError(where, std::string("collision plugin '") + descriptor.name + "' could not be created: " + message);
+      throw InputError(where, std::string("collision plugin '") + descriptor.name +
+                                  "' could not be created: " + message);
   }
   ~CollisionInstance() {
     if (instance != nullptr) api.destroy(instance);
@@ -47,7 +49,8 @@ class CollisionInstance {
 // points, over one body's surface or all of them.
 class CollisionContext::Query final : public haptics::SurfaceQuery {
  public:
-  Query(CollisionContext& context, const CollisionInstance* answerer) : context_(context), answerer_(answerer) {}
+  Query(CollisionContext& context, const CollisionInstance* answerer)
+      : context_(context), answerer_(answerer) {}
   void restrict_to(int surface) { surface_ = surface; }
 
   bool first_hit(const Vec3& from, const Vec3& to, double radius,
@@ -55,9 +58,11 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     if (answerer_ == nullptr || answerer_->api.sphere_cast == nullptr) return false;
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s)) continue;
+      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
+        continue;
       tacta_surface_hit h{};
-      if (answerer_->api.sphere_cast(answerer_->instance, &context_.view_, s, from.data(), to.data(), radius, &h) &&
+      if (answerer_->api.sphere_cast(answerer_->instance, &context_.view_, s, from.data(),
+                                     to.data(), radius, &h) &&
           (!found || h.toi < hit.fraction)) {
         fill(hit, h, s);
         hit.fraction = h.toi;
@@ -72,14 +77,17 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     if (answerer_ == nullptr || answerer_->api.closest_point == nullptr) return false;
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s)) continue;
+      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
+        continue;
       tacta_surface_hit h{};
-      if (!answerer_->api.closest_point(answerer_->instance, &context_.view_, s, point.data(), max_distance, &h))
+      if (!answerer_->api.closest_point(answerer_->instance, &context_.view_, s, point.data(),
+                                        max_distance, &h))
         continue;
       if (found && h.distance >= std::fabs(signed_distance)) continue;
       fill(hit, h, s);
       hit.fraction = 0;
-      const double side = (point[0] - h.point[0]) * h.normal[0] + (point[1] - h.point[1]) * h.normal[1] +
+      const double side = (point[0] - h.point[0]) * h.normal[0] +
+                          (point[1] - h.point[1]) * h.normal[1] +
                           (point[2] - h.point[2]) * h.normal[2];
       signed_distance = side < 0 ? -h.distance : h.distance;
       found = true;
@@ -104,7 +112,8 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
 
 namespace {
 
-tacta_collision_shape make_shape(const ShapeDesc& d, uint32_t id, std::vector<double>* hull_storage) {
+tacta_collision_shape make_shape(const ShapeDesc& d, uint32_t id,
+                                 std::vector<double>* hull_storage) {
   tacta_collision_shape s{};
   s.body_id = id;
   s.radius = d.radius;
@@ -119,8 +128,10 @@ tacta_collision_shape make_shape(const ShapeDesc& d, uint32_t id, std::vector<do
     case ShapeDesc::Kind::Box: s.type = TACTA_SHAPE_BOX; break;
     case ShapeDesc::Kind::Plane: {
       s.type = TACTA_SHAPE_PLANE;
-      const double n = std::sqrt(d.normal[0] * d.normal[0] + d.normal[1] * d.normal[1] + d.normal[2] * d.normal[2]);
-      for (int a = 0; a < 3; ++a) s.plane_normal[a] = d.normal[static_cast<size_t>(a)] / (n > 0 ? n : 1);
+      const double n = std::sqrt(d.normal[0] * d.normal[0] + d.normal[1] * d.normal[1] +
+                                 d.normal[2] * d.normal[2]);
+      for (int a = 0; a < 3; ++a)
+        s.plane_normal[a] = d.normal[static_cast<size_t>(a)] / (n > 0 ? n : 1);
       s.plane_offset = d.offset;
       break;
     }
@@ -144,7 +155,8 @@ double mean_edge_length(const tacta_collision_surface& s) {
   for (size_t i = 0; i < 3 * size_t{s.triangle_count}; ++i) {
     const double* a = &s.positions_end[3 * size_t{s.triangles[i]}];
     const double* b = &s.positions_end[3 * size_t{s.triangles[i % 3 == 2 ? i - 2 : i + 1]}];
-    sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                     (a[2] - b[2]) * (a[2] - b[2]));
   }
   return s.triangle_count == 0 ? 0.0 : sum / (3.0 * s.triangle_count);
 }
@@ -152,19 +164,23 @@ double mean_edge_length(const tacta_collision_surface& s) {
 // The contact margin is bounded by the surfaces' edges: with a margin past half an edge every
 // feature is in reach of its neighbours' neighbours, the candidate pairs grow fast with
 // thickness / edge and the edge-edge CCD with them (1000 m on soft_drop: ~0.6 s of CPU a tick).
-void check_thickness(const CollisionDesc& c, const World& world, const std::vector<tacta_collision_surface>& surfaces,
+void check_thickness(const CollisionDesc& c, const World& world,
+                     const std::vector<tacta_collision_surface>& surfaces,
                      const std::vector<int>& body_of_surface) {
   for (size_t k = 0; k < surfaces.size(); ++k) {
     const double edge = mean_edge_length(surfaces[k]);
     const double limit = kMaxThicknessPerEdge * edge;
     if (c.thickness > limit)
-      throw InputError(c.thickness_where,
-                       fmt::format("a contact thickness of {:g} m is too thick for body '{}': at most {:g} of its mean "
-                                   "surface edge ({:.3g} m), i.e. {:.3g} m; a thicker margin puts every surface feature "
-                                   "in reach of many others and the edge-edge CCD cost per tick grows fast with "
-                                   "thickness / edge (a 1000 m margin on soft_drop took ~0.6 s of CPU a tick, against ~0.1 ms)",
-                                   c.thickness, world.body(static_cast<size_t>(body_of_surface[k])).name,
-                                   kMaxThicknessPerEdge, edge, limit));
+      throw InputError(
+          c.thickness_where,
+          fmt::format(
+              "a contact thickness of {:g} m is too thick for body '{}': at most {:g} of its mean "
+              "surface edge ({:.3g} m), i.e. {:.3g} m; a thicker margin puts every surface feature "
+              "in reach of many others and the edge-edge CCD cost per tick grows fast with "
+              "thickness / edge (a 1000 m margin on soft_drop took ~0.6 s of CPU a tick, against "
+              "~0.1 ms)",
+              c.thickness, world.body(static_cast<size_t>(body_of_surface[k])).name,
+              kMaxThicknessPerEdge, edge, limit));
   }
 }
 
@@ -190,7 +206,8 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   // Shape ids follow every body slot (added bodies too): tools first, then obstacles, so contacts
   // name them uniquely.
   uint32_t next_id = static_cast<uint32_t>(world.body_capacity());
-  for (size_t d = 0; d < world.device_count(); ++d) tools_.push_back(make_shape(world.device(d).desc.tool, next_id++, nullptr));
+  for (size_t d = 0; d < world.device_count(); ++d)
+    tools_.push_back(make_shape(world.device(d).desc.tool, next_id++, nullptr));
   std::vector<std::vector<double>> hulls(scene.obstacles.size());
   for (size_t o = 0; o < scene.obstacles.size(); ++o)
     obstacles_.push_back(make_shape(scene.obstacles[o].shape, next_id++, &hulls[o]));
@@ -209,7 +226,8 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const SourceLocation where{scene.path, 0, 0, "collision"};
   auto add = [&](const std::string& name, ParamSet params, const SourceLocation& at) {
     const LoadedDescriptor* found = plugins.find(TACTA_KIND_COLLISION, name);
-    if (found == nullptr) throw InputError(at, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
+    if (found == nullptr)
+      throw InputError(at, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
     // Collision off in the scene: the broad phase (the proxy's queries) gets its defaults.
     params = complete_params(*found->descriptor, params);
     // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
@@ -219,7 +237,8 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const bool needed = c.enabled || world.device_count() > 0;
   if (needed && !c.broad_phase.empty()) add(c.broad_phase, c.broad_params, where);
   if (c.enabled && !c.narrow_phase.empty()) add(c.narrow_phase, c.narrow_params, where);
-  if (c.enabled && !c.convex.empty() && (!obstacles_.empty() || !tools_.empty())) add(c.convex, c.convex_params, where);
+  if (c.enabled && !c.convex.empty() && (!obstacles_.empty() || !tools_.empty()))
+    add(c.convex, c.convex_params, where);
   pick_roles(c, needed, add);
   prepare_plugins(where);
   query_ = std::make_unique<Query>(*this, served_[role_index(TACTA_COLLISION_ROLE_PROXY)]);
@@ -227,13 +246,17 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
 
 bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
   SoftBody& b = world_.body(i);
-  if (!world_.body_desc(i).collide || b.topology->mesh.triangles.empty() || b.topology->mesh.dimension != 3) return false;
+  if (!world_.body_desc(i).collide || b.topology->mesh.triangles.empty() ||
+      b.topology->mesh.dimension != 3)
+    return false;
   std::vector<double>& inv = inverse_masses_[i];
   inv.resize(b.node_count());
   // A body stepping on its own thread has its state replaced at each refresh, so a correction
   // made here would be lost: for the response it is a moving obstacle (infinite mass).
   for (size_t n = 0; n < inv.size(); ++n)
-    inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0 ? 0.0 : 1.0 / b.topology->masses[n];
+    inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0
+                 ? 0.0
+                 : 1.0 / b.topology->masses[n];
   s.body_id = static_cast<uint32_t>(i);
   s.vertex_count = static_cast<uint32_t>(b.node_count());
   s.positions_start = b.saved_positions.data();
@@ -266,7 +289,8 @@ void CollisionContext::prepare_plugins(const SourceLocation& where) {
     if (inst->api.prepare == nullptr) continue;
     char message[kMessageCapacity] = {0};
     if (inst->api.prepare(inst->instance, &view_, message, sizeof message) != TACTA_OK)
-      throw InputError(where, std::string("collision plugin '") + inst->descriptor.name + "': " + message);
+      throw InputError(where,
+                       std::string("collision plugin '") + inst->descriptor.name + "': " + message);
   }
   size_t vertices = 0;
   for (const auto& s : surfaces_) vertices += s.vertex_count;
@@ -302,10 +326,11 @@ void CollisionContext::pick_roles(const CollisionDesc& c, bool needed, Add& add)
     if (named() == nullptr) add(name, c.role_params[r], c.role_where[r]);
     CollisionInstance* inst = named();
     if (!(inst->roles & role))
-      throw InputError(c.role_where[r],
-                       fmt::format("collision plugin '{}' does not declare the {} role (it declares: {}); "
-                                   "name a plugin that does (`tacta plugins` lists each plugin's roles)",
-                                   name, tacta_collision_role_name(role), role_names(inst->roles)));
+      throw InputError(
+          c.role_where[r],
+          fmt::format("collision plugin '{}' does not declare the {} role (it declares: {}); "
+                      "name a plugin that does (`tacta plugins` lists each plugin's roles)",
+                      name, tacta_collision_role_name(role), role_names(inst->roles)));
     served_[r] = inst;
   }
   for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
@@ -316,7 +341,8 @@ void CollisionContext::pick_roles(const CollisionDesc& c, bool needed, Add& add)
 std::string role_names(uint32_t roles) {
   std::string out;
   for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
-    if (roles & (1u << r)) out += (out.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
+    if (roles & (1u << r))
+      out += (out.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
   return out.empty() ? "none" : out;
 }
 
@@ -341,16 +367,20 @@ uint32_t CollisionContext::drop_absent(uint32_t first, uint32_t count) noexcept 
   // Contacts name bodies by id: surfaces' ids are body slots, tools' and obstacles' come after
   // the bodies the context was built with.
   const auto absent = [this](uint32_t id) {
-    return id < surface_of_body_.size() && surface_of_body_[id] >= 0 && !surface_present(static_cast<uint32_t>(surface_of_body_[id]));
+    return id < surface_of_body_.size() && surface_of_body_[id] >= 0 &&
+           !surface_present(static_cast<uint32_t>(surface_of_body_[id]));
   };
   uint32_t kept = 0;
   for (uint32_t c = first; c < first + count; ++c)
-    if (!absent(contacts_[c].body_a) && !absent(contacts_[c].body_b)) contacts_[first + kept++] = contacts_[c];
+    if (!absent(contacts_[c].body_a) && !absent(contacts_[c].body_b))
+      contacts_[first + kept++] = contacts_[c];
   return kept;
 }
 
 const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept {
-  query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size() ? surface_of_body_[static_cast<size_t>(body)] : -1);
+  query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size()
+                          ? surface_of_body_[static_cast<size_t>(body)]
+                          : -1);
   return *query_;
 }
 
@@ -390,18 +420,22 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
   const bool self_collision = world_.scene().collision.self_collision;
   // Bodies waiting to be added, or removed, are out of every pair and contact.
   bool all_present = true;
-  for (uint32_t k = 0; k < view_.surface_count; ++k) all_present = all_present && surface_present(k);
+  for (uint32_t k = 0; k < view_.surface_count; ++k)
+    all_present = all_present && surface_present(k);
   for (int round = 0; round < kMaxRounds; ++round) {
     refit(time, dt);
     uint32_t pair_count = 0;
     // One surface and no self-collision: every pair the broad phase could find would be dropped.
-    if (broad != nullptr && broad->api.find_pairs != nullptr && (self_collision || view_.surface_count > 1))
-      bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(), static_cast<uint32_t>(pairs_.size()), &pair_count);
-    if (!self_collision || !all_present) {  // collision.self_collision off: drop pairs within one surface
+    if (broad != nullptr && broad->api.find_pairs != nullptr &&
+        (self_collision || view_.surface_count > 1))
+      bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(),
+                                    static_cast<uint32_t>(pairs_.size()), &pair_count);
+    if (!self_collision ||
+        !all_present) {  // collision.self_collision off: drop pairs within one surface
       uint32_t kept = 0;
       for (uint32_t p = 0; p < pair_count; ++p)
-        if ((self_collision || pairs_[p].surface_a != pairs_[p].surface_b) && surface_present(pairs_[p].surface_a) &&
-            surface_present(pairs_[p].surface_b))
+        if ((self_collision || pairs_[p].surface_a != pairs_[p].surface_b) &&
+            surface_present(pairs_[p].surface_a) && surface_present(pairs_[p].surface_b))
           pairs_[kept++] = pairs_[p];
       pair_count = kept;
     }
@@ -410,18 +444,21 @@ uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
     // others (convex: surfaces against tools and obstacles) the whole world (pairs NULL).
     const uint32_t first = contact_count_;
     for (auto& inst : instances_) {
-      if (inst->api.detect == nullptr || !(inst->roles & TACTA_COLLISION_ROLE_NARROW_PHASE)) continue;
+      if (inst->api.detect == nullptr || !(inst->roles & TACTA_COLLISION_ROLE_NARROW_PHASE))
+        continue;
       uint32_t found = 0;
       const bool pairwise = inst.get() == narrow && broad != nullptr;
-      bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr, pairwise ? pair_count : 0,
-                               contacts_.data() + contact_count_, static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
+      bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr,
+                               pairwise ? pair_count : 0, contacts_.data() + contact_count_,
+                               static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
       if (!all_present) found = drop_absent(contact_count_, found);
       contact_count_ += found;
     }
     for (auto& e : embedded_)
       if (e) e->remember();
     if (response != nullptr && response->api.respond != nullptr)
-      bits |= response->api.respond(response->instance, &view_, contacts_.data() + first, contact_count_ - first);
+      bits |= response->api.respond(response->instance, &view_, contacts_.data() + first,
+                                    contact_count_ - first);
     for (auto& e : embedded_)
       if (e) e->apply_response();
     bool surface_contacts = false;

@@ -43,7 +43,9 @@ class CollisionContext {
   // Tool shapes (one per device): the host moves them each tick (pose at start and end).
   tacta_collision_shape& tool(size_t device) { return tools_[device]; }
   // Body index -> surface index in the view (-1 when the body does not collide).
-  int surface_of(size_t body) const { return body < surface_of_body_.size() ? surface_of_body_[body] : -1; }
+  int surface_of(size_t body) const {
+    return body < surface_of_body_.size() ? surface_of_body_[body] : -1;
+  }
   // False while the surface's body waits to be added, and after it was removed.
   bool surface_present(uint32_t surface) const noexcept;
   int body_of(uint32_t surface) const { return body_of_surface_[surface]; }
@@ -90,7 +92,8 @@ class CollisionContext {
   std::vector<tacta_collision_shape> obstacles_;
   std::vector<std::vector<double>> hull_points_;  // obstacle hulls, 3 per point, m
   std::vector<int> surface_of_body_;
-  std::vector<std::unique_ptr<EmbeddedCollisionSurface>> embedded_;  // per body; null: its tets' boundary
+  std::vector<std::unique_ptr<EmbeddedCollisionSurface>>
+      embedded_;                       // per body; null: its tets' boundary
   std::vector<uint64_t> refits_seen_;  // per body: its SoftBody::refreshes at the last refit
   bool refitted_once_ = false;
   std::vector<int> body_of_surface_;

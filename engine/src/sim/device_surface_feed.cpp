@@ -14,27 +14,28 @@ class DeviceSurfaceFeed final : public FrameObserver {
       const size_t d = devices_[k];
       if (d >= snapshot.devices.size() || scene.bodies.empty()) continue;
       const int touched = snapshot.devices[d].touched_body;
-      if (touched >= 0 && static_cast<size_t>(touched) < scene.bodies.size()) shown_body_[k] = static_cast<size_t>(touched);
+      if (touched >= 0 && static_cast<size_t>(touched) < scene.bodies.size())
+        shown_body_[k] = static_cast<size_t>(touched);
       const size_t b = shown_body_[k];
       const BodyStatic& body = scene.bodies[b];
       // The surface the body is drawn and touched through: its embedded one when it has one.
-      const bool embedded = !body.surface_triangles.empty() &&
-                            snapshot.bodies[b].surface_positions.size() == body.surface_rest_positions.size();
-      const std::vector<double>& positions = embedded ? snapshot.bodies[b].surface_positions : snapshot.bodies[b].positions;
+      const bool embedded =
+          !body.surface_triangles.empty() &&
+          snapshot.bodies[b].surface_positions.size() == body.surface_rest_positions.size();
+      const std::vector<double>& positions =
+          embedded ? snapshot.bodies[b].surface_positions : snapshot.bodies[b].positions;
       const std::vector<uint32_t>& triangles = embedded ? body.surface_triangles : body.triangles;
-      const tacta_device_surface surface{snapshot.time_s,
-                                         body.name.c_str(),
-                                         positions.data(),
-                                         static_cast<uint32_t>(positions.size() / 3),
-                                         triangles.data(),
-                                         static_cast<uint32_t>(triangles.size() / 3)};
+      const tacta_device_surface surface{
+          snapshot.time_s,  body.name.c_str(),
+          positions.data(), static_cast<uint32_t>(positions.size() / 3),
+          triangles.data(), static_cast<uint32_t>(triangles.size() / 3)};
       world_.device(d).device->surface(surface);
     }
   }
 
  private:
   World& world_;
-  std::vector<size_t> devices_;      // indices of the devices that take a surface
+  std::vector<size_t> devices_;     // indices of the devices that take a surface
   std::vector<size_t> shown_body_;  // per such device: the body it is shown
 };
 

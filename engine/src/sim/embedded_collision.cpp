@@ -4,7 +4,8 @@
 
 namespace tacta {
 
-EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body, const std::vector<double>& node_inverse_masses)
+EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
+                                                   const std::vector<double>& node_inverse_masses)
     : world_(world), body_(body), node_inverse_masses_(node_inverse_masses) {
   const EmbeddedSurface& s = *this->body().surface;
   const size_t vertices = s.vertex_count(), nodes = this->body().node_count();
@@ -20,7 +21,8 @@ EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body, co
   // through the weights): that is the vertex's inverse mass.
   for (size_t v = 0; v < vertices; ++v)
     for (size_t k = 0; k < 4; ++k)
-      inverse_masses_[v] += s.weights[4 * v + k] * s.weights[4 * v + k] * node_inverse_masses_[s.nodes[4 * v + k]];
+      inverse_masses_[v] +=
+          s.weights[4 * v + k] * s.weights[4 * v + k] * node_inverse_masses_[s.nodes[4 * v + k]];
   node_position_change_.assign(3 * nodes, 0.0);
   node_velocity_change_.assign(3 * nodes, 0.0);
   node_reached_.assign(nodes, 0);
@@ -61,7 +63,8 @@ void EmbeddedCollisionSurface::apply_response() noexcept {
   for (size_t v = 0; v < s.vertex_count(); ++v) {
     bool moved = false;
     for (size_t a = 0; a < 3; ++a)
-      moved = moved || s.positions[3 * v + a] != end_before_[3 * v + a] || velocities_[3 * v + a] != velocities_before_[3 * v + a];
+      moved = moved || s.positions[3 * v + a] != end_before_[3 * v + a] ||
+              velocities_[3 * v + a] != velocities_before_[3 * v + a];
     corrected_[v] = moved && inverse_masses_[v] > 0;
     any = any || corrected_[v];
   }
@@ -77,8 +80,10 @@ void EmbeddedCollisionSurface::apply_response() noexcept {
       if (!corrected_[v]) continue;
       double position_impulse[3], velocity_impulse[3];
       for (size_t a = 0; a < 3; ++a) {
-        position_impulse[a] = (target_positions_[3 * v + a] - s.positions[3 * v + a]) / inverse_masses_[v];
-        velocity_impulse[a] = (target_velocities_[3 * v + a] - velocities_[3 * v + a]) / inverse_masses_[v];
+        position_impulse[a] =
+            (target_positions_[3 * v + a] - s.positions[3 * v + a]) / inverse_masses_[v];
+        velocity_impulse[a] =
+            (target_velocities_[3 * v + a] - velocities_[3 * v + a]) / inverse_masses_[v];
       }
       spread_to_nodes(s, static_cast<uint32_t>(v), position_impulse, node_position_change_.data());
       spread_to_nodes(s, static_cast<uint32_t>(v), velocity_impulse, node_velocity_change_.data());

@@ -15,7 +15,8 @@ namespace tacta {
 class EmbeddedCollisionSurface {
  public:
   // node_inverse_masses: 1 per node, 1/kg (0 fixed); must outlive this object.
-  EmbeddedCollisionSurface(World& world, size_t body, const std::vector<double>& node_inverse_masses);
+  EmbeddedCollisionSurface(World& world, size_t body,
+                           const std::vector<double>& node_inverse_masses);
   // Points the plugin view at the surface's arrays.
   void describe(tacta_collision_surface& view) noexcept;
   // Start positions from the body's saved (start of tick) state, end positions, normals and
@@ -35,14 +36,14 @@ class EmbeddedCollisionSurface {
   World& world_;
   size_t body_;
   const std::vector<double>& node_inverse_masses_;
-  std::vector<double> start_;              // 3 per vertex, m
-  std::vector<double> velocities_;         // 3 per vertex, m/s
-  std::vector<double> inverse_masses_;     // 1 per vertex, 1/kg: sum of w^2 / m over its tet's nodes
-  std::vector<double> end_before_;         // 3 per vertex, m
-  std::vector<double> velocities_before_;  // 3 per vertex, m/s
-  std::vector<double> target_positions_;   // 3 per vertex, m: where the response put it
-  std::vector<double> target_velocities_;  // 3 per vertex, m/s
-  std::vector<uint8_t> corrected_;         // 1 per vertex: the response changed it
+  std::vector<double> start_;           // 3 per vertex, m
+  std::vector<double> velocities_;      // 3 per vertex, m/s
+  std::vector<double> inverse_masses_;  // 1 per vertex, 1/kg: sum of w^2 / m over its tet's nodes
+  std::vector<double> end_before_;      // 3 per vertex, m
+  std::vector<double> velocities_before_;     // 3 per vertex, m/s
+  std::vector<double> target_positions_;      // 3 per vertex, m: where the response put it
+  std::vector<double> target_velocities_;     // 3 per vertex, m/s
+  std::vector<uint8_t> corrected_;            // 1 per vertex: the response changed it
   std::vector<double> node_position_change_;  // 3 per node, m
   std::vector<double> node_velocity_change_;  // 3 per node, m/s
   std::vector<uint32_t> node_reached_;        // 1 per node: corrected vertices that reach it

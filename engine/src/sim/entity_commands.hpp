@@ -12,8 +12,8 @@ namespace tacta {
 struct EntityCommand {
   enum Kind : uint8_t { kAddBody, kRemoveBody };
   Kind kind = kAddBody;
-  uint32_t slot = 0;    // the body slot
-  double time_s = 0;    // s; for a scene's timed events, when it applies
+  uint32_t slot = 0;  // the body slot
+  double time_s = 0;  // s; for a scene's timed events, when it applies
 };
 
 class EntityCommandRing {

@@ -7,7 +7,8 @@
 
 namespace tacta {
 
-HapticInteraction::HapticInteraction(World& world, CollisionContext& collision) : collision_(collision) {
+HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
+    : collision_(collision) {
   channels_.reserve(world.device_count());
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot& slot = world.device(d);
@@ -38,11 +39,13 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
     }
     // A tool whose body was removed has nothing to touch: no force, and a fresh start if the
     // device goes on (its proxy would otherwise stay on a surface that is gone).
-    const bool body_gone = slot.touched_body >= 0 && !world.body(static_cast<size_t>(slot.touched_body)).present();
+    const bool body_gone =
+        slot.touched_body >= 0 && !world.body(static_cast<size_t>(slot.touched_body)).present();
     if (slot.state != TACTA_DEVICE_CONNECTED || body_gone) {
       slot.force = {0, 0, 0};
       slot.in_contact = false;
-      ch.started = false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
+      ch.started =
+          false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
       continue;
     }
     tacta_collision_shape& tool = collision_.tool(d);
@@ -76,7 +79,9 @@ std::array<double, 3> touch_weights(const double* barycentric) noexcept {
 // Where the point with those weights on `triangle` of the body is, in `positions` (m).
 Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
                        const double* barycentric) noexcept {
-  if (body.surface) return surface_point(*body.surface, static_cast<uint32_t>(triangle), barycentric, positions.data());
+  if (body.surface)
+    return surface_point(*body.surface, static_cast<uint32_t>(triangle), barycentric,
+                         positions.data());
   const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
   const std::array<double, 3> w = touch_weights(barycentric);
   Vec3 p{0, 0, 0};
@@ -89,11 +94,14 @@ Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& position
 
 }  // namespace
 
-void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force) noexcept {
-  if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0) return;
+void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& hit,
+                                       const Vec3& force) noexcept {
+  if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0)
+    return;
   SoftBody& body = world.body(static_cast<size_t>(hit.body));
   if (!body.present()) return;
-  const std::vector<uint32_t>& triangles = body.surface ? body.surface->triangles : body.topology->mesh.triangles;
+  const std::vector<uint32_t>& triangles =
+      body.surface ? body.surface->triangles : body.topology->mesh.triangles;
   const auto t = static_cast<size_t>(hit.triangle);
   if (3 * t + 2 >= triangles.size()) return;
   // The reaction goes to the touched triangle's vertices by the touched point's weights; an
@@ -109,10 +117,12 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
   }
 }
 
-void HapticInteraction::prepare_local_model(World& world, Channel& ch, const DeviceSlot& slot) noexcept {
+void HapticInteraction::prepare_local_model(World& world, Channel& ch,
+                                            const DeviceSlot& slot) noexcept {
   LocalModel& m = ch.local;
   const int touched = m.body >= 0 ? m.body : slot.touched_body;
-  if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() || !world.body(static_cast<size_t>(touched)).own_thread) {
+  if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() ||
+      !world.body(static_cast<size_t>(touched)).own_thread) {
     ch.renderer.set_local_compliance({});
     return;
   }
@@ -138,9 +148,10 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
       ch.renderer.carry_proxy(sub(after, before));
       // Secant point stiffness: the normal force the state felt over how far the pressed material
       // point has gone in since the contact began; smoothed, since one step is not a static state.
-      const Vec3 now = point_on_triangle(body, body.positions, m.onset_triangle, m.onset_barycentric);
+      const Vec3 now =
+          point_on_triangle(body, body.positions, m.onset_triangle, m.onset_barycentric);
       const double depth = dot(sub(m.onset_point, now), m.onset_normal);  // m
-      const double force = dot(m.felt, m.onset_normal);                          // N
+      const double force = dot(m.felt, m.onset_normal);                   // N
       if (depth > 1e-4 && force > 0.02) {
         const double measured = force / depth;  // N/m
         m.stiffness = m.stiffness > 0 ? 0.5 * m.stiffness + 0.5 * measured : measured;
@@ -165,7 +176,9 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch, const Dev
   ch.renderer.set_local_compliance(c);
 }
 
-void HapticInteraction::follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out, double dt) noexcept {
+void HapticInteraction::follow_local_model(World& world, Channel& ch,
+                                           const haptics::ContactRendering& out,
+                                           double dt) noexcept {
   LocalModel& m = ch.local;
   if (m.body < 0) return;
   m.impulse = add_scaled(m.impulse, out.device_force, dt);
@@ -180,7 +193,9 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch, const hapt
     m.pressing = true;
     m.onset_triangle = out.contact.triangle;
     for (int k = 0; k < 3; ++k) m.onset_barycentric[k] = out.contact.barycentric[k];
-    m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)), world.body(static_cast<size_t>(m.body)).positions, m.onset_triangle, m.onset_barycentric);
+    m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)),
+                                      world.body(static_cast<size_t>(m.body)).positions,
+                                      m.onset_triangle, m.onset_barycentric);
     m.onset_normal = out.contact.normal;
   }
 }

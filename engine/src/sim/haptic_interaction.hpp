@@ -26,19 +26,19 @@ class HapticInteraction final : public Interaction {
   // (tacta/haptics/local_compliance.hpp): the forces the worker's steps were driven with, and the
   // body's point stiffness as its refreshed states show it.
   struct LocalModel {
-    int body = -1;               // the worker body these numbers are about
+    int body = -1;  // the worker body these numbers are about
     uint64_t refreshes_seen = 0;
-    Vec3 impulse{0, 0, 0};       // N s: device force summed over the ticks since the last post
-    double impulse_time = 0;     // s
-    Vec3 posted{0, 0, 0};        // N: mean device force the step in flight is driven with
-    Vec3 felt{0, 0, 0};          // N: mean device force the refreshed state has felt
-    double stiffness = 0;        // N/m: k_l, first the punch estimate, then measured
-    bool pressing = false;       // a contact episode is on, with its onset material point:
+    Vec3 impulse{0, 0, 0};    // N s: device force summed over the ticks since the last post
+    double impulse_time = 0;  // s
+    Vec3 posted{0, 0, 0};     // N: mean device force the step in flight is driven with
+    Vec3 felt{0, 0, 0};       // N: mean device force the refreshed state has felt
+    double stiffness = 0;     // N/m: k_l, first the punch estimate, then measured
+    bool pressing = false;    // a contact episode is on, with its onset material point:
     int onset_triangle = -1;
     double onset_barycentric[3] = {0, 0, 0};
-    Vec3 onset_point{0, 0, 0};   // m, where that point was when the contact began
+    Vec3 onset_point{0, 0, 0};  // m, where that point was when the contact began
     Vec3 onset_normal{0, 0, 1};
-    int triangle = -1;           // last contact triangle and the point's barycentric weights
+    int triangle = -1;  // last contact triangle and the point's barycentric weights
     double barycentric[3] = {0, 0, 0};
   };
   struct Channel {  // one per device
@@ -46,11 +46,13 @@ class HapticInteraction final : public Interaction {
     bool started = false;
     LocalModel local;
   };
-  void apply_reaction(World& world, const haptics::SurfaceHit& hit, const Vec3& force_on_body) noexcept;
+  void apply_reaction(World& world, const haptics::SurfaceHit& hit,
+                      const Vec3& force_on_body) noexcept;
   // Before the renderer's tick: take in a refresh of the worker body, set the local model.
   void prepare_local_model(World& world, Channel& ch, const DeviceSlot& slot) noexcept;
   // After it: the force joins the period's impulse; a new contact records its onset point.
-  void follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out, double dt) noexcept;
+  void follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out,
+                          double dt) noexcept;
   CollisionContext& collision_;
   std::vector<Channel> channels_;
 };

@@ -14,7 +14,8 @@ double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2
 
 }  // namespace
 
-HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks, double duration_s)
+HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks,
+                       double duration_s)
     : world_(world), snapshots_(snapshots) {
   record_interval_s_ = world.scene().output.record_interval_s;
   faults_.reserve(64 + world.body_count() + world.device_count());
@@ -40,11 +41,13 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
   const double interval_ticks =
       record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
   trajectory_.grow(
-      static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) * recorded_nodes,
+      static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2) *
+          recorded_nodes,
       kRecordBytes / sizeof(TrajectoryRow));
   // From the run's duration (--duration may differ from the scene's), bounded with it at load.
   if (duration_s < 0) duration_s = static_cast<double>(expected_ticks) / scene.clock.haptic_rate_hz;
-  const size_t records = static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
+  const size_t records =
+      static_cast<size_t>(static_cast<double>(expected_ticks) / std::max(interval_ticks, 1.0) + 2);
   probes_.grow(records * probes, kRecordBytes / sizeof(ProbeRow));
   const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
   energy_.grow(frames * world_.body_capacity() + 16, kRecordBytes / sizeof(EnergyRow));
@@ -52,7 +55,8 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
 }
 
 const char* HapticLoop::stage_name(int stage) noexcept {
-  static const char* const names[kStageCount] = {"device_read", "haptics", "models", "collision_response", "device_write"};
+  static const char* const names[kStageCount] = {"device_read", "haptics", "models",
+                                                 "collision_response", "device_write"};
   return stage >= 0 && stage < kStageCount ? names[stage] : "?";
 }
 
@@ -93,8 +97,10 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
     SoftBody& b = world_.body(i);
     if (!b.present()) continue;
     // Loads set from outside (the stepping API) start each tick's contact sum.
-    if (b.applied_forces.empty()) std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
-    else std::copy(b.applied_forces.begin(), b.applied_forces.end(), b.contact_forces.begin());
+    if (b.applied_forces.empty())
+      std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
+    else
+      std::copy(b.applied_forces.begin(), b.applied_forces.end(), b.contact_forces.begin());
   }
   for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
   const auto haptics_done = Clock::now();
@@ -118,7 +124,8 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   stages_[kResponse].record(ms(models_done, response_done));
   stages_[kDeviceWrite].record(ms(response_done, end));
   last_tick_ms_ = ms(start, end);
-  last_status_.error = last_status_.error || has_error_bit(StatusSource::Collision, last_status_.collision_bits);
+  last_status_.error =
+      last_status_.error || has_error_bit(StatusSource::Collision, last_status_.collision_bits);
   return should_continue();
 }
 
@@ -156,7 +163,8 @@ void HapticLoop::apply_swaps(double time) noexcept {
   // A body on a worker thread takes its swaps between two of its steps (step_on_worker), when
   // the worker is not using the model.
   for (size_t i = 0; i < world_.body_count(); ++i)
-    if (!world_.body(i).own_thread && world_.body(i).present()) apply_swaps_to(world_.body(i), time);
+    if (!world_.body(i).own_thread && world_.body(i).present())
+      apply_swaps_to(world_.body(i), time);
 }
 
 void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
@@ -176,8 +184,10 @@ void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
       outgoing->retired_next = head;
     } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
                                                        std::memory_order_relaxed));
-    if (b.runtime_swaps.size() < b.runtime_swaps.capacity()) b.runtime_swaps.push_back({time, incoming->name()});
-    else ++b.runtime_swaps_unlisted;
+    if (b.runtime_swaps.size() < b.runtime_swaps.capacity())
+      b.runtime_swaps.push_back({time, incoming->name()});
+    else
+      ++b.runtime_swaps_unlisted;
     b.model->begin(b.state_view(time), dt);
   }
 }
@@ -205,13 +215,19 @@ void HapticLoop::read_devices(double time) noexcept {
     if (state != TACTA_DEVICE_CONNECTED || !finite) {
       slot.state = state == TACTA_DEVICE_CONNECTED ? TACTA_DEVICE_FAULT : state;
       slot.status_time_s = time;
-      if (!finite) std::snprintf(slot.status_reason.data(), slot.status_reason.size(), "device reported a non-finite position");
-      else slot.device->status(slot.status_reason.data(), slot.status_reason.size());
-      if (slot.state == TACTA_DEVICE_FAULT) raise_device(d, kDeviceFault);
-      else if (slot.state == TACTA_DEVICE_DISCONNECTED) raise_device(d, kDeviceDisconnected);
+      if (!finite)
+        std::snprintf(slot.status_reason.data(), slot.status_reason.size(),
+                      "device reported a non-finite position");
+      else
+        slot.device->status(slot.status_reason.data(), slot.status_reason.size());
+      if (slot.state == TACTA_DEVICE_FAULT)
+        raise_device(d, kDeviceFault);
+      else if (slot.state == TACTA_DEVICE_DISCONNECTED)
+        raise_device(d, kDeviceDisconnected);
       if (state != TACTA_DEVICE_FINISHED) {
         FaultRecord f{time, -1, static_cast<int>(d), static_cast<uint32_t>(slot.state), {}};
-        std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(), slot.status_reason.data());
+        std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(),
+                      slot.status_reason.data());
         faults_.push(f);
       }
     }
@@ -235,9 +251,10 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
       b.next_step_time_s += b.step_period_s;
       step_dt = b.step_period_s;
     }
-    const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions, b.contact_forces};
-    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays, time, step_dt,
-                                             b.boundary.get());
+    const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions,
+                            b.contact_forces};
+    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays,
+                                             time, step_dt, b.boundary.get());
     count_model_bits(i, out.bits, time);
     if (out.why != nullptr) {
       freeze(b, i, time, out.bits, out.why);
@@ -249,10 +266,12 @@ bool HapticLoop::step_bodies(double time, double dt) noexcept {
   return healthy;
 }
 
-bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double time, double dt) noexcept {
+bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double time,
+                                double dt) noexcept {
   w.accumulate(b.contact_forces, dt);
   if (time + 1e-12 < b.next_step_time_s) return true;
-  if (!w.finish_step(time)) return true;  // realtime: still stepping, render on against the old state
+  if (!w.finish_step(time))
+    return true;  // realtime: still stepping, render on against the old state
   const StepOutcome& out = w.last_outcome();
   count_model_bits(index, out.bits, time);
   if (out.why != nullptr) {
@@ -264,7 +283,8 @@ bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double
   w.post(time, b.step_period_s);
   // The next boundary counts from this post: a late step shifts the body's clock, it never
   // makes the worker run two steps back to back.
-  b.next_step_time_s = std::max(b.next_step_time_s + b.step_period_s, time + b.step_period_s - 1e-12);
+  b.next_step_time_s =
+      std::max(b.next_step_time_s + b.step_period_s, time + b.step_period_s - 1e-12);
   return true;
 }
 
@@ -274,8 +294,11 @@ void HapticLoop::start_workers(bool lockstep, size_t expected_ticks) {
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
     if (!b.own_thread) continue;
-    const auto steps = static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate / b.step_period_s) + 2;
-    if (!workers_[i]) workers_[i] = std::make_unique<BodyWorker>(b, world_.scene().gravity, lockstep, steps);
+    const auto steps =
+        static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate / b.step_period_s) +
+        2;
+    if (!workers_[i])
+      workers_[i] = std::make_unique<BodyWorker>(b, world_.scene().gravity, lockstep, steps);
     workers_[i]->start();
   }
 }
@@ -288,18 +311,22 @@ void HapticLoop::stop_workers() noexcept {
     // reported like any other, not lost with the run.
     const StepOutcome& out = workers_[i]->last_outcome();
     SoftBody& b = world_.body(i);
-    if (out.why != nullptr && !b.fault.frozen && b.present()) freeze(b, i, tick_time_, out.bits, out.why);
+    if (out.why != nullptr && !b.fault.frozen && b.present())
+      freeze(b, i, tick_time_, out.bits, out.why);
   }
 }
 
-void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits, const char* why) noexcept {
+void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits,
+                        const char* why) noexcept {
   b.fault.frozen = true;
   b.fault.bits = bits;
   b.fault.time_s = time;
-  std::snprintf(b.fault.reason.data(), b.fault.reason.size(), "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s",
-                why, b.model->name(), bits, time);
+  std::snprintf(b.fault.reason.data(), b.fault.reason.size(),
+                "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s", why, b.model->name(),
+                bits, time);
   FaultRecord f{time, static_cast<int>(index), -1, bits, {}};
-  std::snprintf(f.reason.data(), f.reason.size(), "body '%.40s': %.150s", b.name.c_str(), b.fault.reason.data());
+  std::snprintf(f.reason.data(), f.reason.size(), "body '%.40s': %.150s", b.name.c_str(),
+                b.fault.reason.data());
   faults_.push(f);
 }
 
@@ -320,7 +347,8 @@ void HapticLoop::write_devices(double time, bool zero_force) noexcept {
     DeviceStats& st = slot.stats;
     // A frozen body is a state that could not be trusted: a device touching it renders nothing,
     // from the faulting tick for as long as it stays frozen.
-    const bool silent = zero_force || slot.state != TACTA_DEVICE_CONNECTED || touches_frozen_body(slot);
+    const bool silent =
+        zero_force || slot.state != TACTA_DEVICE_CONNECTED || touches_frozen_body(slot);
     if (silent && slot.state == TACTA_DEVICE_CONNECTED) raise_device(d, kDeviceSilenced);
     if (silent) {
       slot.force = {0, 0, 0};
@@ -395,21 +423,25 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
   s.last_tick_ms = last_tick_ms_;
   for (size_t i = 0; i < world_.body_count(); ++i) {
     SoftBody& b = world_.body(i);
-    if (i >= s.bodies.size()) continue;  // added after the render task started (publish: energy rows)
+    if (i >= s.bodies.size())
+      continue;  // added after the render task started (publish: energy rows)
     BodySnapshot& bs = s.bodies[i];
     bs.present = b.present();
     if (b.presence.state == BodyPresence::kPending) continue;
     std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
     std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
-    if (b.surface) interpolate_to_surface(*b.surface, b.positions.data(), bs.surface_positions.data());
+    if (b.surface)
+      interpolate_to_surface(*b.surface, b.positions.data(), bs.surface_positions.data());
     const BodyWorker* w = worker(i);
     // A worker body's model may be mid-step on its thread: use what the worker computed.
     if (w != nullptr) {
-      if (!bs.von_mises.empty() && w->has_stress()) std::copy(w->von_mises().begin(), w->von_mises().end(), bs.von_mises.begin());
+      if (!bs.von_mises.empty() && w->has_stress())
+        std::copy(w->von_mises().begin(), w->von_mises().end(), bs.von_mises.begin());
     } else if (!bs.von_mises.empty() && b.model->has_stress()) {
       b.model->node_stress(b.positions.data(), bs.von_mises.data());
     }
-    if (bs.model != b.model->name()) bs.model.assign(b.model->name());  // capacity reserved up front
+    if (bs.model != b.model->name())
+      bs.model.assign(b.model->name());  // capacity reserved up front
     bs.frozen = b.fault.frozen;
     bs.kinetic_J = b.kinetic_energy();
     bs.elastic_J = w != nullptr ? w->elastic_energy() : b.model->elastic_energy(b.positions.data());
@@ -431,13 +463,16 @@ void HapticLoop::publish(double time) noexcept {
   capture(s, time);
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     const BodySnapshot& bs = s.bodies[i];
-    if (bs.present) energy_.push({time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, bs.max_displacement_m});
+    if (bs.present)
+      energy_.push(
+          {time, static_cast<uint32_t>(i), bs.kinetic_J, bs.elastic_J, bs.max_displacement_m});
   }
-  for (size_t i = s.bodies.size(); i < world_.body_count(); ++i) {  // added after the render task started
+  for (size_t i = s.bodies.size(); i < world_.body_count();
+       ++i) {  // added after the render task started
     SoftBody& b = world_.body(i);
     if (b.present())
-      energy_.push({time, static_cast<uint32_t>(i), b.kinetic_energy(), b.model->elastic_energy(b.positions.data()),
-                    b.max_displacement_m});
+      energy_.push({time, static_cast<uint32_t>(i), b.kinetic_energy(),
+                    b.model->elastic_energy(b.positions.data()), b.max_displacement_m});
   }
   snapshots_.publish();
 }

@@ -9,10 +9,10 @@
 #include "body_worker.hpp"
 #include "recorders.hpp"
 #include "status_bits.hpp"
-#include "tacta/sim/tick_stats.hpp"
 #include "tacta/device_log.hpp"
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
+#include "tacta/sim/tick_stats.hpp"
 #include "tacta/sim/triple_buffer.hpp"
 #include "world.hpp"
 
@@ -46,7 +46,8 @@ class HapticLoop final : public HapticTask {
  public:
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames
   // (negative: expected_ticks at the scene's haptic rate).
-  HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks, double duration_s = -1);
+  HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks,
+             double duration_s = -1);
   // Grows the record buffers for `expected_ticks` (`duration_s` s of frames) more; allocates.
   void reserve(size_t expected_ticks, double duration_s = -1);
   void add_interaction(Interaction* interaction) { interactions_.push_back(interaction); }
@@ -59,7 +60,9 @@ class HapticLoop final : public HapticTask {
   // waits for each step at its boundary; realtime never waits.
   void start_workers(bool lockstep, size_t expected_ticks);
   void stop_workers() noexcept;
-  const BodyWorker* worker(size_t body) const { return body < workers_.size() ? workers_[body].get() : nullptr; }
+  const BodyWorker* worker(size_t body) const {
+    return body < workers_.size() ? workers_[body].get() : nullptr;
+  }
 
   // False only when the run should end: every body is frozen (nothing left to step) and no
   // device is connected or waiting to reconnect (nobody holds a tool).
@@ -91,7 +94,8 @@ class HapticLoop final : public HapticTask {
  private:
   void apply_swaps(double time) noexcept;
   void apply_swaps_to(SoftBody& body, double time) noexcept;
-  bool step_on_worker(SoftBody& body, size_t index, BodyWorker& worker, double time, double dt) noexcept;
+  bool step_on_worker(SoftBody& body, size_t index, BodyWorker& worker, double time,
+                      double dt) noexcept;
   void read_devices(double time) noexcept;
   bool step_bodies(double time, double dt) noexcept;  // false when a body faulted this tick
   void write_devices(double time, bool zero_force) noexcept;

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cstddef>
-
-#include <algorithm>
 #include <cstring>
 
 namespace tacta {
@@ -18,7 +16,8 @@ std::string plugin_failure(const tacta_descriptor& d, const char* what, const ch
 }
 
 // parallel_for without an engine pool (a model created alone, e.g. by a test): the caller does all.
-void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t), void* user) {
+void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t),
+                void* user) {
   if (count > 0) body(user, 0, count, 0);
 }
 }  // namespace
@@ -51,8 +50,8 @@ std::vector<std::pair<std::string, double>> ModelInstance::counters() {
       api_.counters == nullptr)
     return named;
   std::vector<tacta_model_counter> raw(api_.counters(instance_, nullptr, 0));
-  raw.resize(std::min<size_t>(raw.size(), api_.counters(instance_, raw.data(),
-                                                        static_cast<uint32_t>(raw.size()))));
+  raw.resize(std::min<size_t>(
+      raw.size(), api_.counters(instance_, raw.data(), static_cast<uint32_t>(raw.size()))));
   for (const tacta_model_counter& c : raw)
     if (c.name != nullptr) named.emplace_back(c.name, c.value);
   return named;
@@ -79,13 +78,15 @@ bool DeviceInstance::has_entry(size_t offset, const void* entry) const noexcept 
 }
 
 bool DeviceInstance::input(const double* values, uint32_t count) noexcept {
-  if (!has_entry(offsetof(tacta_device_api, input), reinterpret_cast<const void*>(api_.input))) return false;
+  if (!has_entry(offsetof(tacta_device_api, input), reinterpret_cast<const void*>(api_.input)))
+    return false;
   api_.input(instance_, values, count);
   return true;
 }
 
 bool DeviceInstance::wants_surface() const noexcept {
-  return has_entry(offsetof(tacta_device_api, surface), reinterpret_cast<const void*>(api_.surface));
+  return has_entry(offsetof(tacta_device_api, surface),
+                   reinterpret_cast<const void*>(api_.surface));
 }
 
 void DeviceInstance::surface(const tacta_device_surface& surface) noexcept {
@@ -94,7 +95,9 @@ void DeviceInstance::surface(const tacta_device_surface& surface) noexcept {
 
 std::vector<std::pair<std::string, double>> DeviceInstance::counters() {
   std::vector<std::pair<std::string, double>> out;
-  if (!has_entry(offsetof(tacta_device_api, counters), reinterpret_cast<const void*>(api_.counters))) return out;
+  if (!has_entry(offsetof(tacta_device_api, counters),
+                 reinterpret_cast<const void*>(api_.counters)))
+    return out;
   std::vector<tacta_device_counter> buffer(64);
   const uint32_t n = std::min<uint32_t>(api_.counters(instance_, buffer.data(), 64), 64);
   for (uint32_t i = 0; i < n; ++i)

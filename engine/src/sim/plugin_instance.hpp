@@ -8,9 +8,6 @@
 #include <utility>
 #include <vector>
 
-#include <utility>
-#include <vector>
-
 #include "../services/job_pool.hpp"
 #include "tacta/device_api.h"
 #include "tacta/error.hpp"
@@ -31,7 +28,9 @@ class ModelInstance {
 
   const char* name() const noexcept { return descriptor_.name; }
   const tacta_descriptor& descriptor() const noexcept { return descriptor_; }
-  uint32_t step(tacta_body_state& state, double dt) noexcept { return api_.step(instance_, &state, dt); }
+  uint32_t step(tacta_body_state& state, double dt) noexcept {
+    return api_.step(instance_, &state, dt);
+  }
   void begin(const tacta_body_state& state, double dt) noexcept {
     if (api_.begin) api_.begin(instance_, &state, dt);
   }
@@ -69,7 +68,9 @@ class ModelInstance {
   // What the instance says it chose for this body (empty when the plugin says nothing).
   std::string describe() const {
     // A plugin built before `describe` existed has a shorter table: the entry is absent.
-    if (descriptor_.api_size < offsetof(tacta_model_api, describe) + sizeof(api_.describe) || !api_.describe) return {};
+    if (descriptor_.api_size < offsetof(tacta_model_api, describe) + sizeof(api_.describe) ||
+        !api_.describe)
+      return {};
     char text[512] = {};
     api_.describe(instance_, text, sizeof text);
     return text;

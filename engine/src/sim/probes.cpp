@@ -1,7 +1,6 @@
 #include "probes.hpp"
 
 #include <algorithm>
-
 #include <fmt/format.h>
 
 #include "mesh/geometry.hpp"
@@ -13,7 +12,8 @@ std::vector<Probe> locate_probes(const std::vector<ProbeDesc>& probes, const Vol
   using mesh_detail::P3;
   std::vector<Probe> out;
   if (probes.empty()) return out;
-  if (mesh.tets.empty()) throw InputError(where, "probes: the body's mesh has no tetrahedra to bind a probe to");
+  if (mesh.tets.empty())
+    throw InputError(where, "probes: the body's mesh has no tetrahedra to bind a probe to");
   // A point on a face shared by two tets, or on the surface, is inside up to rounding.
   constexpr double kInsideTolerance = 1e-9;
   for (const ProbeDesc& desc : probes) {
@@ -33,8 +33,9 @@ std::vector<Probe> locate_probes(const std::vector<ProbeDesc>& probes, const Vol
         far = p[a] < lo - margin || p[a] > hi + margin;
       }
       if (far && best > -kInsideTolerance) continue;
-      const auto w = mesh_detail::barycentric(p, mesh_detail::point(mesh.positions, n[0]), mesh_detail::point(mesh.positions, n[1]),
-                                              mesh_detail::point(mesh.positions, n[2]), mesh_detail::point(mesh.positions, n[3]));
+      const auto w = mesh_detail::barycentric(
+          p, mesh_detail::point(mesh.positions, n[0]), mesh_detail::point(mesh.positions, n[1]),
+          mesh_detail::point(mesh.positions, n[2]), mesh_detail::point(mesh.positions, n[3]));
       const double worst = *std::min_element(w.begin(), w.end());
       if (worst > best) {
         best = worst;
@@ -44,8 +45,9 @@ std::vector<Probe> locate_probes(const std::vector<ProbeDesc>& probes, const Vol
       if (best >= 0) break;
     }
     if (best < -kInsideTolerance)
-      throw InputError(where, fmt::format("probes: '{}' at [{}, {}, {}] m lies outside the body's mesh", desc.name,
-                                          desc.rest[0], desc.rest[1], desc.rest[2]));
+      throw InputError(where,
+                       fmt::format("probes: '{}' at [{}, {}, {}] m lies outside the body's mesh",
+                                   desc.name, desc.rest[0], desc.rest[1], desc.rest[2]));
     out.push_back(probe);
   }
   return out;

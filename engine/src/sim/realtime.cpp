@@ -1,20 +1,19 @@
 // Scheduling policy, memory locking and CPU placement around a realtime run (see realtime.hpp).
 #include "tacta/sim/realtime.hpp"
 
-#include <dirent.h>
-#include <pthread.h>
-#include <sched.h>
-#include <sys/mman.h>
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dirent.h>
 #include <fstream>
+#include <pthread.h>
+#include <sched.h>
 #include <string>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 #include <vector>
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -68,7 +67,8 @@ std::string errno_text(int error) { return std::strerror(error); }
 
 uint64_t status_kb(const std::string& text, const char* key) {
   const size_t at = text.find(key);
-  return at == std::string::npos ? 0 : std::strtoull(text.c_str() + at + std::strlen(key), nullptr, 10);
+  return at == std::string::npos ? 0
+                                 : std::strtoull(text.c_str() + at + std::strlen(key), nullptr, 10);
 }
 
 }  // namespace
@@ -98,8 +98,11 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
   } else if (options.lock_memory) {
     // Locks what is mapped and what will be: the record buffers reserved before the run are
     // faulted in now, not one page at a time inside ticks.
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) grant_.memory_locked = true;
-    else grant_.memory_note = "mlockall refused (" + errno_text(errno) + "); raise RLIMIT_MEMLOCK (ulimit -l) or grant CAP_IPC_LOCK";
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0)
+      grant_.memory_locked = true;
+    else
+      grant_.memory_note = "mlockall refused (" + errno_text(errno) +
+                           "); raise RLIMIT_MEMLOCK (ulimit -l) or grant CAP_IPC_LOCK";
   } else {
     grant_.memory_note = "not requested (clock.lock_memory: false)";
   }
@@ -117,8 +120,9 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
       grant_.scheduler = "SCHED_FIFO";
       grant_.priority = options.priority;
     } else {
-      grant_.scheduler_note = "SCHED_FIFO " + std::to_string(options.priority) + " refused (" + errno_text(error) +
-                              "; needs CAP_SYS_NICE or an RLIMIT_RTPRIO, e.g. in /etc/security/limits.conf)";
+      grant_.scheduler_note =
+          "SCHED_FIFO " + std::to_string(options.priority) + " refused (" + errno_text(error) +
+          "; needs CAP_SYS_NICE or an RLIMIT_RTPRIO, e.g. in /etc/security/limits.conf)";
     }
   } else {
     grant_.scheduler_note = "SCHED_FIFO not requested (clock.haptic_priority: 0)";
@@ -126,10 +130,12 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
   if (grant_.scheduler != "SCHED_FIFO") {
     if (setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), kHapticFallbackNice) == 0) {
       grant_.nice = kHapticFallbackNice;
-      grant_.scheduler_note += "; fallback: SCHED_OTHER at nice " + std::to_string(kHapticFallbackNice);
+      grant_.scheduler_note +=
+          "; fallback: SCHED_OTHER at nice " + std::to_string(kHapticFallbackNice);
     } else {
       grant_.nice = old_nice_;
-      grant_.scheduler_note += "; fallback: SCHED_OTHER at nice " + std::to_string(old_nice_) + " (raising it was refused too)";
+      grant_.scheduler_note += "; fallback: SCHED_OTHER at nice " + std::to_string(old_nice_) +
+                               " (raising it was refused too)";
     }
   }
 
@@ -142,11 +148,14 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
     cpu_set_t only;
     CPU_ZERO(&only);
     CPU_SET(options.cpu, &only);
-    const int error = options.cpu < CPU_SETSIZE ? pthread_setaffinity_np(pthread_self(), sizeof only, &only) : EINVAL;
+    const int error = options.cpu < CPU_SETSIZE
+                          ? pthread_setaffinity_np(pthread_self(), sizeof only, &only)
+                          : EINVAL;
     if (error == 0) {
       grant_.cpu = options.cpu;
     } else {
-      grant_.cpu_note = "pinning to CPU " + std::to_string(options.cpu) + " refused (" + errno_text(error) + ")";
+      grant_.cpu_note =
+          "pinning to CPU " + std::to_string(options.cpu) + " refused (" + errno_text(error) + ")";
     }
   }
   for (const pid_t tid : other_threads()) {
@@ -167,7 +176,8 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
     }
     errno = 0;
     const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(tid));
-    if (errno == 0 && nice < kHelperNice && setpriority(PRIO_PROCESS, static_cast<id_t>(tid), kHelperNice) == 0) {
+    if (errno == 0 && nice < kHelperNice &&
+        setpriority(PRIO_PROCESS, static_cast<id_t>(tid), kHelperNice) == 0) {
       lowered_.push_back({tid, nice});
       ++grant_.helper_threads_lowered;
     }
@@ -190,7 +200,8 @@ bool RealtimeSession::demote(int64_t tick) noexcept {
   if (grant_.scheduler != "SCHED_FIFO") return false;
   sched_param normal{};
   if (pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal) != 0) return false;
-  const bool niced = setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), kHapticFallbackNice) == 0;
+  const bool niced =
+      setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), kHapticFallbackNice) == 0;
   grant_.demoted_at_tick = tick;
   grant_.nice = niced ? kHapticFallbackNice : old_nice_;
   return true;
@@ -202,7 +213,8 @@ RealtimeSession::~RealtimeSession() {
   pthread_setschedparam(pthread_self(), old_policy_, &old);
   setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), old_nice_);
   pthread_setname_np(pthread_self(), old_name_.c_str());
-  for (const LoweredThread& t : lowered_) setpriority(PRIO_PROCESS, static_cast<id_t>(t.tid), t.nice);
+  for (const LoweredThread& t : lowered_)
+    setpriority(PRIO_PROCESS, static_cast<id_t>(t.tid), t.nice);
   if (!original_cpus_.empty()) {
     // Every thread may use the CPUs the haptic thread had before the run again.
     cpu_set_t all;

@@ -2,14 +2,14 @@
 // starts (push_back within capacity never allocates), and written to CSV after it.
 #pragma once
 
-#include <cstddef>
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace tacta {
 
-struct TraceRow {      // one per tick per device (trace.csv)
+struct TraceRow {  // one per tick per device (trace.csv)
   double time_s;
   uint32_t device;
   double position[3];  // m, device
@@ -43,11 +43,15 @@ class Recorder {
   void reserve(size_t rows) { rows_.reserve(rows); }
   // Room for `more` rows past those kept (a persistent clock stepping on), `limit` rows in all
   // (a session that plays for hours keeps its first rows and counts the rest); allocates.
-  void grow(size_t more, size_t limit) { rows_.reserve(std::min(rows_.size() + more, std::max(limit, rows_.capacity()))); }
+  void grow(size_t more, size_t limit) {
+    rows_.reserve(std::min(rows_.size() + more, std::max(limit, rows_.capacity())));
+  }
   // Drops the row (and counts it) once the reserved capacity is full: never allocates.
   void push(const Row& row) noexcept {
-    if (rows_.size() < rows_.capacity()) rows_.push_back(row);
-    else ++dropped_;
+    if (rows_.size() < rows_.capacity())
+      rows_.push_back(row);
+    else
+      ++dropped_;
   }
   const std::vector<Row>& rows() const noexcept { return rows_; }
   uint64_t dropped() const noexcept { return dropped_; }

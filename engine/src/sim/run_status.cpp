@@ -13,14 +13,16 @@ void summarise(const std::string& who, const std::vector<StatusBitCount>& bits, 
   for (const StatusBitCount& b : bits) {
     if (b.severity == StatusSeverity::Info) continue;
     (b.severity == StatusSeverity::Error ? status.errors : status.warnings) += 1;
-    status.lines.push_back(fmt::format("{}: {}: {} on {} tick(s) from t = {:.3f} s; {}", severity_name(b.severity), who,
-                                       b.name, b.ticks, b.first_time_s, b.remedy));
+    status.lines.push_back(fmt::format("{}: {}: {} on {} tick(s) from t = {:.3f} s; {}",
+                                       severity_name(b.severity), who, b.name, b.ticks,
+                                       b.first_time_s, b.remedy));
   }
 }
 
 }  // namespace
 
-RunStatus collect_run_status(const HapticLoop& loop, const World& world, const CollisionContext* collision) {
+RunStatus collect_run_status(const HapticLoop& loop, const World& world,
+                             const CollisionContext* collision) {
   RunStatus status;
   for (size_t i = 0; i < world.body_count(); ++i) {
     status.bodies.push_back(describe(loop.body_status(i), StatusSource::Model));

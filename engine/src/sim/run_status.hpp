@@ -10,6 +10,7 @@ namespace tacta {
 class CollisionContext;
 
 // `collision` may be null (no collision pipeline in the scene).
-RunStatus collect_run_status(const HapticLoop& loop, const World& world, const CollisionContext* collision);
+RunStatus collect_run_status(const HapticLoop& loop, const World& world,
+                             const CollisionContext* collision);
 
 }  // namespace tacta

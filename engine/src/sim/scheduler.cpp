@@ -1,14 +1,13 @@
 // Lockstep and realtime scheduling of the haptic and render tasks (see scheduler.hpp).
 #include "tacta/sim/scheduler.hpp"
 
-#include <pthread.h>
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <pthread.h>
 #include <thread>
+#include <time.h>
 
 namespace tacta {
 
@@ -56,7 +55,8 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
       haptic.publish(end_time);
       render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
       ++result.frames;
-      if (result.memory_warm.rss_kb == 0 && end_time >= kWarmUpS) result.memory_warm = resident_memory();
+      if (result.memory_warm.rss_kb == 0 && end_time >= kWarmUpS)
+        result.memory_warm = resident_memory();
     }
     if (o.on_progress && ms_between(last_progress, t1) > 100) {
       last_progress = t1;
@@ -87,7 +87,8 @@ timespec add_ns(timespec t, int64_t ns) {
 }
 
 double ms_after(const timespec& a, const timespec& b) {  // b - a in ms
-  return static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 + static_cast<double>(b.tv_nsec - a.tv_nsec) * 1e-6;
+  return static_cast<double>(b.tv_sec - a.tv_sec) * 1e3 +
+         static_cast<double>(b.tv_nsec - a.tv_nsec) * 1e-6;
 }
 
 // Absolute-deadline wait on the monotonic clock (so the period does not drift): sleeps to
@@ -125,7 +126,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
       const double wall_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
       render.frame(wall_s);
       frames.fetch_add(1, std::memory_order_relaxed);
-      if (result.memory_warm.rss_kb == 0 && wall_s >= kWarmUpS) result.memory_warm = resident_memory();
+      if (result.memory_warm.rss_kb == 0 && wall_s >= kWarmUpS)
+        result.memory_warm = resident_memory();
       // Progress is printed from here, never from the haptic thread (stdout takes a lock).
       if (o.on_progress)
         o.on_progress(static_cast<double>(ticks_done.load(std::memory_order_relaxed)) /
@@ -141,7 +143,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
   // entered after the render thread exists, so that thread is lowered and kept off the haptic CPU.
   std::optional<RealtimeSession> session(std::in_place, o.realtime);
   result.realtime = session->grant();
-  const auto spin_ns = static_cast<int64_t>(std::llround(std::clamp(o.realtime.spin_us, 0.0, 1e6) * 1e3));
+  const auto spin_ns =
+      static_cast<int64_t>(std::llround(std::clamp(o.realtime.spin_us, 0.0, 1e6) * 1e3));
   result.memory_start = resident_memory();
   FrameClock frame_clock{1.0 / o.render_rate_hz};
   timespec start{};
@@ -187,7 +190,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
 
 }  // namespace
 
-ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render, const ScheduleOptions& options) {
+ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render,
+                            const ScheduleOptions& options) {
   return options.mode == ClockMode::Realtime ? run_realtime(haptic, render, options)
                                              : run_lockstep(haptic, render, options);
 }

@@ -1,13 +1,12 @@
 #include "tacta/sim/simulation.hpp"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "../report/run_outputs.hpp"
 #include "simulation_impl.hpp"
@@ -21,8 +20,8 @@ namespace {
 void print_progress(double fraction) {
   const int width = 40;
   const int filled = static_cast<int>(fraction * width + 0.5);
-  std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################", width - filled, "",
-               static_cast<int>(fraction * 100 + 0.5));
+  std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################",
+               width - filled, "", static_cast<int>(fraction * 100 + 0.5));
   std::fflush(stderr);
 }
 
@@ -69,30 +68,39 @@ BodyHandle Simulation::add_body(const BodyDesc& desc) {
 }
 
 BodyHandle Simulation::add_body(const std::string& yaml) {
-  return add_body(load_body_from_string(yaml, impl_->world.scene().path, RegistrySchemas(impl_->plugins)));
+  return add_body(
+      load_body_from_string(yaml, impl_->world.scene().path, RegistrySchemas(impl_->plugins)));
 }
 
-void Simulation::remove_body(BodyHandle body) { impl_->world.remove_body({body.index, body.generation}); }
+void Simulation::remove_body(BodyHandle body) {
+  impl_->world.remove_body({body.index, body.generation});
+}
 
 BodyHandle Simulation::body_handle(size_t body) const {
   const ecs::Entity e = impl_->world.body_handle(body);
   return {e.index, e.generation};
 }
 
-bool Simulation::body_alive(BodyHandle body) const noexcept { return impl_->world.is_live({body.index, body.generation}); }
+bool Simulation::body_alive(BodyHandle body) const noexcept {
+  return impl_->world.is_live({body.index, body.generation});
+}
 
-size_t Simulation::body_index(BodyHandle body) const { return impl_->world.body_slot({body.index, body.generation}); }
+size_t Simulation::body_index(BodyHandle body) const {
+  return impl_->world.body_slot({body.index, body.generation});
+}
 
 void Simulation::request_model_swap(size_t body, const std::string& model, const ParamSet& params) {
   World& world = impl_->world;
   if (body >= world.body_count())
-    throw InputError({world.scene().path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
+    throw InputError({world.scene().path, 0, 0, "bodies"},
+                     "no body with index " + std::to_string(body));
   SoftBody& b = world.body(body);
   const double dt = b.step_dt(1.0 / world.scene().clock.haptic_rate_hz);
-  std::unique_ptr<ModelInstance> instance =
-      world.make_model(model, params, *b.topology, dt, {world.scene().path, 0, 0, "bodies." + b.name + ".model"});
+  std::unique_ptr<ModelInstance> instance = world.make_model(
+      model, params, *b.topology, dt, {world.scene().path, 0, 0, "bodies." + b.name + ".model"});
   // Free what the haptic thread retired, then post; an unconsumed earlier request is replaced.
-  for (ModelInstance* m = b.mailbox->retired.exchange(nullptr, std::memory_order_acquire); m != nullptr;) {
+  for (ModelInstance* m = b.mailbox->retired.exchange(nullptr, std::memory_order_acquire);
+       m != nullptr;) {
     ModelInstance* next = m->retired_next;
     delete m;
     m = next;
@@ -105,23 +113,29 @@ void Simulation::request_model_swap(size_t body, const std::string& model, const
 bool Simulation::device_input(size_t device, const double* values, uint32_t count) {
   World& world = impl_->world;
   if (device >= world.device_count())
-    throw InputError({world.scene().path, 0, 0, "devices"}, "no device with index " + std::to_string(device));
+    throw InputError({world.scene().path, 0, 0, "devices"},
+                     "no device with index " + std::to_string(device));
   return world.device(device).device->input(values, count);
 }
 
 size_t Simulation::device_count() const { return impl_->world.device_count(); }
-const std::string& Simulation::device_plugin(size_t device) const { return impl_->world.device(device).desc.plugin; }
+const std::string& Simulation::device_plugin(size_t device) const {
+  return impl_->world.device(device).desc.plugin;
+}
 
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
 size_t Simulation::body_count() const { return impl_->world.body_count(); }
 std::vector<std::string> Simulation::load_warnings() const {
   std::vector<std::string> warnings;
   for (size_t i = 0; i < impl_->world.body_count(); ++i)
-    if (!impl_->world.body(i).load_warning.empty()) warnings.push_back(impl_->world.body(i).load_warning);
+    if (!impl_->world.body(i).load_warning.empty())
+      warnings.push_back(impl_->world.body(i).load_warning);
   return warnings;
 }
 const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }
-const std::string& Simulation::body_model(size_t body) const { return impl_->requested_models.at(body); }
+const std::string& Simulation::body_model(size_t body) const {
+  return impl_->requested_models.at(body);
+}
 
 Simulation::~Simulation() = default;
 
@@ -129,17 +143,22 @@ RunResult Simulation::run(const RunOptions& options) {
   World& world = impl_->world;
   const SceneDesc& scene = world.scene();
   ScheduleOptions schedule;
-  schedule.mode = scene.clock.mode == ClockDesc::Mode::Realtime ? ClockMode::Realtime : ClockMode::Lockstep;
-  if (options.realtime) schedule.mode = *options.realtime ? ClockMode::Realtime : ClockMode::Lockstep;
+  schedule.mode =
+      scene.clock.mode == ClockDesc::Mode::Realtime ? ClockMode::Realtime : ClockMode::Lockstep;
+  if (options.realtime)
+    schedule.mode = *options.realtime ? ClockMode::Realtime : ClockMode::Lockstep;
   schedule.haptic_rate_hz = scene.clock.haptic_rate_hz;
   schedule.render_rate_hz = scene.clock.render_rate_hz;
   schedule.duration_s = options.duration_s.value_or(scene.clock.duration_s);
   // The scene's own duration was checked at load; one given here (tacta compare --duration,
   // tacta snapshot --at, the viewer) is checked now, before the record buffers are sized from it.
-  const SourceLocation run_duration{scene.path, 0, 0, "the run's duration (overriding clock.duration_s)"};
+  const SourceLocation run_duration{scene.path, 0, 0,
+                                    "the run's duration (overriding clock.duration_s)"};
   if (!std::isfinite(schedule.duration_s) || schedule.duration_s < 0)
-    throw InputError(run_duration, "expected a duration in s >= 0, found " + std::to_string(schedule.duration_s));
-  if (const std::string problem = duration_limit_problem(schedule.duration_s, schedule.haptic_rate_hz, scene.devices.size());
+    throw InputError(run_duration,
+                     "expected a duration in s >= 0, found " + std::to_string(schedule.duration_s));
+  if (const std::string problem = duration_limit_problem(
+          schedule.duration_s, schedule.haptic_rate_hz, scene.devices.size());
       !problem.empty())
     throw InputError(run_duration, problem);
   schedule.realtime.priority = scene.clock.haptic_priority;
@@ -150,10 +169,13 @@ RunResult Simulation::run(const RunOptions& options) {
   schedule.stop = &impl_->stop;
 
   ClockSession& session = impl_->session();
-  const auto expected_ticks = static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);
+  const auto expected_ticks =
+      static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);
   HapticLoop& loop = session.loop();
   if (!options.record_log.empty()) {
-    if (world.device_count() == 0) throw InputError({scene.path, 0, 0, "devices"}, "--record: the scene has no device to record");
+    if (world.device_count() == 0)
+      throw InputError({scene.path, 0, 0, "devices"},
+                       "--record: the scene has no device to record");
     loop.enable_device_log(expected_ticks);
   }
   // This run's observers (frames, VTK, a window) see its frames only.
@@ -168,7 +190,8 @@ RunResult Simulation::run(const RunOptions& options) {
   const ScheduleResult ran = session.run(schedule);
   impl_->running.store(false);
   for (FrameObserver* o : observers) session.detach(o);
-  impl_->stop.store(false, std::memory_order_relaxed);  // a stop ends one run; a later run() runs again
+  impl_->stop.store(false,
+                    std::memory_order_relaxed);  // a stop ends one run; a later run() runs again
   if (options.progress) std::fprintf(stderr, "\n");
   RunResult result = impl_->collect(ran);
   result.mode = schedule.mode == ClockMode::Realtime ? "realtime" : "lockstep";

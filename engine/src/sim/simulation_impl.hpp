@@ -18,11 +18,13 @@
 namespace tacta {
 
 struct Simulation::Impl {
-  Impl(const SceneDesc& scene, const PluginRegistry& registry) : world(scene, registry), plugins(registry) {
+  Impl(const SceneDesc& scene, const PluginRegistry& registry)
+      : world(scene, registry), plugins(registry) {
     // Collision is needed for contact response, and for the haptic proxy's surface queries.
     if (scene.collision.enabled || world.device_count() > 0) {
       collision = std::make_unique<CollisionContext>(world, registry);
-      if (world.device_count() > 0) haptics = std::make_unique<HapticInteraction>(world, *collision);
+      if (world.device_count() > 0)
+        haptics = std::make_unique<HapticInteraction>(world, *collision);
       if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
     }
   }
@@ -44,12 +46,14 @@ struct Simulation::Impl {
   RunResult collect(const ScheduleResult& schedule) const;
   size_t check_body(size_t body) const {
     if (body >= world.body_count())
-      throw InputError({world.scene().path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
+      throw InputError({world.scene().path, 0, 0, "bodies"},
+                       "no body with index " + std::to_string(body));
     return body;
   }
 };
 
 // Writes report.json, the CSV records and the plots of everything since open into `dir`.
-void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result);
+void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world,
+                        RunResult& result);
 
 }  // namespace tacta

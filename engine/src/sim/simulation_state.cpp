@@ -15,12 +15,14 @@ namespace tacta {
 namespace {
 
 size_t element_count(const VolumeMesh& m) {
-  return m.tets.size() / 4 + m.quads.size() / 4 + (m.dimension == 2 && m.quads.empty() ? m.triangles.size() / 3 : 0);
+  return m.tets.size() / 4 + m.quads.size() / 4 +
+         (m.dimension == 2 && m.quads.empty() ? m.triangles.size() / 3 : 0);
 }
 
 }  // namespace
 
-void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world, RunResult& result) {
+void write_outputs_into(const std::string& dir, const HapticLoop& loop, const World& world,
+                        RunResult& result) {
   std::filesystem::create_directories(dir);
   write_csv_records(dir, loop, world, result);
   std::vector<std::string> warnings;
@@ -41,15 +43,17 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   for (size_t i = 0; i < world.body_count(); ++i) {
     const SoftBody& b = world.body(i);
     BodyResult br;
-    br.initial_energy_J =
-        b.presence.added_s >= 0 || i >= session.initial_energy_J.size() ? b.presence.initial_energy_J : session.initial_energy_J[i];
+    br.initial_energy_J = b.presence.added_s >= 0 || i >= session.initial_energy_J.size()
+                              ? b.presence.initial_energy_J
+                              : session.initial_energy_J[i];
     br.added_s = b.presence.added_s;
     br.removed_s = b.presence.removed_s;
     br.pending = b.presence.state == BodyPresence::kPending;
     br.name = b.name;
     br.model = b.model->name();
     br.nodes = b.node_count();
-    br.fixed_nodes = static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
+    br.fixed_nodes =
+        static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
     br.elements = element_count(b.topology->mesh);
     br.mesh = describe_body_mesh(b.topology->mesh, b.topology->load);
     br.mesh_warnings = b.topology->load.warnings;
@@ -74,13 +78,15 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot& slot = world.device(d);
     result.devices.push_back({slot.name, slot.desc.plugin, slot.state, slot.stats.max_force_N,
-                              slot.stats.contact_ticks, slot.stats.reconnections, slot.device->counters()});
+                              slot.stats.contact_ticks, slot.stats.reconnections,
+                              slot.device->counters()});
   }
   result.faults = loop.faults().rows().size();
   for (const FaultRecord& f : loop.faults().rows()) {
-    const std::string who = f.body >= 0   ? "body " + world.body(static_cast<size_t>(f.body)).name
-                            : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).name
-                                            : std::string("run");
+    const std::string who = f.body >= 0 ? "body " + world.body(static_cast<size_t>(f.body)).name
+                            : f.device >= 0
+                                ? "device " + world.device(static_cast<size_t>(f.device)).name
+                                : std::string("run");
     char time[32];
     std::snprintf(time, sizeof time, "%.3f", f.time_s);
     result.fault_messages.push_back(who + " at t = " + time + " s: " + f.reason.data());
@@ -100,9 +106,7 @@ uint64_t Simulation::advance_to(double time_s) {
   return ticks > 0 ? session.step(static_cast<uint64_t>(ticks), &impl_->stop) : 0;
 }
 
-double Simulation::time() const noexcept {
-  return impl_->clock ? impl_->clock->time() : 0.0;
-}
+double Simulation::time() const noexcept { return impl_->clock ? impl_->clock->time() : 0.0; }
 uint64_t Simulation::tick() const noexcept { return impl_->clock ? impl_->clock->tick() : 0; }
 TickStatus Simulation::step_status() const noexcept {
   return impl_->clock ? impl_->clock->step_status() : TickStatus{};
@@ -122,8 +126,8 @@ void Simulation::detach(FrameObserver* observer) {
 
 BodyArrays Simulation::body_arrays(size_t body) {
   SoftBody& b = impl_->world.body(impl_->check_body(body));
-  return {b.node_count(),       b.positions.data(),          b.velocities.data(),
-          b.rest().data(),      b.topology->fixed.data(),    b.topology->masses.data()};
+  return {b.node_count(),  b.positions.data(),       b.velocities.data(),
+          b.rest().data(), b.topology->fixed.data(), b.topology->masses.data()};
 }
 
 void Simulation::state_written(size_t body) {
@@ -152,8 +156,9 @@ void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& no
   SoftBody& b = impl_->world.body(impl_->check_body(body));
   const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + " applied forces"};
   if (forces.size() != 3 * nodes.size())
-    throw InputError(where, "expected 3 force components (N) per node, found " + std::to_string(forces.size()) +
-                                " for " + std::to_string(nodes.size()) + " nodes");
+    throw InputError(where, "expected 3 force components (N) per node, found " +
+                                std::to_string(forces.size()) + " for " +
+                                std::to_string(nodes.size()) + " nodes");
   std::vector<double> applied(3 * b.node_count(), 0.0);
   for (size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i] >= b.node_count())
@@ -186,21 +191,27 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
   const bool pending = b.mailbox->incoming.load() != nullptr;
   const std::string model = pending ? impl_->requested_models[body] : std::string(b.model->name());
   // A scheduled swap (bodies.*.swaps) may have changed the model: its parameters start from defaults.
-  const ParamSet asked = model == impl_->requested_models[body] ? impl_->requested_params[body] : ParamSet{};
+  const ParamSet asked =
+      model == impl_->requested_models[body] ? impl_->requested_params[body] : ParamSet{};
   const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + ".params." + name};
   const LoadedDescriptor* found = impl_->plugins.find(TACTA_KIND_MODEL, model);
   if (found == nullptr) throw InputError(where, "no model plugin '" + model + "'");
   const tacta_descriptor& d = *found->descriptor;
   const uint32_t index = param_index(d, name);
-  if (index == d.param_count) throw InputError(where, "model '" + std::string(d.name) + "' has no parameter '" + name + "'");
+  if (index == d.param_count)
+    throw InputError(where, "model '" + std::string(d.name) + "' has no parameter '" + name + "'");
   const tacta_param_spec& spec = d.params[index];
-  if (spec.type == TACTA_PARAM_TEXT || spec.type == TACTA_PARAM_CHOICE || spec.type == TACTA_PARAM_VECTOR)
-    throw InputError(where, "set_param takes numbers (REAL, INT, BOOL); change '" + name + "' with a model swap");
+  if (spec.type == TACTA_PARAM_TEXT || spec.type == TACTA_PARAM_CHOICE ||
+      spec.type == TACTA_PARAM_VECTOR)
+    throw InputError(where, "set_param takes numbers (REAL, INT, BOOL); change '" + name +
+                                "' with a model swap");
   if (!std::isfinite(value) || value < spec.min_value || value > spec.max_value ||
       (spec.type != TACTA_PARAM_REAL && value != std::floor(value)))
-    throw InputError(where, "expected " + std::string(spec.type == TACTA_PARAM_REAL ? "a number" : "an integer") +
-                                " in [" + std::to_string(spec.min_value) + ", " + std::to_string(spec.max_value) +
-                                "] " + spec.unit + ", found " + std::to_string(value));
+    throw InputError(
+        where,
+        "expected " + std::string(spec.type == TACTA_PARAM_REAL ? "a number" : "an integer") +
+            " in [" + std::to_string(spec.min_value) + ", " + std::to_string(spec.max_value) +
+            "] " + spec.unit + ", found " + std::to_string(value));
   ParamSet params = complete_params(d, asked);
   params.set_number(name, value);
   // A live parameter (the schema's live list) changes in place while nothing steps the model and no
@@ -216,12 +227,15 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
   return false;
 }
 
-const ParamSet& Simulation::body_params(size_t body) const { return impl_->requested_params.at(impl_->check_body(body)); }
+const ParamSet& Simulation::body_params(size_t body) const {
+  return impl_->requested_params.at(impl_->check_body(body));
+}
 
 DeviceReading Simulation::device_reading(size_t device) const {
   const World& world = impl_->world;
   if (device >= world.device_count())
-    throw InputError({world.scene().path, 0, 0, "devices"}, "no device with index " + std::to_string(device));
+    throw InputError({world.scene().path, 0, 0, "devices"},
+                     "no device with index " + std::to_string(device));
   const DeviceSlot& slot = world.device(device);
   DeviceReading r;
   for (size_t k = 0; k < 3; ++k) {
@@ -260,7 +274,9 @@ int Simulation::device_index(const std::string& name) const {
   return -1;
 }
 
-const std::string& Simulation::device_name(size_t device) const { return impl_->world.device(device).name; }
+const std::string& Simulation::device_name(size_t device) const {
+  return impl_->world.device(device).name;
+}
 const SceneDesc& Simulation::scene() const { return impl_->world.scene(); }
 
 }  // namespace tacta

@@ -27,14 +27,15 @@ tacta_mesh_view make_view(const VolumeMesh& m) {
 }
 
 tacta_material make_material(const MaterialDesc& d) {
-  return {d.youngs_modulus, d.poisson_ratio, d.density, d.lame_lambda, d.lame_mu, d.rayleigh_mass,
-          d.rayleigh_stiffness};
+  return {d.youngs_modulus, d.poisson_ratio, d.density,           d.lame_lambda,
+          d.lame_mu,        d.rayleigh_mass, d.rayleigh_stiffness};
 }
 
 void check_node(uint32_t node, size_t count, const SourceLocation& where, const char* what) {
   if (node >= count)
     throw InputError(where, std::string(what) + ": node " + std::to_string(node) +
-                                " is out of range (the mesh has " + std::to_string(count) + " nodes)");
+                                " is out of range (the mesh has " + std::to_string(count) +
+                                " nodes)");
 }
 
 double bounding_diagonal(const std::vector<double>& x) {
@@ -60,11 +61,13 @@ std::vector<uint32_t> recorded_nodes(const BodyDesc& desc, const SceneDesc& scen
 }
 
 // Nodes with free axes are advanced against the model's internal forces (BoundaryMotion).
-void require_internal_forces(const SoftBody& body, const ModelInstance& model, const SourceLocation& where) {
+void require_internal_forces(const SoftBody& body, const ModelInstance& model,
+                             const SourceLocation& where) {
   if (body.boundary && body.boundary->needs_internal_forces() && !model.has_internal_forces())
-    throw InputError(where, std::string("model '") + model.name() +
-                                "' gives no internal forces, which per-axis constraints and plates need "
-                                "(use a model that does, e.g. corotational_fem)");
+    throw InputError(where,
+                     std::string("model '") + model.name() +
+                         "' gives no internal forces, which per-axis constraints and plates need "
+                         "(use a model that does, e.g. corotational_fem)");
 }
 
 }  // namespace
@@ -88,17 +91,21 @@ double SoftBody::kinetic_energy() const noexcept {
   return e;
 }
 
-SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const ModelFactory& make_model) {
+SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
+                         const ModelFactory& make_model) {
   SoftBody body;
   body.name = desc.name;
   body.topology = std::make_unique<BodyTopology>();
   BodyTopology& topo = *body.topology;
-  if (desc.mesh.kind == MeshSourceDesc::Kind::File) require_mesh_file(desc.mesh.path, desc.mesh.where);
-  if (!desc.mesh.surface_path.empty()) require_mesh_file(desc.mesh.surface_path, desc.mesh.surface_where);
+  if (desc.mesh.kind == MeshSourceDesc::Kind::File)
+    require_mesh_file(desc.mesh.path, desc.mesh.where);
+  if (!desc.mesh.surface_path.empty())
+    require_mesh_file(desc.mesh.surface_path, desc.mesh.surface_where);
   topo.mesh = load_at(desc.mesh.where, [&] { return load_body_mesh(desc.mesh, &topo.load); });
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
-  if (topo.mesh.embedding) body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
+  if (topo.mesh.embedding)
+    body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
   topo.view = make_view(topo.mesh);
   topo.material = make_material(desc.material);
   topo.masses = lumped_masses(topo.mesh, desc.material.density);
@@ -107,13 +114,16 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   const std::vector<double>& rest = topo.mesh.positions;
   for (const FixedRegionDesc& region : desc.fixed)
     for (uint32_t node : select_nodes(region, topo.mesh, desc.where, "fixed")) topo.fixed[node] = 1;
-  if (n > 0 && std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
-    body.load_warning = InputError(desc.fixed_where,
-                                   "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
-                                       "', so it never moves (a device still touches it, as a rigid surface): to "
-                                       "make it deform, fix fewer nodes (a box around one face, or a list of nodes); "
-                                       "for a static thing no device touches, an `obstacles` entry costs nothing per tick")
-                            .what();
+  if (n > 0 &&
+      std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
+    body.load_warning =
+        InputError(
+            desc.fixed_where,
+            "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
+                "', so it never moves (a device still touches it, as a rigid surface): to "
+                "make it deform, fix fewer nodes (a box around one face, or a list of nodes); "
+                "for a static thing no device touches, an `obstacles` entry costs nothing per tick")
+            .what();
 
   body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
   body.probes = locate_probes(desc.probes, topo.mesh, desc.where);
@@ -142,7 +152,8 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   // Ten body sizes of displacement is far past any elastic regime: call it divergence.
   body.divergence_limit_m = 10.0 * std::max(bounding_diagonal(rest), 1e-3);
 
-  const double dt = desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
+  const double dt =
+      desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
   body.step_period_s = desc.step_rate_hz > 0 ? dt : 0.0;
   body.own_thread = desc.own_thread;
   body.local_contact_yielding = desc.local_contact_yielding;
@@ -152,11 +163,13 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const Mod
   body.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
-    body.swaps.push_back({swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
+    body.swaps.push_back(
+        {swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
     require_internal_forces(body, *body.swaps.back().model, desc.where);
   }
-  std::stable_sort(body.swaps.begin(), body.swaps.end(),
-                   [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });
+  std::stable_sort(
+      body.swaps.begin(), body.swaps.end(),
+      [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });
   return body;
 }
 

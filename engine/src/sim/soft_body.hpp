@@ -36,7 +36,7 @@ struct BodyTopology {
 // A model change scheduled for a time, built at load time so the switch itself allocates nothing.
 struct ScheduledSwap {
   double time_s = 0;
-  std::string model_name;               // the incoming model, for the report
+  std::string model_name;                // the incoming model, for the report
   std::unique_ptr<ModelInstance> model;  // incoming until the swap; the outgoing one after it
 };
 
@@ -57,8 +57,8 @@ struct RuntimeSwap {
 
 struct BodyFault {
   bool frozen = false;
-  uint32_t bits = 0;        // TACTA_STEP_* bits of the step that failed
-  double time_s = 0;        // simulated time of the failed step
+  uint32_t bits = 0;               // TACTA_STEP_* bits of the step that failed
+  double time_s = 0;               // simulated time of the failed step
   std::array<char, 160> reason{};  // fixed buffer: written from the 1 kHz path
 };
 
@@ -68,8 +68,8 @@ struct BodyFault {
 struct BodyPresence {
   enum State : uint8_t { kPending, kPresent, kRemoved };
   State state = kPresent;
-  double added_s = -1;    // s, simulated; -1: in the scene from the start
-  double removed_s = -1;  // s, simulated; -1: not removed
+  double added_s = -1;          // s, simulated; -1: in the scene from the start
+  double removed_s = -1;        // s, simulated; -1: not removed
   double initial_energy_J = 0;  // kinetic + elastic when added (bodies added while running)
 };
 
@@ -81,16 +81,17 @@ struct SoftBody {
   // The surface the body is drawn, touched and collided through when it came from a surface file
   // or was given `surface:`; null: the boundary triangles of its tets. Heap-held: views point in.
   std::unique_ptr<EmbeddedSurface> surface;
-  std::vector<double> positions;        // 3 per node, m
-  std::vector<double> velocities;       // 3 per node, m/s
-  std::vector<double> external_forces;  // 3 per node, N: gravity + contact + tool, rebuilt each tick
-  std::vector<double> contact_forces;   // 3 per node, N: accumulated by collision/haptics this tick
+  std::vector<double> positions;   // 3 per node, m
+  std::vector<double> velocities;  // 3 per node, m/s
+  std::vector<double>
+      external_forces;                 // 3 per node, N: gravity + contact + tool, rebuilt each tick
+  std::vector<double> contact_forces;  // 3 per node, N: accumulated by collision/haptics this tick
   std::vector<double> saved_positions;  // start of the tick, restored when the body is frozen
   std::vector<double> applied_forces;   // 3 per node, N, set through the stepping API; empty: none
   std::unique_ptr<ModelInstance> model;
-  std::vector<ScheduledSwap> swaps;     // sorted by time
+  std::vector<ScheduledSwap> swaps;  // sorted by time
   size_t next_swap = 0;
-  std::string initial_model;             // the scene's model; later ones are in swaps/runtime_swaps
+  std::string initial_model;  // the scene's model; later ones are in swaps/runtime_swaps
   std::unique_ptr<ModelMailbox> mailbox = std::make_unique<ModelMailbox>();
   std::vector<RuntimeSwap> runtime_swaps;  // reserved at load; swaps past its capacity go unlisted
   uint64_t runtime_swaps_unlisted = 0;     // and are counted here (report.json models_run_unlisted)
@@ -98,19 +99,21 @@ struct SoftBody {
   double divergence_limit_m = 1;  // displacement beyond which the body counts as diverged
   double max_displacement_m = 0;  // over the whole run
   std::optional<uint32_t> probe_node;
-  std::vector<uint32_t> recorded_nodes;  // nodes whose trajectory is recorded
-  std::vector<Probe> probes;             // rest points followed through their tets (probes.csv)
+  std::vector<uint32_t> recorded_nodes;      // nodes whose trajectory is recorded
+  std::vector<Probe> probes;                 // rest points followed through their tets (probes.csv)
   std::unique_ptr<BoundaryMotion> boundary;  // prescribed motion and plates; null when none
-  double step_period_s = 0;     // s; 0: every haptic tick
-  double next_step_time_s = 0;  // s; when a slower body steps next
-  bool own_thread = false;      // steps on a BodyWorker thread, not the haptic one
-  uint64_t refreshes = 0;       // own_thread: finished steps taken into the arrays above so far
+  double step_period_s = 0;                  // s; 0: every haptic tick
+  double next_step_time_s = 0;               // s; when a slower body steps next
+  bool own_thread = false;                   // steps on a BodyWorker thread, not the haptic one
+  uint64_t refreshes = 0;  // own_thread: finished steps taken into the arrays above so far
   bool local_contact_yielding = true;  // own_thread: render through haptics::LocalCompliance
 
   bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
   size_t node_count() const { return positions.size() / 3; }
   // s: how far one model step advances this body (its own step period, else the haptic tick).
-  double step_dt(double haptic_dt) const noexcept { return step_period_s > 0 ? step_period_s : haptic_dt; }
+  double step_dt(double haptic_dt) const noexcept {
+    return step_period_s > 0 ? step_period_s : haptic_dt;
+  }
   const std::vector<double>& rest() const { return topology->mesh.positions; }
   double kinetic_energy() const noexcept;
   tacta_body_state state_view(double time) noexcept {
@@ -128,6 +131,7 @@ using ModelFactory = std::function<std::unique_ptr<ModelInstance>(
 
 // Builds the body from its scene description (mesh, masses, fixed nodes, initial state, model,
 // scheduled swaps). Throws InputError; never returns a half-built body.
-SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene, const ModelFactory& make_model);
+SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
+                         const ModelFactory& make_model);
 
 }  // namespace tacta

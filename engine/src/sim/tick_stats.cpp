@@ -1,8 +1,8 @@
 // Percentiles of recorded tick durations (nearest-rank on a sorted copy).
+#include "tacta/sim/tick_stats.hpp"
+
 #include <algorithm>
 #include <cmath>
-
-#include "tacta/sim/tick_stats.hpp"
 
 namespace tacta {
 

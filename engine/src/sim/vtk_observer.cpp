@@ -10,7 +10,8 @@ namespace {
 
 class VtkObserver final : public FrameObserver {
  public:
-  VtkObserver(std::string directory, double interval_s) : directory_(std::move(directory)), interval_s_(interval_s) {}
+  VtkObserver(std::string directory, double interval_s)
+      : directory_(std::move(directory)), interval_s_(interval_s) {}
 
   void on_start(const SceneStatic& scene) override {
     std::filesystem::create_directories(directory_);
@@ -26,17 +27,23 @@ class VtkObserver final : public FrameObserver {
       const BodyStatic& b = scene.bodies[i];
       const BodySnapshot& s = snapshot.bodies[i];
       if (!s.present) continue;  // not in the scene yet, or removed
-      for (size_t k = 0; k < displacement_[i].size(); ++k) displacement_[i][k] = s.positions[k] - b.rest_positions[k];
+      for (size_t k = 0; k < displacement_[i].size(); ++k)
+        displacement_[i][k] = s.positions[k] - b.rest_positions[k];
       output::VtkGrid grid;
       grid.points = s.positions;
-      if (!b.tets.empty()) grid.tets = b.tets;
-      else if (!b.quads.empty()) grid.quads = b.quads;
-      else grid.triangles = b.triangles;
+      if (!b.tets.empty())
+        grid.tets = b.tets;
+      else if (!b.quads.empty())
+        grid.quads = b.quads;
+      else
+        grid.triangles = b.triangles;
       grid.point_data.push_back({"displacement", 3, displacement_[i]});
       grid.point_data.push_back({"velocity", 3, s.velocities});
       if (!s.von_mises.empty()) grid.point_data.push_back({"von_mises_stress", 1, s.von_mises});
       series_[i].write(snapshot.time_s, grid);
-      if (b.surface_triangles.empty() || s.surface_positions.size() != b.surface_rest_positions.size()) continue;
+      if (b.surface_triangles.empty() ||
+          s.surface_positions.size() != b.surface_rest_positions.size())
+        continue;
       for (size_t k = 0; k < s.surface_positions.size(); ++k)
         surface_displacement_[i][k] = s.surface_positions[k] - b.surface_rest_positions[k];
       output::VtkGrid surface;

@@ -15,11 +15,13 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   size_t event_bodies = 0;
   for (const BodyEventDesc& e : scene_.events) event_bodies += e.add ? 1 : 0;
   const size_t needed = scene_.bodies.size() + event_bodies;
-  const size_t capacity = scene_.body_capacity > 0 ? scene_.body_capacity : needed + kSpareBodySlots;
+  const size_t capacity =
+      scene_.body_capacity > 0 ? scene_.body_capacity : needed + kSpareBodySlots;
   if (capacity < needed)
     throw InputError({scene_.path, 0, 0, "capacity.bodies"},
-                     "capacity.bodies is " + std::to_string(capacity) + " but the scene's bodies and events need " +
-                         std::to_string(needed) + " slots");
+                     "capacity.bodies is " + std::to_string(capacity) +
+                         " but the scene's bodies and events need " + std::to_string(needed) +
+                         " slots");
   // Every slot's entity and storage are made now, so taking a body in or out at a tick boundary
   // allocates nothing. Entity index = body slot (bodies are created before devices).
   slots_.resize(capacity);
@@ -34,8 +36,9 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   for (const BodyDesc& desc : scene_.bodies) {
     slots_[descs_.size()] = build_body(desc);
     descs_.push_back(desc);
-    registry_.emplace<BodyRef>(body_entities_[descs_.size() - 1],
-                               BodyRef{slots_[descs_.size() - 1].get(), static_cast<uint32_t>(descs_.size() - 1)});
+    registry_.emplace<BodyRef>(
+        body_entities_[descs_.size() - 1],
+        BodyRef{slots_[descs_.size() - 1].get(), static_cast<uint32_t>(descs_.size() - 1)});
   }
   // The scene's timed events: their bodies are built now and wait, pending, for their time.
   std::vector<std::string> names;
@@ -44,7 +47,8 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     EntityCommand c{e.add ? EntityCommand::kAddBody : EntityCommand::kRemoveBody, 0, e.time};
     if (e.add) {
       if (std::find(names.begin(), names.end(), e.add->name) != names.end())
-        throw InputError(e.where, "duplicate body name '" + e.add->name + "' (body names are unique, removed ones too)");
+        throw InputError(e.where, "duplicate body name '" + e.add->name +
+                                      "' (body names are unique, removed ones too)");
       slots_[descs_.size()] = build_body(*e.add);
       slots_[descs_.size()]->presence.state = BodyPresence::kPending;
       c.slot = static_cast<uint32_t>(descs_.size());
@@ -53,7 +57,8 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     } else {
       const auto it = std::find(names.begin(), names.end(), e.remove);
       if (it == names.end())
-        throw InputError(e.where, "no body named '" + e.remove + "' before this event (bodies and earlier adds)");
+        throw InputError(e.where, "no body named '" + e.remove +
+                                      "' before this event (bodies and earlier adds)");
       c.slot = static_cast<uint32_t>(it - names.begin());
     }
     timed_.push_back(c);
@@ -84,8 +89,9 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
 }
 
 std::unique_ptr<SoftBody> World::build_body(const BodyDesc& desc) const {
-  const ModelFactory factory = [this](const std::string& model, const ParamSet& params, const BodyTopology& topology,
-                                      double dt, const SourceLocation& where) {
+  const ModelFactory factory = [this](const std::string& model, const ParamSet& params,
+                                      const BodyTopology& topology, double dt,
+                                      const SourceLocation& where) {
     return make_model(model, params, topology, dt, where);
   };
   return std::make_unique<SoftBody>(build_soft_body(desc, scene_, factory));
@@ -100,12 +106,15 @@ int World::body_index(const std::string& name) const {
 ecs::Entity World::add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare) {
   std::unique_ptr<SoftBody> built = build_body(desc);  // the heavy part, outside the lock
   if (built->own_thread)
-    throw InputError(desc.where, "a body added while the scene runs cannot have step_thread: own (its worker thread "
-                                 "would start inside a tick); declare it under bodies or events");
+    throw InputError(
+        desc.where,
+        "a body added while the scene runs cannot have step_thread: own (its worker thread "
+        "would start inside a tick); declare it under bodies or events");
   const std::lock_guard<std::mutex> lock(requests_);
   const size_t slot = body_count();
   if (body_index(desc.name) >= 0)
-    throw InputError(desc.where, "a body named '" + desc.name + "' already exists (body names are unique, removed ones too)");
+    throw InputError(desc.where, "a body named '" + desc.name +
+                                     "' already exists (body names are unique, removed ones too)");
   if (slot >= slots_.size())
     throw InputError({scene_.path, 0, 0, "capacity.bodies"},
                      "no free body slot: capacity.bodies is " + std::to_string(slots_.size()) +
@@ -137,30 +146,38 @@ void World::remove_body(ecs::Entity handle) {
 ecs::Entity World::body_handle(size_t body) const {
   if (body >= body_count())
     throw InputError({scene_.path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
-  return {body_entities_[body].index, generations_[body].load(std::memory_order_acquire) & ~kRemovedBit};
+  return {body_entities_[body].index,
+          generations_[body].load(std::memory_order_acquire) & ~kRemovedBit};
 }
 
 bool World::is_live(ecs::Entity handle) const noexcept {
-  return handle.index < body_count() && generations_[handle.index].load(std::memory_order_acquire) == handle.generation;
+  return handle.index < body_count() &&
+         generations_[handle.index].load(std::memory_order_acquire) == handle.generation;
 }
 
 size_t World::body_slot(ecs::Entity handle) const {
   if (handle.index >= body_count())
-    throw InputError({scene_.path, 0, 0, "bodies"}, "no body with handle " + ecs::to_string(handle) + " (" +
-                                                        std::to_string(body_count()) + " body slots in use)");
+    throw InputError({scene_.path, 0, 0, "bodies"},
+                     "no body with handle " + ecs::to_string(handle) + " (" +
+                         std::to_string(body_count()) + " body slots in use)");
   if (!is_live(handle))
     throw InputError({scene_.path, 0, 0, "bodies"},
-                     "stale body handle " + ecs::to_string(handle) + ": body '" + body(handle.index).name +
+                     "stale body handle " + ecs::to_string(handle) + ": body '" +
+                         body(handle.index).name +
                          "' was removed (its handles' generation is now " +
-                         std::to_string(generations_[handle.index].load(std::memory_order_acquire) & ~kRemovedBit) + ")");
+                         std::to_string(generations_[handle.index].load(std::memory_order_acquire) &
+                                        ~kRemovedBit) +
+                         ")");
   return handle.index;
 }
 
 void World::apply_entity_commands(double time) noexcept {
   EntityCommand c;
   while (commands_.pop(c)) {
-    if (c.kind == EntityCommand::kAddBody) enter(c.slot, time);
-    else leave(c.slot, time);
+    if (c.kind == EntityCommand::kAddBody)
+      enter(c.slot, time);
+    else
+      leave(c.slot, time);
   }
   for (; next_timed_ < timed_.size() && timed_[next_timed_].time_s <= time + 1e-12; ++next_timed_) {
     const EntityCommand& t = timed_[next_timed_];
@@ -170,7 +187,8 @@ void World::apply_entity_commands(double time) noexcept {
     }
     // A timed removal retires the handle now, like a request would.
     const uint32_t g = generations_[t.slot].load(std::memory_order_relaxed);
-    if ((g & kRemovedBit) == 0) generations_[t.slot].store(retired_generation(g), std::memory_order_release);
+    if ((g & kRemovedBit) == 0)
+      generations_[t.slot].store(retired_generation(g), std::memory_order_release);
     leave(t.slot, time);
   }
 }
@@ -200,7 +218,8 @@ std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const
                                                  const BodyTopology& topology, double dt,
                                                  const SourceLocation& where) const {
   const LoadedDescriptor* found = plugins_.find(TACTA_KIND_MODEL, model);
-  if (found == nullptr) throw InputError(where, plugins_.unknown_name_message(TACTA_KIND_MODEL, model));
+  if (found == nullptr)
+    throw InputError(where, plugins_.unknown_name_message(TACTA_KIND_MODEL, model));
   const ParamSet values = complete_params(*found->descriptor, params);
   tacta_model_setup setup{};
   setup.struct_size = sizeof setup;

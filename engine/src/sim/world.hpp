@@ -89,9 +89,9 @@ class World {
   const PluginRegistry& plugins_;
   std::unique_ptr<JobPool> jobs_;  // plugins' parallel_for workers (scene key `threads`)
   ecs::Registry registry_;         // owned by the tick's thread once the scene runs
-  std::vector<std::unique_ptr<SoftBody>> slots_;       // capacity.bodies, filled in order
-  std::vector<BodyDesc> descs_;                         // per used slot (reserved to capacity)
-  std::vector<ecs::Entity> body_entities_;              // per slot, created at load
+  std::vector<std::unique_ptr<SoftBody>> slots_;          // capacity.bodies, filled in order
+  std::vector<BodyDesc> descs_;                           // per used slot (reserved to capacity)
+  std::vector<ecs::Entity> body_entities_;                // per slot, created at load
   std::unique_ptr<std::atomic<uint32_t>[]> generations_;  // per slot: the live handle's generation
   std::atomic<size_t> body_count_{0};
   std::vector<ecs::Entity> devices_;

@@ -64,8 +64,8 @@ bool overlaps(const Obb& a, const Obb& b) noexcept {
     for (int j = 0; j < 3; ++j) {
       const auto& u = a.axes[i];
       const auto& v = b.axes[j];
-      if (separated({u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                     u[0] * v[1] - u[1] * v[0]}))
+      if (separated(
+              {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}))
         return false;
     }
   return true;
@@ -148,10 +148,9 @@ uint32_t BoundingTree::build(uint32_t first, uint32_t count, const ElementView& 
   for (int k = 1; k < 3; ++k)
     if (centre_box.hi[k] - centre_box.lo[k] > centre_box.hi[axis] - centre_box.lo[axis]) axis = k;
   const uint32_t half = count / 2;
-  std::nth_element(order_.begin() + first, order_.begin() + first + half,
-                   order_.begin() + first + count, [&](uint32_t a, uint32_t b) {
-                     return centroids_[a][axis] < centroids_[b][axis];
-                   });
+  std::nth_element(
+      order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+      [&](uint32_t a, uint32_t b) { return centroids_[a][axis] < centroids_[b][axis]; });
   if (volume_ == Volume::kObb) fit_axes(nodes_[index], view);
   const uint32_t left = build(first, half, view);
   const uint32_t right = build(first + half, count - half, view);

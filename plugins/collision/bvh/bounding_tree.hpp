@@ -68,7 +68,7 @@ class BoundingTree {
  private:
   struct Node {
     Obb volume;
-    Aabb box;  // axis-aligned bound, kept for every node (cheap first test)
+    Aabb box;                       // axis-aligned bound, kept for every node (cheap first test)
     uint32_t first = 0, count = 0;  // range in order_
     uint32_t left = 0, right = 0;   // children; leaf when count == 1
   };

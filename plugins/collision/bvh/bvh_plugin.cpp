@@ -21,16 +21,19 @@ class BvhBroadPhase {
       "broad phase: AABB/OBB trees refit per tick, pairs, self-collision, haptic proxy queries";
   static constexpr uint32_t kVersion = 10000;
   static constexpr std::array<tacta_param_spec, 4> kParams{
-      sdk::choice_param("volume", "aabb|obb", 0, "internal node volume: axis-aligned or principal axes"),
+      sdk::choice_param("volume", "aabb|obb", 0,
+                        "internal node volume: axis-aligned or principal axes"),
       sdk::real_param("rebuild_ratio", "", 1.5, 1.0, 100.0,
                       "rebuild when total node area exceeds this multiple of the area at build"),
-      sdk::bool_param("self_collision", true, "report pairs within one surface (adjacent excluded)"),
+      sdk::bool_param("self_collision", true,
+                      "report pairs within one surface (adjacent excluded)"),
       sdk::choice_param("elements", "triangles|tets", 0, "elements the trees are built over"),
   };
 
   explicit BvhBroadPhase(const tacta_collision_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);
-    volume_ = params.choice("volume") == 1 ? BoundingTree::Volume::kObb : BoundingTree::Volume::kAabb;
+    volume_ =
+        params.choice("volume") == 1 ? BoundingTree::Volume::kObb : BoundingTree::Volume::kAabb;
     rebuild_ratio_ = params.real("rebuild_ratio");
     self_collision_ = params.flag("self_collision");
     tets_ = params.choice("elements") == 1;
@@ -45,12 +48,11 @@ class BvhBroadPhase {
       const ElementView view = element_view(surface);
       for (uint64_t i = 0; i < uint64_t{view.element_count} * view.vertices_per_element; ++i)
         if (view.elements[i] >= surface.vertex_count)
-          throw std::invalid_argument("surface " + std::to_string(s) + " (body " +
-                                      std::to_string(surface.body_id) + "): element " +
-                                      std::to_string(i / view.vertices_per_element) +
-                                      " names vertex " + std::to_string(view.elements[i]) +
-                                      ", expected below the vertex count " +
-                                      std::to_string(surface.vertex_count));
+          throw std::invalid_argument(
+              "surface " + std::to_string(s) + " (body " + std::to_string(surface.body_id) +
+              "): element " + std::to_string(i / view.vertices_per_element) + " names vertex " +
+              std::to_string(view.elements[i]) + ", expected below the vertex count " +
+              std::to_string(surface.vertex_count));
       trees_[s].reserve(view.element_count);
     }
   }
@@ -155,7 +157,8 @@ class BvhBroadPhase {
       const double toi = sphere_cast_triangle(a, b, radius, x[0], x[1], x[2]);
       if (toi < 0.0 || toi >= best) return;
       best = toi;
-      const Vec3 c{a[0] + toi * (b[0] - a[0]), a[1] + toi * (b[1] - a[1]), a[2] + toi * (b[2] - a[2])};
+      const Vec3 c{a[0] + toi * (b[0] - a[0]), a[1] + toi * (b[1] - a[1]),
+                   a[2] + toi * (b[2] - a[2])};
       std::array<double, 3> w;
       const Vec3 q = closest_on_triangle(c, x[0], x[1], x[2], w);
       fill_hit(hit, t, w, q, x);
@@ -203,7 +206,8 @@ class BvhBroadPhase {
                        const Vec3& q, const Vec3* x) noexcept {
     hit.triangle = t;
     const Vec3 e1 = sub(x[1], x[0]), e2 = sub(x[2], x[0]);
-    Vec3 n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    Vec3 n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+           e1[0] * e2[1] - e1[1] * e2[0]};
     const double len = std::sqrt(dot(n, n));
     for (int k = 0; k < 3; ++k) {
       hit.barycentric[k] = w[k];

@@ -61,7 +61,10 @@ inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, c
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   for (int i = 0; i < 60 && hi - lo > 1e-12; ++i) {
     const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
-    if (gap(m1) < gap(m2)) hi = m2; else lo = m1;
+    if (gap(m1) < gap(m2))
+      hi = m2;
+    else
+      lo = m1;
   }
   double s_min = 0.5 * (lo + hi);
   if (gap(1.0) < gap(s_min)) s_min = 1.0;
@@ -70,7 +73,10 @@ inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, c
   hi = s_min;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (gap(mid) > 0.0) lo = mid; else hi = mid;
+    if (gap(mid) > 0.0)
+      lo = mid;
+    else
+      hi = mid;
   }
   return hi;
 }

@@ -7,7 +7,6 @@
 #include <array>
 
 #include "contact_response.hpp"
-
 #include "plain_ccd.hpp"
 #include "tacta/sdk/collision.hpp"
 #include "triangle_pair_ccd.hpp"
@@ -17,7 +16,8 @@ namespace tacta::collision {
 class CcdNarrowPhase {
  public:
   static constexpr const char* kName = "ccd";
-  static constexpr uint32_t kRoles = TACTA_COLLISION_ROLE_NARROW_PHASE | TACTA_COLLISION_ROLE_RESPONSE;
+  static constexpr uint32_t kRoles =
+      TACTA_COLLISION_ROLE_NARROW_PHASE | TACTA_COLLISION_ROLE_RESPONSE;
   static constexpr const char* kDescription =
       "narrow phase: conservative Moore-Wilhelms CCD, vertex-face and edge-edge (inclusion test); "
       "contact response: projection + inelastic impulses with Coulomb friction";
@@ -80,8 +80,8 @@ class CcdNarrowPhase {
       for (uint32_t sb = sa; sb < world.surface_count; ++sb)
         for (uint32_t ta = 0; ta < world.surfaces[sa].triangle_count; ++ta)
           for (uint32_t tb = sa == sb ? ta + 1 : 0; tb < world.surfaces[sb].triangle_count; ++tb) {
-            bits |= triangle_pair_contacts(world, {sa, ta}, {sb, tb}, method_, tolerance_,
-                                           contacts, capacity, count);
+            bits |= triangle_pair_contacts(world, {sa, ta}, {sb, tb}, method_, tolerance_, contacts,
+                                           capacity, count);
             if (bits & TACTA_COLLIDE_OVERFLOW) return bits;
           }
     return bits;

@@ -21,7 +21,7 @@ struct Side {
 struct Constraint {
   Side a, b;
   double normal[3] = {0, 0, 0};
-  double thickness = 0;  // m
+  double thickness = 0;           // m
   const double* point = nullptr;  // m, rigid side's contact point at the end of the tick
 };
 
@@ -86,13 +86,15 @@ void side_point(const Side& s, const double* rigid_point, double* out) {
   }
   out[0] = out[1] = out[2] = 0;
   for (int j = 0; j < s.count; ++j)
-    for (int i = 0; i < 3; ++i) out[i] += s.weights[j] * s.surface->positions_end[3 * s.nodes[j] + i];
+    for (int i = 0; i < 3; ++i)
+      out[i] += s.weights[j] * s.surface->positions_end[3 * s.nodes[j] + i];
 }
 
 double weighted_inverse_mass(const Side& s) {
   double w = 0;
   if (s.surface != nullptr)
-    for (int j = 0; j < s.count; ++j) w += s.weights[j] * s.weights[j] * inverse_mass(*s.surface, s.nodes[j]);
+    for (int j = 0; j < s.count; ++j)
+      w += s.weights[j] * s.weights[j] * inverse_mass(*s.surface, s.nodes[j]);
   return w;
 }
 
@@ -116,8 +118,10 @@ void move_side(const Side& s, double* field, double sign, const double* delta) {
 // Velocity of a side's contact point (m/s); a rigid side moves its material point from the
 // start pose to the end pose over the tick.
 void rotate(const double* q, const double* v, bool inverse, double* out) {
-  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2], z = inverse ? -q[3] : q[3];
-  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])};
+  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2],
+               z = inverse ? -q[3] : q[3];
+  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]),
+                       2 * (x * v[1] - y * v[0])};
   out[0] = v[0] + w * t[0] + (y * t[2] - z * t[1]);
   out[1] = v[1] + w * t[1] + (z * t[0] - x * t[2]);
   out[2] = v[2] + w * t[2] + (x * t[1] - y * t[0]);
@@ -128,7 +132,8 @@ bool side_velocity(const Side& s, const double* rigid_point, double dt, double* 
   if (s.surface != nullptr) {
     if (s.surface->velocities == nullptr) return false;
     for (int j = 0; j < s.count; ++j)
-      for (int i = 0; i < 3; ++i) out[i] += s.weights[j] * s.surface->velocities[3 * s.nodes[j] + i];
+      for (int i = 0; i < 3; ++i)
+        out[i] += s.weights[j] * s.surface->velocities[3 * s.nodes[j] + i];
     return true;
   }
   if (s.shape->type == TACTA_SHAPE_PLANE || !(dt > 0)) return true;  // static
@@ -150,7 +155,8 @@ bool side_velocity(const Side& s, const double* rigid_point, double dt, double* 
 void apply_impulses(Constraint& k, tacta_contact& c, double friction, double dt) {
   const double w = weighted_inverse_mass(k.a) + weighted_inverse_mass(k.b);
   double va[3], vb[3];
-  if (!(w > 0) || !side_velocity(k.a, nullptr, dt, va) || !side_velocity(k.b, k.point, dt, vb)) return;
+  if (!(w > 0) || !side_velocity(k.a, nullptr, dt, va) || !side_velocity(k.b, k.point, dt, vb))
+    return;
   const double* n = k.normal;
   double* accumulated = c.force;
   double rel[3] = {va[0] - vb[0], va[1] - vb[1], va[2] - vb[2]};
@@ -224,7 +230,8 @@ uint32_t respond_to_contacts(tacta_collision_world& world, tacta_contact* contac
     }
   for (uint32_t pass = 0; pass < settings.iterations; ++pass)
     for (uint32_t i = 0; i < contact_count; ++i)
-      if (bind(world, contacts[i], k) == 0) apply_impulses(k, contacts[i], settings.friction, world.dt);
+      if (bind(world, contacts[i], k) == 0)
+        apply_impulses(k, contacts[i], settings.friction, world.dt);
   // Friction displaced positions tangentially to its own contact, which can tilt into a
   // neighbour's normal: project again.
   for (uint32_t pass = 0; pass < settings.iterations; ++pass)

@@ -46,9 +46,9 @@
 namespace tacta::collision {
 
 struct ResponseSettings {
-  double friction = 0.3;     // Coulomb coefficient (dimensionless)
-  uint32_t iterations = 8;   // Gauss-Seidel passes, positions then velocities
-  double tolerance = 1e-7;   // m: residual violation accepted after the passes
+  double friction = 0.3;    // Coulomb coefficient (dimensionless)
+  uint32_t iterations = 8;  // Gauss-Seidel passes, positions then velocities
+  double tolerance = 1e-7;  // m: residual violation accepted after the passes
 };
 
 // Corrects positions_end and velocities of world's surfaces; writes contacts[i].force.

@@ -64,8 +64,8 @@ inline double evaluate(const double* p, int axis, double t, double s, double w) 
 
 struct Image {
   bool contains_zero = true;
-  double width = 0.0;                       // largest axis extent of the widened image, m
-  std::array<double, 3> split_gain{};       // how much each parameter spreads the image
+  double width = 0.0;                  // largest axis extent of the widened image, m
+  std::array<double, 3> split_gain{};  // how much each parameter spreads the image
 };
 
 template <Kind K>
@@ -90,7 +90,8 @@ Image image_of(const double* p, const Box& box, const std::array<double, 3>& err
       for (int dim = 0; dim < 3; ++dim) {
         const int bit = 1 << dim;
         if (c & bit) continue;
-        image.split_gain[dim] = std::max(image.split_gain[dim], std::abs(corner[c | bit] - corner[c]));
+        image.split_gain[dim] =
+            std::max(image.split_gain[dim], std::abs(corner[c | bit] - corner[c]));
       }
     }
   }
@@ -134,9 +135,9 @@ CcdResult solve(const double* p, const CcdTolerance& tolerance) noexcept {
       result.v = 0.5 * (box.v0 + box.v1);
       return result;
     }
-    const int dim = static_cast<int>(std::max_element(image.split_gain.begin(),
-                                                      image.split_gain.end()) -
-                                     image.split_gain.begin());
+    const int dim =
+        static_cast<int>(std::max_element(image.split_gain.begin(), image.split_gain.end()) -
+                         image.split_gain.begin());
     Box low = box, high = box;
     low.depth = high.depth = box.depth + 1;
     if (dim == 0) {

@@ -31,16 +31,16 @@
 namespace tacta::collision {
 
 struct CcdTolerance {
-  double distance = 1e-6;    // m: stop refining once the image box of F is this small
-  uint32_t max_iterations = 100000; // boxes examined before answering "contact" anyway
+  double distance = 1e-6;            // m: stop refining once the image box of F is this small
+  uint32_t max_iterations = 100000;  // boxes examined before answering "contact" anyway
 };
 
 struct CcdResult {
   bool hit = false;
-  bool not_finite = false;   // input had NaN or infinity
-  bool gave_up = false;      // limit or heap capacity reached: answered "contact" conservatively
-  double toi = 1.0;          // lower bound of the first contact time, fraction of the tick
-  double u = 0.0, v = 0.0;   // parameters at the contact (vertex-face: weights of f1, f2)
+  bool not_finite = false;  // input had NaN or infinity
+  bool gave_up = false;     // limit or heap capacity reached: answered "contact" conservatively
+  double toi = 1.0;         // lower bound of the first contact time, fraction of the tick
+  double u = 0.0, v = 0.0;  // parameters at the contact (vertex-face: weights of f1, f2)
 };
 
 // points: 8 x 3 doubles as in tacta_collision_api::vertex_face / edge_edge.

@@ -87,8 +87,7 @@ CcdResult vertex_face_plain(const double* p) noexcept {
   const Vec wa = sub(point_at(p, 0), point_at(p, 1));
   const Vec e1b = sub(point_at(p, 6), point_at(p, 5)), e2b = sub(point_at(p, 7), point_at(p, 5));
   const Vec wb = sub(point_at(p, 4), point_at(p, 5));
-  const std::array<double, 4> c =
-      cubic(e1a, sub(e1b, e1a), e2a, sub(e2b, e2a), wa, sub(wb, wa));
+  const std::array<double, 4> c = cubic(e1a, sub(e1b, e1a), e2a, sub(e2b, e2a), wa, sub(wb, wa));
   std::array<double, 3> roots{};
   const int count = roots_in_unit(c, roots);
   for (int i = 0; i < count; ++i) {

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tacta/vec3.hpp"
-
 #include "plain_ccd.hpp"
+#include "tacta/vec3.hpp"
 
 namespace tacta::collision {
 namespace {
@@ -68,15 +67,18 @@ void finish(tacta_contact& c, const double* q, double thickness) {
   double side = 0.0;
   for (int k = 0; k < 3; ++k) {
     const double sa = c.weights_a[0] * q[k] + c.weights_a[1] * q[3 + k] + c.weights_a[2] * q[6 + k];
-    const double sb = c.weights_b[0] * q[3 + k] + c.weights_b[1] * q[6 + k] + c.weights_b[2] * q[9 + k];
+    const double sb =
+        c.weights_b[0] * q[3 + k] + c.weights_b[1] * q[6 + k] + c.weights_b[2] * q[9 + k];
     side += (sa - sb) * n[k];
   }
   if (side < 0.0)
     for (double& v : n) v = -v;
   double gap = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const double ea = c.weights_a[0] * q[12 + k] + c.weights_a[1] * q[15 + k] + c.weights_a[2] * q[18 + k];
-    const double eb = c.weights_b[0] * q[15 + k] + c.weights_b[1] * q[18 + k] + c.weights_b[2] * q[21 + k];
+    const double ea =
+        c.weights_a[0] * q[12 + k] + c.weights_a[1] * q[15 + k] + c.weights_a[2] * q[18 + k];
+    const double eb =
+        c.weights_b[0] * q[15 + k] + c.weights_b[1] * q[18 + k] + c.weights_b[2] * q[21 + k];
     gap += (ea - eb) * n[k];
   }
   for (int k = 0; k < 3; ++k) {
@@ -92,7 +94,8 @@ void finish(tacta_contact& c, const double* q, double thickness) {
 
 uint32_t triangle_pair_contacts(const tacta_collision_world& world, TriangleRef a, TriangleRef b,
                                 CcdMethod method, const CcdTolerance& tolerance,
-                                tacta_contact* contacts, uint32_t capacity, uint32_t& count) noexcept {
+                                tacta_contact* contacts, uint32_t capacity,
+                                uint32_t& count) noexcept {
   if (a.surface >= world.surface_count || b.surface >= world.surface_count)
     return TACTA_COLLIDE_DEGENERATE;
   const tacta_collision_surface& sa = world.surfaces[a.surface];

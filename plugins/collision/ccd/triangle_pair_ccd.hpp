@@ -18,6 +18,7 @@ struct TriangleRef {
 // TACTA_COLLIDE_* bits (OVERFLOW when full, NOT_FINITE / DEGENERATE when skipped).
 uint32_t triangle_pair_contacts(const tacta_collision_world& world, TriangleRef a, TriangleRef b,
                                 CcdMethod method, const CcdTolerance& tolerance,
-                                tacta_contact* contacts, uint32_t capacity, uint32_t& count) noexcept;
+                                tacta_contact* contacts, uint32_t capacity,
+                                uint32_t& count) noexcept;
 
 }  // namespace tacta::collision

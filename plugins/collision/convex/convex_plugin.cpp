@@ -4,14 +4,13 @@
 // (a grown by r touches b exactly when r = distance), each step one GJK intersection test.
 // detect (pairs == NULL): surface vertices against tools and obstacles (vertex_shape_contacts.hpp),
 // hulls through one GJK test and one MPR query per nearby vertex.
-#include <ccd/ccd.h>
-
 #include <array>
+#include <ccd/ccd.h>
 #include <cmath>
 
 #include "tacta/sdk/collision.hpp"
-#include "vertex_shape_contacts.hpp"
 #include "tacta/vec3.hpp"
+#include "vertex_shape_contacts.hpp"
 
 namespace tacta::collision {
 namespace {
@@ -27,7 +26,8 @@ struct ConvexObject {
 void set_pose(ConvexObject& o) {
   if (o.shape == nullptr) return;
   const tacta_pose& pose = o.shape->pose_end;
-  const double w = pose.rotation[0], x = pose.rotation[1], y = pose.rotation[2], z = pose.rotation[3];
+  const double w = pose.rotation[0], x = pose.rotation[1], y = pose.rotation[2],
+               z = pose.rotation[3];
   const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
                           {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
                           {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
@@ -42,20 +42,23 @@ void support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
   const auto& o = *static_cast<const ConvexObject*>(object);
   const double d[3] = {dir->v[0], dir->v[1], dir->v[2]};
   const double len = norm(d);
-  const double u[3] = {len > 0 ? d[0] / len : 1, len > 0 ? d[1] / len : 0, len > 0 ? d[2] / len : 0};
+  const double u[3] = {len > 0 ? d[0] / len : 1, len > 0 ? d[1] / len : 0,
+                       len > 0 ? d[2] / len : 0};
   double world[3] = {0, 0, 0};
   double radius = o.grow;
   if (o.shape == nullptr) {
     int best = 0;
     double best_dot = -1e300;
     for (int i = 0; i < 3; ++i) {
-      const double s = o.triangle[3 * i] * u[0] + o.triangle[3 * i + 1] * u[1] + o.triangle[3 * i + 2] * u[2];
+      const double s =
+          o.triangle[3 * i] * u[0] + o.triangle[3 * i + 1] * u[1] + o.triangle[3 * i + 2] * u[2];
       if (s > best_dot) best_dot = s, best = i;
     }
     for (int k = 0; k < 3; ++k) world[k] = o.triangle[3 * best + k];
   } else {
     double local_dir[3];  // R^T u
-    for (int k = 0; k < 3; ++k) local_dir[k] = o.r[0][k] * u[0] + o.r[1][k] * u[1] + o.r[2][k] * u[2];
+    for (int k = 0; k < 3; ++k)
+      local_dir[k] = o.r[0][k] * u[0] + o.r[1][k] * u[1] + o.r[2][k] * u[2];
     double local[3] = {0, 0, 0};
     const tacta_collision_shape& s = *o.shape;
     radius += s.radius;
@@ -63,7 +66,8 @@ void support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
       local[2] = local_dir[2] >= 0 ? s.half_length : -s.half_length;
     } else if (s.type == TACTA_SHAPE_BOX) {
       radius -= s.radius;
-      for (int k = 0; k < 3; ++k) local[k] = local_dir[k] >= 0 ? s.half_extents[k] : -s.half_extents[k];
+      for (int k = 0; k < 3; ++k)
+        local[k] = local_dir[k] >= 0 ? s.half_extents[k] : -s.half_extents[k];
     } else if (s.type == TACTA_SHAPE_HULL && s.points != nullptr && s.point_count > 0) {
       double best_dot = -1e300;
       for (uint32_t i = 0; i < s.point_count; ++i) {
@@ -84,8 +88,7 @@ void support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* out) {
 void center(const void* object, ccd_vec3_t* out) {
   const auto& o = *static_cast<const ConvexObject*>(object);
   for (int k = 0; k < 3; ++k)
-    out->v[k] = o.shape ? o.p[k]
-                        : (o.triangle[k] + o.triangle[3 + k] + o.triangle[6 + k]) / 3.0;
+    out->v[k] = o.shape ? o.p[k] : (o.triangle[k] + o.triangle[3 + k] + o.triangle[6 + k]) / 3.0;
 }
 
 }  // namespace
@@ -148,7 +151,10 @@ class ConvexNarrowPhase {
     for (int i = 0; i < 60 && !ccdGJKIntersect(&oa, &ob, &ccd); ++i) oa.grow = hi *= 2.0;
     for (int i = 0; i < 80 && hi - lo > tolerance_; ++i) {
       oa.grow = 0.5 * (lo + hi);
-      if (ccdGJKIntersect(&oa, &ob, &ccd)) hi = oa.grow; else lo = oa.grow;
+      if (ccdGJKIntersect(&oa, &ob, &ccd))
+        hi = oa.grow;
+      else
+        lo = oa.grow;
     }
     out.distance = 0.5 * (lo + hi);
     oa.grow = hi;
@@ -166,7 +172,8 @@ class ConvexNarrowPhase {
   uint32_t detect(const tacta_collision_world& world, const tacta_collision_pair*, uint32_t,
                   tacta_contact* contacts, uint32_t capacity, uint32_t& count) noexcept {
     count = 0;
-    return vertex_shape_contacts(world, &ConvexNarrowPhase::hull_distance, this, contacts, capacity, count);
+    return vertex_shape_contacts(world, &ConvexNarrowPhase::hull_distance, this, contacts, capacity,
+                                 count);
   }
 
  private:

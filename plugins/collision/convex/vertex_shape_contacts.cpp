@@ -10,19 +10,24 @@ namespace {
 
 constexpr int kAdvanceSteps = 64;  // conservative advancement: grazing paths stop here (no hit)
 
-bool finite3(const double* a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+bool finite3(const double* a) {
+  return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+}
 
 // Rotation by unit quaternion q (w, x, y, z), or by its inverse.
 void rotate(const double* q, const double* v, bool inverse, double* out) {
-  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2], z = inverse ? -q[3] : q[3];
-  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])};
+  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2],
+               z = inverse ? -q[3] : q[3];
+  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]),
+                       2 * (x * v[1] - y * v[0])};
   out[0] = v[0] + w * t[0] + (y * t[2] - z * t[1]);
   out[1] = v[1] + w * t[1] + (z * t[0] - x * t[2]);
   out[2] = v[2] + w * t[2] + (x * t[1] - y * t[0]);
 }
 
 void to_local(const tacta_pose& pose, const double* x, double* local) {
-  const double offset[3] = {x[0] - pose.position[0], x[1] - pose.position[1], x[2] - pose.position[2]};
+  const double offset[3] = {x[0] - pose.position[0], x[1] - pose.position[1],
+                            x[2] - pose.position[2]};
   rotate(pose.rotation, offset, true, local);
 }
 
@@ -73,7 +78,8 @@ double bounding_radius(const tacta_collision_shape& s) {
     case TACTA_SHAPE_BOX: return norm(s.half_extents);
     case TACTA_SHAPE_HULL: {
       double r = 0;
-      for (uint32_t i = 0; s.points != nullptr && i < s.point_count; ++i) r = std::max(r, norm(s.points + 3 * i));
+      for (uint32_t i = 0; s.points != nullptr && i < s.point_count; ++i)
+        r = std::max(r, norm(s.points + 3 * i));
       return r + s.radius;
     }
     default: return 0;
@@ -127,8 +133,9 @@ bool vertex_against(const tacta_collision_shape& s, double reach_radius, const d
   double d = signed_distance(s, p1, n);
   const bool end_inside = d < h;
   f.toi = 1.0;
-  const double length = std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
-                                  (p1[2] - p0[2]) * (p1[2] - p0[2]));
+  const double length =
+      std::sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                (p1[2] - p0[2]) * (p1[2] - p0[2]));
   double n0[3];
   if (length > 0 && !(signed_distance(s, p0, n0) < h)) {
     // The vertex started clear: find where its relative motion first enters the layer, so that
@@ -175,7 +182,8 @@ uint32_t vertex_shape_contacts(const tacta_collision_world& world, HullDistance 
     if (shapes == nullptr) continue;
     for (uint32_t b = 0; b < shape_count; ++b) {
       const tacta_collision_shape& s = shapes[b];
-      if (!finite3(s.pose_start.position) || !finite3(s.pose_end.position) || !finite3(s.plane_normal)) {
+      if (!finite3(s.pose_start.position) || !finite3(s.pose_end.position) ||
+          !finite3(s.plane_normal)) {
         bits |= TACTA_COLLIDE_NOT_FINITE;
         continue;
       }
@@ -213,7 +221,8 @@ uint32_t vertex_shape_contacts(const tacta_collision_world& world, HullDistance 
           c.feature_a = v;
           c.feature_b = TACTA_COLLISION_NONE;
           c.nodes_a[0] = v;
-          c.nodes_a[1] = c.nodes_a[2] = c.nodes_b[0] = c.nodes_b[1] = c.nodes_b[2] = TACTA_COLLISION_NONE;
+          c.nodes_a[1] = c.nodes_a[2] = c.nodes_b[0] = c.nodes_b[1] = c.nodes_b[2] =
+              TACTA_COLLISION_NONE;
           c.weights_a[0] = 1.0;
           c.toi = f.toi;
           for (int i = 0; i < 3; ++i) {

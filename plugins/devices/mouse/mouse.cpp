@@ -22,7 +22,7 @@ namespace {
 using Point = std::array<double, 3>;
 
 constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
-constexpr double kTeleportGap = 1.0;         // s; a longer gap (or time going back) restarts at the target
+constexpr double kTeleportGap = 1.0;  // s; a longer gap (or time going back) restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
 Point to_point(std::span<const double> v, Point fallback) {
@@ -35,16 +35,20 @@ class MouseDevice {
  public:
   static constexpr const char* kName = "mouse";
   static constexpr const char* kDescription =
-      "The viewer's mouse as an Omni-class stylus: follows a host-fed target through a hand impedance";
+      "The viewer's mouse as an Omni-class stylus: follows a host-fed target through a hand "
+      "impedance";
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
   static constexpr std::array<tacta_param_spec, 6> kParams{{
-      sdk::vector_param("start_position", "m", 3, "0 0.1 0", -kBig, kBig, "target until the host feeds one"),
-      sdk::vector_param("workspace_origin", "m", 3, "0 0.1 0", -kBig, kBig, "centre of the reported workspace"),
+      sdk::vector_param("start_position", "m", 3, "0 0.1 0", -kBig, kBig,
+                        "target until the host feeds one"),
+      sdk::vector_param("workspace_origin", "m", 3, "0 0.1 0", -kBig, kBig,
+                        "centre of the reported workspace"),
       sdk::bool_param("limit_to_workspace", false, "the stylus stops at the workspace box"),
       sdk::real_param("hand_mass", "kg", 0.1, 1e-3, 10.0, "stylus plus hand effective mass"),
       sdk::real_param("hand_stiffness", "N/m", 300.0, 0.0, 1e5, "hand spring toward the target"),
-      sdk::real_param("hand_damping", "N s/m", 11.0, 0.0, 1e4, "hand damper on the velocity (critical for the defaults)"),
+      sdk::real_param("hand_damping", "N s/m", 11.0, 0.0, 1e4,
+                      "hand damper on the velocity (critical for the defaults)"),
   }};
 
   explicit MouseDevice(const tacta_device_setup& setup) {
@@ -57,7 +61,8 @@ class MouseDevice {
     damping_ = params.real("hand_damping");
     if (!(mass_ > 0.0)) throw std::invalid_argument("mouse: hand_mass must be > 0 kg");
     // Sub-step: a fifth of the hand spring's 1/omega and half its damping time, at most 0.1 ms.
-    if (stiffness_ > 0.0) max_substep_ = std::min(max_substep_, 0.2 * std::sqrt(mass_ / stiffness_));
+    if (stiffness_ > 0.0)
+      max_substep_ = std::min(max_substep_, 0.2 * std::sqrt(mass_ / stiffness_));
     if (damping_ > 0.0) max_substep_ = std::min(max_substep_, 0.5 * mass_ / damping_);
   }
 
@@ -122,8 +127,14 @@ class MouseDevice {
 
   void stop_at_workspace(int i) noexcept {
     const double low = origin_[i] - kWorkspaceHalf[i], high = origin_[i] + kWorkspaceHalf[i];
-    if (position_[i] < low) { position_[i] = low; velocity_[i] = std::max(velocity_[i], 0.0); }
-    if (position_[i] > high) { position_[i] = high; velocity_[i] = std::min(velocity_[i], 0.0); }
+    if (position_[i] < low) {
+      position_[i] = low;
+      velocity_[i] = std::max(velocity_[i], 0.0);
+    }
+    if (position_[i] > high) {
+      position_[i] = high;
+      velocity_[i] = std::min(velocity_[i], 0.0);
+    }
   }
 
   devices::SeqlockSlot<3> target_;  // host thread -> haptic thread

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <unistd.h>
 #include <string>
+#include <unistd.h>
 
 #include "net_link.hpp"
 #include "tacta/sdk/device.hpp"
@@ -30,12 +30,18 @@ class NetDevice {
   static constexpr std::array<tacta_param_spec, 7> kParams{{
       {"bind_address", TACTA_PARAM_TEXT, "text", 0, 0, 0, nullptr, "127.0.0.1", 0,
        "numeric address to listen on (0.0.0.0: every interface)"},
-      sdk::int_param("port", TNET_DEFAULT_PORT, 0, 65535, "UDP port (0: an ephemeral one, see port_file)"),
-      sdk::text_param("port_file", "", "if set, the bound port is written there (relative to the scene's folder)"),
-      sdk::real_param("watchdog", "s", 0.05, 1e-3, 10.0, "silence longer than this: zero force, disconnected"),
-      sdk::real_param("connect_timeout", "s", 10.0, 0.0, 3600.0, "how long connect waits for the device's HELLO and first STATE"),
-      sdk::real_param("late_threshold", "s", 0.01, 0.0, 10.0, "a STATE slower than the session's fastest by more is counted late"),
-      sdk::real_param("max_force", "N", 0.0, 0.0, 1e4, "caps the device's announced peak force (0: no cap)"),
+      sdk::int_param("port", TNET_DEFAULT_PORT, 0, 65535,
+                     "UDP port (0: an ephemeral one, see port_file)"),
+      sdk::text_param("port_file", "",
+                      "if set, the bound port is written there (relative to the scene's folder)"),
+      sdk::real_param("watchdog", "s", 0.05, 1e-3, 10.0,
+                      "silence longer than this: zero force, disconnected"),
+      sdk::real_param("connect_timeout", "s", 10.0, 0.0, 3600.0,
+                      "how long connect waits for the device's HELLO and first STATE"),
+      sdk::real_param("late_threshold", "s", 0.01, 0.0, 10.0,
+                      "a STATE slower than the session's fastest by more is counted late"),
+      sdk::real_param("max_force", "N", 0.0, 0.0, 1e4,
+                      "caps the device's announced peak force (0: no cap)"),
   }};
 
   explicit NetDevice(const tacta_device_setup& setup) {
@@ -49,7 +55,8 @@ class NetDevice {
     const std::string port_file(params.text("port_file"));  // a path: the engine resolved it
     if (!port_file.empty()) {
       std::ofstream(port_file + ".tmp") << link_->port() << "\n";
-      std::rename((port_file + ".tmp").c_str(), port_file.c_str());  // readers never see half a number
+      std::rename((port_file + ".tmp").c_str(),
+                  port_file.c_str());  // readers never see half a number
     }
     std::snprintf(reason_, sizeof reason_, "waiting for a device on UDP port %u", link_->port());
   }
@@ -58,12 +65,14 @@ class NetDevice {
     tnet_hello hello{};
     const double deadline = now_seconds() + connect_timeout_s_;
     if (!link_->wait_for_hello(connect_timeout_s_, hello))
-      throw std::runtime_error("net: no HELLO from a device on UDP port " + std::to_string(link_->port()) + " within " +
+      throw std::runtime_error("net: no HELLO from a device on UDP port " +
+                               std::to_string(link_->port()) + " within " +
                                std::to_string(connect_timeout_s_) + " s");
     std::array<double, StateSlot::kSize> v{};
     while (!link_->state().load(v) && now_seconds() < deadline) usleep(1000);
     if (!link_->state().load(v))
-      throw std::runtime_error("net: the device said HELLO but sent no STATE within the connect timeout");
+      throw std::runtime_error(
+          "net: the device said HELLO but sent no STATE within the connect timeout");
     capabilities_ = to_capabilities(hello);
     connected_ = true;
   }
@@ -79,18 +88,22 @@ class NetDevice {
       if (live_) {
         live_ = false;
         said_bye_ = said_bye;
-        if (said_bye) std::snprintf(reason_, sizeof reason_, "the device said BYE");
+        if (said_bye)
+          std::snprintf(reason_, sizeof reason_, "the device said BYE");
         else {
           ++watchdog_trips_;
-          std::snprintf(reason_, sizeof reason_, "watchdog: no datagram for %.0f ms (limit %.0f ms)", silence * 1e3,
+          std::snprintf(reason_, sizeof reason_,
+                        "watchdog: no datagram for %.0f ms (limit %.0f ms)", silence * 1e3,
                         watchdog_s_ * 1e3);
         }
-        post_force(session, {0, 0, 0}, TACTA_DEVICE_DISCONNECTED);  // zero at once, even before the engine's write
+        post_force(session, {0, 0, 0},
+                   TACTA_DEVICE_DISCONNECTED);  // zero at once, even before the engine's write
       }
       // A BYE ends the session on purpose (no fault): the device is done for this run.
       return said_bye ? TACTA_DEVICE_FINISHED : TACTA_DEVICE_DISCONNECTED;
     }
-    if (session != session_) {  // a new session: its energy budget starts from zero, as the device's does
+    if (session !=
+        session_) {  // a new session: its energy budget starts from zero, as the device's does
       session_ = session;
       returned_J_ = absorbed_J_ = 0.0;
     }
@@ -111,7 +124,8 @@ class NetDevice {
     last_write_time_ = time;
     const std::array<double, 3> f{command.force[0], command.force[1], command.force[2]};
     if (dt > 0.0 && dt < 0.1) {
-      const double work = (f[0] * velocity_[0] + f[1] * velocity_[1] + f[2] * velocity_[2]) * dt;  // J, on the device
+      const double work = (f[0] * velocity_[0] + f[1] * velocity_[1] + f[2] * velocity_[2]) *
+                          dt;  // J, on the device
       (work > 0.0 ? returned_J_ : absorbed_J_) += std::abs(work);
     }
     post_force(session_, f, live_ ? TACTA_DEVICE_CONNECTED : TACTA_DEVICE_DISCONNECTED);
@@ -121,13 +135,16 @@ class NetDevice {
 
   tacta_device_state status(char* reason, size_t capacity) const noexcept {
     sdk::write_message(reason, capacity, live_ ? "connected" : reason_);
-    return live_ ? TACTA_DEVICE_CONNECTED : said_bye_ ? TACTA_DEVICE_FINISHED : TACTA_DEVICE_DISCONNECTED;
+    return live_       ? TACTA_DEVICE_CONNECTED
+           : said_bye_ ? TACTA_DEVICE_FINISHED
+                       : TACTA_DEVICE_DISCONNECTED;
   }
 
   uint32_t counters(tacta_device_counter* out, uint32_t capacity) const noexcept {
     const LinkCounts& c = link_->counts();
     const uint64_t dropped = c.malformed + c.duplicates + c.out_of_order + c.foreign;
-    const double p50 = link_->round_trips().quantile(0.5), p99 = link_->round_trips().quantile(0.99);
+    const double p50 = link_->round_trips().quantile(0.5),
+                 p99 = link_->round_trips().quantile(0.99);
     const tacta_device_counter all[] = {
         {"port", static_cast<double>(link_->port())},
         {"packets_in", static_cast<double>(c.packets_in)},
@@ -153,8 +170,10 @@ class NetDevice {
   }
 
  private:
-  void post_force(uint32_t session, const std::array<double, 3>& f, tacta_device_state state) noexcept {
-    link_->force().store({f[0], f[1], f[2], returned_J_, absorbed_J_, static_cast<double>(state), static_cast<double>(session)});
+  void post_force(uint32_t session, const std::array<double, 3>& f,
+                  tacta_device_state state) noexcept {
+    link_->force().store({f[0], f[1], f[2], returned_J_, absorbed_J_, static_cast<double>(state),
+                          static_cast<double>(session)});
   }
 
   tacta_device_capabilities to_capabilities(const tnet_hello& h) const noexcept {

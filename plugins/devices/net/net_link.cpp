@@ -1,16 +1,15 @@
 #include "net_link.hpp"
 
-#include <arpa/inet.h>
-#include <netdb.h>
-#include <poll.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <algorithm>
+#include <arpa/inet.h>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <netdb.h>
+#include <poll.h>
 #include <stdexcept>
+#include <sys/socket.h>
+#include <unistd.h>
 
 namespace tacta::net_device {
 
@@ -30,8 +29,9 @@ NetLink::NetLink(const std::string& address, uint16_t port, double watchdog_s, d
   const std::string service = std::to_string(port);
   const int status = getaddrinfo(address.c_str(), service.c_str(), &hints, &found);
   if (status != 0 || found == nullptr)
-    throw std::invalid_argument("net: bind_address '" + address + "' is not a numeric IPv4 or IPv6 address (" +
-                                gai_strerror(status) + ")");
+    throw std::invalid_argument("net: bind_address '" + address +
+                                "' is not a numeric IPv4 or IPv6 address (" + gai_strerror(status) +
+                                ")");
   socket_ = socket(found->ai_family, SOCK_DGRAM | SOCK_CLOEXEC, 0);
   const int reuse = 1;
   if (socket_ >= 0) setsockopt(socket_, SOL_SOCKET, SO_REUSEADDR, &reuse, sizeof reuse);
@@ -58,7 +58,8 @@ NetLink::~NetLink() {
 
 bool NetLink::wait_for_hello(double timeout_s, tnet_hello& capabilities) {
   std::unique_lock<std::mutex> lock(hello_mutex_);
-  if (!hello_arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s), [this] { return have_hello_; }))
+  if (!hello_arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                               [this] { return have_hello_; }))
     return false;
   capabilities = hello_;
   return true;
@@ -71,14 +72,16 @@ void NetLink::serve() noexcept {
     if (poll(&p, 1, kPollMs) <= 0) continue;
     sockaddr_storage from{};
     socklen_t from_size = sizeof from;
-    const ssize_t n = recvfrom(socket_, buffer, sizeof buffer, 0, reinterpret_cast<sockaddr*>(&from), &from_size);
+    const ssize_t n =
+        recvfrom(socket_, buffer, sizeof buffer, 0, reinterpret_cast<sockaddr*>(&from), &from_size);
     if (n < 0) continue;
     counts_.packets_in.fetch_add(1, std::memory_order_relaxed);
     handle(buffer, static_cast<size_t>(n), &from, from_size);
   }
 }
 
-void NetLink::handle(const unsigned char* data, size_t size, const void* from, uint32_t from_size) noexcept {
+void NetLink::handle(const unsigned char* data, size_t size, const void* from,
+                     uint32_t from_size) noexcept {
   const double arrival = now_seconds();
   tnet_header h{};
   if (tnet_decode_header(data, size, &h) != TNET_OK || h.type == TNET_FORCE || h.session == 0) {
@@ -88,7 +91,8 @@ void NetLink::handle(const unsigned char* data, size_t size, const void* from, u
   if (h.session != session_) {
     // Another device (or this one restarted): it takes over only a link that is free, said BYE
     // or has been silent past the watchdog, so two bridges never fight over one device.
-    const bool free = session_ == 0 || session_said_bye_ || arrival - session_arrival_ > watchdog_s_;
+    const bool free =
+        session_ == 0 || session_said_bye_ || arrival - session_arrival_ > watchdog_s_;
     if (!free) {
       counts_.foreign.fetch_add(1, std::memory_order_relaxed);
       return;
@@ -101,7 +105,8 @@ void NetLink::handle(const unsigned char* data, size_t size, const void* from, u
   }
   const int order = tnet_sequence_check(h.sequence, newest_sequence_, sequence_started_ ? 1 : 0);
   if (order <= 0) {
-    (order == 0 ? counts_.duplicates : counts_.out_of_order).fetch_add(1, std::memory_order_relaxed);
+    (order == 0 ? counts_.duplicates : counts_.out_of_order)
+        .fetch_add(1, std::memory_order_relaxed);
     return;
   }
   const unsigned char* payload = data + TNET_HEADER_SIZE;
@@ -148,7 +153,8 @@ void NetLink::handle(const unsigned char* data, size_t size, const void* from, u
   if (transit - fastest_transit_ > late_s_) counts_.late.fetch_add(1, std::memory_order_relaxed);
   if (h.echo_time_ns != 0) {
     const uint64_t now = devices::monotonic_ns();
-    if (now > h.echo_time_ns + h.echo_hold_ns) round_trips_.add(static_cast<double>(now - h.echo_time_ns - h.echo_hold_ns) * 1e-9);
+    if (now > h.echo_time_ns + h.echo_hold_ns)
+      round_trips_.add(static_cast<double>(now - h.echo_time_ns - h.echo_hold_ns) * 1e-9);
   }
   reply(h, arrival);
 }
@@ -177,7 +183,8 @@ void NetLink::reply(const tnet_header& to, double arrival) noexcept {
   h.echo_hold_ns = static_cast<uint32_t>(std::clamp(hold, 0.0, 4.0) * 1e9);
   uint32_t size = tnet_encode_header(buffer, h);
   size += tnet_encode_force(buffer + size, &out);
-  if (sendto(socket_, buffer, size, 0, reinterpret_cast<const sockaddr*>(peer_), peer_size_) == static_cast<ssize_t>(size))
+  if (sendto(socket_, buffer, size, 0, reinterpret_cast<const sockaddr*>(peer_), peer_size_) ==
+      static_cast<ssize_t>(size))
     counts_.packets_out.fetch_add(1, std::memory_order_relaxed);
 }
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <thread>
 
-#include "tacta_devices/round_trip_log.hpp"
 #include "tacta_devices/monotonic_clock.hpp"
+#include "tacta_devices/round_trip_log.hpp"
 #include "tacta_devices/seqlock_slot.hpp"
 #include "tacta_net_protocol.h"
 
@@ -24,7 +24,16 @@ inline double now_seconds() noexcept { return devices::monotonic_seconds(); }
 // Newest accepted state: position 3, orientation 4, velocity 3, buttons, arrival (s), session,
 // said_bye (1 after BYE).
 struct StateSlot {
-  enum { kPosition = 0, kOrientation = 3, kVelocity = 7, kButtons = 10, kArrival = 11, kSession = 12, kBye = 13, kSize = 14 };
+  enum {
+    kPosition = 0,
+    kOrientation = 3,
+    kVelocity = 7,
+    kButtons = 10,
+    kArrival = 11,
+    kSession = 12,
+    kBye = 13,
+    kSize = 14
+  };
 };
 // Newest force: force 3, energy returned and absorbed (J), device state, session it is for.
 struct ForceSlot {
@@ -58,7 +67,8 @@ class NetLink {
 
  private:
   void serve() noexcept;
-  void handle(const unsigned char* data, size_t size, const void* from, uint32_t from_size) noexcept;
+  void handle(const unsigned char* data, size_t size, const void* from,
+              uint32_t from_size) noexcept;
   void reply(const tnet_header& to, double arrival) noexcept;
 
   int socket_ = -1;

@@ -31,7 +31,8 @@ inline Received receive_fully(igtl::Socket& socket, void* data, int length, int 
 // The next message's header (unpacked), kNothing on a timeout.
 inline Received receive_header(igtl::Socket& socket, igtl::MessageHeader::Pointer& header) {
   header->InitPack();
-  const Received r = receive_fully(socket, header->GetPackPointer(), static_cast<int>(header->GetPackSize()));
+  const Received r =
+      receive_fully(socket, header->GetPackPointer(), static_cast<int>(header->GetPackSize()));
   if (r == Received::kMessage) header->Unpack();
   return r;
 }
@@ -39,13 +40,14 @@ inline Received receive_header(igtl::Socket& socket, igtl::MessageHeader::Pointe
 // The body of the message whose header was just read, into `message` (unpacked with its CRC
 // checked). False when the connection failed or the body is corrupt.
 template <class Message>
-bool receive_body(igtl::Socket& socket, const igtl::MessageHeader::Pointer& header, Message& message,
-                  bool& closed) {
+bool receive_body(igtl::Socket& socket, const igtl::MessageHeader::Pointer& header,
+                  Message& message, bool& closed) {
   message->SetMessageHeader(header);
   message->AllocatePack();
   Received r = Received::kNothing;
   for (int wait = 0; wait < 1000 && r == Received::kNothing; ++wait)  // the body follows its header
-    r = receive_fully(socket, message->GetPackBodyPointer(), static_cast<int>(message->GetPackBodySize()));
+    r = receive_fully(socket, message->GetPackBodyPointer(),
+                      static_cast<int>(message->GetPackBodySize()));
   closed = r != Received::kMessage;
   if (closed) return false;
   return (message->Unpack(1) & igtl::MessageHeader::UNPACK_BODY) != 0;

@@ -1,5 +1,9 @@
 #include "igtl_link.hpp"
 
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <ctime>
 #include <igtlMath.h>
 #include <igtlPolyDataMessage.h>
 #include <igtlPositionMessage.h>
@@ -7,11 +11,6 @@
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
 #include <igtlUnit.h>
-
-#include <chrono>
-#include <cmath>
-#include <cstring>
-#include <ctime>
 #include <stdexcept>
 
 #include "igtl_io.hpp"
@@ -19,18 +18,18 @@
 namespace tacta::igtl_device {
 
 namespace {
-constexpr int kReceiveTimeoutMs = 2;         // how long a read waits before the thread does other work
+constexpr int kReceiveTimeoutMs = 2;  // how long a read waits before the thread does other work
 constexpr unsigned long kAcceptWaitMs = 50;  // how long the server waits for a client per round
 constexpr double kVelocitySmoothing = 0.5;   // weight of the newest finite difference
-constexpr double kVelocityGap = 0.2;         // s: poses further apart than this restart the velocity
+constexpr double kVelocityGap = 0.2;  // s: poses further apart than this restart the velocity
 }  // namespace
 
 IgtlLink::IgtlLink(const LinkSettings& settings) : settings_(settings) {
   if (settings_.server) {
     server_ = igtl::ServerSocket::New();
     if (server_->CreateServer(settings_.port) != 0)
-      throw std::invalid_argument("openigtlink: cannot listen on TCP port " + std::to_string(settings_.port) +
-                                  " (taken, or not allowed)");
+      throw std::invalid_argument("openigtlink: cannot listen on TCP port " +
+                                  std::to_string(settings_.port) + " (taken, or not allowed)");
     port_ = server_->GetServerPort();
   } else {
     port_ = settings_.port;
@@ -47,7 +46,8 @@ IgtlLink::~IgtlLink() {
 
 bool IgtlLink::wait_for_pose(double timeout_s) {
   std::unique_lock<std::mutex> lock(pose_mutex_);
-  return pose_arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s), [this] { return have_pose_; });
+  return pose_arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                                [this] { return have_pose_; });
 }
 
 void IgtlLink::serve() {
@@ -62,8 +62,10 @@ bool IgtlLink::establish() {
     socket_ = server_->WaitForConnection(kAcceptWaitMs);
   } else {
     igtl::ClientSocket::Pointer client = igtl::ClientSocket::New();
-    if (client->ConnectToServer(settings_.host.c_str(), settings_.port) == 0) socket_ = client;
-    else std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the server is not up yet
+    if (client->ConnectToServer(settings_.host.c_str(), settings_.port) == 0)
+      socket_ = client;
+    else
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the server is not up yet
   }
   if (!socket_) return false;
   socket_->SetReceiveTimeout(kReceiveTimeoutMs);
@@ -92,7 +94,7 @@ void IgtlLink::serve_connection() {
     const std::string type = header->GetDeviceType();
     bool closed = false, ok = false;
     double position[3] = {0, 0, 0}, q[4] = {1, 0, 0, 0};  // q: w x y z
-    float pf[3] = {0, 0, 0}, qf[4] = {0, 0, 0, 1};       // OpenIGTLink quaternions are x y z w
+    float pf[3] = {0, 0, 0}, qf[4] = {0, 0, 0, 1};        // OpenIGTLink quaternions are x y z w
     if (type == "TRANSFORM") {
       igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
       if ((ok = receive_body(*socket_, header, m, closed))) {
@@ -109,7 +111,8 @@ void IgtlLink::serve_connection() {
       }
     } else if (type == "QTDATA") {
       igtl::QuaternionTrackingDataMessage::Pointer m = igtl::QuaternionTrackingDataMessage::New();
-      if ((ok = receive_body(*socket_, header, m, closed)) && m->GetNumberOfQuaternionTrackingDataElements() > 0) {
+      if ((ok = receive_body(*socket_, header, m, closed)) &&
+          m->GetNumberOfQuaternionTrackingDataElements() > 0) {
         igtl::QuaternionTrackingDataElement::Pointer e;
         m->GetQuaternionTrackingDataElement(0, e);
         e->GetPosition(pf);
@@ -120,7 +123,8 @@ void IgtlLink::serve_connection() {
     } else {
       // Any other message (STATUS, STRING, IMAGE...) is skipped whole.
       counts_.ignored.fetch_add(1, std::memory_order_relaxed);
-      if (socket_->Skip(static_cast<int>(header->GetBodySizeToRead())) == 0) return lose_connection();
+      if (socket_->Skip(static_cast<int>(header->GetBodySizeToRead())) == 0)
+        return lose_connection();
     }
     if (closed) return lose_connection();
     if (type == "TRANSFORM" || type == "POSITION" || type == "QTDATA") {
@@ -133,7 +137,8 @@ void IgtlLink::serve_connection() {
         take_pose(position, q);
         send_force();
       } else {
-        counts_.dropped.fetch_add(1, std::memory_order_relaxed);  // a bad CRC, or numbers no pose has
+        counts_.dropped.fetch_add(1,
+                                  std::memory_order_relaxed);  // a bad CRC, or numbers no pose has
       }
     }
   }
@@ -146,12 +151,15 @@ void IgtlLink::take_pose(const double position_units[3], const double q[4]) {
   for (int a = 0; a < 3; ++a) x[a] = position_units[a] * settings_.metres_per_unit;
   const double dt = now - last_pose_time_;
   for (int a = 0; a < 3; ++a) {
-    if (last_pose_time_ < 0 || dt > kVelocityGap) velocity_[a] = 0.0;
-    else if (dt > 1e-3) velocity_[a] += kVelocitySmoothing * ((x[a] - last_position_[a]) / dt - velocity_[a]);
+    if (last_pose_time_ < 0 || dt > kVelocityGap)
+      velocity_[a] = 0.0;
+    else if (dt > 1e-3)
+      velocity_[a] += kVelocitySmoothing * ((x[a] - last_position_[a]) / dt - velocity_[a]);
     last_position_[a] = x[a];
   }
   last_pose_time_ = now;
-  pose_.store({x[0], x[1], x[2], q[0], q[1], q[2], q[3], velocity_[0], velocity_[1], velocity_[2], now, 1.0});
+  pose_.store({x[0], x[1], x[2], q[0], q[1], q[2], q[3], velocity_[0], velocity_[1], velocity_[2],
+               now, 1.0});
   counts_.poses.fetch_add(1, std::memory_order_relaxed);
   std::lock_guard<std::mutex> lock(pose_mutex_);
   if (!have_pose_) {
@@ -178,7 +186,9 @@ void IgtlLink::send_force() {
 
 void IgtlLink::send_surface() {
   const double now = now_seconds();
-  if (!socket_ || settings_.surface_rate_hz <= 0 || now - last_surface_time_ < 1.0 / settings_.surface_rate_hz) return;
+  if (!socket_ || settings_.surface_rate_hz <= 0 ||
+      now - last_surface_time_ < 1.0 / settings_.surface_rate_hz)
+    return;
   const SurfaceFrame* frame = nullptr;
   const SurfaceShape* shape = nullptr;
   if (!surfaces_.take(frame, shape)) return;
@@ -189,7 +199,8 @@ void IgtlLink::send_surface() {
   points->SetNumberOfPoints(static_cast<int>(vertices));
   const double scale = 1.0 / settings_.metres_per_unit;
   for (size_t v = 0; v < vertices; ++v)
-    points->SetPoint(static_cast<unsigned>(v), static_cast<igtlFloat32>(frame->points[3 * v] * scale),
+    points->SetPoint(static_cast<unsigned>(v),
+                     static_cast<igtlFloat32>(frame->points[3 * v] * scale),
                      static_cast<igtlFloat32>(frame->points[3 * v + 1] * scale),
                      static_cast<igtlFloat32>(frame->points[3 * v + 2] * scale));
   igtl::PolyDataCellArray::Pointer polygons = igtl::PolyDataCellArray::New();

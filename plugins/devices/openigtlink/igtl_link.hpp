@@ -6,12 +6,11 @@
 // render thread offered as POLYDATA at a fixed rate.
 #pragma once
 
-#include <igtlClientSocket.h>
-#include <igtlServerSocket.h>
-
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <igtlClientSocket.h>
+#include <igtlServerSocket.h>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -26,10 +25,10 @@ inline double now_seconds() noexcept { return devices::monotonic_seconds(); }  /
 
 struct LinkSettings {
   bool server = true;
-  std::string host;             // client mode: where the server is
-  int port = 18944;             // server mode: 0 for an ephemeral port
+  std::string host;               // client mode: where the server is
+  int port = 18944;               // server mode: 0 for an ephemeral port
   double metres_per_unit = 1e-3;  // OpenIGTLink peers (3D Slicer) speak millimetres
-  double surface_rate_hz = 60;  // POLYDATA messages per second; 0: none
+  double surface_rate_hz = 60;    // POLYDATA messages per second; 0: none
   std::string force_name = "TactaForce";
 };
 

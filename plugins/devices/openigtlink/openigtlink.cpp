@@ -17,20 +17,31 @@ class OpenIgtlinkDevice {
  public:
   static constexpr const char* kName = "openigtlink";
   static constexpr const char* kDescription =
-      "3D Slicer, a tracker or a robot over OpenIGTLink: pose in, force (SENSOR) and surface (POLYDATA) out";
+      "3D Slicer, a tracker or a robot over OpenIGTLink: pose in, force (SENSOR) and surface "
+      "(POLYDATA) out";
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
   static constexpr std::array<tacta_param_spec, 10> kParams{{
-      sdk::choice_param("role", "server|client", 0, "server: wait for a peer (Slicer's default); client: connect to one"),
-      {"host", TACTA_PARAM_TEXT, "text", 0, 0, 0, nullptr, "127.0.0.1", 0, "client role: the server's address"},
-      sdk::int_param("port", 18944, 0, 65535, "TCP port (server role: 0 picks a free one, see port_file)"),
+      sdk::choice_param("role", "server|client", 0,
+                        "server: wait for a peer (Slicer's default); client: connect to one"),
+      {"host", TACTA_PARAM_TEXT, "text", 0, 0, 0, nullptr, "127.0.0.1", 0,
+       "client role: the server's address"},
+      sdk::int_param("port", 18944, 0, 65535,
+                     "TCP port (server role: 0 picks a free one, see port_file)"),
       sdk::text_param("port_file", "", "if set, the server's port is written there"),
-      sdk::real_param("units", "m", 1e-3, 1e-9, 1e3, "metres per OpenIGTLink length unit (Slicer: mm)"),
-      sdk::real_param("surface_rate", "Hz", 60.0, 0.0, 1000.0, "POLYDATA messages per second (0: none)"),
-      sdk::real_param("connect_timeout", "s", 60.0, 0.0, 3600.0, "how long connect waits for a peer and its first pose"),
-      sdk::real_param("watchdog", "s", 0.0, 0.0, 60.0, "no pose for this long: zero force, disconnected (0: only a lost connection)"),
-      sdk::real_param("peak_force", "N", 3.3, 0.0, 1e4, "force limit the engine keeps to (an Omni's by default)"),
-      sdk::vector_param("workspace_half", "m", 3, "0.5 0.5 0.5", 0.0, kBig, "half extents of the tracked workspace"),
+      sdk::real_param("units", "m", 1e-3, 1e-9, 1e3,
+                      "metres per OpenIGTLink length unit (Slicer: mm)"),
+      sdk::real_param("surface_rate", "Hz", 60.0, 0.0, 1000.0,
+                      "POLYDATA messages per second (0: none)"),
+      sdk::real_param("connect_timeout", "s", 60.0, 0.0, 3600.0,
+                      "how long connect waits for a peer and its first pose"),
+      sdk::real_param(
+          "watchdog", "s", 0.0, 0.0, 60.0,
+          "no pose for this long: zero force, disconnected (0: only a lost connection)"),
+      sdk::real_param("peak_force", "N", 3.3, 0.0, 1e4,
+                      "force limit the engine keeps to (an Omni's by default)"),
+      sdk::vector_param("workspace_half", "m", 3, "0.5 0.5 0.5", 0.0, kBig,
+                        "half extents of the tracked workspace"),
   }};
 
   explicit OpenIgtlinkDevice(const tacta_device_setup& setup) {
@@ -50,7 +61,8 @@ class OpenIgtlinkDevice {
     const std::string port_file(params.text("port_file"));  // a path: the engine resolved it
     if (!port_file.empty()) {
       std::FILE* f = std::fopen((port_file + ".tmp").c_str(), "w");
-      if (f == nullptr) throw std::invalid_argument("openigtlink: cannot write port_file " + port_file);
+      if (f == nullptr)
+        throw std::invalid_argument("openigtlink: cannot write port_file " + port_file);
       std::fprintf(f, "%d\n", link_->port());
       std::fclose(f);
       std::rename((port_file + ".tmp").c_str(), port_file.c_str());
@@ -60,8 +72,9 @@ class OpenIgtlinkDevice {
 
   void connect() {
     if (!link_->wait_for_pose(connect_timeout_s_))
-      throw std::runtime_error("openigtlink: no peer sent a pose (TRANSFORM, POSITION or QTDATA) on port " +
-                               std::to_string(link_->port()) + " within " + std::to_string(connect_timeout_s_) + " s");
+      throw std::runtime_error(
+          "openigtlink: no peer sent a pose (TRANSFORM, POSITION or QTDATA) on port " +
+          std::to_string(link_->port()) + " within " + std::to_string(connect_timeout_s_) + " s");
     connected_ = true;
   }
   void disconnect() noexcept { connected_ = false; }
@@ -75,9 +88,12 @@ class OpenIgtlinkDevice {
       if (live_) {
         live_ = false;
         ++trips_;
-        link_->force().store({0, 0, 0});  // the next SENSOR says zero even before the engine's write
-        if (lost) std::snprintf(reason_, sizeof reason_, "the OpenIGTLink peer disconnected");
-        else std::snprintf(reason_, sizeof reason_, "watchdog: no pose for %.0f ms", silence * 1e3);
+        link_->force().store(
+            {0, 0, 0});  // the next SENSOR says zero even before the engine's write
+        if (lost)
+          std::snprintf(reason_, sizeof reason_, "the OpenIGTLink peer disconnected");
+        else
+          std::snprintf(reason_, sizeof reason_, "watchdog: no pose for %.0f ms", silence * 1e3);
       }
       return TACTA_DEVICE_DISCONNECTED;
     }

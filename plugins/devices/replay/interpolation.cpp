@@ -30,11 +30,12 @@ DeviceLogSample sample_at(std::span<const DeviceLogSample> samples, double time)
   if (time <= samples.front().time) return samples.front();
   if (time >= samples.back().time) return samples.back();
   // First sample strictly after `time`; the one before it is at or before `time`.
-  const auto after = std::upper_bound(samples.begin(), samples.end(), time,
-                                      [](double t, const DeviceLogSample& s) { return t < s.time; });
+  const auto after =
+      std::upper_bound(samples.begin(), samples.end(), time,
+                       [](double t, const DeviceLogSample& s) { return t < s.time; });
   const DeviceLogSample& b = *after;
   const DeviceLogSample& a = *(after - 1);
-  if (time == a.time) return a;  // exact at the samples, bit for bit
+  if (time == a.time) return a;                          // exact at the samples, bit for bit
   const double s = (time - a.time) / (b.time - a.time);  // b.time > time > a.time
   DeviceLogSample out = a;
   out.time = time;

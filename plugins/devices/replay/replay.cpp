@@ -29,15 +29,19 @@ class ReplayDevice {
       sdk::text_param("log", "", "device log (CSV) to play; relative to the scene's folder"),
       sdk::real_param("time_offset", "s", 0.0, -1e6, 1e6, "engine time = log time + time_offset"),
       sdk::bool_param("loop", false, "start again from the first sample after the last"),
-      sdk::vector_param("workspace_size", "m", 3, "0.16 0.12 0.07", 1e-3, kBig, "x y z extent of the recorded device's workspace (Omni class)"),
-      sdk::vector_param("workspace_origin", "m", 3, "", -kBig, kBig, "centre of that workspace in the world; none: wherever the samples are"),
-      sdk::real_param("workspace_tolerance", "m", 0.01, 0.0, kBig, "how far a sample may lie outside the workspace"),
+      sdk::vector_param("workspace_size", "m", 3, "0.16 0.12 0.07", 1e-3, kBig,
+                        "x y z extent of the recorded device's workspace (Omni class)"),
+      sdk::vector_param("workspace_origin", "m", 3, "", -kBig, kBig,
+                        "centre of that workspace in the world; none: wherever the samples are"),
+      sdk::real_param("workspace_tolerance", "m", 0.01, 0.0, kBig,
+                      "how far a sample may lie outside the workspace"),
   }};
 
   explicit ReplayDevice(const tacta_device_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);
     const std::string name(params.text("log"));
-    if (name.empty()) throw std::invalid_argument("replay: parameter 'log' expects a log file path, found nothing");
+    if (name.empty())
+      throw std::invalid_argument("replay: parameter 'log' expects a log file path, found nothing");
     std::filesystem::path path(name);
     if (path.is_relative() && setup.base_directory != nullptr && setup.base_directory[0] != '\0')
       path = std::filesystem::path(setup.base_directory) / path;
@@ -48,7 +52,8 @@ class ReplayDevice {
       throw std::invalid_argument(std::string("replay: ") + e.what());
     }
     if (samples_.empty())
-      throw std::invalid_argument("replay: " + path_ + ":2: expected at least one sample after the header");
+      throw std::invalid_argument("replay: " + path_ +
+                                  ":2: expected at least one sample after the header");
     check_workspace(params);
     offset_ = params.real("time_offset");
     loop_ = params.flag("loop");
@@ -74,7 +79,9 @@ class ReplayDevice {
     sample.buttons = s.buttons;
     if (!connected_) return TACTA_DEVICE_DISCONNECTED;
     if (log_time > last + kEndTolerance) {
-      if (!finished_) std::snprintf(reason_, sizeof reason_, "log %s ended at t=%.6g s", path_.c_str(), last + offset_);
+      if (!finished_)
+        std::snprintf(reason_, sizeof reason_, "log %s ended at t=%.6g s", path_.c_str(),
+                      last + offset_);
       finished_ = true;
       return TACTA_DEVICE_FINISHED;
     }
@@ -116,16 +123,19 @@ class ReplayDevice {
         const double half = 0.5 * size[static_cast<size_t>(i)];
         low[i] = std::min(low[i], p);
         high[i] = std::max(high[i], p);
-        const bool outside = origin.size() == 3 ? std::abs(p - origin[static_cast<size_t>(i)]) > half + tolerance
-                                                : high[i] - low[i] > 2 * half + 2 * tolerance;
+        const bool outside = origin.size() == 3
+                                 ? std::abs(p - origin[static_cast<size_t>(i)]) > half + tolerance
+                                 : high[i] - low[i] > 2 * half + 2 * tolerance;
         if (!outside) continue;
         static constexpr const char* kColumn[3] = {"px", "py", "pz"};
         char message[512];
-        std::snprintf(message, sizeof message,
-                      "replay: %s:%zu: %s = %.9g m is outside the device's workspace (%.9g m along it, %s, "
-                      "tolerance %.9g m; see workspace_size, workspace_origin, workspace_tolerance)",
-                      path_.c_str(), n + 2, kColumn[i], p, size[static_cast<size_t>(i)],
-                      origin.size() == 3 ? "centred on workspace_origin" : "placed where the samples are", tolerance);
+        std::snprintf(
+            message, sizeof message,
+            "replay: %s:%zu: %s = %.9g m is outside the device's workspace (%.9g m along it, %s, "
+            "tolerance %.9g m; see workspace_size, workspace_origin, workspace_tolerance)",
+            path_.c_str(), n + 2, kColumn[i], p, size[static_cast<size_t>(i)],
+            origin.size() == 3 ? "centred on workspace_origin" : "placed where the samples are",
+            tolerance);
         throw std::invalid_argument(message);
       }
     }

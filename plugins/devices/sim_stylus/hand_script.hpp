@@ -34,9 +34,9 @@ struct ScriptSettings {
 
 class HandScript {
  public:
-  explicit HandScript(const ScriptSettings& settings);  // validates; throws std::invalid_argument
-  Point target(double time) const noexcept;              // m
-  double duration() const noexcept { return duration_; } // s, after which the target holds
+  explicit HandScript(const ScriptSettings& settings);    // validates; throws std::invalid_argument
+  Point target(double time) const noexcept;               // m
+  double duration() const noexcept { return duration_; }  // s, after which the target holds
 
  private:
   Point above(const Point& p) const noexcept;

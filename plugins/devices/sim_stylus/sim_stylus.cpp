@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
+#include <numbers>
 
 #include "hand_script.hpp"
 #include "tacta/sdk/device.hpp"
@@ -23,7 +23,7 @@ namespace tacta::sim_stylus {
 namespace {
 
 constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
-constexpr double kTeleportGap = 1.0;          // s; a longer gap between reads restarts at the target
+constexpr double kTeleportGap = 1.0;  // s; a longer gap between reads restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
 // splitmix64 and Box-Muller: the same seed gives the same noise on every platform and library.
@@ -31,7 +31,10 @@ class GaussianNoise {
  public:
   explicit GaussianNoise(uint64_t seed) noexcept : state_(seed) {}
   double next() noexcept {
-    if (has_spare_) { has_spare_ = false; return spare_; }
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
     const double u1 = (static_cast<double>(bits() >> 11) + 1.0) * 0x1.0p-53;  // (0, 1]
     const double u2 = static_cast<double>(bits() >> 11) * 0x1.0p-53;          // [0, 1)
     const double radius = std::sqrt(-2.0 * std::log(u1));
@@ -39,6 +42,7 @@ class GaussianNoise {
     has_spare_ = true;
     return radius * std::cos(2.0 * std::numbers::pi * u2);
   }
+
  private:
   uint64_t bits() noexcept {
     uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
@@ -65,28 +69,44 @@ class SimStylus {
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
   static constexpr std::array<tacta_param_spec, 22> kParams{{
-      sdk::vector_param("workspace_origin", "m", 3, "0 0 0", -kBig, kBig, "centre of the device workspace in the world"),
-      sdk::choice_param("pattern", "waypoints|tap|stroke|palpation", 0, "what the scripted hand does"),
-      sdk::vector_param("waypoints", "s, m", 4, "", -kBig, kBig, "t x y z per waypoint (world), linear between, held after the last; none: rest at workspace_origin"),
-      sdk::vector_param("approach_axis", "", 3, "0 1 0", -1.0, 1.0, "direction out of the surface, toward the hand"),
-      sdk::real_param("approach_height", "m", 0.01, 0.0, 0.2, "height above a press point where the hand hovers"),
+      sdk::vector_param("workspace_origin", "m", 3, "0 0 0", -kBig, kBig,
+                        "centre of the device workspace in the world"),
+      sdk::choice_param("pattern", "waypoints|tap|stroke|palpation", 0,
+                        "what the scripted hand does"),
+      sdk::vector_param("waypoints", "s, m", 4, "", -kBig, kBig,
+                        "t x y z per waypoint (world), linear between, held after the last; none: "
+                        "rest at workspace_origin"),
+      sdk::vector_param("approach_axis", "", 3, "0 1 0", -1.0, 1.0,
+                        "direction out of the surface, toward the hand"),
+      sdk::real_param("approach_height", "m", 0.01, 0.0, 0.2,
+                      "height above a press point where the hand hovers"),
       sdk::real_param("depth", "m", 0.005, 0.0, 0.1, "how far below a press point the hand aims"),
       sdk::vector_param("tap_point", "m", 3, "0 0 0", -kBig, kBig, "tap: surface point tapped"),
       sdk::real_param("tap_period", "s", 0.5, 0.01, 100.0, "tap: one tap (down and up) per period"),
-      sdk::vector_param("stroke_start", "m", 3, "0 0 0", -kBig, kBig, "stroke: surface point where it starts"),
-      sdk::vector_param("stroke_end", "m", 3, "0.02 0 0", -kBig, kBig, "stroke: surface point where it ends"),
+      sdk::vector_param("stroke_start", "m", 3, "0 0 0", -kBig, kBig,
+                        "stroke: surface point where it starts"),
+      sdk::vector_param("stroke_end", "m", 3, "0.02 0 0", -kBig, kBig,
+                        "stroke: surface point where it ends"),
       sdk::real_param("stroke_speed", "m/s", 0.02, 1e-4, 1.0, "stroke: hand speed"),
-      sdk::vector_param("palpation_points", "m", 3, "0 0 0", -kBig, kBig, "palpation: surface points pressed in turn"),
-      sdk::real_param("travel_duration", "s", 0.5, 0.0, 100.0, "palpation: time to move between points"),
-      sdk::real_param("press_duration", "s", 0.3, 0.001, 100.0, "palpation: time to press down (and to release)"),
+      sdk::vector_param("palpation_points", "m", 3, "0 0 0", -kBig, kBig,
+                        "palpation: surface points pressed in turn"),
+      sdk::real_param("travel_duration", "s", 0.5, 0.0, 100.0,
+                      "palpation: time to move between points"),
+      sdk::real_param("press_duration", "s", 0.3, 0.001, 100.0,
+                      "palpation: time to press down (and to release)"),
       sdk::real_param("dwell_duration", "s", 0.5, 0.0, 100.0, "palpation: time held at depth"),
       sdk::real_param("hand_mass", "kg", 0.1, 1e-3, 10.0, "stylus plus hand effective mass"),
       sdk::real_param("hand_stiffness", "N/m", 300.0, 0.0, 1e5, "hand spring toward the target"),
-      sdk::real_param("hand_damping", "N s/m", 11.0, 0.0, 1e4, "hand damper on the velocity relative to the target"),
-      sdk::real_param("encoder_resolution", "m", 0.0, 0.0, 0.01, "position quantisation step; 0 = off"),
-      sdk::real_param("noise_std", "m", 0.0, 0.0, 0.01, "position noise standard deviation, seeded by the scene seed"),
-      sdk::bool_param("limit_to_workspace", true, "the stylus stops at the workspace box, as at a mechanical limit"),
-      sdk::bool_param("palpation_repeat", false, "palpation: after the last point, travel back to the first and start over"),
+      sdk::real_param("hand_damping", "N s/m", 11.0, 0.0, 1e4,
+                      "hand damper on the velocity relative to the target"),
+      sdk::real_param("encoder_resolution", "m", 0.0, 0.0, 0.01,
+                      "position quantisation step; 0 = off"),
+      sdk::real_param("noise_std", "m", 0.0, 0.0, 0.01,
+                      "position noise standard deviation, seeded by the scene seed"),
+      sdk::bool_param("limit_to_workspace", true,
+                      "the stylus stops at the workspace box, as at a mechanical limit"),
+      sdk::bool_param("palpation_repeat", false,
+                      "palpation: after the last point, travel back to the first and start over"),
   }};
 
   explicit SimStylus(const tacta_device_setup& setup)
@@ -103,7 +123,8 @@ class SimStylus {
     if (!(mass_ > 0.0)) throw std::invalid_argument("sim_stylus: hand_mass must be > 0 kg");
     // Sub-step: a fifth of the hand spring's 1/omega and half its damping time, at most 0.1 ms.
     max_substep_ = 1e-4;
-    if (stiffness_ > 0.0) max_substep_ = std::min(max_substep_, 0.2 * std::sqrt(mass_ / stiffness_));
+    if (stiffness_ > 0.0)
+      max_substep_ = std::min(max_substep_, 0.2 * std::sqrt(mass_ / stiffness_));
     if (damping_ > 0.0) max_substep_ = std::min(max_substep_, 0.5 * mass_ / damping_);
   }
 
@@ -141,7 +162,9 @@ class SimStylus {
   }
 
   tacta_device_state status(char* reason, size_t capacity) const noexcept {
-    sdk::write_message(reason, capacity, connected_ ? "connected" : "not connected (connect() not called or disconnected)");
+    sdk::write_message(
+        reason, capacity,
+        connected_ ? "connected" : "not connected (connect() not called or disconnected)");
     return connected_ ? TACTA_DEVICE_CONNECTED : TACTA_DEVICE_DISCONNECTED;
   }
 
@@ -168,15 +191,16 @@ class SimStylus {
   }
 
   void integrate(double from, double to) noexcept {
-    const int steps = std::clamp(static_cast<int>(std::ceil((to - from) / max_substep_)), 1, kMaxSubsteps);
+    const int steps =
+        std::clamp(static_cast<int>(std::ceil((to - from) / max_substep_)), 1, kMaxSubsteps);
     const double h = (to - from) / steps;
     Point previous_target = script_.target(from);
     for (int step = 1; step <= steps; ++step) {
       const Point target = script_.target(from + step * h);
       for (int i = 0; i < 3; ++i) {
         const double target_velocity = (target[i] - previous_target[i]) / h;
-        const double hand = stiffness_ * (target[i] - position_[i]) +
-                            damping_ * (target_velocity - velocity_[i]);
+        const double hand =
+            stiffness_ * (target[i] - position_[i]) + damping_ * (target_velocity - velocity_[i]);
         velocity_[i] += (hand + force_[i]) / mass_ * h;  // semi-implicit: velocity first
         position_[i] += velocity_[i] * h;
         if (limit_to_workspace_) stop_at_workspace(i);
@@ -188,15 +212,22 @@ class SimStylus {
   void stop_at_workspace(int i) noexcept {
     const double low = origin_[i] - kWorkspaceHalf[i];
     const double high = origin_[i] + kWorkspaceHalf[i];
-    if (position_[i] < low) { position_[i] = low; velocity_[i] = std::max(velocity_[i], 0.0); }
-    if (position_[i] > high) { position_[i] = high; velocity_[i] = std::min(velocity_[i], 0.0); }
+    if (position_[i] < low) {
+      position_[i] = low;
+      velocity_[i] = std::max(velocity_[i], 0.0);
+    }
+    if (position_[i] > high) {
+      position_[i] = high;
+      velocity_[i] = std::min(velocity_[i], 0.0);
+    }
   }
 
   void fill(double time, tacta_device_sample& sample) noexcept {
     sample.time = time;
     for (int i = 0; i < 3; ++i) {
       double p = position_[i];
-      if (resolution_ > 0.0) p = origin_[i] + std::round((p - origin_[i]) / resolution_) * resolution_;
+      if (resolution_ > 0.0)
+        p = origin_[i] + std::round((p - origin_[i]) / resolution_) * resolution_;
       if (noise_std_ > 0.0) p += noise_std_ * noise_.next();
       sample.position[i] = p;
       sample.velocity[i] = velocity_[i];

@@ -5,7 +5,6 @@
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -37,14 +36,16 @@ struct BulletSoftBody::World {
 };
 
 std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
-                                                std::span<const double> masses,
-                                                const tacta_material& material, StiffnessRule rule,
-                                                double dt, int position_iterations) {
-  const std::vector<double> spring = edge_stiffness("bullet_softbody", mesh, material, rule);  // N/m
+                                                 std::span<const double> masses,
+                                                 const tacta_material& material, StiffnessRule rule,
+                                                 double dt, int position_iterations) {
+  const std::vector<double> spring =
+      edge_stiffness("bullet_softbody", mesh, material, rule);  // N/m
   std::vector<double> fraction(mesh.edge_count);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
-    const double inverse_mass_sum = (masses[mesh.edges[2 * e]] > 0 ? 1 / masses[mesh.edges[2 * e]] : 0) +
-                                    (masses[mesh.edges[2 * e + 1]] > 0 ? 1 / masses[mesh.edges[2 * e + 1]] : 0);
+    const double inverse_mass_sum =
+        (masses[mesh.edges[2 * e]] > 0 ? 1 / masses[mesh.edges[2 * e]] : 0) +
+        (masses[mesh.edges[2 * e + 1]] > 0 ? 1 / masses[mesh.edges[2 * e + 1]] : 0);
     if (!(inverse_mass_sum > 0)) {  // both ends held: Bullet never moves it
       fraction[e] = 1.0;
       continue;
@@ -86,13 +87,14 @@ BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material
                                   " is free but has mass " + std::to_string(masses[i]) + " kg");
     m[i] = held ? 0.0 : masses[i];
   }
-  w.body = std::make_unique<btSoftBody>(&w.info, static_cast<int>(mesh.node_count), x.data(),
-                                        m.data());
+  w.body =
+      std::make_unique<btSoftBody>(&w.info, static_cast<int>(mesh.node_count), x.data(), m.data());
   body_ = w.body.get();
-  link_stiffness_ = options.stiffness_override > 0.0
-                       ? std::vector<double>(mesh.edge_count, options.stiffness_override)
-                       : link_stiffness_from_material(mesh, masses, material, options.stiffness_rule,
-                                                      dt, options.position_iterations);
+  link_stiffness_ =
+      options.stiffness_override > 0.0
+          ? std::vector<double>(mesh.edge_count, options.stiffness_override)
+          : link_stiffness_from_material(mesh, masses, material, options.stiffness_rule, dt,
+                                         options.position_iterations);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
     if (i >= mesh.node_count || j >= mesh.node_count)

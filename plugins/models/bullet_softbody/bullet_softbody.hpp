@@ -28,7 +28,7 @@ class btSoftBody;
 namespace tacta::models::bullet {
 
 struct Options {
-  int position_iterations = 10;  // Bullet's m_cfg.piterations
+  int position_iterations = 10;     // Bullet's m_cfg.piterations
   double stiffness_override = 0.0;  // kLST in (0, 1]; 0: derive it from E by the rule above
   bool bending = false;             // add Bullet's distance-2 bending links
   StiffnessRule stiffness_rule = StiffnessRule::kVanGelder;  // spring constant per edge
@@ -36,9 +36,9 @@ struct Options {
 
 // The kLST of every mesh edge's link (same order as mesh.edges) by the rule above.
 std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
-                                                std::span<const double> masses,
-                                                const tacta_material& material, StiffnessRule rule,
-                                                double dt, int position_iterations);
+                                                 std::span<const double> masses,
+                                                 const tacta_material& material, StiffnessRule rule,
+                                                 double dt, int position_iterations);
 
 class BulletSoftBody {
  public:
@@ -61,7 +61,7 @@ class BulletSoftBody {
   std::vector<uint8_t> fixed_;
   std::vector<double> rest_;
   std::vector<double> link_stiffness_;
-  double alpha_ = 0.0;  // Rayleigh mass damping, 1/s
+  double alpha_ = 0.0;     // Rayleigh mass damping, 1/s
   DivergenceGuard guard_;  // NaN and runaway edge stretch
 };
 

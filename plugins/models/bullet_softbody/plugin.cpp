@@ -46,9 +46,9 @@ class BulletSoftBodyPlugin {
   uint32_t step(tacta_body_state& state, double dt) noexcept { return body_->step(state, dt); }
   std::string describe() const {
     return std::string("link kLST ") + median_and_range(body_->link_stiffness()) +
-           (stiffness_override_ > 0 ? " (stiffness_override)"
-                                    : std::string(" from ") + stiffness_rule_name(rule_) +
-                                          " springs at the setup dt");
+           (stiffness_override_ > 0
+                ? " (stiffness_override)"
+                : std::string(" from ") + stiffness_rule_name(rule_) + " springs at the setup dt");
   }
 
  private:

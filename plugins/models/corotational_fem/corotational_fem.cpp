@@ -1,5 +1,4 @@
 #include "corotational_fem.hpp"
-#include "hot_path.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <string>
 
 #include "element_rotation.hpp"
+#include "hot_path.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models::corotational {
@@ -41,9 +41,10 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   if (masses_.size() != node_count_)
     throw std::invalid_argument("corotational_fem: expected one mass per node");
   if (!(mu_ > 0.0) || !(lambda_ + 2.0 * mu_ / 3.0 > 0.0))
-    throw std::invalid_argument("corotational_fem: material needs lame_mu > 0 and a positive bulk "
-                                "modulus (got lambda " + std::to_string(lambda_) + " Pa, mu " +
-                                std::to_string(mu_) + " Pa)");
+    throw std::invalid_argument(
+        "corotational_fem: material needs lame_mu > 0 and a positive bulk "
+        "modulus (got lambda " +
+        std::to_string(lambda_) + " Pa, mu " + std::to_string(mu_) + " Pa)");
   check_free_node_masses("corotational_fem", masses_, fixed_);
   elements_.resize(mesh.tet_count);
   for (uint32_t e = 0; e < mesh.tet_count; ++e) {
@@ -73,17 +74,18 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   weights_.assign(node_count_, 0.0);
   if (options_.static_solve) {
     if (std::find(fixed_.begin(), fixed_.end(), uint8_t{1}) == fixed_.end())
-      throw std::invalid_argument("corotational_fem: solve: static needs fixed nodes (a free "
-                                  "body has no equilibrium under a net load)");
+      throw std::invalid_argument(
+          "corotational_fem: solve: static needs fixed nodes (a free "
+          "body has no equilibrium under a net load)");
     loads_.assign(n, 0.0);
     equilibrium_loads_.assign(n, 0.0);
     static_start_.assign(n, 0.0);
   }
   solver_ = std::make_unique<SafeSolver>(
-      matrix_, sparse::SolverOptions{options_.solver, options_.preconditioner,
-                                     options_.max_iterations, options_.tolerance,
-                                     options_.refactor_interval, options_.fallback,
-                                     options_.restart_factor});
+      matrix_,
+      sparse::SolverOptions{options_.solver, options_.preconditioner, options_.max_iterations,
+                            options_.tolerance, options_.refactor_interval, options_.fallback,
+                            options_.restart_factor});
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 
@@ -114,8 +116,8 @@ TACTA_HOT_PATH CorotationalFem::ElementFrame CorotationalFem::frame_of(
     frame.rotation = svd_rotation(deformation);
   }
   frame.inverted = deformation.determinant() <= 0.0;
-  const Eigen::Matrix3d gradient = frame.rotation.transpose() * deformation -
-                                   Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d gradient =
+      frame.rotation.transpose() * deformation - Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d strain = 0.5 * (gradient + gradient.transpose());
   frame.stress = 2.0 * mu_ * strain;
   frame.stress.diagonal().array() += lambda_ * strain.trace();
@@ -125,8 +127,8 @@ TACTA_HOT_PATH CorotationalFem::ElementFrame CorotationalFem::frame_of(
   return frame;
 }
 
-TACTA_HOT_PATH void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame,
-                                                double scale, double* forces) noexcept {
+TACTA_HOT_PATH void CorotationalFem::accumulate(uint32_t e, const ElementFrame& frame, double scale,
+                                                double* forces) noexcept {
   const Element& element = elements_[e];
   const double volume = element.volume;
   const Eigen::Matrix3d world_stress = frame.rotation * frame.stress;  // R sigma

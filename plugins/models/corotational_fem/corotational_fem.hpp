@@ -17,28 +17,28 @@
 
 #include "block_sparse.hpp"
 #include "safe_solver.hpp"
-#include "tacta/models/divergence_guard.hpp"
 #include "tacta/model_api.h"
+#include "tacta/models/divergence_guard.hpp"
 
 namespace tacta::models::corotational {
 
 using sparse::BlockSparseMatrix;
 using sparse::CholeskySolver;
 using sparse::ConjugateGradientSolver;
-using sparse::Preconditioner;
 using sparse::LinearSolver;
+using sparse::Preconditioner;
 using sparse::SafeSolver;
 using sparse::SolverCounters;
-using sparse::SolverFallback;
 using sparse::SolveReport;
+using sparse::SolverFallback;
 
 enum class RotationMethod { kPolar = 0, kSvd = 1 };
 struct Options {
   RotationMethod rotation = RotationMethod::kPolar;
   LinearSolver solver = LinearSolver::kConjugateGradient;
   Preconditioner preconditioner = Preconditioner::kBlockJacobi;
-  int max_iterations = 25;  // CG iterations per step
-  double tolerance = 1e-5;  // CG: relative residual ||r|| / ||b||
+  int max_iterations = 25;    // CG iterations per step
+  double tolerance = 1e-5;    // CG: relative residual ||r|| / ||b||
   int refactor_interval = 1;  // incomplete Cholesky: steps between refactorisations
   // Unconverged CG: restart from zero with restart_factor x max_iterations, then (kDirect)
   // sparse LDL^T. A capped CG that is accepted unconverged lets errors pile up (SOFA's
@@ -100,11 +100,11 @@ class CorotationalFem {
  private:
   struct Element {
     uint32_t nodes[4];
-    double gradients[4][3];  // grad N_a at rest, 1/m
-    double volume;           // m^3
+    double gradients[4][3];    // grad N_a at rest, 1/m
+    double volume;             // m^3
     double gradient_dots[10];  // grad N_a . grad N_b for a <= b, 1/m^2
   };
-  struct ElementFrame {   // what one pass over an element computes
+  struct ElementFrame {  // what one pass over an element computes
     Eigen::Matrix3d rotation;
     Eigen::Matrix3d stress;  // Pa, in the element's rotated frame
     Eigen::Vector3d rotated_gradients[4];
@@ -137,14 +137,14 @@ class CorotationalFem {
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
   uint32_t node_count_;
-  double lambda_, mu_;              // Pa
-  double alpha_, beta_;             // Rayleigh: 1/s, s
+  double lambda_, mu_;   // Pa
+  double alpha_, beta_;  // Rayleigh: 1/s, s
   std::vector<Element> elements_;
   std::vector<ElementBatch> batches_;
   std::vector<double> rest_, masses_;
   std::vector<uint8_t> fixed_;
   Options options_;
-  DivergenceGuard guard_;  // NaN and runaway edge stretch
+  DivergenceGuard guard_;                        // NaN and runaway edge stretch
   std::vector<Eigen::Quaterniond> polar_guess_;  // warm start per element (queries)
   // step()'s own history, untouched by queries between steps: each element's last rotation
   // and the turn it made in the last step.

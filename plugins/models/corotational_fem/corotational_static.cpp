@@ -10,9 +10,9 @@
 namespace tacta::models::corotational {
 
 namespace {
-constexpr int kMaxHalvings = 6;  // of a Newton step that makes the residual explode
+constexpr int kMaxHalvings = 6;         // of a Newton step that makes the residual explode
 constexpr double kGrowthLimit = 100.0;  // residual growth that counts as exploding
-constexpr int kMaxLoadCuts = 8;  // halvings of a failed load increment
+constexpr int kMaxLoadCuts = 8;         // halvings of a failed load increment
 }  // namespace
 
 double CorotationalFem::equilibrium_residual(const double* positions, bool with_matrix) noexcept {
@@ -61,8 +61,10 @@ uint32_t CorotationalFem::solve_static(tacta_body_state& state) noexcept {
   (void)equilibrium_residual(state.positions, false);
   double free2 = 0.0, held2 = 0.0;
   for (size_t k = 0; k < n; ++k) {
-    if (!fixed_.empty() && fixed_[k / 3]) held2 += forces_[k] * forces_[k];
-    else free2 += state.external_forces[k] * state.external_forces[k];
+    if (!fixed_.empty() && fixed_[k / 3])
+      held2 += forces_[k] * forces_[k];
+    else
+      free2 += state.external_forces[k] * state.external_forces[k];
   }
   const double tolerance =
       options_.static_tolerance * std::max({std::sqrt(free2), std::sqrt(held2), 1e-12});
@@ -71,7 +73,8 @@ uint32_t CorotationalFem::solve_static(tacta_body_state& state) noexcept {
   while (done < 1.0) {
     const double target = std::min(1.0, done + increment);
     for (size_t k = 0; k < n; ++k)
-      loads_[k] = equilibrium_loads_[k] + target * (state.external_forces[k] - equilibrium_loads_[k]);
+      loads_[k] =
+          equilibrium_loads_[k] + target * (state.external_forces[k] - equilibrium_loads_[k]);
     std::copy_n(state.positions, n, static_start_.begin());
     ++static_counters_.load_increments;
     if (newton_to_equilibrium(state.positions, tolerance)) {

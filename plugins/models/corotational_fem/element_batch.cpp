@@ -15,8 +15,8 @@ namespace tacta::models::corotational {
 namespace {
 constexpr int kLanes = CorotationalFem::kBatchLanes;
 constexpr int kPolarMaxIterations = 30;
-constexpr double kAngleTolerance2 = 1e-24;    // rad^2, as in polar_rotation()
-constexpr double kNewtonFinalStep2 = 1e-12;   // rad^2, as in polar_rotation()
+constexpr double kAngleTolerance2 = 1e-24;   // rad^2, as in polar_rotation()
+constexpr double kNewtonFinalStep2 = 1e-12;  // rad^2, as in polar_rotation()
 constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
 
@@ -169,8 +169,8 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < kLanes; ++l)
-        g[3 * r + k][l] = rot[r][l] * f[k][l] + rot[3 + r][l] * f[3 + k][l] +
-                          rot[6 + r][l] * f[6 + k][l];
+        g[3 * r + k][l] =
+            rot[r][l] * f[k][l] + rot[3 + r][l] * f[3 + k][l] + rot[6 + r][l] * f[6 + k][l];
   for (int l = 0; l < kLanes; ++l) {
     const double trace = g[0][l] + g[4][l] + g[8][l] - 3.0;
     for (int r = 0; r < 3; ++r)
@@ -217,10 +217,9 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
           k[3 * r + q][l] =
               lambda_v[l] * c[a][r][l] * c[bb][q][l] + mu_v[l] * c[bb][r][l] * c[a][q][l];
     for (int l = 0; l < kLanes; ++l) {
-      const double diagonal =
-          mu_v[l] * (rest.gradients[a][0][l] * rest.gradients[bb][0][l] +
-                     rest.gradients[a][1][l] * rest.gradients[bb][1][l] +
-                     rest.gradients[a][2][l] * rest.gradients[bb][2][l]);
+      const double diagonal = mu_v[l] * (rest.gradients[a][0][l] * rest.gradients[bb][0][l] +
+                                         rest.gradients[a][1][l] * rest.gradients[bb][1][l] +
+                                         rest.gradients[a][2][l] * rest.gradients[bb][2][l]);
       k[0][l] += diagonal;
       k[4][l] += diagonal;
       k[8][l] += diagonal;

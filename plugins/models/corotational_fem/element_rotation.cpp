@@ -1,13 +1,14 @@
 #include "element_rotation.hpp"
-#include "hot_path.hpp"
 
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "hot_path.hpp"
+
 namespace tacta::models::corotational {
 
 TACTA_HOT_PATH int polar_rotation(const Eigen::Matrix3d& deformation, Eigen::Quaterniond& rotation,
-                   int max_iterations) {
+                                  int max_iterations) {
   // Maximise tr(R^T F) over R' = exp([w]) R. With B = F R^T, the gradient in w is the torque
   // axial(B - B^T) = sum_i r_i x f_i and the Hessian is -(tr(B) I - sym(B)): a Newton step
   // solves (tr(B) I - sym(B)) w = torque and converges quadratically near the answer. Far from

@@ -72,10 +72,13 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
       const PassJob& j = *static_cast<const PassJob*>(user);
       WorkerTally& tally = j.model->tallies_[worker];
       for (uint32_t i = begin; i < end; ++i)
-        tally.bits |= j.model->step_batch(j.batches[i], j.positions, j.scale, tally.polar_iterations);
+        tally.bits |=
+            j.model->step_batch(j.batches[i], j.positions, j.scale, tally.polar_iterations);
     };
-    if (count < kMinParallelBatches) body(&job, 0, count, 0);
-    else host.parallel_for(host.jobs, count, kGrain, body, &job);
+    if (count < kMinParallelBatches)
+      body(&job, 0, count, 0);
+    else
+      host.parallel_for(host.jobs, count, kGrain, body, &job);
   }
   for (const WorkerTally& t : tallies_) {
     result |= t.bits;

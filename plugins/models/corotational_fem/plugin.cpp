@@ -23,7 +23,8 @@ class CorotationalFemPlugin {
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  static constexpr uint32_t kClaims =
+      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   // The solver's limits; rotation, solver and preconditioner size the buffers built at creation.
   static constexpr const char* kLiveParams = "max_iterations|tolerance|refactor_interval";
   static constexpr auto kParams = sparse::join_params(
@@ -39,7 +40,8 @@ class CorotationalFemPlugin {
     const sdk::Params params(kParams, setup.params, setup.param_count);
     Options options;
     // An engine older than the host services passes a shorter setup: no workers then.
-    if (setup.struct_size >= offsetof(tacta_model_setup, host) + sizeof setup.host) options.host = setup.host;
+    if (setup.struct_size >= offsetof(tacta_model_setup, host) + sizeof setup.host)
+      options.host = setup.host;
     options.rotation = static_cast<RotationMethod>(params.choice("rotation"));
     sparse::read_solver_params(params, options);
     options.static_solve = sparse::read_static_params(params, options);
@@ -82,17 +84,15 @@ class CorotationalFemPlugin {
     const double v = value.number;
     if (!(v >= spec.min_value && v <= spec.max_value) ||
         (spec.type == TACTA_PARAM_INT && v != std::floor(v)))
-      throw std::invalid_argument("corotational_fem: " + std::string(name) + " = " +
-                                  std::to_string(v) + " is outside [" +
-                                  std::to_string(spec.min_value) + ", " +
-                                  std::to_string(spec.max_value) + "]" +
-                                  (spec.type == TACTA_PARAM_INT ? " or not an integer" : ""));
+      throw std::invalid_argument(
+          "corotational_fem: " + std::string(name) + " = " + std::to_string(v) + " is outside [" +
+          std::to_string(spec.min_value) + ", " + std::to_string(spec.max_value) + "]" +
+          (spec.type == TACTA_PARAM_INT ? " or not an integer" : ""));
     Options options = model_->options();
     if (name == "max_iterations") options.max_iterations = static_cast<int>(v);
     if (name == "tolerance") options.tolerance = v;
     if (name == "refactor_interval") options.refactor_interval = static_cast<int>(v);
-    model_->set_solver_limits(options.max_iterations, options.tolerance,
-                              options.refactor_interval);
+    model_->set_solver_limits(options.max_iterations, options.tolerance, options.refactor_interval);
   }
 
  private:

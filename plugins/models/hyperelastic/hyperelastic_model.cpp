@@ -35,8 +35,8 @@ std::vector<uint32_t> extra_pairs(const tacta_mesh_view& mesh, const Options& op
 }  // namespace
 
 HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_material& material,
-                                     std::span<const double> masses,
-                                     std::span<const uint8_t> fixed, const Options& options)
+                                     std::span<const double> masses, std::span<const uint8_t> fixed,
+                                     const Options& options)
     : node_count_(mesh.node_count),
       masses_(masses.begin(), masses.end()),
       fixed_(fixed.begin(), fixed.end()),
@@ -56,8 +56,9 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
     throw std::invalid_argument("hyperelastic: expected one mass per node");
   const bool any_fixed = std::find(fixed_.begin(), fixed_.end(), uint8_t{1}) != fixed_.end();
   if (options_.mode == SolveMode::kStatic && !any_fixed)
-    throw std::invalid_argument("hyperelastic: solve: static needs fixed nodes (a free body has "
-                                "no equilibrium under a net load)");
+    throw std::invalid_argument(
+        "hyperelastic: solve: static needs fixed nodes (a free body has "
+        "no equilibrium under a net load)");
   check_free_node_masses("hyperelastic", masses_, fixed_);
   elements_.reserve(mesh.tet_count);
   for (uint32_t e = 0; e < mesh.tet_count; ++e)
@@ -65,15 +66,17 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
         checked_tet_rest("hyperelastic", mesh.rest_positions, node_count_, mesh.tets, e));
   if (options_.volumetric == Volumetric::kNodalAverage) {
     if (!has_volumetric_term(options_.material.law))
-      throw std::invalid_argument("hyperelastic: volumetric: nodal_average needs a law with a "
-                                  "volumetric term U(J) (neo_hookean or mooney_rivlin), not stvk");
+      throw std::invalid_argument(
+          "hyperelastic: volumetric: nodal_average needs a law with a "
+          "volumetric term U(J) (neo_hookean or mooney_rivlin), not stvk");
     element_material_ = without_volumetric_term(options_.material);
     nodal_ = std::make_unique<NodalVolumeTerm>(node_count_, elements_, options_.material);
     nodal_->bind(matrix_);
   }
   const size_t n = 3 * static_cast<size_t>(node_count_);
-  for (auto* buffer : {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
-                       &equilibrium_loads_, &scratch_, &product_, &last_correction_, &trial_residual_})
+  for (auto* buffer :
+       {&forces_, &residual_, &correction_, &predicted_, &start_, &trial_, &loads_,
+        &equilibrium_loads_, &scratch_, &product_, &last_correction_, &trial_residual_})
     buffer->assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
   assembled_deformation_.assign(elements_.size(), Eigen::Matrix3d::Identity());
@@ -100,8 +103,8 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
                                Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
     if (record_deformation_) assembled_deformation_[e] = deformation;
     if (track_change_) {
-      deformation_change_ = std::max(deformation_change_,
-                                     (deformation - assembled_deformation_[e]).squaredNorm());
+      deformation_change_ =
+          std::max(deformation_change_, (deformation - assembled_deformation_[e]).squaredNorm());
       // The lagged system is ruled out: the caller assembles a fresh tangent, which computes
       // the forces again, so the rest of this pass would be wasted.
       if (deformation_change_ > options_.tangent_reuse_change * options_.tangent_reuse_change)
@@ -136,8 +139,10 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     for (int p = 0; p < 10; ++p) {
       Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> stored(matrix_.block(slots[p]));
       // The stored block is (low node, high node): K_ba = K_ab^T when a's node is the higher.
-      if (element.nodes[kPairA[p]] > element.nodes[kPairB[p]]) stored += blocks[p].transpose();
-      else stored += blocks[p];
+      if (element.nodes[kPairA[p]] > element.nodes[kPairB[p]])
+        stored += blocks[p].transpose();
+      else
+        stored += blocks[p];
     }
   }
   return energy;
@@ -173,8 +178,9 @@ void HyperelasticModel::node_stress(const double* positions, double* von_mises) 
     // Cauchy stress sigma = P F^T / J, in the principal frame: g_i s_i / J.
     const double j = std::max(std::abs(frame.sigma.prod()), 1e-12);
     const Eigen::Vector3d s = psi.gradient.cwiseProduct(frame.sigma) / j;
-    const double vm = std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
-                                       (s[2] - s[0]) * (s[2] - s[0])));
+    const double vm =
+        std::sqrt(0.5 * ((s[0] - s[1]) * (s[0] - s[1]) + (s[1] - s[2]) * (s[1] - s[2]) +
+                         (s[2] - s[0]) * (s[2] - s[0])));
     for (uint32_t a : element.nodes) {  // volume-weighted average over adjacent elements
       von_mises[a] += element.volume * vm;
       weights_[a] += element.volume;

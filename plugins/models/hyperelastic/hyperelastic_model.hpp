@@ -34,10 +34,10 @@ enum class Volumetric { kElement = 0, kNodalAverage = 1 };
 
 struct Options {
   MaterialConstants material;
-  bool project_tangent = true;   // false: the exact tangent (may be indefinite; tests)
+  bool project_tangent = true;  // false: the exact tangent (may be indefinite; tests)
   Volumetric volumetric = Volumetric::kElement;
   SolveMode mode = SolveMode::kDynamic;
-  int newton_iterations = 3;       // dynamic: per step, at most
+  int newton_iterations = 3;  // dynamic: per step, at most
   // dynamic: steps whose first Newton correction reuses an earlier step's system matrix (its
   // tangent, preconditioner and Kd) before a fresh one is assembled; 0: fresh every step.
   int tangent_reuse_steps = 4;
@@ -56,7 +56,7 @@ struct NewtonCounters {
   uint64_t unconverged_steps = 0;  // dynamic: iterations ran out; static: cuts ran out
   uint64_t static_solves = 0, load_increments = 0, load_cuts = 0;
   uint64_t inverted_element_steps = 0;  // steps that ended with an inverted element
-  uint64_t lagged_tangents = 0;  // dynamic: first corrections solved with a reused system
+  uint64_t lagged_tangents = 0;         // dynamic: first corrections solved with a reused system
   double last_static_residual = 0.0;    // N: |f_int + f_ext| on the free nodes at the end
 };
 
@@ -94,9 +94,9 @@ class HyperelasticModel {
   // x holds the first iterate and the result. Returns true when converged.
   struct Objective {
     double inertia, mass_damping, stiffness_damping, potential;
-    const double* predicted;  // x_n + h v_n (inertia)
-    const double* start;      // x_n (damping)
-    const double* loads;      // N
+    const double* predicted;    // x_n + h v_n (inertia)
+    const double* start;        // x_n (damping)
+    const double* loads;        // N
     const double* first_guess;  // the first correction's CG guess, or null for zero
     int max_iterations;
     double relative_tolerance, absolute_tolerance;  // on |r|, in the residual's units
@@ -115,7 +115,7 @@ class HyperelasticModel {
   std::vector<double> masses_;
   std::vector<uint8_t> fixed_;
   Options options_;
-  MaterialConstants element_material_;  // the law, less its volumetric term when that is nodal
+  MaterialConstants element_material_;      // the law, less its volumetric term when that is nodal
   std::unique_ptr<NodalVolumeTerm> nodal_;  // null: the volumetric term stays per element
   DivergenceGuard guard_;
   sparse::BlockSparseMatrix matrix_, damping_;
@@ -139,7 +139,7 @@ class HyperelasticModel {
   bool record_deformation_ = false, track_change_ = false;
   double deformation_change_ = 0.0;
   int system_age_ = 0;
-  double system_step_ = 0.0;  // s
+  double system_step_ = 0.0;          // s
   bool linear_solve_failed_ = false;  // in this step
 };
 

@@ -26,7 +26,8 @@ bool invariant_stress(const MaterialConstants& m, const Eigen::Matrix3d& f, doub
   }
   const double j23 = std::cbrt(1.0 / (j * j));  // J^-2/3
   const double j43 = j23 * j23;
-  energy = m.c10 * (j23 * i1 - 3.0) + m.c01 * (j43 * i2 - 3.0) + 0.5 * m.bulk * (j - 1.0) * (j - 1.0);
+  energy =
+      m.c10 * (j23 * i1 - 3.0) + m.c01 * (j43 * i2 - 3.0) + 0.5 * m.bulk * (j - 1.0) * (j - 1.0);
   if (stress != nullptr) {
     const double inverse_j = 1.0 / j;
     *stress = (2.0 * m.c10 * j23 + 2.0 * m.c01 * j43 * i1) * f - (2.0 * m.c01 * j43) * (f * c) +

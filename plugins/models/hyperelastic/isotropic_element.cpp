@@ -34,8 +34,8 @@ StretchFrame rotation_variant_svd(const Eigen::Matrix3d& deformation) {
   if (f1.norm() > kDegenerate * std::max(1.0, frame.sigma[0])) {
     frame.u.col(1) = f1.normalized();
   } else {  // F is (nearly) rank one: any unit vector orthogonal to u_0
-    const Eigen::Vector3d axis = std::abs(frame.u(0, 0)) < 0.9 ? Eigen::Vector3d::UnitX()
-                                                                : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d axis =
+        std::abs(frame.u(0, 0)) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     frame.u.col(1) = frame.u.col(0).cross(axis).normalized();
   }
   frame.u.col(2) = frame.u.col(0).cross(frame.u.col(1));
@@ -76,7 +76,8 @@ DiagonalTangent diagonal_tangent(const Eigen::Vector3d& sigma, const StretchDeri
 }
 
 void element_stiffness(const StretchFrame& frame, const DiagonalTangent& tangent,
-                       const Eigen::Vector3d (&w)[4], double volume, Eigen::Matrix3d (&blocks)[10]) {
+                       const Eigen::Vector3d (&w)[4], double volume,
+                       Eigen::Matrix3d (&blocks)[10]) {
   // The modes' weights times the volume once, not per block.
   const Eigen::Matrix3d scaling = volume * tangent.scaling;
   double same[3], cross[3];

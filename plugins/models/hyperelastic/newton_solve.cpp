@@ -8,9 +8,9 @@
 namespace tacta::models::hyperelastic {
 
 namespace {
-constexpr int kMaxBacktracks = 8;       // line search halvings before the step is taken anyway
-constexpr double kArmijo = 1e-4;        // sufficient decrease, fraction of the linear model
-constexpr double kRounding = 1e-12;     // a change of Phi this small relative to Phi is noise
+constexpr int kMaxBacktracks = 8;    // line search halvings before the step is taken anyway
+constexpr double kArmijo = 1e-4;     // sufficient decrease, fraction of the linear model
+constexpr double kRounding = 1e-12;  // a change of Phi this small relative to Phi is noise
 double norm(const std::vector<double>& v) {
   double sum = 0.0;
   for (const double x : v) sum += x * x;
@@ -19,7 +19,7 @@ double norm(const std::vector<double>& v) {
 }  // namespace
 
 double HyperelasticModel::measure_at(const Objective& o, const double* x, double energy,
-                                      double* residual, double& residual_norm) noexcept {
+                                     double* residual, double& residual_norm) noexcept {
   const size_t n = residual_.size();
   const bool has_fixed = !fixed_.empty();
   for (size_t k = 0; k < n; ++k) scratch_[k] = x[k] - o.start[k];
@@ -66,8 +66,8 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       track_change_ = lagged && !last;  // may cut the pass short: only when a tangent follows
       const double energy = element_pass(x, forces_.data(), 0.0);
       track_change_ = false;
-      lagged = lagged && deformation_change_ <=
-                             options_.tangent_reuse_change * options_.tangent_reuse_change;
+      lagged = lagged &&
+               deformation_change_ <= options_.tangent_reuse_change * options_.tangent_reuse_change;
       if (last || lagged) value = measure_at(o, x, energy, residual_.data(), residual_norm);
     }
     if (!measured && !last && !lagged) {
@@ -113,8 +113,10 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       system_valid_ = o.reuse_system;
       if (iteration == 0) system_age_ = 0;  // the age of Kd, which only a first iterate sets
     }
-    if (iteration == 0 && o.first_guess != nullptr) std::copy_n(o.first_guess, n, correction_.begin());
-    else std::fill(correction_.begin(), correction_.end(), 0.0);
+    if (iteration == 0 && o.first_guess != nullptr)
+      std::copy_n(o.first_guess, n, correction_.begin());
+    else
+      std::fill(correction_.begin(), correction_.end(), 0.0);
     if (!solver_->solve(matrix_, residual_.data(), correction_.data(), lagged).converged) {
       linear_solve_failed_ = true;
       system_valid_ = false;  // the next step starts from a fresh tangent
@@ -132,8 +134,8 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       for (size_t k = 0; k < n; ++k) trial_[k] = x[k] + t * correction_[k];
       std::fill(forces_.begin(), forces_.end(), 0.0);
       const double energy = element_pass(trial_.data(), forces_.data(), 0.0);
-      const double trial_value = measure_at(o, trial_.data(), energy, trial_residual_.data(),
-                                            trial_norm);
+      const double trial_value =
+          measure_at(o, trial_.data(), energy, trial_residual_.data(), trial_norm);
       const bool decreased = trial_value <= value - kArmijo * t * slope;
       const bool in_rounding = std::abs(trial_value - value) <= kRounding * std::abs(value) &&
                                trial_norm <= 0.5 * residual_norm;
@@ -172,10 +174,18 @@ uint32_t HyperelasticModel::step_dynamic(tacta_body_state& state, double h) noex
   std::copy(predicted_.begin(), predicted_.end(), state.positions);
   if (h != system_step_) system_valid_ = false;  // A holds h in its weights
   system_step_ = h;
-  const Objective objective{1.0, h * rayleigh_mass_, h * rayleigh_stiffness_, h * h,
-                            predicted_.data(), start_.data(), loads_.data(),
-                            last_correction_.data(), options_.newton_iterations,
-                            options_.newton_tolerance, 0.0, true};
+  const Objective objective{1.0,
+                            h * rayleigh_mass_,
+                            h * rayleigh_stiffness_,
+                            h * h,
+                            predicted_.data(),
+                            start_.data(),
+                            loads_.data(),
+                            last_correction_.data(),
+                            options_.newton_iterations,
+                            options_.newton_tolerance,
+                            0.0,
+                            true};
   // Newton stopping at its iteration cap is the usual haptic-rate compromise (counted); a
   // linear solve that failed every fallback is a warning.
   if (!newton(objective, state.positions)) {
@@ -202,8 +212,8 @@ uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
   double load_scale2 = 0.0, reaction2 = 0.0;
   for (size_t k = 0; k < n; ++k) {
     const bool held = !fixed_.empty() && fixed_[k / 3];
-    (held ? reaction2 : load_scale2) += held ? forces_[k] * forces_[k]
-                                             : state.external_forces[k] * state.external_forces[k];
+    (held ? reaction2 : load_scale2) +=
+        held ? forces_[k] * forces_[k] : state.external_forces[k] * state.external_forces[k];
   }
   const double load_scale = std::max({std::sqrt(load_scale2), std::sqrt(reaction2), 1e-12});
   double done = 0.0, increment = 1.0 / std::max(1, options_.load_steps);
@@ -212,11 +222,21 @@ uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
   while (done < 1.0 && !failed) {
     const double target = std::min(1.0, done + increment);
     for (size_t k = 0; k < n; ++k)
-      loads_[k] = equilibrium_loads_[k] + target * (state.external_forces[k] - equilibrium_loads_[k]);
+      loads_[k] =
+          equilibrium_loads_[k] + target * (state.external_forces[k] - equilibrium_loads_[k]);
     std::copy_n(state.positions, n, start_.begin());
-    const Objective objective{0.0, 0.0, 0.0, 1.0, start_.data(), start_.data(), loads_.data(),
-                              nullptr, options_.static_iterations, 0.0,
-                              options_.static_tolerance * load_scale, false};
+    const Objective objective{0.0,
+                              0.0,
+                              0.0,
+                              1.0,
+                              start_.data(),
+                              start_.data(),
+                              loads_.data(),
+                              nullptr,
+                              options_.static_iterations,
+                              0.0,
+                              options_.static_tolerance * load_scale,
+                              false};
     ++counters_.load_increments;
     if (newton(objective, state.positions)) {
       done = target;
@@ -242,8 +262,8 @@ uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
 uint32_t HyperelasticModel::step(tacta_body_state& state, double dt) noexcept {
   ++counters_.steps;
   linear_solve_failed_ = false;
-  uint32_t result = options_.mode == SolveMode::kStatic ? solve_static(state)
-                                                        : step_dynamic(state, dt);
+  uint32_t result =
+      options_.mode == SolveMode::kStatic ? solve_static(state) : step_dynamic(state, dt);
   if (inverted_) {
     result |= TACTA_STEP_INVERTED_ELEMENT;
     ++counters_.inverted_element_steps;

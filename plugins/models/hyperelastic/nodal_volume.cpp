@@ -23,8 +23,8 @@ VolumetricDerivatives exact_volumetric(const MaterialConstants& m, double j) {
 }
 
 // The sorted unique nodes of the elements around each node (CSR), from 4 nodes per element.
-void build_stars(uint32_t node_count, std::span<const uint32_t> tets,
-                 std::vector<uint32_t>& starts, std::vector<uint32_t>& nodes) {
+void build_stars(uint32_t node_count, std::span<const uint32_t> tets, std::vector<uint32_t>& starts,
+                 std::vector<uint32_t>& nodes) {
   std::vector<std::vector<uint32_t>> star(node_count);
   for (size_t e = 0; e + 3 < tets.size(); e += 4)
     for (int a = 0; a < 4; ++a)

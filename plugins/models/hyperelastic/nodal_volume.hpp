@@ -55,16 +55,16 @@ class NodalVolumeTerm {
  private:
   std::span<const TetRest> elements_;
   MaterialConstants material_;
-  std::vector<double> rest_volume_;                // V_i, m^3
+  std::vector<double> rest_volume_;                 // V_i, m^3
   std::vector<uint32_t> star_starts_, star_nodes_;  // per node: sorted 1-ring (itself included)
   std::vector<uint32_t> entry_starts_, entry_elements_;  // per node: adjacent elements
-  std::vector<uint32_t> entry_positions_;  // per entry: its 4 nodes' places in the star
-  std::vector<uint32_t> pair_starts_, pair_slots_;  // per node: the star's pairs p <= r
-  std::vector<Eigen::Matrix3d> deformation_;       // F per element
-  std::vector<Eigen::Vector3d> volume_gradient_;   // dv_e/dx_a, 4 per element, m^2
-  std::vector<double> volume_, pressure_;          // v_i (m^3), then U'(J_i) per node (Pa)
+  std::vector<uint32_t> entry_positions_;             // per entry: its 4 nodes' places in the star
+  std::vector<uint32_t> pair_starts_, pair_slots_;    // per node: the star's pairs p <= r
+  std::vector<Eigen::Matrix3d> deformation_;          // F per element
+  std::vector<Eigen::Vector3d> volume_gradient_;      // dv_e/dx_a, 4 per element, m^2
+  std::vector<double> volume_, pressure_;             // v_i (m^3), then U'(J_i) per node (Pa)
   std::vector<double> element_pressure_, curvature_;  // p_e (Pa); U''(J_i) / V_i (Pa/m^3)
-  std::vector<Eigen::Vector3d> star_gradient_;     // scratch: q_i over the star, m^2
+  std::vector<Eigen::Vector3d> star_gradient_;        // scratch: q_i over the star, m^2
 };
 
 }  // namespace tacta::models::hyperelastic

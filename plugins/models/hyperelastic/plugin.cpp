@@ -31,7 +31,8 @@ class HyperelasticPlugin {
       "projected tangents, implicit Newton steps with line search, or static equilibrium";
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  static constexpr uint32_t kClaims =
+      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   // Material and dynamic-step parameters; the static and linear solves come from sparse_solvers.
   static constexpr std::array<tacta_param_spec, 11> kModelParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,
@@ -51,7 +52,8 @@ class HyperelasticPlugin {
                         "nu >= 0.45 and the law is neo_hookean or mooney_rivlin"),
       sdk::choice_param("tangent", "projected|exact", 0,
                         "projected: negative tangent eigenvalues set to 0 (robust); exact"),
-      sdk::int_param("newton_iterations", 3, 1, 100, "dynamic: Newton iterations per step, at most"),
+      sdk::int_param("newton_iterations", 3, 1, 100,
+                     "dynamic: Newton iterations per step, at most"),
       sdk::real_param("newton_tolerance", "", 1e-3, 1e-14, 1.0,
                       "dynamic: Newton stops when the residual falls below this fraction of "
                       "its first value"),
@@ -65,9 +67,10 @@ class HyperelasticPlugin {
                       "further than this (Frobenius norm) from the F of that assembly"),
   };
   static constexpr auto kParams = sparse::join_params(
-      kModelParams, sparse::static_param_specs("dynamic: backward Euler steps; static: each "
-                                                  "step finds equilibrium under the current "
-                                                  "loads and held nodes (velocities 0)"),
+      kModelParams,
+      sparse::static_param_specs("dynamic: backward Euler steps; static: each "
+                                 "step finds equilibrium under the current "
+                                 "loads and held nodes (velocities 0)"),
       // CG to 1e-4: a tenth of newton_tolerance (inexact Newton), which the residual test
       // after each correction backs; tighter solves moved the liver demo by under 1e-6.
       sparse::solver_param_specs({.max_iterations = 50, .tolerance = 1e-4}));
@@ -87,21 +90,23 @@ class HyperelasticPlugin {
     if (m.bulk == 0.0) m.bulk = m.lambda + 2.0 * m.mu / 3.0;
     m.min_stretch = params.real("min_stretch");
     if (m.law != MaterialLaw::kMooneyRivlin && !(m.mu > 0.0 && m.lambda + 2.0 * m.mu / 3.0 > 0.0))
-      throw std::invalid_argument("hyperelastic: the material needs lame_mu > 0 and a positive "
-                                  "bulk modulus (got lambda " + std::to_string(m.lambda) +
-                                  " Pa, mu " + std::to_string(m.mu) + " Pa)");
+      throw std::invalid_argument(
+          "hyperelastic: the material needs lame_mu > 0 and a positive "
+          "bulk modulus (got lambda " +
+          std::to_string(m.lambda) + " Pa, mu " + std::to_string(m.mu) + " Pa)");
     if (m.law == MaterialLaw::kMooneyRivlin && !(m.c10 + m.c01 > 0.0 && m.bulk > 0.0))
-      throw std::invalid_argument("hyperelastic: mooney_rivlin needs c10 + c01 > 0 and a "
-                                  "positive bulk modulus");
-    options.volumetric = volumetric_choice(params.choice("volumetric"), m.law,
-                                           material.poisson_ratio);
+      throw std::invalid_argument(
+          "hyperelastic: mooney_rivlin needs c10 + c01 > 0 and a "
+          "positive bulk modulus");
+    options.volumetric =
+        volumetric_choice(params.choice("volumetric"), m.law, material.poisson_ratio);
     options.project_tangent = params.choice("tangent") == 0;
     options.newton_iterations = params.integer("newton_iterations");
     options.newton_tolerance = params.real("newton_tolerance");
     options.tangent_reuse_steps = params.integer("tangent_reuse_steps");
     options.tangent_reuse_change = params.real("tangent_reuse_change");
-    options.mode = sparse::read_static_params(params, options) ? SolveMode::kStatic
-                                                               : SolveMode::kDynamic;
+    options.mode =
+        sparse::read_static_params(params, options) ? SolveMode::kStatic : SolveMode::kDynamic;
     sparse::read_solver_params(params, options.solver);
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<HyperelasticModel>(
@@ -139,5 +144,4 @@ class HyperelasticPlugin {
 }  // namespace
 }  // namespace tacta::models::hyperelastic
 
-TACTA_PLUGIN_EXPORT(
-    tacta::sdk::model_descriptor<tacta::models::hyperelastic::HyperelasticPlugin>())
+TACTA_PLUGIN_EXPORT(tacta::sdk::model_descriptor<tacta::models::hyperelastic::HyperelasticPlugin>())

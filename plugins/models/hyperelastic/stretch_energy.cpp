@@ -68,8 +68,8 @@ StretchDerivatives st_venant_kirchhoff(const MaterialConstants& m, const Eigen::
     const double stress = 2.0 * m.mu * e[i] + m.lambda * trace;  // second Piola-Kirchhoff, Pa
     d.gradient[i] = stress * s[i];
     for (int k = 0; k < 3; ++k)
-      d.hessian(i, k) = i == k ? (2.0 * m.mu + m.lambda) * s[i] * s[i] + stress
-                               : m.lambda * s[i] * s[k];
+      d.hessian(i, k) =
+          i == k ? (2.0 * m.mu + m.lambda) * s[i] * s[i] + stress : m.lambda * s[i] * s[k];
   }
   return d;
 }

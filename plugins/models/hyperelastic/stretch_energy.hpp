@@ -21,15 +21,15 @@ enum class MaterialLaw { kNeoHookean = 0, kStVenantKirchhoff = 1, kMooneyRivlin 
 
 struct MaterialConstants {
   MaterialLaw law = MaterialLaw::kNeoHookean;
-  double mu = 0.0, lambda = 0.0;                // Pa: neo_hookean and stvk
-  double c10 = 0.0, c01 = 0.0, bulk = 0.0;      // Pa: mooney_rivlin
+  double mu = 0.0, lambda = 0.0;            // Pa: neo_hookean and stvk
+  double c10 = 0.0, c01 = 0.0, bulk = 0.0;  // Pa: mooney_rivlin
   double min_stretch = 0.1;  // principal stretches are clamped here before evaluation
 };
 
 struct StretchDerivatives {
-  double energy = 0.0;                                  // J/m^3
-  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();   // d psi / d sigma_i, Pa
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();    // d2 psi / d sigma_i d sigma_j, Pa
+  double energy = 0.0;                                 // J/m^3
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // d psi / d sigma_i, Pa
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();   // d2 psi / d sigma_i d sigma_j, Pa
 };
 
 // Exact derivatives at sigma (no clamping).

@@ -1,9 +1,10 @@
 #include "block_sparse.hpp"
-#include "hot_path.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+
+#include "hot_path.hpp"
 
 namespace tacta::models::sparse {
 
@@ -53,8 +54,7 @@ uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
 
 void BlockSparseMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
 
-TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y,
-                                                 size_t stride) const {
+TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y, size_t stride) const {
   const double* v = values_.data();
   double x_dot_y = 0.0;
   std::fill_n(y, stride * node_count_, 0.0);

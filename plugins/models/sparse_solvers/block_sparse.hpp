@@ -49,7 +49,7 @@ class BlockSparseMatrix {
   std::vector<uint32_t> row_starts_;  // node_count + 1
   std::vector<uint32_t> columns_;     // block column per block, sorted, diagonal first
   std::vector<uint32_t> element_slots_;
-  std::vector<double> values_;        // 9 per block, row-major
+  std::vector<double> values_;               // 9 per block, row-major
   std::vector<uint32_t> fixed_offdiagonal_;  // blocks touching a fixed node, off the diagonal
   bool fixed_built_ = false;
 };

@@ -1,9 +1,10 @@
 #include "incomplete_cholesky.hpp"
-#include "hot_path.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <algorithm>
+
+#include "hot_path.hpp"
 
 namespace tacta::models::sparse {
 

@@ -32,9 +32,9 @@ class BlockIncompleteCholesky {
   std::vector<uint32_t> row_starts_, columns_;  // a copy of the pattern
   std::vector<uint32_t> update_starts_;         // per row k: its updates in updates_
   std::vector<Update> updates_;
-  std::vector<double> factor_;        // 9 per block: D on the diagonal, U off it
+  std::vector<double> factor_;         // 9 per block: D on the diagonal, U off it
   std::vector<double> pivot_inverse_;  // 9 per node: D^-1
-  std::vector<double> scaled_row_;    // D_k^-1 U_kj for the row being eliminated
+  std::vector<double> scaled_row_;     // D_k^-1 U_kj for the row being eliminated
 };
 
 }  // namespace tacta::models::sparse

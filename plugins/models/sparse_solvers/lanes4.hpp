@@ -12,5 +12,4 @@ typedef double Lanes4 __attribute__((vector_size(32)));
 }  // namespace tacta::models::sparse
 
 // All four lanes set to one value.
-#define TACTA_SPLAT4(value) \
-  (::tacta::models::sparse::Lanes4{(value), (value), (value), (value)})
+#define TACTA_SPLAT4(value) (::tacta::models::sparse::Lanes4{(value), (value), (value), (value)})

@@ -20,9 +20,8 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& pattern,
-                                                 Preconditioner preconditioner,
-                                                 int max_iterations, double tolerance,
-                                                 int refactor_interval)
+                                                 Preconditioner preconditioner, int max_iterations,
+                                                 double tolerance, int refactor_interval)
     : preconditioner_(preconditioner),
       max_iterations_(max_iterations),
       tolerance_(tolerance),
@@ -73,8 +72,8 @@ void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) c
   }
 }
 
-TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update(
-    double alpha, double converged_norm2) {
+TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update(double alpha,
+                                                                         double converged_norm2) {
   const size_t nodes = r_.size() / 4;
   if (!incomplete_cholesky_) {  // one pass, 4-wide: the (block) Jacobi inverse is local
     const Lanes4 a4 = TACTA_SPLAT4(alpha);
@@ -118,14 +117,14 @@ double ConjugateGradientSolver::multiply(const BlockSparseMatrix& a, const doubl
   return incomplete_cholesky_ ? a.multiply(x, y, 4) : padded_.multiply_symmetric(x, y);
 }
 
-SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b,
-                                           double* x, bool keep_preconditioner) {
+SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
+                                           bool keep_preconditioner) {
   if (!keep_preconditioner) build_preconditioner(a);
   return iterate(a, b, x, max_iterations_);
 }
 
-SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const double* b,
-                                             double* x, int max_iterations) {
+SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const double* b, double* x,
+                                             int max_iterations) {
   const size_t nodes = r_.size() / 4;
   double b_norm2 = 0.0;
   for (size_t i = 0; i < 3 * nodes; ++i) b_norm2 += b[i] * b[i];
@@ -184,8 +183,8 @@ SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const d
 // Exposes Eigen's numeric factorisation of an already ordered upper-triangular matrix, which
 // skips the copy that SimplicialLDLT::factorize() makes on every call.
 struct CholeskySolver::Ldlt
-    : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>,
-                                   Eigen::Upper, Eigen::NaturalOrdering<int>> {
+    : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Upper,
+                                   Eigen::NaturalOrdering<int>> {
   void factorize_preordered_upper(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& a) {
     this->template factorize_preordered<true>(a);
   }

@@ -22,8 +22,8 @@ enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1, kIncompleteCholesky =
 struct SolveReport {
   int iterations = 0;
   bool converged = true;
-  double relative_residual = 0.0;  // ||b - A x|| / ||b|| at exit (CG's recurrence residual)
-  int replaced_pivots = 0;         // IC(0) pivots replaced by A's diagonal block
+  double relative_residual = 0.0;    // ||b - A x|| / ||b|| at exit (CG's recurrence residual)
+  int replaced_pivots = 0;           // IC(0) pivots replaced by A's diagonal block
   bool warm_start_rejected = false;  // ||b - A x0|| > ||b||: CG started from zero instead
 };
 

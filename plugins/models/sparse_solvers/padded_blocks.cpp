@@ -8,7 +8,6 @@
 
 namespace tacta::models::sparse {
 
-
 PaddedBlocks::PaddedBlocks(const BlockSparseMatrix& pattern)
     : node_count_(pattern.node_count()),
       row_starts_(pattern.row_starts().begin(), pattern.row_starts().end()),
@@ -44,7 +43,7 @@ TACTA_HOT_PATH double PaddedBlocks::multiply_symmetric(const double* __restrict 
       acc1 += b1 * xj;
       acc2 += b2 * xj;
       if (k == row_starts_[i]) continue;  // the diagonal block has no mirror
-      Lanes4 yj;  // the mirrored block (j, i) = B^T
+      Lanes4 yj;                          // the mirrored block (j, i) = B^T
       std::memcpy(&yj, y + j, sizeof yj);
       yj += x0 * b0 + x1 * b1 + x2 * b2;
       std::memcpy(y + j, &yj, sizeof yj);

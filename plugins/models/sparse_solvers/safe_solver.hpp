@@ -31,12 +31,12 @@ struct SolverOptions {
 // Counts since creation.
 struct SolverCounters {
   uint64_t solves = 0;
-  uint64_t cg_iterations = 0;         // every pass included
-  uint64_t warm_starts_rejected = 0;  // the caller's guess was worse than zero
-  uint64_t restarts = 0;              // CG not converged: restarted from zero, more iterations
-  uint64_t direct_fallbacks = 0;      // still not converged: sparse LDL^T solved it
-  uint64_t direct_solves_held = 0;    // solves sent straight to LDL^T after a recent fallback
-  uint64_t unconverged = 0;           // solves left with a residual above the tolerance
+  uint64_t cg_iterations = 0;          // every pass included
+  uint64_t warm_starts_rejected = 0;   // the caller's guess was worse than zero
+  uint64_t restarts = 0;               // CG not converged: restarted from zero, more iterations
+  uint64_t direct_fallbacks = 0;       // still not converged: sparse LDL^T solved it
+  uint64_t direct_solves_held = 0;     // solves sent straight to LDL^T after a recent fallback
+  uint64_t unconverged = 0;            // solves left with a residual above the tolerance
   double max_relative_residual = 0.0;  // of the accepted solutions
 };
 

@@ -1,11 +1,10 @@
 #include "cli_process.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <fstream>
+#include <spawn.h>
 #include <sstream>
+#include <sys/wait.h>
 
 extern char** environ;
 
@@ -19,7 +18,8 @@ std::string read_text(const std::filesystem::path& file) {
 }
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(TACTA_BINARY_DIR) / "test_output" / "apps_compare" / name;
+  const std::filesystem::path dir =
+      std::filesystem::path(TACTA_BINARY_DIR) / "test_output" / "apps_compare" / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -27,7 +27,8 @@ std::filesystem::path fresh_dir(const std::string& name) {
 
 CliResult run_tacta(const std::vector<std::string>& args, const std::filesystem::path& scratch) {
   std::filesystem::create_directories(scratch);
-  const std::string out_file = (scratch / "stdout.txt").string(), err_file = (scratch / "stderr.txt").string();
+  const std::string out_file = (scratch / "stdout.txt").string(),
+                    err_file = (scratch / "stderr.txt").string();
   std::vector<std::string> all{TACTA_CLI};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -36,8 +37,10 @@ CliResult run_tacta(const std::vector<std::string>& args, const std::filesystem:
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   posix_spawn_file_actions_addchdir_np(&actions, TACTA_SOURCE_DIR);
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);

@@ -1,9 +1,8 @@
 // `tacta snapshot`: the demo scene at 0.5 s gives a real picture of the requested size; bad times
 // are bad input and write nothing.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <set>
 
 #include "cli_process.hpp"
@@ -29,8 +28,8 @@ double luminance_spread(const render::Image& image) {
 TEST(SnapshotCommand, LiverAtHalfASecondIsARealPictureOfTheRequestedSize) {
   const auto dir = fresh_dir("liver");
   const auto png = dir / "liver_0.5s.png";
-  const CliResult r = run_tacta({"snapshot", "scenes/liver_palpation.yaml", "--at", "0.5", "--out", png.string(),
-                                 "--width", "240", "--height", "160"},
+  const CliResult r = run_tacta({"snapshot", "scenes/liver_palpation.yaml", "--at", "0.5", "--out",
+                                 png.string(), "--width", "240", "--height", "160"},
                                 dir);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const render::Image image = render::read_png(png);
@@ -39,7 +38,8 @@ TEST(SnapshotCommand, LiverAtHalfASecondIsARealPictureOfTheRequestedSize) {
   EXPECT_GT(luminance_spread(image), 5.0);
   std::set<uint32_t> colours;
   for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
-    colours.insert(uint32_t{image.rgba[i]} << 16 | uint32_t{image.rgba[i + 1]} << 8 | image.rgba[i + 2]);
+    colours.insert(uint32_t{image.rgba[i]} << 16 | uint32_t{image.rgba[i + 1]} << 8 |
+                   image.rgba[i + 2]);
   EXPECT_GT(colours.size(), 50u) << "a shaded body has many colours";
   EXPECT_NE(r.out.find("t = 0.5"), std::string::npos) << r.out;
 }
@@ -50,10 +50,11 @@ TEST(SnapshotCommand, AFaultedRunExitsOneAndStillWritesThePicture) {
   // default, `auto`, takes implicit Euler there.)
   const auto dir = fresh_dir("faulted");
   const auto png = dir / "beam.png";
-  const CliResult r = run_tacta({"snapshot", "scenes/examples/beam_under_gravity.yaml", "--at", "0.05", "--set",
-                                 "bodies.*.model={name: tensor_mass, integrator: central_difference}", "--out", png.string(),
-                                 "--width", "64", "--height", "48"},
-                                dir);
+  const CliResult r =
+      run_tacta({"snapshot", "scenes/examples/beam_under_gravity.yaml", "--at", "0.05", "--set",
+                 "bodies.*.model={name: tensor_mass, integrator: central_difference}", "--out",
+                 png.string(), "--width", "64", "--height", "48"},
+                dir);
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("FROZEN"), std::string::npos) << r.out;
   const render::Image image = render::read_png(png);
@@ -64,7 +65,8 @@ TEST(SnapshotCommand, AFaultedRunExitsOneAndStillWritesThePicture) {
 TEST(SnapshotCommand, NegativeTimeIsBadInputAndWritesNothing) {
   const auto dir = fresh_dir("negative_time");
   const auto png = dir / "never.png";
-  const CliResult r = run_tacta({"snapshot", "scenes/liver_palpation.yaml", "--at=-0.5", "--out", png.string()}, dir);
+  const CliResult r = run_tacta(
+      {"snapshot", "scenes/liver_palpation.yaml", "--at=-0.5", "--out", png.string()}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("--at"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(png));
@@ -72,9 +74,9 @@ TEST(SnapshotCommand, NegativeTimeIsBadInputAndWritesNothing) {
 
 TEST(SnapshotCommand, ZeroWidthIsBadInput) {
   const auto dir = fresh_dir("zero_width");
-  const CliResult r = run_tacta(
-      {"snapshot", "scenes/liver_palpation.yaml", "--at", "0.1", "--out", (dir / "x.png").string(), "--width", "0"},
-      dir);
+  const CliResult r = run_tacta({"snapshot", "scenes/liver_palpation.yaml", "--at", "0.1", "--out",
+                                 (dir / "x.png").string(), "--width", "0"},
+                                dir);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("--width"), std::string::npos) << r.err;
 }

@@ -1,7 +1,6 @@
 // Screen <-> world for the viewer's mouse, against hand-computed pinhole geometry.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "camera_ray.hpp"
 
@@ -50,11 +49,13 @@ TEST(CameraRay, ProjectInvertsThePixelRay) {
 TEST(CameraRay, FacingPlaneKeepsTheDepth) {
   const Camera c = looking_down_z();
   const Vec3d anchor{0, 0, -0.2};
-  const auto hit = intersect_facing_plane(pixel_ray(c, {800, 600}, 400, 150), anchor, camera_forward(c));
+  const auto hit =
+      intersect_facing_plane(pixel_ray(c, {800, 600}, 400, 150), anchor, camera_forward(c));
   ASSERT_TRUE(hit.has_value());
   EXPECT_NEAR((*hit)[2], -0.2, 1e-12);
   EXPECT_NEAR((*hit)[1], 1.2 * std::tan(0.35) * 0.5, 1e-12);  // a quarter height up, 1.2 m away
-  EXPECT_FALSE(intersect_facing_plane({{0, 0, 1}, {1, 0, 0}}, anchor, {0, 0, -1}).has_value());  // parallel
+  EXPECT_FALSE(
+      intersect_facing_plane({{0, 0, 1}, {1, 0, 0}}, anchor, {0, 0, -1}).has_value());  // parallel
 }
 
 }  // namespace

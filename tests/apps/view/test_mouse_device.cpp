@@ -1,8 +1,7 @@
 // The mouse device plugin through the real C ABI (its `input` entry feeds one instance), and the
 // viewer's MouseTool feeding a device.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "mouse_tool.hpp"
 #include "plugin_fixture.hpp"
@@ -15,8 +14,14 @@ constexpr double kDt = 1e-3;  // s, the haptic period
 
 struct MouseInstance {
   explicit MouseInstance(const testing::LoadedPlugin& plugin)
-      : api(plugin.api<tacta_device_api>("mouse")), params(testing::default_params(plugin.descriptor("mouse"))) {
-    tacta_device_setup setup{sizeof(tacta_device_setup), params.data(), static_cast<uint32_t>(params.size()), "", 1, kDt};
+      : api(plugin.api<tacta_device_api>("mouse")),
+        params(testing::default_params(plugin.descriptor("mouse"))) {
+    tacta_device_setup setup{sizeof(tacta_device_setup),
+                             params.data(),
+                             static_cast<uint32_t>(params.size()),
+                             "",
+                             1,
+                             kDt};
     char message[256] = {0};
     EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
     EXPECT_EQ(api.connect(instance, message, sizeof message), TACTA_OK) << message;
@@ -90,7 +95,8 @@ TEST(MouseDevice, FollowsTheFedTargetAndYieldsToTheRenderedForce) {
 TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
   testing::LoadedPlugin plugin("tacta_mouse.so");
   MouseInstance mouse(plugin);
-  MouseTool tool([&mouse](const Vec3d& target) { mouse.api.input(mouse.instance, target.data(), 3); });
+  MouseTool tool(
+      [&mouse](const Vec3d& target) { mouse.api.input(mouse.instance, target.data(), 3); });
   ASSERT_TRUE(tool.available());
   EXPECT_FALSE(MouseTool({}).available()) << "no feed: a scene without a mouse device";
   Camera camera;

@@ -1,7 +1,6 @@
 // Parameter panel values: schema defaults, scene overrides, and the ParamSet in schema order.
-#include <gtest/gtest.h>
-
 #include <array>
+#include <gtest/gtest.h>
 
 #include "param_values.hpp"
 #include "tacta/sdk/common.hpp"
@@ -43,7 +42,8 @@ TEST(ParamValues, ParamSetIsInSchemaOrderWithChoiceNames) {
   v[1].number = 7.5;
   const ParamSet set = to_param_set(v);
   ASSERT_EQ(set.size(), 5u);
-  EXPECT_EQ(set.names(), (std::vector<std::string>{"solver", "damping", "iterations", "origin", "file"}));
+  EXPECT_EQ(set.names(),
+            (std::vector<std::string>{"solver", "damping", "iterations", "origin", "file"}));
   EXPECT_STREQ(set.data()[0].text, "lu");
   EXPECT_EQ(set.data()[0].number, 2);
   EXPECT_EQ(set.data()[1].number, 7.5);

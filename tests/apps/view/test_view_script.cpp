@@ -1,6 +1,5 @@
 // The --script driver: parsing (with clear errors) and the pointer tracks it plays.
 #include <gtest/gtest.h>
-
 #include <stdexcept>
 
 #include "view_script.hpp"
@@ -96,11 +95,13 @@ TEST(ViewScript, PressAimsBelowTheTopPointAndHolds) {
 
 TEST(ViewScript, ActionsReachTheHostAndRefusalsAreKept) {
   FakeHost host;
-  ScriptPlayer player(parse_script("1:swap liver refused; 1:swap liver mass_spring; 2:set liver damping 3; "
-                                   "3:pause; 3:step; 4:play; 5:mark; 9:quit"));
+  ScriptPlayer player(
+      parse_script("1:swap liver refused; 1:swap liver mass_spring; 2:set liver damping 3; "
+                   "3:pause; 3:step; 4:play; 5:mark; 9:quit"));
   for (int frame = 0; frame < 10; ++frame) player.advance(frame, host);
   EXPECT_EQ(host.calls, (std::vector<std::string>{"swap liver refused", "swap liver mass_spring",
-                                                   "set liver damping 3.000000", "pause", "step", "play", "mark", "quit"}));
+                                                  "set liver damping 3.000000", "pause", "step",
+                                                  "play", "mark", "quit"}));
   EXPECT_EQ(player.failures(), (std::vector<std::string>{"1:swap"}));
 }
 

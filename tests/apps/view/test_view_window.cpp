@@ -2,19 +2,17 @@
 // liver palpation scene with the mouse as its device, a scripted model swap, a parameter change
 // and a press with the mouse; then start-paused stepping. Checks the screenshot is a real
 // picture and the status JSON the viewer writes on exit.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
+#include <spawn.h>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
 #include <vector>
 
 #include "tacta/render/image.hpp"
@@ -101,17 +99,19 @@ double non_background_fraction(const tacta::render::Image& image) {
 TEST(TactaViewWindow, SwapsModelsAndPressesWithTheMouse) {
   const fs::path dir = fresh_dir("swap_and_press");
   // Frames at the window's 60 Hz: ~1.3 s. --quit-after is only a guard for slow (sanitizer) builds.
-  const ViewRun run = run_view({"scenes/liver_palpation.yaml", "--mouse", "--size", "640x400", "--quit-after", "60",
-                            "--screenshot", (dir / "view.png").string(), "--status", (dir / "status.json").string(),
-                            "--script",
-                            "5:set liver max_iterations 40; 10:swap liver mass_spring; 15:press 0.012 15; 75:quit"},
-                           dir);
+  const ViewRun run = run_view(
+      {"scenes/liver_palpation.yaml", "--mouse", "--size", "640x400", "--quit-after", "60",
+       "--screenshot", (dir / "view.png").string(), "--status", (dir / "status.json").string(),
+       "--script",
+       "5:set liver max_iterations 40; 10:swap liver mass_spring; 15:press 0.012 15; 75:quit"},
+      dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string status = read_text(dir / "status.json");
   ASSERT_FALSE(status.empty()) << run.out << run.err;
   EXPECT_GE(json_number(status, "frames"), 75);
   EXPECT_EQ(json_number(status, "swaps_requested"), 2);
-  EXPECT_EQ(json_raw(status, "swap_history"), R"(["liver -> corotational_fem", "liver -> mass_spring"])");
+  EXPECT_EQ(json_raw(status, "swap_history"),
+            R"(["liver -> corotational_fem", "liver -> mass_spring"])");
   // The haptic side runs the swapped model: the name comes from the last snapshot.
   EXPECT_EQ(json_raw(status, "body_models"), R"(["mass_spring"])");
   EXPECT_EQ(json_raw(status, "body_frozen"), "[false]");
@@ -130,9 +130,10 @@ TEST(TactaViewWindow, SwapsModelsAndPressesWithTheMouse) {
 
 TEST(TactaViewWindow, PausedStartAdvancesOnlyBySteps) {
   const fs::path dir = fresh_dir("paused_steps");
-  const ViewRun run = run_view({"scenes/liver_palpation.yaml", "--paused", "--size", "320x240", "--quit-after", "60",
-                            "--status", (dir / "status.json").string(), "--script", "5:step; 10:step; 40:quit"},
-                           dir);
+  const ViewRun run = run_view(
+      {"scenes/liver_palpation.yaml", "--paused", "--size", "320x240", "--quit-after", "60",
+       "--status", (dir / "status.json").string(), "--script", "5:step; 10:step; 40:quit"},
+      dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string status = read_text(dir / "status.json");
   // Three lockstep runs of one 1/60 s frame each (the first picture and two steps), nothing in
@@ -143,16 +144,17 @@ TEST(TactaViewWindow, PausedStartAdvancesOnlyBySteps) {
 
 TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
   const fs::path dir = fresh_dir("pause");
-  const ViewRun run = run_view({"scenes/liver_palpation.yaml", "--size", "320x240", "--quit-after", "60", "--status",
-                                (dir / "status.json").string(), "--script", "20:pause; 30:mark; 80:mark; 81:quit"},
-                               dir);
+  const ViewRun run = run_view(
+      {"scenes/liver_palpation.yaml", "--size", "320x240", "--quit-after", "60", "--status",
+       (dir / "status.json").string(), "--script", "20:pause; 30:mark; 80:mark; 81:quit"},
+      dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string status = read_text(dir / "status.json");
   // (frame, simulated time shown) ten frames after the pause and fifty frames later: it played,
   // then the clock stood still while the window ran on (at least 50/60 s of wall time).
   double mark_frame[2] = {0, 0}, mark_time[2] = {0, 0};
-  ASSERT_EQ(std::sscanf(json_raw(status, "marks").c_str(), "[[%lf, %lf], [%lf, %lf]]", &mark_frame[0], &mark_time[0],
-                        &mark_frame[1], &mark_time[1]),
+  ASSERT_EQ(std::sscanf(json_raw(status, "marks").c_str(), "[[%lf, %lf], [%lf, %lf]]",
+                        &mark_frame[0], &mark_time[0], &mark_frame[1], &mark_time[1]),
             4)
       << status;
   EXPECT_EQ(mark_frame[0], 30);

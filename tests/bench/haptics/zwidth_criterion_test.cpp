@@ -1,13 +1,13 @@
 // The Z-width stability criterion can pass and fail: on synthetic traces with a known answer, and
 // on real runs of scenes/bench/zwidth.yaml (corotational FEM block, sim_stylus hand, passivity
 // controller and first-contact limit off).
-#include <gtest/gtest.h>
+#include "zwidth_criterion.hpp"
 
 #include <cmath>
+#include <gtest/gtest.h>
 #include <numbers>
 #include <vector>
 
-#include "zwidth_criterion.hpp"
 #include "zwidth_run.hpp"
 
 namespace tacta::bench {
@@ -25,7 +25,9 @@ std::vector<TraceSample> hold_trace(double force, double a0, double growth) {
     s.contact = true;
     s.device = {0.0, -0.002, 0.0};
     s.proxy = {0.0, 0.0, 0.0};
-    s.force = {0.0, force + a0 * std::exp(growth * s.time) * std::sin(2 * std::numbers::pi * 40 * s.time), 0.0};
+    s.force = {
+        0.0, force + a0 * std::exp(growth * s.time) * std::sin(2 * std::numbers::pi * 40 * s.time),
+        0.0};
     trace.push_back(s);
   }
   return trace;
@@ -46,7 +48,8 @@ TEST(ZwidthCriterion, DecayedRingingIsStableGrowingOscillationIsNot) {
   // Decays slowly (amplitude 0.2 N, time constant 0.5 s): not settled, but decaying: stable.
   EXPECT_TRUE(judge_stability(hold_trace(1.0, 0.2, -2.0), StabilityCriterion{}, false).stable);
   // Grows from 5 mN: an RMS of about 0.7 * 5e-3 * e^2 N in the settle window, over the 10 mN bound.
-  const StabilityVerdict v = judge_stability(hold_trace(1.0, 5e-3, 2.0), StabilityCriterion{}, false);
+  const StabilityVerdict v =
+      judge_stability(hold_trace(1.0, 5e-3, 2.0), StabilityCriterion{}, false);
   EXPECT_FALSE(v.stable);
   EXPECT_GT(v.oscillation_rms, 0.01);
   EXPECT_GT(v.oscillation_rms, v.early_oscillation_rms);
@@ -91,13 +94,14 @@ class ZwidthScene : public ::testing::Test {
 
 TEST_F(ZwidthScene, StiffCouplingOnAnUndampedHandIsFlagged) {
   const StabilityVerdict stiff = runner.run(undamped, 40000.0);
-  EXPECT_FALSE(stiff.stable) << "rms " << stiff.oscillation_rms << " N, mean " << stiff.mean_force << " N";
+  EXPECT_FALSE(stiff.stable) << "rms " << stiff.oscillation_rms << " N, mean " << stiff.mean_force
+                             << " N";
 }
 
 TEST_F(ZwidthScene, SoftCouplingOnAnUndampedHandPasses) {
   const StabilityVerdict soft = runner.run(undamped, 300.0);
   EXPECT_TRUE(soft.stable) << soft.reason << ", rms " << soft.oscillation_rms << " N";
-  EXPECT_GT(soft.mean_force, 0.2);                   // N: it really presses
+  EXPECT_GT(soft.mean_force, 0.2);                    // N: it really presses
   EXPECT_NEAR(soft.rendered_stiffness, 300.0, 30.0);  // N/m: the coupling is rendered as set
 }
 

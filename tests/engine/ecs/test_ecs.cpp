@@ -1,8 +1,7 @@
 // ECS: stale handles are detected, slots are recycled with a new generation, pools stay dense
 // after removals, and views visit exactly the entities having every requested component.
-#include <gtest/gtest.h>
-
 #include <algorithm>
+#include <gtest/gtest.h>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -200,7 +199,8 @@ TEST(Ecs, ReserveKeepsComponentsInPlace) {
   for (int i = 0; i < 32; ++i) registry.emplace<Mass>(registry.create(), 2.0);
   EXPECT_EQ(registry.pool<Mass>().components().data(), first);
   EXPECT_EQ(registry.pool<Mass>().size(), 64u);
-  EXPECT_FALSE(registry.valid(es[0])) << "the destroyed handle stays stale after its slot is reused";
+  EXPECT_FALSE(registry.valid(es[0]))
+      << "the destroyed handle stays stale after its slot is reused";
 }
 
 }  // namespace

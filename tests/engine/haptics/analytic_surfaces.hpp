@@ -11,8 +11,10 @@ namespace tacta::haptics::testing {
 // The half-space below the plane through `origin` with unit outward normal `normal` is solid.
 class PlaneSurface : public SurfaceQuery {
  public:
-  PlaneSurface(const Vec3& origin, const Vec3& normal) : origin_(origin), normal_(scaled(normal, 1.0 / norm(normal))) {}
-  bool first_hit(const Vec3& from, const Vec3& to, double radius, SurfaceHit& hit) const noexcept override {
+  PlaneSurface(const Vec3& origin, const Vec3& normal)
+      : origin_(origin), normal_(scaled(normal, 1.0 / norm(normal))) {}
+  bool first_hit(const Vec3& from, const Vec3& to, double radius,
+                 SurfaceHit& hit) const noexcept override {
     const double d_from = dot(sub(from, origin_), normal_) - radius;
     const double d_to = dot(sub(to, origin_), normal_) - radius;
     if (d_from < 0.0 || d_to >= 0.0) return false;  // starts inside, or never reaches it
@@ -22,7 +24,8 @@ class PlaneSurface : public SurfaceQuery {
     hit.normal = normal_;
     return true;
   }
-  bool closest_point(const Vec3& point, double max_distance, SurfaceHit& hit, double& signed_distance) const noexcept override {
+  bool closest_point(const Vec3& point, double max_distance, SurfaceHit& hit,
+                     double& signed_distance) const noexcept override {
     signed_distance = dot(sub(point, origin_), normal_);
     if (std::abs(signed_distance) > max_distance) return false;
     hit.point = add_scaled(point, normal_, -signed_distance);
@@ -41,7 +44,8 @@ class PlaneSurface : public SurfaceQuery {
 class SphereSurface : public SurfaceQuery {
  public:
   SphereSurface(const Vec3& centre, double radius) : centre_(centre), radius_(radius) {}
-  bool first_hit(const Vec3& from, const Vec3& to, double radius, SurfaceHit& hit) const noexcept override {
+  bool first_hit(const Vec3& from, const Vec3& to, double radius,
+                 SurfaceHit& hit) const noexcept override {
     // |from + s d - c| = R + r, first root s in [0, 1] with `from` outside.
     const double reach = radius_ + radius;
     const Vec3 d = sub(to, from);
@@ -60,7 +64,8 @@ class SphereSurface : public SurfaceQuery {
     hit.point = add_scaled(centre_, hit.normal, radius_);
     return true;
   }
-  bool closest_point(const Vec3& point, double max_distance, SurfaceHit& hit, double& signed_distance) const noexcept override {
+  bool closest_point(const Vec3& point, double max_distance, SurfaceHit& hit,
+                     double& signed_distance) const noexcept override {
     const Vec3 offset = sub(point, centre_);
     const double length = norm(offset);
     signed_distance = length - radius_;

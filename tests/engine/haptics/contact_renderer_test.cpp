@@ -1,9 +1,8 @@
 // The ContactRenderer as the haptic task uses it: Newton's third law, the force limit, bad
 // samples, and the per-device report numbers.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <limits>
 
 #include "analytic_surfaces.hpp"
@@ -20,11 +19,12 @@ TEST(ContactRenderer, ReactionOnTheBodyIsMinusTheDeviceForceAtTheContactPoint) {
   ContactRenderer renderer(params);
   renderer.reset({0.0, 0.08, 0.0});
   renderer.tick(ball, 0.0, {0.0, 0.08, 0.0}, {0.0, 0.0, 0.0}, 1e-3);
-  const ContactRendering r = renderer.tick(ball, 1e-3, {0.001, 0.048, 0.0}, {0.0, -0.01, 0.0}, 1e-3);
+  const ContactRendering r =
+      renderer.tick(ball, 1e-3, {0.001, 0.048, 0.0}, {0.0, -0.01, 0.0}, 1e-3);
   ASSERT_TRUE(r.in_contact);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(r.body_reaction[i], -r.device_force[i]);
-  EXPECT_GT(r.device_force[1], 0.0);                     // pushes the device out of the ball
-  EXPECT_NEAR(norm(r.contact.point), 0.05, 1e-12);       // on the surface
+  EXPECT_GT(r.device_force[1], 0.0);                // pushes the device out of the ball
+  EXPECT_NEAR(norm(r.contact.point), 0.05, 1e-12);  // on the surface
   EXPECT_NEAR(r.device_force[1], 800.0 * 0.002 + 2.0 * 0.01, 2e-2);  // ~k depth + b v
 }
 
@@ -128,7 +128,8 @@ TEST(ContactRenderer, ObserverIntegratesTheForceTheHostReallySent) {
   ASSERT_GT(r.device_force[1], 0.0);
   renderer.override_sent({0.0, 0.0, 0.0});
   const double before = renderer.passivity().observed_energy();
-  renderer.tick(wall, 2e-3, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 1e-3);  // moved out 2 mm under no force
+  renderer.tick(wall, 2e-3, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0},
+                1e-3);  // moved out 2 mm under no force
   EXPECT_EQ(renderer.passivity().observed_energy(), before);
 }
 

@@ -1,7 +1,6 @@
 // Virtual coupling force and the device force limit.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <limits>
 
 #include "tacta/haptics/force_limiter.hpp"
@@ -12,7 +11,8 @@ namespace {
 
 TEST(VirtualCoupling, SpringAndDamperBetweenDeviceAndProxy) {
   const VirtualCoupling coupling({800.0, 3.0});
-  const Vec3 f = coupling.force({0.0, -0.002, 0.0}, {0.0, 0.1, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0});
+  const Vec3 f =
+      coupling.force({0.0, -0.002, 0.0}, {0.0, 0.1, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0});
   EXPECT_DOUBLE_EQ(f[1], 800.0 * 0.002 + 3.0 * -0.1);  // pulls the device up to the proxy, damped
   EXPECT_DOUBLE_EQ(f[0], 0.0);
   EXPECT_DOUBLE_EQ(coupling.spring_energy({0.0, 0.002, 0.0}), 0.5 * 800.0 * 4e-6);

@@ -3,11 +3,10 @@
 // tissue springs back), never more. Found in the liver demo (docs/VALIDATION.md, "Haptic
 // rendering"): the first-contact stretch limit kept raising the force by time while the device
 // was already moving out, so each fast press returned 1.5 times the energy it took.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "analytic_surfaces.hpp"
 #include "haptic_chain.hpp"
@@ -19,11 +18,11 @@ namespace {
 // coupling pushes it down, its stiffness (N/m) and damping (N s/m) push it back. One degree of
 // freedom is enough to store energy and give it back, as the liver does under the stylus.
 struct ElasticPatch {
-  double mass = 0.02;       // kg, the tissue moving with the contact
-  double stiffness = 400.0; // N/m
-  double damping = 0.5;     // N s/m: lightly damped (zeta ~ 0.09), it springs back
-  double depression = 0.0;  // m, positive into the tissue
-  double rate = 0.0;        // m/s
+  double mass = 0.02;        // kg, the tissue moving with the contact
+  double stiffness = 400.0;  // N/m
+  double damping = 0.5;      // N s/m: lightly damped (zeta ~ 0.09), it springs back
+  double depression = 0.0;   // m, positive into the tissue
+  double rate = 0.0;         // m/s
   PlaneSurface surface{{0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
 
   // body_force: the reaction on the tissue (N), held over the tick as the renderer's output is.
@@ -70,7 +69,8 @@ PressResult press_and_release(double tissue_stiffness, bool rigid) {
   PressResult result;
   const double dt = 1e-3;
   for (int n = 0; n < 1500; ++n) {
-    const ContactRendering r = renderer.tick(patch.surface, hand.time, hand.position, hand.velocity, dt);
+    const ContactRendering r =
+        renderer.tick(patch.surface, hand.time, hand.position, hand.velocity, dt);
     const Vec3 before = hand.position;
     hand.step(dt, r.device_force);
     const double work_on_device = dot(r.device_force, sub(hand.position, before));
@@ -85,8 +85,8 @@ PressResult press_and_release(double tissue_stiffness, bool rigid) {
 TEST(DeformablePress, ElasticTissueReturnsNoMoreThanTheDevicePutIn) {
   for (double tissue : {200.0, 400.0, 1000.0}) {
     const PressResult r = press_and_release(tissue, false);
-    std::printf("tissue %.0f N/m: in %.3e J, out %.3e J, observer deficit %.3e J, peak %.3f N\n", tissue,
-                r.energy_in, r.energy_out, r.renderer.energy_injected, r.peak_force);
+    std::printf("tissue %.0f N/m: in %.3e J, out %.3e J, observer deficit %.3e J, peak %.3f N\n",
+                tissue, r.energy_in, r.energy_out, r.renderer.energy_injected, r.peak_force);
     EXPECT_GT(r.energy_in, 1e-4) << tissue;  // it really pressed
     // The device gets back what it stored in the coupling and the tissue, less what was lost.
     EXPECT_LE(r.energy_out, r.energy_in + 1e-6) << tissue;
@@ -96,9 +96,10 @@ TEST(DeformablePress, ElasticTissueReturnsNoMoreThanTheDevicePutIn) {
 
 TEST(DeformablePress, RigidWallPressIsPassiveAndKeepsTheOnsetLimit) {
   const PressResult r = press_and_release(0.0, true);
-  std::printf("rigid: in %.3e J, out %.3e J, observer deficit %.3e J, onset peak %.3f N, steady %.3f N\n",
-              r.energy_in, r.energy_out, r.renderer.energy_injected, r.renderer.first_contact_peak,
-              r.renderer.steady_contact);
+  std::printf(
+      "rigid: in %.3e J, out %.3e J, observer deficit %.3e J, onset peak %.3f N, steady %.3f N\n",
+      r.energy_in, r.energy_out, r.renderer.energy_injected, r.renderer.first_contact_peak,
+      r.renderer.steady_contact);
   EXPECT_LE(r.energy_out, r.energy_in + 1e-6);
   EXPECT_LE(r.renderer.energy_injected, 1e-6);
   EXPECT_GT(r.renderer.steady_contact, 1.0);  // N: the wall is felt (about 1.4 N at the dwell)

@@ -1,10 +1,9 @@
 // First contact: the peak force when a contact begins stays within 1.2 x the steady contact force.
 // Hand: 0.1 kg, 300 N/m, critically damped (11 N s/m), as the sim_stylus defaults; coupling
 // 1000 N/m (the Omni's usable stiffness) with 5 N s/m.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "analytic_surfaces.hpp"
 #include "haptic_chain.hpp"
@@ -49,8 +48,8 @@ TEST(FirstContact, DeepOnsetWithoutTheLimiterKicks) {
 
 TEST(FirstContact, DeepOnsetPeakStaysWithin1_2TimesSteady) {
   const ChainStats stats = deep_onset(true);
-  std::printf("deep onset: peak %.4f N, steady %.4f N, ratio %.3f\n", stats.peak_force, stats.last_force,
-              stats.peak_force / stats.last_force);
+  std::printf("deep onset: peak %.4f N, steady %.4f N, ratio %.3f\n", stats.peak_force,
+              stats.last_force, stats.peak_force / stats.last_force);
   EXPECT_NEAR(stats.last_force, kSteady, 1e-3);
   EXPECT_LE(stats.peak_force, 1.2 * stats.last_force);
 }
@@ -70,8 +69,8 @@ ChainStats press(double press_time) {
 TEST(FirstContact, PalpationPressPeakStaysWithin1_2TimesSteady) {
   for (double press_time : {0.3, 0.5, 1.0}) {
     const ChainStats stats = press(press_time);
-    std::printf("press %.1f s: peak %.4f N, steady %.4f N, ratio %.3f\n", press_time, stats.peak_force,
-                stats.last_force, stats.peak_force / stats.last_force);
+    std::printf("press %.1f s: peak %.4f N, steady %.4f N, ratio %.3f\n", press_time,
+                stats.peak_force, stats.last_force, stats.peak_force / stats.last_force);
     EXPECT_NEAR(stats.last_force, kSteady, 1e-3) << "press " << press_time << " s";
     EXPECT_LE(stats.peak_force, 1.2 * stats.last_force) << "press " << press_time << " s";
   }
@@ -80,11 +79,11 @@ TEST(FirstContact, PalpationPressPeakStaysWithin1_2TimesSteady) {
 TEST(FirstContact, LimiterLeavesASlowContactUnchanged) {
   FirstContactLimiter limiter({0.01});
   EXPECT_EQ(limiter.shape({0.0, 0.5, 0.0}, false, 1e-3)[1], 0.5);  // free: untouched
-  const Vec3 small{0.0, 5e-6, 0.0};                                  // 5 um < 10 um allowed
+  const Vec3 small{0.0, 5e-6, 0.0};                                // 5 um < 10 um allowed
   EXPECT_EQ(limiter.shape(small, true, 1e-3)[1], small[1]);
   EXPECT_FALSE(limiter.in_onset());
   EXPECT_EQ(limiter.shape({0.0, 0.003, 0.0}, true, 1e-3)[1], 0.003);  // after onset: unchanged
-  limiter.shape({0.0, 0.0, 0.0}, false, 1e-3);                          // leave: re-armed
+  limiter.shape({0.0, 0.0, 0.0}, false, 1e-3);                        // leave: re-armed
   EXPECT_NEAR(limiter.shape({0.0, 0.003, 0.0}, true, 1e-3)[1], 1e-5, 1e-15);
 }
 
@@ -117,7 +116,8 @@ TEST(FirstContact, DefaultRateHoldsAcrossCouplings) {
       deep.target = [](double) { return Vec3{0.0, -0.005, 0.0}; };
       deep.position = {0.0, -0.003, 0.0};
       const ChainStats stats = run_chain(deep, tissue, options, 3.0);
-      EXPECT_LE(stats.peak_force, 1.2 * stats.last_force) << "deep, k " << stiffness << " b " << damping;
+      EXPECT_LE(stats.peak_force, 1.2 * stats.last_force)
+          << "deep, k " << stiffness << " b " << damping;
     }
   }
 }

@@ -1,10 +1,10 @@
 // God-object proxy against an analytic plane and an analytic sphere.
-#include <gtest/gtest.h>
+#include "tacta/haptics/god_object.hpp"
 
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "analytic_surfaces.hpp"
-#include "tacta/haptics/god_object.hpp"
 
 namespace tacta::haptics::testing {
 namespace {
@@ -33,7 +33,8 @@ TEST(GodObject, StaysOnAPlaneAboveTheDeviceAndSlides) {
   EXPECT_NEAR(proxy.position()[1], 0.001, 1e-5);
   EXPECT_NEAR(proxy.contact().normal[1], 1.0, 1e-12);
   // Sliding under the surface: the proxy is the device projected on the surface (plus radius).
-  for (int n = 1; n <= 20; ++n) proxy.update(floor, {0.001 * n, -0.004, 0.002 * n}, {1.0, -0.1, 2.0});
+  for (int n = 1; n <= 20; ++n)
+    proxy.update(floor, {0.001 * n, -0.004, 0.002 * n}, {1.0, -0.1, 2.0});
   EXPECT_TRUE(proxy.in_contact());
   EXPECT_NEAR(proxy.position()[0], 0.02, 1e-12);
   EXPECT_NEAR(proxy.position()[2], 0.04, 1e-12);
@@ -77,7 +78,8 @@ TEST(GodObject, StaysOnASphereAtTheDevicesRadialProjection) {
     device = add_scaled(centre, scaled(d, 1.0 / norm(d)), radius - 0.003);
     proxy.update(ball, device, kZero);
     ASSERT_TRUE(proxy.in_contact());
-    worst_off_surface = std::max(worst_off_surface, std::abs(norm(sub(proxy.position(), centre)) - radius));
+    worst_off_surface =
+        std::max(worst_off_surface, std::abs(norm(sub(proxy.position(), centre)) - radius));
   }
   EXPECT_LT(worst_off_surface, 2e-6);
   const Vec3 last_direction = scaled(sub(device, centre), 1.0 / norm(sub(device, centre)));

@@ -19,15 +19,15 @@ struct ChainOptions {
 };
 
 struct ChainStats {
-  double peak_force = 0.0;          // N, largest force sent
-  double last_force = 0.0;          // N, magnitude at the end
+  double peak_force = 0.0;  // N, largest force sent
+  double last_force = 0.0;  // N, magnitude at the end
   // J: the hand's energy (kinetic plus hand spring). With an undamped hand and a fixed target it
   // changes only by the work the rendered force does, so a rise above the start is energy the
   // rendering injected (the observer's E is exactly that work with the opposite sign).
-  double peak_energy = 0.0;         // J, largest after settle_time
-  double final_energy = 0.0;        // J
-  double worst_deficit = 0.0;       // J, passivity observer's worst negative energy
-  ContactStats renderer{};          // the renderer's own report numbers
+  double peak_energy = 0.0;    // J, largest after settle_time
+  double final_energy = 0.0;   // J
+  double worst_deficit = 0.0;  // J, passivity observer's worst negative energy
+  ContactStats renderer{};     // the renderer's own report numbers
 };
 
 inline ContactRendererParams renderer_params(const ChainOptions& options) {
@@ -40,14 +40,16 @@ inline ContactRendererParams renderer_params(const ChainOptions& options) {
   return p;
 }
 
-inline ChainStats run_chain(SimulatedHand& hand, const SurfaceQuery& world, const ChainOptions& options,
-                            double duration, double settle_time = 0.0) {
+inline ChainStats run_chain(SimulatedHand& hand, const SurfaceQuery& world,
+                            const ChainOptions& options, double duration,
+                            double settle_time = 0.0) {
   ContactRenderer renderer(renderer_params(options));
   renderer.reset(hand.position);
   ChainStats stats;
   const int ticks = static_cast<int>(duration / options.dt + 0.5);
   for (int n = 0; n < ticks; ++n) {
-    const ContactRendering r = renderer.tick(world, hand.time, hand.position, hand.velocity, options.dt);
+    const ContactRendering r =
+        renderer.tick(world, hand.time, hand.position, hand.velocity, options.dt);
     stats.peak_force = std::max(stats.peak_force, norm(r.device_force));
     stats.last_force = norm(r.device_force);
     hand.step(options.dt, r.device_force);

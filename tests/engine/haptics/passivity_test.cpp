@@ -1,9 +1,8 @@
 // Passivity: a stiff virtual wall (3000 N/m, no coupling damping) rendered at 1 kHz with a
 // zero-order hold is active (Colgate and Schenkel 1997: passive only if b > K T / 2), so an
 // undamped hand bouncing on it gains energy. With the passivity controller it must not.
-#include <gtest/gtest.h>
-
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "analytic_surfaces.hpp"
 #include "haptic_chain.hpp"
@@ -28,7 +27,7 @@ ChainOptions stiff_wall(bool passivity) {
   options.coupling = {3000.0, 0.0};
   options.first_contact = false;  // the bare wall: nothing else dissipates
   options.passivity = passivity;
-  options.peak_force = 1e9;       // no saturation either: the test is about the coupling alone
+  options.peak_force = 1e9;  // no saturation either: the test is about the coupling alone
   return options;
 }
 

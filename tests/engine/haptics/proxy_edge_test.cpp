@@ -3,10 +3,9 @@
 // sideways by up to 2 r sin(half the bend) as the closest point crosses the edge (seen in the liver
 // demo as a proxy flipping by ~1 mm every tick). Placed along the line from the touched point to
 // the sphere's centre, it moves continuously.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <numbers>
 
 #include "tacta/haptics/god_object.hpp"
@@ -21,7 +20,8 @@ constexpr double kTilt = 15.0 * std::numbers::pi / 180.0;  // rad: a 30 degree b
 class RidgeSurface : public SurfaceQuery {
  public:
   explicit RidgeSurface(double tilt) : s_(std::sin(tilt)), c_(std::cos(tilt)) {}
-  bool first_hit(const Vec3& from, const Vec3& to, double radius, SurfaceHit& hit) const noexcept override {
+  bool first_hit(const Vec3& from, const Vec3& to, double radius,
+                 SurfaceHit& hit) const noexcept override {
     double signed_distance = 0.0;
     if (!closest_point(from, 1.0, hit, signed_distance) || signed_distance < radius) return false;
     constexpr int kSamples = 2000;  // a marched sweep is plenty for a test (0.05 % of the sweep)
@@ -35,7 +35,8 @@ class RidgeSurface : public SurfaceQuery {
     }
     return false;
   }
-  bool closest_point(const Vec3& p, double max_distance, SurfaceHit& hit, double& signed_distance) const noexcept override {
+  bool closest_point(const Vec3& p, double max_distance, SurfaceHit& hit,
+                     double& signed_distance) const noexcept override {
     // Face k (k = -1 left, +1 right): normal (k s, c, 0), points with k x >= 0 on the plane
     // x s k + y c = 0 ... through the ridge. Distance to each face's half-plane, then the nearer.
     double best = 1e300;

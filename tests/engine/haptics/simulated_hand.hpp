@@ -11,9 +11,9 @@
 namespace tacta::haptics::testing {
 
 struct SimulatedHand {
-  double mass = 0.1;        // kg
-  double stiffness = 300.0; // N/m
-  double damping = 0.0;     // N s/m, on the velocity relative to the target
+  double mass = 0.1;         // kg
+  double stiffness = 300.0;  // N/m
+  double damping = 0.0;      // N s/m, on the velocity relative to the target
   std::function<Vec3(double)> target = [](double) { return Vec3{0.0, 0.0, 0.0}; };
   Vec3 position{0.0, 0.0, 0.0};
   Vec3 velocity{0.0, 0.0, 0.0};
@@ -26,7 +26,8 @@ struct SimulatedHand {
       time += h;
       const Vec3 goal = target(time);
       const Vec3 goal_velocity = scaled(sub(goal, before), 1.0 / h);
-      const Vec3 hand = add(scaled(sub(goal, position), stiffness), scaled(sub(goal_velocity, velocity), damping));
+      const Vec3 hand = add(scaled(sub(goal, position), stiffness),
+                            scaled(sub(goal_velocity, velocity), damping));
       velocity = add_scaled(velocity, add(hand, device_force), h / mass);
       position = add_scaled(position, velocity, h);
     }

@@ -9,8 +9,12 @@
 
 namespace tacta::test {
 
-inline std::string asset_mesh(const std::string& name) { return std::string(TACTA_SOURCE_DIR) + "/assets/meshes/" + name; }
-inline std::string test_mesh(const std::string& name) { return std::string(TACTA_SOURCE_DIR) + "/tests/data/meshes/" + name; }
+inline std::string asset_mesh(const std::string& name) {
+  return std::string(TACTA_SOURCE_DIR) + "/assets/meshes/" + name;
+}
+inline std::string test_mesh(const std::string& name) {
+  return std::string(TACTA_SOURCE_DIR) + "/tests/data/meshes/" + name;
+}
 
 // Sum of the element volumes (m^3), through the lumped masses at unit density.
 inline double total_volume(const VolumeMesh& mesh) {

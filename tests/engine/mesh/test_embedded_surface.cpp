@@ -1,18 +1,16 @@
 // The embedded surface: its weights give back the rest surface, a rigid motion of the tets moves it
 // rigidly (normals included), a force spread to the nodes keeps its total force and moment, and
 // updating it allocates nothing.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <gtest/gtest.h>
 #include <random>
 
+#include "allocation_counter.hpp"  // counts malloc and friends; off under sanitizers
 #include "tacta/embedded_surface.hpp"
 #include "tacta/mesh_io.hpp"
-
-#include "allocation_counter.hpp"  // counts malloc and friends; off under sanitizers
 
 namespace tacta {
 namespace {
@@ -45,7 +43,8 @@ std::array<double, 3> rigid(const double* x, double angle, const std::array<doub
   const double k[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3};
   const double c = std::cos(angle), s = std::sin(angle);
   const double kx = k[0] * x[0] + k[1] * x[1] + k[2] * x[2];
-  const double cross[3] = {k[1] * x[2] - k[2] * x[1], k[2] * x[0] - k[0] * x[2], k[0] * x[1] - k[1] * x[0]};
+  const double cross[3] = {k[1] * x[2] - k[2] * x[1], k[2] * x[0] - k[0] * x[2],
+                           k[0] * x[1] - k[1] * x[0]};
   std::array<double, 3> out{};
   for (size_t a = 0; a < 3; ++a) out[a] = x[a] * c + cross[a] * s + k[a] * kx * (1 - c) + t[a];
   return out;
@@ -53,7 +52,9 @@ std::array<double, 3> rigid(const double* x, double angle, const std::array<doub
 
 class EmbeddedSurfaceBoth : public ::testing::TestWithParam<int> {
  protected:
-  VolumeMesh mesh() const { return GetParam() == 0 ? voxelised_sphere() : liver_with_smooth_surface(); }
+  VolumeMesh mesh() const {
+    return GetParam() == 0 ? voxelised_sphere() : liver_with_smooth_surface();
+  }
 };
 
 TEST_P(EmbeddedSurfaceBoth, WeightsReproduceTheRestSurface) {
@@ -63,10 +64,13 @@ TEST_P(EmbeddedSurfaceBoth, WeightsReproduceTheRestSurface) {
   ASSERT_EQ(s.vertex_count(), m.embedding->surface.vertex_count());
   // Weights sum to one and give back every vertex to round-off (metres-sized meshes).
   for (size_t v = 0; v < s.vertex_count(); ++v)
-    EXPECT_NEAR(s.weights[4 * v] + s.weights[4 * v + 1] + s.weights[4 * v + 2] + s.weights[4 * v + 3], 1.0, 1e-12);
+    EXPECT_NEAR(
+        s.weights[4 * v] + s.weights[4 * v + 1] + s.weights[4 * v + 2] + s.weights[4 * v + 3], 1.0,
+        1e-12);
   EXPECT_LT(max_difference(s.positions, s.rest_positions), 1e-12);
   RecordProperty("extrapolated_vertices", std::to_string(s.extrapolated_vertices));
-  RecordProperty("lowest_weight", std::to_string(*std::min_element(s.weights.begin(), s.weights.end())));
+  RecordProperty("lowest_weight",
+                 std::to_string(*std::min_element(s.weights.begin(), s.weights.end())));
 }
 
 TEST_P(EmbeddedSurfaceBoth, ARigidMotionOfTheTetsMovesTheSurfaceRigidly) {
@@ -148,7 +152,9 @@ TEST_P(EmbeddedSurfaceBoth, UpdatingAllocatesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(VoxelisedAndGiven, EmbeddedSurfaceBoth, ::testing::Values(0, 1),
-                         [](const ::testing::TestParamInfo<int>& p) { return p.param == 0 ? "VoxelisedSphere" : "LiverSmooth"; });
+                         [](const ::testing::TestParamInfo<int>& p) {
+                           return p.param == 0 ? "VoxelisedSphere" : "LiverSmooth";
+                         });
 
 TEST(EmbeddedSurface, TetBoundaryKeepsTheVoxelSurface) {
   MeshSourceDesc d;
@@ -168,7 +174,8 @@ TEST(EmbeddedSurface, BindingALiverSurfaceOutsideItsTetsIsReported) {
   const EmbeddedSurface s = make_embedded_surface(m);
   EXPECT_GT(s.extrapolated_vertices, 0u);
   bool warned = false;
-  for (const std::string& w : report.warnings) warned = warned || w.find("extrapolation") != std::string::npos;
+  for (const std::string& w : report.warnings)
+    warned = warned || w.find("extrapolation") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 
@@ -180,9 +187,11 @@ TEST(EmbeddedSurface, TextureCoordinatesFollowTheTrianglesThroughAMirror) {
     std::ofstream out(path);
     out << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
         << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
-    const int faces[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}};
+    const int faces[6][4] = {{1, 4, 3, 2}, {5, 6, 7, 8}, {1, 2, 6, 5},
+                             {2, 3, 7, 6}, {3, 4, 8, 7}, {4, 1, 5, 8}};
     for (const auto& f : faces)
-      out << "f " << f[0] << "/1 " << f[1] << "/2 " << f[2] << "/3\nf " << f[0] << "/1 " << f[2] << "/3 " << f[3] << "/4\n";
+      out << "f " << f[0] << "/1 " << f[1] << "/2 " << f[2] << "/3\nf " << f[0] << "/1 " << f[2]
+          << "/3 " << f[3] << "/4\n";
   }
   MeshSourceDesc d;
   d.path = path;

@@ -1,11 +1,10 @@
 // Built-in bodies: volumes, node order, conformity, lumped masses, load_body_mesh dispatch.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
+#include <gtest/gtest.h>
 #include <numbers>
+#include <set>
 
 #include "mesh_test_support.hpp"
 #include "tacta/mesh_build.hpp"
@@ -51,7 +50,8 @@ TEST(Primitives, BeamGridSplitIsMirrorSymmetric) {
   };
   std::set<std::array<uint32_t, 4>> tets;
   for (size_t t = 0; t < beam.tet_count(); ++t) {
-    std::array<uint32_t, 4> tet{beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2], beam.tets[4 * t + 3]};
+    std::array<uint32_t, 4> tet{beam.tets[4 * t], beam.tets[4 * t + 1], beam.tets[4 * t + 2],
+                                beam.tets[4 * t + 3]};
     std::sort(tet.begin(), tet.end());
     tets.insert(tet);
   }
@@ -90,8 +90,8 @@ TEST(Primitives, QuadGridMasses) {
   EXPECT_EQ(grid.quads.size() / 4, 8u);
   EXPECT_EQ(grid.edges.size() / 2, 4u * 3u + 5u * 2u);
   std::vector<double> m = lumped_masses(grid, 3.0);
-  EXPECT_NEAR(m[0], 3.0 * 0.25 / 4, 1e-15);   // corner: one quad
-  EXPECT_NEAR(m[6], 3.0 * 0.25, 1e-15);       // interior node (1, 1): four quads
+  EXPECT_NEAR(m[0], 3.0 * 0.25 / 4, 1e-15);  // corner: one quad
+  EXPECT_NEAR(m[6], 3.0 * 0.25, 1e-15);      // interior node (1, 1): four quads
   EXPECT_NEAR(test::total_volume(grid), 2.0, 1e-14);
 }
 
@@ -114,7 +114,8 @@ TEST(Primitives, SphereVolumeAndRadius) {
     const double tolerance = subdivisions == 1 ? 0.15 : 0.04;
     EXPECT_NEAR(test::total_volume(ball), exact, tolerance * exact) << subdivisions;
     for (size_t i = 0; i < ball.node_count(); ++i) {
-      double dx = ball.positions[3 * i] - 0.1, dy = ball.positions[3 * i + 1] - 0.2, dz = ball.positions[3 * i + 2] - 0.3;
+      double dx = ball.positions[3 * i] - 0.1, dy = ball.positions[3 * i + 1] - 0.2,
+             dz = ball.positions[3 * i + 2] - 0.3;
       EXPECT_LE(std::sqrt(dx * dx + dy * dy + dz * dz), r * (1 + 1e-12));
     }
   }

@@ -1,7 +1,6 @@
 // Surfaces through assimp: each format, welding across sub-meshes, degenerate triangles, errors.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "mesh_test_support.hpp"
 #include "tacta/mesh_io.hpp"

@@ -1,11 +1,10 @@
 // Conforming tetrahedra through Gmsh: the boundary is the input surface, the volume is the
 // enclosed one, quality is measured, and bad surfaces are refused before Gmsh sees them.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <gtest/gtest.h>
 #include <set>
 
 #include "mesh_test_support.hpp"
@@ -17,7 +16,8 @@ namespace {
 
 std::set<std::array<double, 3>> points_of(const std::vector<double>& positions) {
   std::set<std::array<double, 3>> out;
-  for (size_t i = 0; i + 2 < positions.size(); i += 3) out.insert({positions[i], positions[i + 1], positions[i + 2]});
+  for (size_t i = 0; i + 2 < positions.size(); i += 3)
+    out.insert({positions[i], positions[i + 1], positions[i + 2]});
   return out;
 }
 
@@ -31,7 +31,8 @@ TEST(Tetrahedralize, BunnyKeepsItsSurfaceAndVolume) {
   const auto surface_points = points_of(bunny.positions);
   std::set<uint32_t> boundary_nodes(mesh.triangles.begin(), mesh.triangles.end());
   for (uint32_t n : boundary_nodes) {
-    EXPECT_TRUE(surface_points.count({mesh.positions[3 * n], mesh.positions[3 * n + 1], mesh.positions[3 * n + 2]}))
+    EXPECT_TRUE(surface_points.count(
+        {mesh.positions[3 * n], mesh.positions[3 * n + 1], mesh.positions[3 * n + 2]}))
         << "boundary node " << n << " is not a surface vertex";
   }
   LoadReport closed;
@@ -77,13 +78,15 @@ TEST(Tetrahedralize, OpenAndInwardSurfaces) {
     EXPECT_NE(std::string(e.what()).find("4 open edges"), std::string::npos) << e.what();
   }
   SurfaceMesh inward = load_surface(test::asset_mesh("liver.obj"));
-  for (size_t t = 0; t < inward.triangle_count(); ++t) std::swap(inward.triangles[3 * t + 1], inward.triangles[3 * t + 2]);
+  for (size_t t = 0; t < inward.triangle_count(); ++t)
+    std::swap(inward.triangles[3 * t + 1], inward.triangles[3 * t + 2]);
   LoadReport report;
   const VolumeMesh mesh = tetrahedralize(inward, {}, &report);
   EXPECT_GT(mesh_quality(mesh).min_volume, 0.0);
   ASSERT_FALSE(report.warnings.empty());
-  EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(),
-                          [](const std::string& w) { return w.find("flipped") != std::string::npos; }));
+  EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(), [](const std::string& w) {
+    return w.find("flipped") != std::string::npos;
+  }));
   TetrahedralizeDesc bad;
   bad.max_volume = -1;
   EXPECT_THROW(tetrahedralize(load_surface(test::asset_mesh("liver.obj")), bad), InputError);
@@ -91,14 +94,16 @@ TEST(Tetrahedralize, OpenAndInwardSurfaces) {
 
 TEST(Tetrahedralize, WrittenMshReadsBack) {
   const VolumeMesh mesh = tetrahedralize(load_surface(test::asset_mesh("liver.obj")), {});
-  const std::string path = (std::filesystem::path(::testing::TempDir()) / "tacta_liver_tets.msh").string();
+  const std::string path =
+      (std::filesystem::path(::testing::TempDir()) / "tacta_liver_tets.msh").string();
   write_gmsh(mesh, path);
   LoadReport report;
   const VolumeMesh back = load_volume(path, &report);
   EXPECT_EQ(report.format, "gmsh-4.1");
   EXPECT_EQ(back.tets, mesh.tets);
   ASSERT_EQ(back.positions.size(), mesh.positions.size());
-  for (size_t i = 0; i < back.positions.size(); ++i) EXPECT_NEAR(back.positions[i], mesh.positions[i], 1e-12);
+  for (size_t i = 0; i < back.positions.size(); ++i)
+    EXPECT_NEAR(back.positions[i], mesh.positions[i], 1e-12);
 }
 
 TEST(Tetrahedralize, SceneBodyFromASurface) {

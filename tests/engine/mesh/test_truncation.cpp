@@ -1,14 +1,12 @@
 // Every volume file cut short, at many offsets, must give an InputError: never a crash, a hang or
 // another exception (the suite also runs under AddressSanitizer).
-#include <gtest/gtest.h>
-
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include "mesh_test_support.hpp"
@@ -36,12 +34,15 @@ TEST_P(Truncated, EveryCutIsAnInputError) {
   const size_t step = std::max<size_t>(1, last / kCuts);
   const std::string cut_path = (std::filesystem::temp_directory_path() /
                                 ("tacta_truncated_" + std::to_string(::getpid()) + "_" +
-                                 std::filesystem::path(source).filename().string())).string();
+                                 std::filesystem::path(source).filename().string()))
+                                   .string();
   size_t cuts = 0;
   std::vector<size_t> offsets;
   for (size_t offset = 0; offset < last; offset += step) offsets.push_back(offset);
-  for (size_t offset = step / 2; offset < last && step > 1; offset += 7 * step) offsets.push_back(offset);  // off the rhythm
-  for (size_t offset = last > kTail ? last - kTail : 0; offset < last; ++offset) offsets.push_back(offset);
+  for (size_t offset = step / 2; offset < last && step > 1; offset += 7 * step)
+    offsets.push_back(offset);  // off the rhythm
+  for (size_t offset = last > kTail ? last - kTail : 0; offset < last; ++offset)
+    offsets.push_back(offset);
   for (size_t cut : offsets) {
     {
       std::ofstream out(cut_path, std::ios::binary | std::ios::trunc);
@@ -87,7 +88,8 @@ TEST_P(TruncatedSurface, LoadsOrGivesAnInputError) {
   constexpr size_t kCuts = 30;  // assimp is slower to start than the volume readers
   const std::string cut_path = (std::filesystem::temp_directory_path() /
                                 ("tacta_truncated_" + std::to_string(::getpid()) + "_" +
-                                 std::filesystem::path(source).filename().string())).string();
+                                 std::filesystem::path(source).filename().string()))
+                                   .string();
   size_t errors = 0;
   for (size_t i = 0; i < kCuts; ++i) {
     const size_t cut = bytes.size() * i / kCuts;
@@ -111,8 +113,9 @@ TEST_P(TruncatedSurface, LoadsOrGivesAnInputError) {
 
 INSTANTIATE_TEST_SUITE_P(
     Files, TruncatedSurface,
-    ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"), test::test_mesh("tetra.ply"),
-                      test::test_mesh("tetra.gltf"), test::test_mesh("tetra.glb")),
+    ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"),
+                      test::test_mesh("tetra.ply"), test::test_mesh("tetra.gltf"),
+                      test::test_mesh("tetra.glb")),
     [](const ::testing::TestParamInfo<std::string>& param_info) {
       std::string name = std::filesystem::path(param_info.param).filename().string();
       for (char& ch : name)

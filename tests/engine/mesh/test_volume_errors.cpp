@@ -1,7 +1,6 @@
 // Broken mesh files (volume and surface): each gives an InputError that names the file, the line
 // when there is one, and what was wrong. Files under fuzz/ are inputs the fuzzers found.
 #include <gtest/gtest.h>
-
 #include <string>
 
 #include "mesh_test_support.hpp"
@@ -41,37 +40,39 @@ TEST_P(BrokenVolume, GivesAClearInputError) {
 
 INSTANTIATE_TEST_SUITE_P(
     Files, BrokenVolume,
-    ::testing::Values(BrokenCase{"broken_node_count.msh", 15, "only 9 nodes"},
-                      BrokenCase{"broken_element_count.msh", 24, "only 6 elements"},
-                      BrokenCase{"broken_index.msh", 20, "refers to node 42"},
-                      BrokenCase{"broken_nan.msh", 9, "finite"},
-                      BrokenCase{"broken_inf.vtk", 11, "finite"},
-                      BrokenCase{"broken_flat_tet.msh", 0, "tet 6"},
-                      BrokenCase{"broken_no_tets.msh", 0, "no tetrahedra"},
-                      BrokenCase{"broken_short_line.msh", 18, "fewer node numbers"},
-                      BrokenCase{"broken_unknown.dat", 1, "unknown volume mesh format"},
-                      BrokenCase{"broken_empty.msh", 0, "empty"},
-                      BrokenCase{"broken_cell_index.vtk", 15, "refers to point 60"},
-                      BrokenCase{"broken_cell_type.vtk", 15, "must have 8 points"},
-                      BrokenCase{"broken_types.vtu", 17, "must hold 7 values"},
-                      BrokenCase{"broken_base64.vtu", 6, "base64"},
-                      BrokenCase{"broken_header.vtu", 6, "header"},
-                      BrokenCase{"broken_mesh_format.msh", 2, "version 3.0"},
-                      BrokenCase{"does_not_exist.msh", 0, "cannot open"},
-                      BrokenCase{"broken_duplicate_element.msh", 21, "element 3 is defined twice (first on line 20)"},
-                      BrokenCase{"broken_ply_index.ply", 16, "vertex index 7 is out of range", true},
-                      BrokenCase{"broken_ply_empty_face.ply", 15, "at least 3 vertex indices, found 0", true},
-                      BrokenCase{"broken_ply_header.ply", 9, "expected a PLY header line", true},
-                      BrokenCase{"broken_ply_count.ply", 3, "declares 1000000000 items", true},
-                      BrokenCase{"broken_ply_number.ply", 13, "found 'abc'", true},
-                      BrokenCase{"fuzz/ply_binary_index_postprocess.ply", 0, "item 3: vertex index 33554432 is out of range", true},
-                      BrokenCase{"broken_obj_number.obj", 4, "found 'abc'", true},
-                      BrokenCase{"broken_obj_inf.obj", 4, "found '.inf'", true},
-                      BrokenCase{"broken_obj_index.obj", 7, "vertex index 9 is out of range", true},
-                      BrokenCase{"broken_stl_number.stl", 13, "found '1e'", true},
-                      BrokenCase{"broken_surface.dae", 0, "unsupported surface format '.dae'", true},
-                      BrokenCase{"broken_obj_named_gltf.gltf", 0, "the glTF JSON does not parse", true},
-                      BrokenCase{"fuzz/gltf_strip_without_positions.gltf", 0, "primitive 0 has no POSITION attribute", true}),
+    ::testing::Values(
+        BrokenCase{"broken_node_count.msh", 15, "only 9 nodes"},
+        BrokenCase{"broken_element_count.msh", 24, "only 6 elements"},
+        BrokenCase{"broken_index.msh", 20, "refers to node 42"},
+        BrokenCase{"broken_nan.msh", 9, "finite"}, BrokenCase{"broken_inf.vtk", 11, "finite"},
+        BrokenCase{"broken_flat_tet.msh", 0, "tet 6"},
+        BrokenCase{"broken_no_tets.msh", 0, "no tetrahedra"},
+        BrokenCase{"broken_short_line.msh", 18, "fewer node numbers"},
+        BrokenCase{"broken_unknown.dat", 1, "unknown volume mesh format"},
+        BrokenCase{"broken_empty.msh", 0, "empty"},
+        BrokenCase{"broken_cell_index.vtk", 15, "refers to point 60"},
+        BrokenCase{"broken_cell_type.vtk", 15, "must have 8 points"},
+        BrokenCase{"broken_types.vtu", 17, "must hold 7 values"},
+        BrokenCase{"broken_base64.vtu", 6, "base64"}, BrokenCase{"broken_header.vtu", 6, "header"},
+        BrokenCase{"broken_mesh_format.msh", 2, "version 3.0"},
+        BrokenCase{"does_not_exist.msh", 0, "cannot open"},
+        BrokenCase{"broken_duplicate_element.msh", 21,
+                   "element 3 is defined twice (first on line 20)"},
+        BrokenCase{"broken_ply_index.ply", 16, "vertex index 7 is out of range", true},
+        BrokenCase{"broken_ply_empty_face.ply", 15, "at least 3 vertex indices, found 0", true},
+        BrokenCase{"broken_ply_header.ply", 9, "expected a PLY header line", true},
+        BrokenCase{"broken_ply_count.ply", 3, "declares 1000000000 items", true},
+        BrokenCase{"broken_ply_number.ply", 13, "found 'abc'", true},
+        BrokenCase{"fuzz/ply_binary_index_postprocess.ply", 0,
+                   "item 3: vertex index 33554432 is out of range", true},
+        BrokenCase{"broken_obj_number.obj", 4, "found 'abc'", true},
+        BrokenCase{"broken_obj_inf.obj", 4, "found '.inf'", true},
+        BrokenCase{"broken_obj_index.obj", 7, "vertex index 9 is out of range", true},
+        BrokenCase{"broken_stl_number.stl", 13, "found '1e'", true},
+        BrokenCase{"broken_surface.dae", 0, "unsupported surface format '.dae'", true},
+        BrokenCase{"broken_obj_named_gltf.gltf", 0, "the glTF JSON does not parse", true},
+        BrokenCase{"fuzz/gltf_strip_without_positions.gltf", 0,
+                   "primitive 0 has no POSITION attribute", true}),
     [](const ::testing::TestParamInfo<BrokenCase>& param_info) {
       std::string name = param_info.param.file;
       for (char& ch : name)

@@ -1,7 +1,6 @@
 // Volume files: the SOFA reference meshes and the hand-made unit cube in every supported format.
-#include <gtest/gtest.h>
-
 #include <algorithm>
+#include <gtest/gtest.h>
 #include <set>
 #include <utility>
 
@@ -23,7 +22,8 @@ void expect_consistent(const VolumeMesh& mesh) {
   EXPECT_GE(q.worst_aspect_ratio, 1.0 - 1e-12);
   for (size_t e = 0; e + 2 < mesh.edges.size(); e += 2) {
     EXPECT_LT(mesh.edges[e], mesh.edges[e + 1]);
-    EXPECT_LT(std::make_pair(mesh.edges[e], mesh.edges[e + 1]), std::make_pair(mesh.edges[e + 2], mesh.edges[e + 3]));
+    EXPECT_LT(std::make_pair(mesh.edges[e], mesh.edges[e + 1]),
+              std::make_pair(mesh.edges[e + 2], mesh.edges[e + 3]));
   }
   LoadReport closedness;
   SurfaceMesh boundary = test::boundary_of(mesh);
@@ -83,7 +83,8 @@ TEST(VolumeIo, GmshV22Cube) {
   EXPECT_EQ(report.format, "gmsh-2.2");
   EXPECT_EQ(mesh.tet_count(), 44u);
   EXPECT_EQ(mesh.node_count(), 26u);
-  EXPECT_NEAR(test::total_volume(mesh), 7.0 * 7.0 * 7.0, 1e-4);  // cube of edge 7 (nodes off by < 1e-6)
+  EXPECT_NEAR(test::total_volume(mesh), 7.0 * 7.0 * 7.0,
+              1e-4);  // cube of edge 7 (nodes off by < 1e-6)
   expect_consistent(mesh);
 }
 
@@ -104,8 +105,9 @@ TEST_P(UnitCubeFormats, LoadsAndRepairs) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, UnitCubeFormats,
-                         ::testing::Values("cube_v22.msh", "cube_legacy.vtk", "cube_ascii.vtu", "cube_binary32.vtu",
-                                           "cube_binary64_be.vtu", "cube_zlib.vtu"));
+                         ::testing::Values("cube_v22.msh", "cube_legacy.vtk", "cube_ascii.vtu",
+                                           "cube_binary32.vtu", "cube_binary64_be.vtu",
+                                           "cube_zlib.vtu"));
 
 TEST(VolumeIo, SkippedNonTetsAreCounted) {
   LoadReport report;

@@ -1,7 +1,6 @@
 // The voxeliser: volume against the enclosed volume, conformity, and the embedding.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "mesh_test_support.hpp"
 #include "tacta/mesh_build.hpp"
@@ -100,9 +99,11 @@ TEST(Voxelize, BodyMeshFromASurfaceFileUsesTheAutomaticVoxel) {
     const double a2[3] = {x[2][0] - x[0][0], x[2][1] - x[0][1], x[2][2] - x[0][2]};
     const double a3[3] = {x[3][0] - x[0][0], x[3][1] - x[0][1], x[3][2] - x[0][2]};
     volume += (a1[0] * (a2[1] * a3[2] - a2[2] * a3[1]) - a1[1] * (a2[0] * a3[2] - a2[2] * a3[0]) +
-               a1[2] * (a2[0] * a3[1] - a2[1] * a3[0])) / 6.0;
+               a1[2] * (a2[0] * a3[1] - a2[1] * a3[0])) /
+              6.0;
   }
-  EXPECT_NEAR(volume / enclosed, 1.0, 0.10) << "voxel body volume " << volume << " m^3, enclosed " << enclosed;
+  EXPECT_NEAR(volume / enclosed, 1.0, 0.10)
+      << "voxel body volume " << volume << " m^3, enclosed " << enclosed;
   MeshQuality q = mesh_quality(bunny);
   // Automatic cell: bounding-box diagonal / 20, so each axis spans at most about 20 cells.
   EXPECT_LT((q.bounds_max[0] - q.bounds_min[0]) / q.min_edge, 22.0);

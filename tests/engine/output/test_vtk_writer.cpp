@@ -1,8 +1,7 @@
 // The .vtu/.pvd writer: what it writes reads back with the same counts, cells and values, in
 // both encodings; bad input names the file and the array.
-#include <gtest/gtest.h>
-
 #include <fstream>
+#include <gtest/gtest.h>
 
 #include "tacta/error.hpp"
 #include "tacta/output/vtk_writer.hpp"
@@ -45,8 +44,7 @@ TEST_P(VtuRoundTrip, CountsCellsAndFieldsReadBack) {
   EXPECT_EQ(vtu.cell_count, 2u);
   ASSERT_EQ(vtu.arrays.at("Points").values.size(), 15u);
   EXPECT_EQ(vtu.arrays.at("Points").values[14], 1.0);
-  EXPECT_EQ(vtu.arrays.at("connectivity").values,
-            (std::vector<double>{0, 1, 2, 3, 1, 2, 3, 4}));
+  EXPECT_EQ(vtu.arrays.at("connectivity").values, (std::vector<double>{0, 1, 2, 3, 1, 2, 3, 4}));
   EXPECT_EQ(vtu.arrays.at("offsets").values, (std::vector<double>{4, 8}));
   EXPECT_EQ(vtu.arrays.at("types").values, (std::vector<double>{10, 10}));  // VTK_TETRA
   EXPECT_EQ(vtu.arrays.at("displacement").components, 3);
@@ -73,7 +71,8 @@ TEST(Vtu, PlanarQuadMeshWritesQuads) {
 
 TEST(Vtu, Base64OfKnownBytes) {
   // RFC 4648 test vectors, through our decoder, pin the alphabet the writer shares.
-  EXPECT_EQ(testing::decode_base64("Zm9vYmFy"), (std::vector<uint8_t>{'f', 'o', 'o', 'b', 'a', 'r'}));
+  EXPECT_EQ(testing::decode_base64("Zm9vYmFy"),
+            (std::vector<uint8_t>{'f', 'o', 'o', 'b', 'a', 'r'}));
   EXPECT_EQ(testing::decode_base64("Zm8="), (std::vector<uint8_t>{'f', 'o'}));
 }
 
@@ -115,8 +114,9 @@ TEST(Pvd, SeriesListsEveryStepWithItsTime) {
   const std::string pvd((std::istreambuf_iterator<char>(in)), {});
   EXPECT_NE(pvd.find("type=\"Collection\""), std::string::npos);
   EXPECT_NE(pvd.find("file=\"beam_000000.vtu\""), std::string::npos);
-  EXPECT_NE(pvd.find("timestep=\"0.033333333333333333\" group=\"\" part=\"0\" file=\"beam_000002.vtu\""),
-            std::string::npos)
+  EXPECT_NE(
+      pvd.find("timestep=\"0.033333333333333333\" group=\"\" part=\"0\" file=\"beam_000002.vtu\""),
+      std::string::npos)
       << pvd;
 }
 

@@ -37,12 +37,18 @@ std::vector<uint8_t> decode_base64(const std::string& text) {
   int bits = 0;
   for (char c : text) {
     int v;
-    if (c >= 'A' && c <= 'Z') v = c - 'A';
-    else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') v = c - '0' + 52;
-    else if (c == '+') v = 62;
-    else if (c == '/') v = 63;
-    else continue;  // padding and white space
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else
+      continue;  // padding and white space
     buffer = (buffer << 6) | static_cast<uint32_t>(v);
     bits += 6;
     if (bits >= 8) {
@@ -78,10 +84,14 @@ VtuFile read_vtu(const std::filesystem::path& file) {
       for (double v; values >> v;) array.values.push_back(v);
     } else {
       const std::vector<uint8_t> bytes = decode_base64(body);
-      if (array.type == "Float64") append_raw<double>(bytes, array.values);
-      else if (array.type == "Int64") append_raw<int64_t>(bytes, array.values);
-      else if (array.type == "UInt8") append_raw<uint8_t>(bytes, array.values);
-      else throw std::runtime_error("unexpected type " + array.type);
+      if (array.type == "Float64")
+        append_raw<double>(bytes, array.values);
+      else if (array.type == "Int64")
+        append_raw<int64_t>(bytes, array.values);
+      else if (array.type == "UInt8")
+        append_raw<uint8_t>(bytes, array.values);
+      else
+        throw std::runtime_error("unexpected type " + array.type);
     }
     vtu.arrays[attribute(tag, "Name")] = std::move(array);
   }

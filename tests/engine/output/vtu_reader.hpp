@@ -10,7 +10,7 @@
 namespace tacta::output::testing {
 
 struct VtuArray {
-  std::string type;        // Float64, Int64, UInt8
+  std::string type;  // Float64, Int64, UInt8
   int components = 1;
   std::vector<double> values;
 };

@@ -1,6 +1,5 @@
 // Descriptor validation in-process: each malformed field is refused with a reason naming it.
 #include <gtest/gtest.h>
-
 #include <string>
 
 #include "plugin/descriptor_check.hpp"
@@ -27,8 +26,16 @@ const tacta_model_api kFullApi = [] {
 }();
 
 tacta_descriptor make_model(const tacta_param_spec* params = nullptr, uint32_t count = 0) {
-  return {sizeof(tacta_descriptor), TACTA_ABI_ID, TACTA_KIND_MODEL, "ok", 1, "fine",
-          params, count, &kFullApi, sizeof(tacta_model_api)};
+  return {sizeof(tacta_descriptor),
+          TACTA_ABI_ID,
+          TACTA_KIND_MODEL,
+          "ok",
+          1,
+          "fine",
+          params,
+          count,
+          &kFullApi,
+          sizeof(tacta_model_api)};
 }
 
 std::string refusal(const tacta_descriptor& d) {
@@ -124,7 +131,8 @@ TEST(DescriptorCheck, LiveParametersMustBeNumbersOfTheSchemaWithASetParamEntry) 
   api.set_param = [](void*, uint32_t, const tacta_param_value*, char*, size_t) { return TACTA_OK; };
   EXPECT_EQ(with("damping"), "<accepted>");
   EXPECT_EQ(with(nullptr), "<accepted>");
-  EXPECT_NE(with("damping|stiffness").find("'stiffness', which is not a parameter"), std::string::npos);
+  EXPECT_NE(with("damping|stiffness").find("'stiffness', which is not a parameter"),
+            std::string::npos);
   EXPECT_NE(with("solver").find("'solver' is not a number"), std::string::npos) << with("solver");
 }
 

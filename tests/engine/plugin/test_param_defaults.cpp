@@ -2,9 +2,8 @@
 // plugins and tests share: every parameter kind of plugin.h, in schema order, with the C views
 // a plugin reads (CHOICE name and index, TEXT text, VECTOR values and count) valid after copies
 // and moves of the ParamSet.
-#include <gtest/gtest.h>
-
 #include <array>
+#include <gtest/gtest.h>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,10 +29,16 @@ constexpr std::array<tacta_param_spec, 8> kSchema{{
 }};
 
 const tacta_descriptor& descriptor() {
-  static const tacta_descriptor d{sizeof(tacta_descriptor), TACTA_ABI_ID,     TACTA_KIND_MODEL,
-                                  "defaults_probe",          1,                "",
-                                  kSchema.data(), static_cast<uint32_t>(kSchema.size()),
-                                  nullptr,                   0};
+  static const tacta_descriptor d{sizeof(tacta_descriptor),
+                                  TACTA_ABI_ID,
+                                  TACTA_KIND_MODEL,
+                                  "defaults_probe",
+                                  1,
+                                  "",
+                                  kSchema.data(),
+                                  static_cast<uint32_t>(kSchema.size()),
+                                  nullptr,
+                                  0};
   return d;
 }
 

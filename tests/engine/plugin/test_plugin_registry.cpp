@@ -1,9 +1,8 @@
 // The plugin loader against real shared libraries: good ones register and work, each broken one
 // is refused with a message naming its file and the cause, and refusals do not stop the others.
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <filesystem>
+#include <gtest/gtest.h>
 #include <string>
 
 #include "tacta/device_api.h"
@@ -112,7 +111,8 @@ TEST(PluginRegistry, UnknownNameSuggestsTheClosest) {
     registry.require(TACTA_KIND_DEVICE, "something_else");
     FAIL() << "require must throw for an unknown name";
   } catch (const tacta::InputError& error) {
-    EXPECT_TRUE(contains(error.what(), "available device plugins: test_sine_stylus")) << error.what();
+    EXPECT_TRUE(contains(error.what(), "available device plugins: test_sine_stylus"))
+        << error.what();
     EXPECT_FALSE(contains(error.what(), "did you mean")) << error.what();
   }
   const std::string none = registry.unknown_name_message(TACTA_KIND_COLLISION, "bvh");
@@ -120,7 +120,8 @@ TEST(PluginRegistry, UnknownNameSuggestsTheClosest) {
 }
 
 TEST(PluginRegistry, ClosestNamesRanksByEditDistance) {
-  const std::vector<std::string> names{"tensor_mass", "mass_spring", "fd_debunne", "corotational_fem"};
+  const std::vector<std::string> names{"tensor_mass", "mass_spring", "fd_debunne",
+                                       "corotational_fem"};
   EXPECT_EQ(tacta::closest_names("tensor_mas", names), std::vector<std::string>{"tensor_mass"});
   EXPECT_EQ(tacta::closest_names("mass_sprign", names), std::vector<std::string>{"mass_spring"});
   EXPECT_TRUE(tacta::closest_names("bullet", names).empty());
@@ -165,7 +166,8 @@ TEST(PluginRegistry, LoadedModelStepsAsSpecified) {
                                  {0.0, "semi_implicit", nullptr, 0},
                                  {0.0, nullptr, offset, 3},
                                  {1.0, nullptr, nullptr, 0}};
-  const tacta_model_setup setup{sizeof(tacta_model_setup), &mesh, &material, masses, fixed, params, 4, 1e-3, nullptr};
+  const tacta_model_setup setup{
+      sizeof(tacta_model_setup), &mesh, &material, masses, fixed, params, 4, 1e-3, nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

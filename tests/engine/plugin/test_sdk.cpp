@@ -1,8 +1,7 @@
 // The C++ SDK: parameter access by name, and optional table entries filled only when the class
 // has the matching method. Also loads the test plugins through the shared C ABI fixture.
-#include <gtest/gtest.h>
-
 #include <array>
+#include <gtest/gtest.h>
 #include <stdexcept>
 
 #include "support/plugin_fixture.hpp"
@@ -50,14 +49,16 @@ struct WithExtras : Minimal {
 };
 
 TEST(Sdk, OptionalEntriesOnlyWhenTheClassHasTheMethod) {
-  const auto* minimal = static_cast<const tacta_model_api*>(tacta::sdk::model_descriptor<Minimal>()->api);
+  const auto* minimal =
+      static_cast<const tacta_model_api*>(tacta::sdk::model_descriptor<Minimal>()->api);
   EXPECT_NE(minimal->step, nullptr);
   EXPECT_EQ(minimal->begin, nullptr);
   EXPECT_EQ(minimal->elastic_energy, nullptr);
   EXPECT_EQ(minimal->set_param, nullptr);
   EXPECT_EQ(minimal->node_stress, nullptr);
 
-  const auto* extras = static_cast<const tacta_model_api*>(tacta::sdk::model_descriptor<WithExtras>()->api);
+  const auto* extras =
+      static_cast<const tacta_model_api*>(tacta::sdk::model_descriptor<WithExtras>()->api);
   ASSERT_NE(extras->elastic_energy, nullptr);
   EXPECT_EQ(extras->internal_forces, nullptr);
   ASSERT_NE(extras->set_param, nullptr);
@@ -76,8 +77,8 @@ TEST(Sdk, RealPluginsThroughTheCAbiFixture) {
                                            "/tacta_test_good_model.so");
   const auto& api = model.api<tacta_model_api>("test_anchor_springs");
   EXPECT_NE(api.step, nullptr);
-  EXPECT_EQ(api.begin, nullptr);                                  // no begin() in the class
-  EXPECT_NE(api.elastic_energy, nullptr);                         // has elastic_energy()
+  EXPECT_EQ(api.begin, nullptr);           // no begin() in the class
+  EXPECT_NE(api.elastic_energy, nullptr);  // has elastic_energy()
 
   const tacta::testing::LoadedPlugin device(std::string(TACTA_TEST_GOOD_PLUGIN_DIR) +
                                             "/tacta_test_good_device.so");
@@ -85,8 +86,8 @@ TEST(Sdk, RealPluginsThroughTheCAbiFixture) {
   const auto& dapi = *static_cast<const tacta_device_api*>(d.api);
   EXPECT_EQ(dapi.status, nullptr);  // the class has no status()
   const auto params = tacta::testing::default_params(d);
-  tacta_device_setup setup{sizeof(tacta_device_setup), params.data(),
-                           static_cast<uint32_t>(params.size()), "", 1, 1e-3};
+  tacta_device_setup setup{
+      sizeof(tacta_device_setup), params.data(), static_cast<uint32_t>(params.size()), "", 1, 1e-3};
   void* instance = nullptr;
   char message[128] = {0};
   ASSERT_EQ(dapi.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -17,7 +16,8 @@ class HeadlessTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     try {
-      renderer_ = std::make_unique<HeadlessRenderer>(HeadlessOptions{kGoldenWidth, kGoldenHeight, true});
+      renderer_ =
+          std::make_unique<HeadlessRenderer>(HeadlessOptions{kGoldenWidth, kGoldenHeight, true});
     } catch (const std::runtime_error& e) {
       skip_reason_ = e.what();
     }

@@ -73,8 +73,9 @@ RenderFrame bent_cantilever() {
     beam.positions[3 * v + 1] += 0.05 - deflection;
     beam.scalar[v] = deflection;
     if (beam.positions[3 * v] == 0)
-      beam.fixed_positions.insert(beam.fixed_positions.end(),
-                                  {beam.positions[3 * v], beam.positions[3 * v + 1], beam.positions[3 * v + 2]});
+      beam.fixed_positions.insert(
+          beam.fixed_positions.end(),
+          {beam.positions[3 * v], beam.positions[3 * v + 1], beam.positions[3 * v + 2]});
   }
   beam.scalar_min = 0;
   beam.scalar_max = tip_deflection;
@@ -87,7 +88,8 @@ RenderFrame bent_cantilever() {
 RenderFrame coloured_sphere() {
   RenderFrame frame;
   BodyDraw ball = sphere_surface({0, 0.06, 0}, 0.05, 32, 16);
-  for (size_t v = 0; v < ball.positions.size() / 3; ++v) ball.scalar.push_back(ball.positions[3 * v + 1]);
+  for (size_t v = 0; v < ball.positions.size() / 3; ++v)
+    ball.scalar.push_back(ball.positions[3 * v + 1]);
   ball.scalar_min = 0.01;
   ball.scalar_max = 0.11;
   frame.bodies.push_back(std::move(ball));
@@ -111,8 +113,8 @@ SurfaceMesh stylus_like() {
   const uint32_t top = static_cast<uint32_t>(2 * sides + 1);
   for (uint32_t i = 0; i < static_cast<uint32_t>(sides); ++i) {
     const uint32_t n = (i + 1) % sides;
-    mesh.triangles.insert(mesh.triangles.end(), {0, 1 + i, 1 + n});                  // cone
-    mesh.triangles.insert(mesh.triangles.end(), {1 + i, 1 + sides + n, 1 + n});      // side
+    mesh.triangles.insert(mesh.triangles.end(), {0, 1 + i, 1 + n});              // cone
+    mesh.triangles.insert(mesh.triangles.end(), {1 + i, 1 + sides + n, 1 + n});  // side
     mesh.triangles.insert(mesh.triangles.end(), {1 + i, 1 + sides + i, 1 + sides + n});
     mesh.triangles.insert(mesh.triangles.end(), {top, 1 + sides + n, 1 + sides + i});  // cap
   }
@@ -139,8 +141,9 @@ RenderFrame tool_on_plate() {
   const double tilt = 0.35;  // rad about z
   frame.tool.orientation = {std::cos(tilt / 2), 0, 0, std::sin(tilt / 2)};
   frame.proxy = Vec3d{cx, 0.02 - depth, cz};
-  frame.contacts = {{{cx, 0.02 - depth, cz}, {0, 1, 0}}, {{cx + 0.004, 0.02 - depth + 0.0005, cz}, {-0.1, 1, 0}}};
-  frame.force = {1.4, 2.1, 0.6};  // N
+  frame.contacts = {{{cx, 0.02 - depth, cz}, {0, 1, 0}},
+                    {{cx + 0.004, 0.02 - depth + 0.0005, cz}, {-0.1, 1, 0}}};
+  frame.force = {1.4, 2.1, 0.6};    // N
   frame.force_arrow_scale = 0.012;  // m/N
   frame.overlay_lines = {"t = 1.250 s", "model: tensor_mass", "force: 2.59 N", "tick p99: 0.41 ms"};
   fit_camera(frame, {0.8, 0.6, 1.0});

@@ -25,7 +25,7 @@ BodyDraw sphere_surface(const Vec3d& centre, double radius, int slices, int stac
 // 4. the fallback sphere tool over a body seen from straight above (the camera's up switch).
 std::vector<NamedFrame> golden_frames();
 
-constexpr int kGoldenWidth = 320;   // pixels: small keeps the PNGs and the software render cheap
+constexpr int kGoldenWidth = 320;  // pixels: small keeps the PNGs and the software render cheap
 constexpr int kGoldenHeight = 240;
 
 }  // namespace tacta::render::testing

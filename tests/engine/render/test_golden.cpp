@@ -1,17 +1,18 @@
 // Golden images: the synthetic frames rendered on llvmpipe against tests/golden/*.png.
 // TACTA_REGEN_GOLDENS=1 (scripts/regen-goldens) rewrites the goldens instead of comparing.
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "headless_fixture.hpp"
 
 namespace tacta::render::testing {
 namespace {
 
-const std::filesystem::path kGoldenDir = std::filesystem::path(TACTA_SOURCE_DIR) / "tests" / "golden";
-const std::filesystem::path kOutDir = std::filesystem::path(TACTA_BINARY_DIR) / "test-output" / "golden";
+const std::filesystem::path kGoldenDir =
+    std::filesystem::path(TACTA_SOURCE_DIR) / "tests" / "golden";
+const std::filesystem::path kOutDir =
+    std::filesystem::path(TACTA_BINARY_DIR) / "test-output" / "golden";
 
 bool regenerating() {
   const char* flag = std::getenv("TACTA_REGEN_GOLDENS");

@@ -2,11 +2,10 @@
 // by an analytic displacement of the tet nodes, drawn through make_render_frame as a run's frames
 // are. The picture shows the smooth surface following the tets (no tet facets), coloured by the
 // surface's own displacement. TACTA_REGEN_GOLDENS=1 (scripts/regen-goldens) rewrites it.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "headless_fixture.hpp"
 #include "tacta/embedded_surface.hpp"
@@ -16,8 +15,10 @@
 namespace tacta::render::testing {
 namespace {
 
-const std::filesystem::path kGoldenDir = std::filesystem::path(TACTA_SOURCE_DIR) / "tests" / "golden";
-const std::filesystem::path kOutDir = std::filesystem::path(TACTA_BINARY_DIR) / "test-output" / "golden";
+const std::filesystem::path kGoldenDir =
+    std::filesystem::path(TACTA_SOURCE_DIR) / "tests" / "golden";
+const std::filesystem::path kOutDir =
+    std::filesystem::path(TACTA_BINARY_DIR) / "test-output" / "golden";
 const std::string kMeshes = std::string(TACTA_SOURCE_DIR) + "/assets/meshes/";
 
 class EmbeddedBodyGolden : public HeadlessTest {};

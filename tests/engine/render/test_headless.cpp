@@ -1,8 +1,7 @@
 // The EGL headless renderer on llvmpipe: it draws what the frame says, where the camera says,
 // and the same frame twice gives the same bytes.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <thread>
 
 #include "headless_fixture.hpp"
@@ -12,7 +11,8 @@ namespace tacta::render::testing {
 namespace {
 
 std::array<int, 3> pixel(const Image& image, int x, int y) {
-  const size_t i = (static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)) * 4;
+  const size_t i =
+      (static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)) * 4;
   return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]};
 }
 
@@ -58,7 +58,7 @@ TEST_F(HeadlessRender, SphereInFrontOfTheCameraCoversTheCentreOnly) {
   EXPECT_GT(centre[1], 100);
   EXPECT_EQ(centre[0], centre[2]);  // only the white specular adds red and blue, equally
   EXPECT_EQ(pixel(image, 160, 120 - 55), (std::array<int, 3>{0, 0, 0}));  // just outside
-  EXPECT_GT(pixel(image, 160, 120 - 40)[1], 20);                            // just inside
+  EXPECT_GT(pixel(image, 160, 120 - 40)[1], 20);                          // just inside
   EXPECT_EQ(pixel(image, 160 + 55, 120), (std::array<int, 3>{0, 0, 0}));
   EXPECT_GT(pixel(image, 160 + 40, 120)[1], 20);
 }

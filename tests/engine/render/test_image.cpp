@@ -1,7 +1,6 @@
 // Image comparison and PNG round trips: no GL needed.
-#include <gtest/gtest.h>
-
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "tacta/error.hpp"
 #include "tacta/render/image.hpp"
@@ -41,7 +40,8 @@ TEST(ImageCompare, DifferenceOfFiveIsWithinTolerance) {
 TEST(ImageCompare, TenPixelsOutOfTenThousandPassElevenFail) {
   const Image expected = solid(100, 100, 100, 100, 100);
   Image actual = expected;
-  for (int p = 0; p < 10; ++p) actual.rgba[static_cast<size_t>(p) * 4 * 37] = 200;  // 0.1 %: allowed
+  for (int p = 0; p < 10; ++p)
+    actual.rgba[static_cast<size_t>(p) * 4 * 37] = 200;  // 0.1 %: allowed
   EXPECT_TRUE(compare_images(actual, expected).matches);
   actual.rgba[4 * 9999 + 1] = 0;  // one more: 0.11 %
   const ImageComparison c = compare_images(actual, expected);
@@ -69,7 +69,11 @@ TEST(Png, RoundTripKeepsEveryByte) {
 
 TEST(Png, ReadingANonPngNamesTheFile) {
   const auto file = scratch("png_bad") / "not_a.png";
-  { std::FILE* f = std::fopen(file.string().c_str(), "w"); std::fputs("hello", f); std::fclose(f); }
+  {
+    std::FILE* f = std::fopen(file.string().c_str(), "w");
+    std::fputs("hello", f);
+    std::fclose(f);
+  }
   try {
     read_png(file);
     FAIL() << "expected InputError";

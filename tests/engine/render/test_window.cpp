@@ -1,9 +1,8 @@
 // The GLFW window front end, run under Xvfb by ctest: it opens, presents a frame, and the
 // picture it shows equals the headless one (same renderer, both on Mesa's llvmpipe).
-#include <gtest/gtest.h>
-
 #include <cstdlib>
 #include <filesystem>
+#include <gtest/gtest.h>
 #include <stdexcept>
 
 #include "synthetic_frames.hpp"
@@ -38,7 +37,8 @@ TEST(Window, ShowsTheSamePictureAsTheHeadlessRenderer) {
     GTEST_SKIP() << "no display; ctest runs this under xvfb-run";
   std::unique_ptr<Window> window;
   try {
-    window = std::make_unique<Window>(WindowOptions{kGoldenWidth, kGoldenHeight, "tacta test", false});
+    window =
+        std::make_unique<Window>(WindowOptions{kGoldenWidth, kGoldenHeight, "tacta test", false});
   } catch (const std::runtime_error& e) {
     FAIL() << e.what();  // a display exists, so a window must open
   }

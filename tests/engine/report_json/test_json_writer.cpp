@@ -1,8 +1,7 @@
 // The streaming JSON writer: escaping, round-trip doubles, null for non-finite, nesting, misuse.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdlib>
+#include <gtest/gtest.h>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -36,14 +35,22 @@ TEST(JsonWriter, WritesNestedDocumentCompactly) {
     json.begin_object();
     json.field("scene", "beam").field("ticks", 1000).field("ok", true);
     json.key("tick_ms").begin_object().field("p50", 0.25).field("max", std::nan("")).end_object();
-    json.key("bodies").begin_array().value(1).value("two").null().begin_array().end_array().end_array();
+    json.key("bodies")
+        .begin_array()
+        .value(1)
+        .value("two")
+        .null()
+        .begin_array()
+        .end_array()
+        .end_array();
     json.key("empty").begin_object().end_object();
     json.end_object();
     EXPECT_TRUE(json.complete());
   }
-  EXPECT_EQ(out.str(),
-            "{\"scene\":\"beam\",\"ticks\":1000,\"ok\":true,\"tick_ms\":{\"p50\":0.25,\"max\":null},"
-            "\"bodies\":[1,\"two\",null,[]],\"empty\":{}}\n");
+  EXPECT_EQ(
+      out.str(),
+      "{\"scene\":\"beam\",\"ticks\":1000,\"ok\":true,\"tick_ms\":{\"p50\":0.25,\"max\":null},"
+      "\"bodies\":[1,\"two\",null,[]],\"empty\":{}}\n");
 }
 
 TEST(JsonWriter, IndentsNestedValues) {

@@ -41,14 +41,15 @@ TEST(SceneBoundary, PlatesAndProbesLoad) {
   ASSERT_EQ(b.plates.size(), 2u);
   EXPECT_EQ(b.plates[0].normal, (Vec3{0, -1, 0}));  // normalised
   EXPECT_TRUE(b.plates[0].stuck);
-  EXPECT_FALSE(b.plates[1].stuck);  // frictionless unless told
+  EXPECT_FALSE(b.plates[1].stuck);                           // frictionless unless told
   EXPECT_EQ(b.plates[1].motion.values[0], (Vec3{0, 0, 0}));  // a plate that stays put
   ASSERT_EQ(b.probes.size(), 1u);
   EXPECT_EQ(b.probes[0].name, "centre");
   EXPECT_EQ(b.probes[0].rest, (Vec3{0.05, 0.05, 0.05}));
 }
 
-void expect_error(const std::string& keys, const std::string& key_path, const std::string& fragment) {
+void expect_error(const std::string& keys, const std::string& key_path,
+                  const std::string& fragment) {
   const InputError e = load_error(with_body_keys(keys));
   EXPECT_EQ(e.where().key_path, key_path) << e.what();
   EXPECT_GT(e.where().line, 5) << e.what();
@@ -56,14 +57,18 @@ void expect_error(const std::string& keys, const std::string& key_path, const st
 }
 
 TEST(SceneBoundary, MalformedValuesAreErrorsAtTheirKey) {
-  expect_error("    prescribed: [{region: {nodes: [0]}, displacement: {table: [[0, 0, 0, 0], [0, 1, 1, 1]]}}]\n",
-               "bodies[0].prescribed[0].displacement.table[1]", "strictly increasing");
+  expect_error(
+      "    prescribed: [{region: {nodes: [0]}, displacement: {table: [[0, 0, 0, 0], [0, 1, 1, "
+      "1]]}}]\n",
+      "bodies[0].prescribed[0].displacement.table[1]", "strictly increasing");
   expect_error("    prescribed: [{region: {nodes: [0]}, displacement: {table: [[0, 0, 0]]}}]\n",
                "bodies[0].prescribed[0].displacement.table[0]", "4");
   expect_error("    prescribed: [{region: {nodes: [0]}, displacement: {ramp: {to: [0, 0, 1]}}}]\n",
                "bodies[0].prescribed[0].displacement.ramp.duration_s", "missing");
-  expect_error("    prescribed: [{region: {nodes: [0]}, displacement: {ramp: {to: [0, 0, 1], duration_s: 0}}}]\n",
-               "bodies[0].prescribed[0].displacement.ramp.duration_s", "> 0");
+  expect_error(
+      "    prescribed: [{region: {nodes: [0]}, displacement: {ramp: {to: [0, 0, 1], duration_s: "
+      "0}}}]\n",
+      "bodies[0].prescribed[0].displacement.ramp.duration_s", "> 0");
   expect_error("    prescribed: [{region: {nodes: [0]}, displacement: [0, 0, 0], axes: [x, w]}]\n",
                "bodies[0].prescribed[0].axes[1]", "'w'");
   expect_error("    prescribed: [{region: {nodes: [0]}, displacement: [0, 0, 0], axes: [x, x]}]\n",
@@ -72,10 +77,13 @@ TEST(SceneBoundary, MalformedValuesAreErrorsAtTheirKey) {
                "bodies[0].prescribed[0].region.nodes[0]", "26");
   expect_error("    prescribed: [{region: {nodes: [0]}, displacment: [0, 0, 0]}]\n",
                "bodies[0].prescribed[0].displacment", "did you mean 'displacement'");
-  expect_error("    plates: [{name: p, region: {nodes: [0]}, point: [0, 0, 0], normal: [0, 0, 0]}]\n",
-               "bodies[0].plates[0].normal", "non-zero normal");
-  expect_error("    plates: [{name: p, region: {nodes: [0]}, point: [0, 0, 0], normal: [0, 1, 0], contact: glued}]\n",
-               "bodies[0].plates[0].contact", "'glued'");
+  expect_error(
+      "    plates: [{name: p, region: {nodes: [0]}, point: [0, 0, 0], normal: [0, 0, 0]}]\n",
+      "bodies[0].plates[0].normal", "non-zero normal");
+  expect_error(
+      "    plates: [{name: p, region: {nodes: [0]}, point: [0, 0, 0], normal: [0, 1, 0], contact: "
+      "glued}]\n",
+      "bodies[0].plates[0].contact", "'glued'");
   expect_error(R"(    plates:
       - {name: p, region: {nodes: [0]}, point: [0, 0, 0], normal: [0, 1, 0]}
       - {name: p, region: {nodes: [1]}, point: [0, 0, 0], normal: [0, 1, 0]}

@@ -19,7 +19,8 @@ void expect_error(const InputError& e, int line, int column, const std::string& 
                              (key_path.empty() ? "" : key_path + ": ");
   EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
   for (const std::string& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << message;
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "'" << fragment << "' not in: " << message;
 }
 
 // kMinimalScene with its material line replaced.
@@ -43,9 +44,10 @@ gravity: [0, 0, 0]
 }
 
 TEST(SceneErrors, UnknownKeyWithHintAtEveryLevel) {
-  expect_error(load_error(with_material("{youngs_modulos: 1.0e4, poisson_ratio: 0.3}")), 4, 16,
-               "bodies[0].material.youngs_modulos",
-               {"unknown key 'youngs_modulos'", "did you mean 'youngs_modulus'?", "expected one of"});
+  expect_error(
+      load_error(with_material("{youngs_modulos: 1.0e4, poisson_ratio: 0.3}")), 4, 16,
+      "bodies[0].material.youngs_modulos",
+      {"unknown key 'youngs_modulos'", "did you mean 'youngs_modulus'?", "expected one of"});
   expect_error(load_error("gravty: [0, 0, 0]\n" + yaml(kMinimalScene)), 1, 1, "gravty",
                {"did you mean 'gravity'?"});
   expect_error(load_error(yaml(kMinimalScene) + "clock: {mode: lockstep, duraton_s: 1}\n"), 6, 25,
@@ -70,15 +72,18 @@ TEST(SceneErrors, WrongType) {
 TEST(SceneErrors, EmbeddedSurfaceNeedsTets) {
   std::string text = yaml(kMinimalScene);
   const std::string old = "mesh: {box_grid: {size: [0.1, 0.1, 0.1], cells: [2, 2, 2]}}";
-  text.replace(text.find(old), old.size(), "mesh: {quad_grid: {size: [1, 1], cells: [2, 2]}, surface: s.obj}");
+  text.replace(text.find(old), old.size(),
+               "mesh: {quad_grid: {size: [1, 1], cells: [2, 2]}, surface: s.obj}");
   const InputError e = load_error(text);
   EXPECT_EQ(e.where().key_path, "bodies[0].mesh.surface") << e.what();
-  EXPECT_NE(std::string(e.what()).find("only be embedded in tetrahedra"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("only be embedded in tetrahedra"), std::string::npos)
+      << e.what();
 }
 
 TEST(SceneErrors, OutOfRange) {
   expect_error(load_error(with_material("{youngs_modulus: 1.0e4, poisson_ratio: 0.5}")), 4, 54,
-               "bodies[0].material.poisson_ratio", {"expected a number in (-1, 0.5)", "found '0.5'"});
+               "bodies[0].material.poisson_ratio",
+               {"expected a number in (-1, 0.5)", "found '0.5'"});
   expect_error(load_error(with_material("{youngs_modulus: 0, poisson_ratio: 0.3}")), 4, 32,
                "bodies[0].material.youngs_modulus", {"> 0", "found '0'"});
   expect_error(load_error(with_material("{lame_lambda: 1, lame_mu: -2}")), 4, 41,
@@ -89,11 +94,12 @@ TEST(SceneErrors, OutOfRange) {
   // Node indices are checked against a grid's node count: 3 x 3 x 3 = 27 nodes.
   expect_error(load_error(yaml(kMinimalScene) + "    probe_node: 27\n"), 6, 17,
                "bodies[0].probe_node", {"expected an integer in [0, 26]", "found '27'"});
-  const InputError corner = load_error(yaml(kMinimalScene), {"bodies.0.mesh=unit_square",
-                                                             "bodies.0.fixed=[{nodes: [1, 4]}]"});
+  const InputError corner = load_error(
+      yaml(kMinimalScene), {"bodies.0.mesh=unit_square", "bodies.0.fixed=[{nodes: [1, 4]}]"});
   EXPECT_EQ(corner.where().key_path, "bodies[0].fixed[0].nodes[1]");
   EXPECT_NE(std::string(corner.what()).find("expected an integer in [0, 3], found '4'"),
-            std::string::npos) << corner.what();
+            std::string::npos)
+      << corner.what();
   expect_error(load_error(yaml(kMinimalScene) + "clock: {duration_s: -1}\n"), 6, 21,
                "clock.duration_s", {"expected a number > 0"});
 }
@@ -130,11 +136,14 @@ TEST(SceneErrors, BadPluginParameter) {
     return load_error(yaml(kMinimalScene), {"bodies.0.model=" + model});
   };
   EXPECT_NE(std::string(model_error("{name: corotational_fem, solver: jacobbi}").what())
-                .find("did you mean 'jacobi'?"), std::string::npos);
+                .find("did you mean 'jacobi'?"),
+            std::string::npos);
   EXPECT_NE(std::string(model_error("{name: corotational_fem, iterations: 2.5}").what())
-                .find("expected an integer in [1, 1000]"), std::string::npos);
+                .find("expected an integer in [1, 1000]"),
+            std::string::npos);
   EXPECT_NE(std::string(model_error("{name: corotational_fem, gains: [1, 2]}").what())
-                .find("multiple of 3"), std::string::npos);
+                .find("multiple of 3"),
+            std::string::npos);
   const InputError element = model_error("{name: corotational_fem, gains: [1, 2, 30]}");
   EXPECT_EQ(element.where().key_path, "bodies[0].model.gains[2]");
   EXPECT_NE(std::string(element.what()).find("in [-10, 10]"), std::string::npos);
@@ -147,26 +156,31 @@ TEST(SceneErrors, UnknownPluginListsAvailableOnes) {
                {"unknown model plugin 'corotational'", "did you mean 'corotational_fem'?",
                 "available: corotational_fem, mass_spring, tensor_mass"});
   expect_error(load_error(yaml(kMinimalScene) + "devices: [{name: d, plugin: phantom}]\n"), 6, 29,
-               "devices[0].plugin", {"unknown device plugin 'phantom'", "available: replay, sim_stylus"});
+               "devices[0].plugin",
+               {"unknown device plugin 'phantom'", "available: replay, sim_stylus"});
 }
 
 TEST(SceneErrors, CollisionPluginsCheckedOnlyWhenEnabled) {
-  const std::string off = yaml(kMinimalScene) + "collision: {enabled: false, broad_phase: kdtree}\n";
+  const std::string off =
+      yaml(kMinimalScene) + "collision: {enabled: false, broad_phase: kdtree}\n";
   EXPECT_EQ(load(off).collision.broad_phase, "kdtree");
   expect_error(load_error(yaml(kMinimalScene) + "collision: {broad_phase: kdtree}\n"), 6, 26,
                "collision.broad_phase", {"unknown collision plugin 'kdtree'", "available: bvh"});
 }
 
 TEST(SceneErrors, DuplicateNamesAndDanglingReferences) {
-  const std::string body = "  - name: cube\n    mesh: unit_square\n"
-                           "    material: {youngs_modulus: 1, poisson_ratio: 0}\n"
-                           "    model: tensor_mass\n";
+  const std::string body =
+      "  - name: cube\n    mesh: unit_square\n"
+      "    material: {youngs_modulus: 1, poisson_ratio: 0}\n"
+      "    model: tensor_mass\n";
   expect_error(load_error(yaml(kMinimalScene) + body), 6, 11, "bodies[1].name",
                {"duplicate body name 'cube'", "first used by bodies[0]"});
-  expect_error(load_error(yaml(kMinimalScene) + "devices: [{name: d, plugin: replay, touches: cub}]\n"),
-               6, 46, "devices[0].touches", {"unknown body 'cub'", "did you mean 'cube'?"});
-  expect_error(load_error(yaml(kMinimalScene) + "swaps: [{time: 1, body: liver, model: mass_spring}]\n"),
-               6, 25, "swaps[0].body", {"unknown body 'liver'", "expected one of: *, cube"});
+  expect_error(
+      load_error(yaml(kMinimalScene) + "devices: [{name: d, plugin: replay, touches: cub}]\n"), 6,
+      46, "devices[0].touches", {"unknown body 'cub'", "did you mean 'cube'?"});
+  expect_error(
+      load_error(yaml(kMinimalScene) + "swaps: [{time: 1, body: liver, model: mass_spring}]\n"), 6,
+      25, "swaps[0].body", {"unknown body 'liver'", "expected one of: *, cube"});
 }
 
 TEST(SceneErrors, ShapesAndPrimitivesNeedExactlyOneKind) {
@@ -181,27 +195,33 @@ TEST(SceneErrors, ShapesAndPrimitivesNeedExactlyOneKind) {
 
 // mesh.tetrahedralize: a map of known keys in range, on a mesh file only, not with voxel_size.
 TEST(SceneErrors, TetrahedralizeKeys) {
-  const std::string body = "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}\n    model: tensor_mass\n";
+  const std::string body =
+      "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: "
+      "0.3}\n    model: tensor_mass\n";
   auto with_mesh = [&](const std::string& mesh) {
     std::string text = body;
     text.replace(text.find("MESH"), 4, mesh);
     return text;
   };
-  const SceneDesc ok = load(with_mesh("{file: organ.stl, tetrahedralize: {max_volume: 1.0e-6, min_dihedral: 5, optimize: false}}"));
+  const SceneDesc ok = load(with_mesh(
+      "{file: organ.stl, tetrahedralize: {max_volume: 1.0e-6, min_dihedral: 5, optimize: false}}"));
   ASSERT_TRUE(ok.bodies[0].mesh.tetrahedralize.has_value());
   EXPECT_DOUBLE_EQ(ok.bodies[0].mesh.tetrahedralize->max_volume, 1e-6);
   EXPECT_DOUBLE_EQ(ok.bodies[0].mesh.tetrahedralize->min_dihedral_deg, 5.0);
   EXPECT_FALSE(ok.bodies[0].mesh.tetrahedralize->optimize);
-  EXPECT_TRUE(load(with_mesh("{file: organ.stl, tetrahedralize: true}")).bodies[0].mesh.tetrahedralize.has_value());
+  EXPECT_TRUE(load(with_mesh("{file: organ.stl, tetrahedralize: true}"))
+                  .bodies[0]
+                  .mesh.tetrahedralize.has_value());
   EXPECT_FALSE(load(with_mesh("{file: organ.stl}")).bodies[0].mesh.tetrahedralize.has_value());
-  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {min_dihedral: 80}}")), 3, 60,
-               "bodies[0].mesh.tetrahedralize.min_dihedral", {"in [0, 60]"});
+  expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {min_dihedral: 80}}")), 3,
+               60, "bodies[0].mesh.tetrahedralize.min_dihedral", {"in [0, 60]"});
   expect_error(load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volum: 1}}")), 3, 46,
                "bodies[0].mesh.tetrahedralize.max_volum", {"did you mean 'max_volume'?"});
-  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, tetrahedralize: true}")), 3, 63,
-               "bodies[0].mesh.tetrahedralize", {"not both"});
-  expect_error(load_error(with_mesh("{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, tetrahedralize: true}")), 3, 75,
-               "bodies[0].mesh.tetrahedralize", {"mesh `file` only"});
+  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, tetrahedralize: true}")),
+               3, 63, "bodies[0].mesh.tetrahedralize", {"not both"});
+  expect_error(load_error(with_mesh(
+                   "{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, tetrahedralize: true}")),
+               3, 75, "bodies[0].mesh.tetrahedralize", {"mesh `file` only"});
 }
 
 TEST(SceneErrors, DuplicateKey) {

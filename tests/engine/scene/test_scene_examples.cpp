@@ -1,10 +1,9 @@
 // Every scene the project ships (scenes/**.yaml) loads against the real plugins of the build
 // tree, builds its world (the models accept the meshes) and runs 50 ms without a fault, except
 // where a scene is a documented divergence case.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene_loader.hpp"
@@ -42,9 +41,9 @@ TEST_F(ShippedScenes, EverySceneLoadsBuildsAndRuns) {
       const SceneDesc scene = load_scene(entry.path().string(), schemas);
       // A network device waits for its peer at connect: those scenes run end to end in their
       // devices' own tests (tests/plugins/devices: net_teleoperation, openigtlink).
-      const bool waits_for_peer = std::any_of(scene.devices.begin(), scene.devices.end(), [](const DeviceDesc& d) {
-        return d.plugin == "net" || d.plugin == "openigtlink";
-      });
+      const bool waits_for_peer = std::any_of(
+          scene.devices.begin(), scene.devices.end(),
+          [](const DeviceDesc& d) { return d.plugin == "net" || d.plugin == "openigtlink"; });
       if (waits_for_peer) continue;
       Simulation simulation(scene, *plugins_);
       RunOptions options;

@@ -21,8 +21,8 @@ TEST(SceneMaterials, YoungsAndPoissonFromLame) {
   const EngineeringConstants c = engineering_from_lame(1.0, 1.0);
   EXPECT_DOUBLE_EQ(c.youngs_modulus, 2.5);
   EXPECT_DOUBLE_EQ(c.poisson_ratio, 0.25);
-  const SceneDesc s = load(yaml(kMinimalScene),
-                           {"bodies.0.material={lame_lambda: 1, lame_mu: 1, density: 2}"});
+  const SceneDesc s =
+      load(yaml(kMinimalScene), {"bodies.0.material={lame_lambda: 1, lame_mu: 1, density: 2}"});
   EXPECT_DOUBLE_EQ(s.bodies[0].material.youngs_modulus, 2.5);
   EXPECT_DOUBLE_EQ(s.bodies[0].material.poisson_ratio, 0.25);
   EXPECT_DOUBLE_EQ(s.bodies[0].material.density, 2);
@@ -40,8 +40,8 @@ TEST(SceneMaterials, RoundTripAcrossTheRange) {
 TEST(SceneMaterials, AuxeticLameAccepted) {
   // lambda = -0.5 mu > -2 mu / 3 (positive bulk modulus): nu = -1 / (2 * 1) = -0.5,
   // E = 2 * (-3 + 4) / (-1 + 2) = 2.
-  const SceneDesc s = load(yaml(kMinimalScene),
-                           {"bodies.0.material={lame_lambda: -1, lame_mu: 2}"});
+  const SceneDesc s =
+      load(yaml(kMinimalScene), {"bodies.0.material={lame_lambda: -1, lame_mu: 2}"});
   EXPECT_DOUBLE_EQ(s.bodies[0].material.poisson_ratio, -0.5);
   EXPECT_DOUBLE_EQ(s.bodies[0].material.youngs_modulus, 2.0);
 }

@@ -1,7 +1,6 @@
 // --set overrides: wildcard, index, body name, created keys, and their errors.
-#include <gtest/gtest.h>
-
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "fake_schemas.hpp"
 
@@ -29,7 +28,8 @@ void expect_override_error(const std::vector<std::string>& overrides, const std:
   const std::string message = e.what();
   EXPECT_EQ(message.rfind("--set " + overrides.back() + ": ", 0), 0u) << message;
   for (const std::string& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << message;
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "'" << fragment << "' not in: " << message;
 }
 
 TEST(SceneOverrides, WildcardAppliesToEveryBody) {
@@ -54,9 +54,9 @@ TEST(SceneOverrides, ByIndexAndByNameWithDerivedValuesRecomputed) {
 }
 
 TEST(SceneOverrides, CreatesMissingKeysAndParsesValuesAsYaml) {
-  const SceneDesc s = load(yaml(kTwoBodies), {"clock.mode=realtime", "gravity=[0, 0, -1]",
-                                              "output.plots=[force]", "name=from_cli",
-                                              "bodies.liver.initial.uniform_velocity=[1,2,3]"});
+  const SceneDesc s =
+      load(yaml(kTwoBodies), {"clock.mode=realtime", "gravity=[0, 0, -1]", "output.plots=[force]",
+                              "name=from_cli", "bodies.liver.initial.uniform_velocity=[1,2,3]"});
   EXPECT_EQ(s.clock.mode, ClockDesc::Mode::Realtime);
   EXPECT_EQ(s.gravity, (Vec3{0, 0, -1}));
   EXPECT_EQ(s.output.plots, (std::vector<std::string>{"force"}));
@@ -67,7 +67,8 @@ TEST(SceneOverrides, CreatesMissingKeysAndParsesValuesAsYaml) {
 }
 
 TEST(SceneOverrides, RelativePathsFromTheCommandLineUseTheWorkingDirectory) {
-  const std::string scene = yaml(kTwoBodies) + "devices: [{name: d, plugin: replay, params: {file: a.csv}}]\n";
+  const std::string scene =
+      yaml(kTwoBodies) + "devices: [{name: d, plugin: replay, params: {file: a.csv}}]\n";
   EXPECT_EQ(std::string(load(scene).devices[0].params.find("file")->text), "/scenes/a.csv");
   const SceneDesc s = load(scene, {"devices.*.params={file: logs/b.csv}"});
   EXPECT_EQ(std::string(s.devices[0].params.find("file")->text),

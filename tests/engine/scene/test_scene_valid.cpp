@@ -1,9 +1,8 @@
 // A complete, valid scene loads into exactly the SceneDesc it describes.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 #include "fake_schemas.hpp"
 
@@ -212,8 +211,8 @@ TEST(SceneLoader, ModelDefaultsFilledInSchemaOrder) {
                                                  "lumped_mass: false, solver: cg}"});
   const ParamSet& p = s.bodies[0].model_params;
   ASSERT_EQ(p.size(), 6u);
-  const std::vector<std::string> order{"solver", "iterations", "tolerance",
-                                       "lumped_mass", "gains", "cache_file"};
+  const std::vector<std::string> order{"solver",      "iterations", "tolerance",
+                                       "lumped_mass", "gains",      "cache_file"};
   EXPECT_EQ(p.names(), order);
   EXPECT_EQ(std::string(p.data()[0].text), "cg");  // given
   EXPECT_EQ(p.data()[0].number, 0);
@@ -242,8 +241,8 @@ TEST(SceneLoader, LoadsFromFileAndResolvesAgainstItsFolder) {
   {
     std::FILE* f = std::fopen(path.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    const std::string text = yaml(kMinimalScene) +
-                             "devices: [{name: d, plugin: replay, params: {file: ../x.csv}}]\n";
+    const std::string text =
+        yaml(kMinimalScene) + "devices: [{name: d, plugin: replay, params: {file: ../x.csv}}]\n";
     std::fputs(text.c_str(), f);
     std::fclose(f);
   }

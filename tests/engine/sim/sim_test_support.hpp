@@ -3,10 +3,9 @@
 // World + HapticLoop harness that drives the 1 kHz task tick by tick as Simulation::run does.
 #pragma once
 
-#include <gtest/gtest.h>
-
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -53,7 +52,8 @@ inline SceneDesc scene_from_text(const std::string& text, const std::string& nam
 
 // A fresh, empty folder under the test temp dir.
 inline std::string fresh_dir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / ("tacta_simtest_" + name);
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / ("tacta_simtest_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
@@ -75,7 +75,9 @@ struct Csv {
     ADD_FAILURE() << "no column " << name;
     return 0;
   }
-  double number(size_t row, const std::string& name) const { return std::stod(rows[row][column(name)]); }
+  double number(size_t row, const std::string& name) const {
+    return std::stod(rows[row][column(name)]);
+  }
 };
 
 inline Csv read_csv(const std::string& path) {
@@ -89,8 +91,10 @@ inline Csv read_csv(const std::string& path) {
     std::stringstream ss(line);
     std::string cell;
     while (std::getline(ss, cell, ',')) cells.push_back(cell);
-    if (first) csv.header = cells;
-    else csv.rows.push_back(cells);
+    if (first)
+      csv.header = cells;
+    else
+      csv.rows.push_back(cells);
     first = false;
   }
   return csv;
@@ -113,8 +117,11 @@ bodies:
 class LoopHarness {
  public:
   explicit LoopHarness(const SceneDesc& scene, size_t ticks)
-      : world(scene, plugins()), collision(world, plugins()), haptics(world, collision),
-        snapshots(HapticLoop::make_prototype(world)), loop(world, snapshots, ticks),
+      : world(scene, plugins()),
+        collision(world, plugins()),
+        haptics(world, collision),
+        snapshots(HapticLoop::make_prototype(world)),
+        loop(world, snapshots, ticks),
         dt(1.0 / scene.clock.haptic_rate_hz) {
     for (size_t i = 0; i < world.body_count(); ++i) {
       SoftBody& b = world.body(i);

@@ -4,7 +4,6 @@
 // its face; a plate that starts away touches later; probes interpolate in their tets and reach
 // probes.csv and report.json; the same runs in realtime and on a body's own thread.
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
@@ -65,8 +64,8 @@ Probes run_block(const std::string& faces, const std::string& name) {
   return p;
 }
 
-constexpr double kStrain = 0.0002 / 0.02;                      // compression along y
-constexpr double kWidening = 0.3 * kStrain * 0.04;             // nu * strain * width, m
+constexpr double kStrain = 0.0002 / 0.02;           // compression along y
+constexpr double kWidening = 0.3 * kStrain * 0.04;  // nu * strain * width, m
 constexpr const char* kSlidingFaces = R"(prescribed:
       - {region: {box: {min: [-1, -1, -1], max: [1, 0.0001, 1]}}, axes: [y], displacement: [0, 0, 0]}
       - {region: {box: {min: [-1, 0.0199, -1], max: [1, 1, 1]}}, axes: [y], displacement: {ramp: {to: [0, -0.0002, 0], duration_s: 3}}})";
@@ -137,8 +136,8 @@ Vec3 table_at(double t) {  // the table above, m
 
 TEST(BoundaryMotion, PrescribedNodesFollowTheirTableUnderEveryModel) {
   // tensor_mass's central differences are unstable on this mesh at 1 kHz, with or without motion.
-  for (const char* model :
-       {"corotational_fem", "{name: tensor_mass, integrator: implicit_euler}", "mass_spring", "fd_debunne"}) {
+  for (const char* model : {"corotational_fem", "{name: tensor_mass, integrator: implicit_euler}",
+                            "mass_spring", "fd_debunne"}) {
     SCOPED_TRACE(model);
     std::string text = kTableColumn;
     text.replace(text.find("MODEL"), 5, model);
@@ -150,7 +149,8 @@ TEST(BoundaryMotion, PrescribedNodesFollowTheirTableUnderEveryModel) {
       h.tick();
       const double t = static_cast<double>(h.next) * h.dt;
       const Vec3 u = table_at(t);
-      for (size_t a = 0; a < 3; ++a) EXPECT_NEAR(b.positions[3 * top + a] - b.rest()[3 * top + a], u[a], 1e-12) << t;
+      for (size_t a = 0; a < 3; ++a)
+        EXPECT_NEAR(b.positions[3 * top + a] - b.rest()[3 * top + a], u[a], 1e-12) << t;
       // The slope of the segment the time is in (at a knot rounding may pick either side).
       if (std::abs(t - 0.01) > 1e-6 && std::abs(t - 0.03) > 1e-6) {
         EXPECT_NEAR(b.velocities[3 * top], t < 0.01 ? 0.1 : 0.0, 1e-9) << t;
@@ -169,7 +169,8 @@ TEST(BoundaryMotion, ProbesReachProbesCsvAndFollowTheirTet) {
   options.out_dir = out;
   ASSERT_EQ(run_scene(scene_from_text(text, "probes_csv"), options).exit_code, 0);
   const Csv csv = read_csv(out + "/probes.csv");
-  ASSERT_EQ(csv.header, (std::vector<std::string>{"time_s", "body", "probe", "x", "y", "z", "ux", "uy", "uz"}));
+  ASSERT_EQ(csv.header,
+            (std::vector<std::string>{"time_s", "body", "probe", "x", "y", "z", "ux", "uy", "uz"}));
   ASSERT_GE(csv.rows.size(), 49u);
   const size_t last = csv.rows.size() - 1;
   EXPECT_EQ(csv.rows[last][2], "top");
@@ -189,7 +190,9 @@ TEST(BoundaryMotion, ProbeOutsideTheMeshIsALoadError) {
     run_scene(scene_from_text(text, "probe_outside"));
     FAIL() << "a probe outside the mesh loaded";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'top' at [0.01, 0.05, 0.01] m lies outside"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'top' at [0.01, 0.05, 0.01] m lies outside"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -202,8 +205,12 @@ TEST(BoundaryMotion, SameMotionInRealtimeAndOnTheBodysOwnThread) {
     RunOptions options;
     options.out_dir = out;
     options.realtime = true;
-    const std::vector<std::string> overrides{"bodies.0.step_rate_hz=500", std::string("bodies.0.step_thread=") + thread};
-    ASSERT_EQ(run_scene(scene_from_text(text, std::string("realtime_") + thread, overrides), options).exit_code, 0);
+    const std::vector<std::string> overrides{"bodies.0.step_rate_hz=500",
+                                             std::string("bodies.0.step_thread=") + thread};
+    ASSERT_EQ(
+        run_scene(scene_from_text(text, std::string("realtime_") + thread, overrides), options)
+            .exit_code,
+        0);
     const nlohmann::json report = read_report(out);
     // Past the table's end the top face rests at its last value, whatever the wall clock did.
     EXPECT_NEAR(report["bodies"][0]["probes"][0]["displacement"][0].get<double>(), 0.001, 1e-12);

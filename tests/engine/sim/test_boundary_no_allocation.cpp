@@ -2,9 +2,8 @@
 // this executable and counted over ticks of a body with a driven face, a sliding face, a plate
 // and probes, stepped on the haptic thread. (glibc only; skipped under the sanitizers, which own
 // malloc.)
-#include "sim_test_support.hpp"
-
 #include "allocation_counter.hpp"
+#include "sim_test_support.hpp"
 
 namespace tacta::simtest {
 namespace {

@@ -3,7 +3,6 @@
 // (collision.plugins) and one lacking the role is refused at the key's line, and report.json
 // says which plugin serves which role.
 #include <dlfcn.h>
-
 #include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
@@ -31,7 +30,8 @@ std::string cube_press_with(const std::string& collision) {
 
 int line_of(const std::string& text, const std::string& what) {
   const size_t at = text.find(what);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  return 1 + static_cast<int>(
+                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 nlohmann::json read_report(const std::string& dir) {
@@ -41,9 +41,11 @@ nlohmann::json read_report(const std::string& dir) {
 
 TEST(CollisionRoles, InTreePluginsDeclareTheirRoles) {
   bool guessed = true;
-  EXPECT_EQ(roles_of("bvh", guessed), TACTA_COLLISION_ROLE_BROAD_PHASE | TACTA_COLLISION_ROLE_PROXY);
+  EXPECT_EQ(roles_of("bvh", guessed),
+            TACTA_COLLISION_ROLE_BROAD_PHASE | TACTA_COLLISION_ROLE_PROXY);
   EXPECT_FALSE(guessed);
-  EXPECT_EQ(roles_of("ccd", guessed), TACTA_COLLISION_ROLE_NARROW_PHASE | TACTA_COLLISION_ROLE_RESPONSE);
+  EXPECT_EQ(roles_of("ccd", guessed),
+            TACTA_COLLISION_ROLE_NARROW_PHASE | TACTA_COLLISION_ROLE_RESPONSE);
   EXPECT_FALSE(guessed);
   EXPECT_EQ(roles_of("convex", guessed), TACTA_COLLISION_ROLE_NARROW_PHASE);
   EXPECT_FALSE(guessed);
@@ -56,7 +58,9 @@ TEST(CollisionRoles, PluginWithoutRolesFallsBackToItsEntries) {
   // A table with the member present but 0 is guessed the same way.
   tacta_collision_api api{};
   api.find_pairs = plugins().find(TACTA_KIND_COLLISION, "bvh") != nullptr
-                       ? static_cast<const tacta_collision_api*>(plugins().find(TACTA_KIND_COLLISION, "bvh")->descriptor->api)->find_pairs
+                       ? static_cast<const tacta_collision_api*>(
+                             plugins().find(TACTA_KIND_COLLISION, "bvh")->descriptor->api)
+                             ->find_pairs
                        : nullptr;
   tacta_descriptor d{};
   d.api = &api;
@@ -66,7 +70,8 @@ TEST(CollisionRoles, PluginWithoutRolesFallsBackToItsEntries) {
   EXPECT_EQ(g, 1);
 
   // The guessed plugin serves the role a scene names it for, end to end.
-  const std::string text = cube_press_with("collision:\n  plugins: {response: test_legacy_response}\n");
+  const std::string text =
+      cube_press_with("collision:\n  plugins: {response: test_legacy_response}\n");
   const std::string out = fresh_dir("legacy_response");
   RunOptions options;
   options.out_dir = out;
@@ -74,7 +79,8 @@ TEST(CollisionRoles, PluginWithoutRolesFallsBackToItsEntries) {
   EXPECT_EQ(r.exit_code, 0);
   using Calls = long (*)();
   // The registry loaded it already: NOLOAD finds that copy (its symbols are local to it).
-  const std::string path = std::string(TACTA_SIM_TEST_PLUGIN_DIR) + "/tacta_test_legacy_response.so";
+  const std::string path =
+      std::string(TACTA_SIM_TEST_PLUGIN_DIR) + "/tacta_test_legacy_response.so";
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_NOLOAD);
   ASSERT_NE(handle, nullptr) << path;
   auto calls = reinterpret_cast<Calls>(dlsym(handle, "tacta_test_legacy_response_calls"));
@@ -95,7 +101,8 @@ TEST(CollisionRoles, PluginWithoutRolesFallsBackToItsEntries) {
 }
 
 TEST(CollisionRoles, PluginLackingTheNamedRoleIsRefusedAtItsLine) {
-  const std::string text = cube_press_with("collision:\n  plugins:\n    broad_phase: test_legacy_response\n");
+  const std::string text =
+      cube_press_with("collision:\n  plugins:\n    broad_phase: test_legacy_response\n");
   const SceneDesc scene = scene_from_text(text, "role_refused");
   try {
     Simulation simulation(scene, plugins());
@@ -103,7 +110,9 @@ TEST(CollisionRoles, PluginLackingTheNamedRoleIsRefusedAtItsLine) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, scene_path("role_refused"));
     EXPECT_EQ(e.where().line, line_of(text, "broad_phase: test_legacy_response"));
-    EXPECT_NE(std::string(e.what()).find("does not declare the broad_phase role"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not declare the broad_phase role"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -2,10 +2,9 @@
 // project's scenes: SOFA's beams benchmark and the liver demo. Each body's largest displacement
 // over the run must agree within 0.5%, with no solve left unconverged.
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
 
@@ -31,7 +30,8 @@ void expect_default_follows_direct(const std::string& scene_file, const std::vec
   for (const size_t b : bodies) {
     const BodyResult& s = safe.bodies[b];
     const BodyResult& d = direct.bodies[b];
-    EXPECT_NEAR(s.max_displacement_m / d.max_displacement_m, 1.0, 0.005) << scene_file << " " << s.name;
+    EXPECT_NEAR(s.max_displacement_m / d.max_displacement_m, 1.0, 0.005)
+        << scene_file << " " << s.name;
     EXPECT_EQ(counter(s, "unconverged_solves"), 0.0) << s.name;
     EXPECT_GT(counter(s, "solves"), 0.0) << s.name;
   }
@@ -61,9 +61,9 @@ TEST(DefaultSolvers, LiverDemoFollowsTheDirectSolve) {
   std::ifstream in(options.out_dir + "/report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   const nlohmann::json& counters = report["bodies"][0]["model_counters"];
-  for (const char* key : {"solves", "cg_iterations", "warm_starts_rejected", "cg_restarts",
-                          "direct_fallbacks", "direct_solves_held", "unconverged_solves",
-                          "max_relative_residual"})
+  for (const char* key :
+       {"solves", "cg_iterations", "warm_starts_rejected", "cg_restarts", "direct_fallbacks",
+        "direct_solves_held", "unconverged_solves", "max_relative_residual"})
     EXPECT_TRUE(counters.contains(key)) << key;
   EXPECT_EQ(counters["solves"].get<double>(), 1500.0);
 }

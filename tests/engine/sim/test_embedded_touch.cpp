@@ -7,26 +7,27 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
 namespace {
 
-constexpr double kRadius = 0.05;  // m, sphere.obj (unit radius) scaled by 0.05
+constexpr double kRadius = 0.05;   // m, sphere.obj (unit radius) scaled by 0.05
 constexpr double kCentreY = 0.06;  // m
 
 // A unit icosphere (the icosahedron split `levels` times, vertices pushed onto the sphere) as OBJ.
 std::string write_icosphere(int levels) {
   const double g = (1 + std::sqrt(5.0)) / 2;
-  std::vector<std::array<double, 3>> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                          {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                                       {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  std::vector<std::array<double, 3>> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
+                                          {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
+                                          {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<int, int>, int> middle;
     auto mid = [&](int a, int b) {
@@ -62,8 +63,8 @@ std::string stroke_scene(const std::string& sphere, const std::string& surface) 
     const double angle = (-50.0 + 100.0 * i / (kPoints - 1)) * M_PI / 180.0;
     const double r = kRadius - 0.010;
     char point[96];
-    std::snprintf(point, sizeof point, ",  %.4f, %.6f, %.6f, 0", 0.3 + 2.0 * i / (kPoints - 1), r * std::sin(angle),
-                  kCentreY + r * std::cos(angle));
+    std::snprintf(point, sizeof point, ",  %.4f, %.6f, %.6f, 0", 0.3 + 2.0 * i / (kPoints - 1),
+                  r * std::sin(angle), kCentreY + r * std::cos(angle));
     waypoints += point;
   }
   return R"(
@@ -74,18 +75,21 @@ clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 2.
 bodies:
   - name: ball
     mesh:
-      file: )" + sphere + R"(
+      file: )" +
+         sphere + R"(
       scale: 0.05
       translate: [0, 0.06, 0]
       voxel_size: 0.02
-      surface: )" + surface + R"(
+      surface: )" +
+         surface + R"(
     material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 1000}
     model: corotational_fem
     fixed: [{box: {min: [-1, -1, -1], max: [1, 1, 1]}}]   # held: the analytic sphere stays exact
 devices:
   - name: stylus
     plugin: sim_stylus
-    params: {workspace_origin: [0, 0.1, 0], pattern: waypoints, waypoints: [)" + waypoints + R"(]}
+    params: {workspace_origin: [0, 0.1, 0], pattern: waypoints, waypoints: [)" +
+         waypoints + R"(]}
     tool: {sphere: {radius: 0.002}}
     coupling: {stiffness: 200, damping: 0.1}
     touches: ball
@@ -96,9 +100,9 @@ collision: {broad_phase: bvh}
 struct StrokeFeel {
   double worst_angle_deg = 0;  // force direction against the analytic normal at the proxy
   double mean_angle_deg = 0;
-  double largest_step_N = 0;   // largest change of |F| from one tick to the next
+  double largest_step_N = 0;  // largest change of |F| from one tick to the next
   int samples = 0;
-  int contact_lost = 0;        // sampled ticks out of contact
+  int contact_lost = 0;               // sampled ticks out of contact
   double worst_reaction_error_N = 0;  // |sum of node reactions + device force|, any tick
 };
 
@@ -116,12 +120,14 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
     for (size_t a = 0; a < 3; ++a) {
       double sum = 0;
       for (size_t n = 0; n < body.node_count(); ++n) sum += body.contact_forces[3 * n + a];
-      feel.worst_reaction_error_N = std::max(feel.worst_reaction_error_N, std::fabs(sum + (slot.in_contact ? slot.force[a] : 0.0)));
+      feel.worst_reaction_error_N = std::max(
+          feel.worst_reaction_error_N, std::fabs(sum + (slot.in_contact ? slot.force[a] : 0.0)));
     }
     const double t = static_cast<double>(k + 1) * h.dt;
     if (t < 0.6 || t > 2.1) continue;
     const double magnitude = std::hypot(slot.force[0], slot.force[1], slot.force[2]);
-    if (previous >= 0) feel.largest_step_N = std::max(feel.largest_step_N, std::fabs(magnitude - previous));
+    if (previous >= 0)
+      feel.largest_step_N = std::max(feel.largest_step_N, std::fabs(magnitude - previous));
     previous = magnitude;
     if (!slot.in_contact || !(magnitude > 0)) {
       ++feel.contact_lost;
@@ -130,7 +136,8 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
     const double normal[3] = {slot.proxy[0], slot.proxy[1] - kCentreY, slot.proxy[2]};
     const double length = std::hypot(normal[0], normal[1], normal[2]);
     const double cosine =
-        (slot.force[0] * normal[0] + slot.force[1] * normal[1] + slot.force[2] * normal[2]) / (magnitude * length);
+        (slot.force[0] * normal[0] + slot.force[1] * normal[1] + slot.force[2] * normal[2]) /
+        (magnitude * length);
     const double angle = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI;
     feel.worst_angle_deg = std::max(feel.worst_angle_deg, angle);
     angle_sum += angle;
@@ -150,10 +157,13 @@ TEST(EmbeddedTouch, StrokingAnEmbeddedSphereFollowsItsNormalWithoutSteps) {
   RecordProperty("voxel_worst_angle_deg", std::to_string(voxels.worst_angle_deg));
   RecordProperty("voxel_mean_angle_deg", std::to_string(voxels.mean_angle_deg));
   RecordProperty("voxel_largest_step_N", std::to_string(voxels.largest_step_N));
-  std::printf("embedded: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks)\n", smooth.worst_angle_deg,
-              smooth.mean_angle_deg, smooth.largest_step_N, smooth.samples);
-  std::printf("voxel boundary: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks, %d out of contact)\n",
-              voxels.worst_angle_deg, voxels.mean_angle_deg, voxels.largest_step_N, voxels.samples, voxels.contact_lost);
+  std::printf("embedded: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks)\n",
+              smooth.worst_angle_deg, smooth.mean_angle_deg, smooth.largest_step_N, smooth.samples);
+  std::printf(
+      "voxel boundary: worst %.2f deg, mean %.2f deg, largest |F| step %.4f N (%d ticks, %d out of "
+      "contact)\n",
+      voxels.worst_angle_deg, voxels.mean_angle_deg, voxels.largest_step_N, voxels.samples,
+      voxels.contact_lost);
   ASSERT_EQ(smooth.samples, 1501);  // in contact all along
   EXPECT_EQ(smooth.contact_lost, 0);
   EXPECT_LT(smooth.worst_angle_deg, 5.0);
@@ -175,7 +185,8 @@ gravity: [0, -9.81, 0]
 clock: {mode: lockstep, haptic_rate_hz: 1000, render_rate_hz: 60, duration_s: 1.0}
 bodies:
   - name: ball
-    mesh: {file: )" + sphere + R"(, scale: 0.05, translate: [0, 0.07, 0], voxel_size: 0.02}
+    mesh: {file: )" +
+         sphere + R"(, scale: 0.05, translate: [0, 0.07, 0], voxel_size: 0.02}
     material: {youngs_modulus: 3.0e4, poisson_ratio: 0.4, density: 1000, rayleigh_mass: 5.0}
     model: corotational_fem
 obstacles:
@@ -201,16 +212,20 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
   for (uint64_t k = 0; k < 1000; ++k) {
     loop.tick(k, static_cast<double>(k) * dt, dt);
     update_embedded_surface(*ball.surface, ball.positions.data());
-    for (size_t v = 0; v < ball.surface->vertex_count(); ++v) lowest_ever = std::min(lowest_ever, ball.surface->positions[3 * v + 1]);
+    for (size_t v = 0; v < ball.surface->vertex_count(); ++v)
+      lowest_ever = std::min(lowest_ever, ball.surface->positions[3 * v + 1]);
   }
   ASSERT_FALSE(ball.fault.frozen) << ball.fault.reason.data();
   double lowest_surface = 1, lowest_node = 1;
-  for (size_t v = 0; v < ball.surface->vertex_count(); ++v) lowest_surface = std::min(lowest_surface, ball.surface->positions[3 * v + 1]);
-  for (size_t n = 0; n < ball.node_count(); ++n) lowest_node = std::min(lowest_node, ball.positions[3 * n + 1]);
-  std::printf("lowest surface vertex %.4f m (ever %.4f m), lowest node %.4f m\n", lowest_surface, lowest_ever, lowest_node);
+  for (size_t v = 0; v < ball.surface->vertex_count(); ++v)
+    lowest_surface = std::min(lowest_surface, ball.surface->positions[3 * v + 1]);
+  for (size_t n = 0; n < ball.node_count(); ++n)
+    lowest_node = std::min(lowest_node, ball.positions[3 * n + 1]);
+  std::printf("lowest surface vertex %.4f m (ever %.4f m), lowest node %.4f m\n", lowest_surface,
+              lowest_ever, lowest_node);
   RecordProperty("lowest_surface_m", std::to_string(lowest_surface));
   RecordProperty("lowest_surface_ever_m", std::to_string(lowest_ever));
-  EXPECT_GT(lowest_ever, -2e-3);          // never sank more than 2 mm into the table
+  EXPECT_GT(lowest_ever, -2e-3);           // never sank more than 2 mm into the table
   EXPECT_NEAR(lowest_surface, 0.0, 1e-3);  // and rests on it (a 10 cm ball, 2 cm voxels)
   EXPECT_GT(response.contacts_total(), 0u);
 }
@@ -220,8 +235,9 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
 TEST(EmbeddedTouch, TheDemoWithCollisionOnStartsWithoutAFault) {
   std::ifstream in(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const SceneDesc scene = scene_from_text(text, "liver_palpation", {"collision.enabled=true", "clock.duration_s=0.02",
-                                                                    "output.frames=false", "output.vtk=false"});
+  const SceneDesc scene = scene_from_text(text, "liver_palpation",
+                                          {"collision.enabled=true", "clock.duration_s=0.02",
+                                           "output.frames=false", "output.vtk=false"});
   const RunResult result = run_scene(scene);
   EXPECT_EQ(result.faults, 0u);
   EXPECT_EQ(result.exit_code, 0);
@@ -239,7 +255,8 @@ TEST(EmbeddedTouch, TheVtkSeriesAndTheReportHoldTheEmbeddedSurface) {
   std::ifstream in(dir + "/vtk/ball_surface_000000.vtu");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // The icosphere split twice: 162 vertices, 320 triangles.
-  EXPECT_NE(text.find("NumberOfPoints=\"162\" NumberOfCells=\"320\""), std::string::npos) << text.substr(0, 400);
+  EXPECT_NE(text.find("NumberOfPoints=\"162\" NumberOfCells=\"320\""), std::string::npos)
+      << text.substr(0, 400);
   EXPECT_NE(text.find("Name=\"displacement\""), std::string::npos);
   // report.json says what the body was shown and touched through.
   std::ifstream report_file(dir + "/report.json");

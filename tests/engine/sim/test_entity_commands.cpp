@@ -1,9 +1,8 @@
 // EntityCommandRing: requesters on one thread post add and remove commands while the tick's
 // thread drains them, as a realtime run does. Every command arrives once and in order, a full
 // ring refuses instead of overwriting. Part of sim_concurrency_test (ThreadSanitizer: preset tsan).
-#include <gtest/gtest.h>
-
 #include <atomic>
+#include <gtest/gtest.h>
 #include <thread>
 
 #include "sim/entity_commands.hpp"

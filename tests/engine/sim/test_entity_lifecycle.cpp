@@ -3,16 +3,15 @@
 // a tick boundary; stale handles are reported; removed bodies stay in the report with their
 // times; a device touching a removed body gets zero force from that tick; bad events are
 // InputErrors naming the key.
-#include <atomic>
-#include <chrono>
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <thread>
-
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "sim_test_support.hpp"
 
@@ -83,7 +82,8 @@ TEST(EntityLifecycle, StaleHandlesAreDetected) {
     FAIL() << "a second removal through the same handle must throw";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("stale body handle"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("second"), std::string::npos) << "names the body: " << e.what();
+    EXPECT_NE(std::string(e.what()).find("second"), std::string::npos)
+        << "names the body: " << e.what();
   }
   EXPECT_THROW(simulation.body_index(h), InputError);
   EXPECT_THROW(simulation.body_index(BodyHandle{7, 1}), InputError) << "a slot never used";
@@ -95,7 +95,8 @@ TEST(EntityLifecycle, StaleHandlesAreDetected) {
 
 TEST(EntityLifecycle, BadAddsAreInputErrors) {
   Simulation simulation(beam({"capacity.bodies=2"}), plugins());
-  EXPECT_THROW(simulation.add_body(std::string("name: beam\n") + (kSecondBeam + std::string(kSecondBeam).find("mesh"))),
+  EXPECT_THROW(simulation.add_body(std::string("name: beam\n") +
+                                   (kSecondBeam + std::string(kSecondBeam).find("mesh"))),
                InputError)
       << "a name in use";
   EXPECT_THROW(simulation.add_body(std::string("name: x\nmesh: 3\n")), InputError);
@@ -210,7 +211,8 @@ TEST(EntityLifecycle, BodyAddedAfterTheClockStartedCollidesAndIsDrawn) {
   late.step(300);
   EXPECT_EQ(frames.bodies, 2u) << "the render task describes the added body";
   EXPECT_TRUE(frames.last_present) << "frames carry it once it entered";
-  EXPECT_GT(lowest_y(late, 1), 0.1 - 0.003) << "rests on the block (it would be near -0.33 m falling through)";
+  EXPECT_GT(lowest_y(late, 1), 0.1 - 0.003)
+      << "rests on the block (it would be near -0.33 m falling through)";
   EXPECT_LT(lowest_y(late, 1), 0.1 + 0.003);
   const Snapshot shot = late.snapshot();
   ASSERT_EQ(shot.bodies.size(), 2u);
@@ -231,11 +233,14 @@ TEST(EntityLifecycle, BodyAddedAfterTheClockStartedCollidesAndIsDrawn) {
     worst = std::max(worst, std::fabs(a.positions[k] - b.positions[k]));
     shift[k % 3] += (a.positions[k] - b.positions[k]) / static_cast<double>(a.nodes);
   }
-  const double centroid = std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
+  const double centroid =
+      std::sqrt(shift[0] * shift[0] + shift[1] * shift[1] + shift[2] * shift[2]);
   EXPECT_LT(worst, 1e-3) << "m: lands as the event's body does";
   EXPECT_LT(centroid, 5e-4) << "m";
-  std::printf("late add vs event add: largest node difference %.3g m, centroid %.3g m, state_hash %s vs %s\n",
-              worst, centroid, late.report().state_hash.c_str(), timed.report().state_hash.c_str());
+  std::printf(
+      "late add vs event add: largest node difference %.3g m, centroid %.3g m, state_hash %s vs "
+      "%s\n",
+      worst, centroid, late.report().state_hash.c_str(), timed.report().state_hash.c_str());
 }
 
 // The cube press with its cube far away and the stylus touching any body: the cube added after
@@ -277,7 +282,8 @@ TEST(EntityLifecycle, SceneEventsAddAndRemove) {
 events:
   - time: 0.05
     add:
-)" + indented(kSecondBeam, "      ") + R"(
+)" + indented(kSecondBeam, "      ") +
+                           R"(
   - {time: 0.1, remove: beam}
 )";
   Simulation simulation(scene_from_text(text, "beam_events"), plugins());
@@ -293,12 +299,16 @@ events:
   EXPECT_GT(r.bodies[1].max_displacement_m, 0.0);
   EXPECT_EQ(r.exit_code, 0);
 
-  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1, remove: nobody}\n", "bad_events"),
-               InputError);
-  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1}\n", "bad_events"), InputError);
-  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.2, remove: beam}\n  - {time: 0.1, remove: beam}\n",
+  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1, remove: nobody}\n",
                                "bad_events"),
-               InputError)
+               InputError);
+  EXPECT_THROW(scene_from_text(std::string(kBeam) + "events:\n  - {time: 0.1}\n", "bad_events"),
+               InputError);
+  EXPECT_THROW(
+      scene_from_text(std::string(kBeam) +
+                          "events:\n  - {time: 0.2, remove: beam}\n  - {time: 0.1, remove: beam}\n",
+                      "bad_events"),
+      InputError)
       << "out of time order";
   try {
     scene_from_text(text + "capacity: {bodies: 1}\n", "bad_capacity");
@@ -312,7 +322,8 @@ events:
 // The liver demo's stylus presses the liver (touches: liver); the liver is removed mid-press:
 // the force sent drops to zero in the tick that takes it out and stays there.
 TEST(EntityLifecycle, DeviceForceDropsWhenItsBodyIsRemoved) {
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
   LoopHarness h(scene, 1200);
   const auto force = [&] {
     const auto& f = h.world.device(0).force;

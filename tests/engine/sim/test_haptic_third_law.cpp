@@ -34,11 +34,12 @@ TEST(HapticContact, BodyReactionIsMinusTheDeviceForceEveryContactTick) {
     if (f_norm > 1e-3) ++ticks_with_force;
     largest_force_N = std::max(largest_force_N, f_norm);
     double mismatch = 0;
-    for (int a = 0; a < 3; ++a) mismatch = std::max(mismatch, std::fabs(sum[a] + slot.force[static_cast<size_t>(a)]));
+    for (int a = 0; a < 3; ++a)
+      mismatch = std::max(mismatch, std::fabs(sum[a] + slot.force[static_cast<size_t>(a)]));
     worst_mismatch_N = std::max(worst_mismatch_N, mismatch);
-    EXPECT_LE(mismatch, 1e-12 * std::max(1.0, f_norm)) << "tick " << k << ": body got " << sum[0] << ", "
-                                                       << sum[1] << ", " << sum[2] << " N, device " << slot.force[0]
-                                                       << ", " << slot.force[1] << ", " << slot.force[2] << " N";
+    EXPECT_LE(mismatch, 1e-12 * std::max(1.0, f_norm))
+        << "tick " << k << ": body got " << sum[0] << ", " << sum[1] << ", " << sum[2]
+        << " N, device " << slot.force[0] << ", " << slot.force[1] << ", " << slot.force[2] << " N";
   }
   // The scene must actually press: a long contact with a force well above zero.
   EXPECT_GE(contact_ticks, 150);

@@ -2,9 +2,8 @@
 // god-object proxy's surface queries and (second case) collision detection and response, over
 // the shipped liver palpation scene through its first press. malloc and friends are interposed
 // in this executable (tests/support/allocation_counter.hpp); skipped under the sanitizers.
-#include "sim_test_support.hpp"
-
 #include "allocation_counter.hpp"
+#include "sim_test_support.hpp"
 
 namespace tacta::simtest {
 namespace {
@@ -63,7 +62,8 @@ TEST(HapticTickAllocations, LiverPalpationWithCollisionResponse) {
 // the body) but the ticks that take them in and out, and the ticks after, allocate nothing.
 TEST(HapticTickAllocations, AddAndRemoveBodiesAtTickBoundaries) {
   if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
   LoopHarness h(scene, kWarmUpTicks + kCountedTicks);
   for (int i = 0; i < kWarmUpTicks; ++i) h.tick();
   const BodyDesc cube = load_body_from_string(R"(
@@ -71,7 +71,8 @@ name: dropped
 mesh: {box_grid: {size: [0.04, 0.04, 0.04], cells: [2, 2, 2], origin: [0.2, 0.1, 0]}}
 material: {youngs_modulus: 20000, poisson_ratio: 0.4, density: 1000}
 model: corotational_fem
-)", scene.path, schemas());
+)",
+                                              scene.path, schemas());
   const auto count_100_ticks = [&] {  // with a snapshot now and then, as the render task takes them
     g_allocations = 0;
     g_counting = true;

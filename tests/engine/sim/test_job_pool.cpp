@@ -2,10 +2,9 @@
 // thread count and grain, the chunks really spread over workers, a second caller while a job
 // runs is served serially on its own thread, and the scratch arena hands out aligned zeroed
 // blocks up to its limit. Runs under ThreadSanitizer (label tsan).
-#include <gtest/gtest.h>
-
 #include <atomic>
 #include <cstdint>
+#include <gtest/gtest.h>
 #include <set>
 #include <thread>
 #include <vector>

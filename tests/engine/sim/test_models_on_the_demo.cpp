@@ -10,8 +10,10 @@ namespace tacta::simtest {
 namespace {
 
 TEST(ModelsOnTheDemo, EveryModelRunsTheLiverWithoutAFault) {
-  for (const char* model : {"corotational_fem", "tensor_mass", "mass_spring", "fd_debunne", "bullet_softbody"}) {
-    if (!plugins().find(TACTA_KIND_MODEL, model)) continue;  // bullet_softbody is optional in a build
+  for (const char* model :
+       {"corotational_fem", "tensor_mass", "mass_spring", "fd_debunne", "bullet_softbody"}) {
+    if (!plugins().find(TACTA_KIND_MODEL, model))
+      continue;  // bullet_softbody is optional in a build
     SCOPED_TRACE(model);
     const SceneDesc scene =
         load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(),
@@ -30,8 +32,9 @@ TEST(ModelsOnTheDemo, EveryModelRunsTheLiverWithoutAFault) {
 // A swap in the middle of the run (what tacta-view does) builds the incoming model for the
 // scene's dt, so tensor_mass's auto integrator is chosen there too.
 TEST(ModelsOnTheDemo, SwappingTensorMassInKeepsTheLiverRunning) {
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(),
-                                     {"swaps=[{time: 0.3, body: liver, model: tensor_mass}]", "output.plots=[]"});
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(),
+                 {"swaps=[{time: 0.3, body: liver, model: tensor_mass}]", "output.plots=[]"});
   RunOptions options;
   options.duration_s = 0.6;
   const RunResult r = run_scene(scene, options);

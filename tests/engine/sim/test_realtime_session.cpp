@@ -1,16 +1,15 @@
 // The realtime session: what it reports is what the kernel says the thread has, helper threads are
 // lowered (and moved off a pinned CPU), and everything is restored when the session ends.
+#include <atomic>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>
+#include <string>
 #include <sys/resource.h>
 #include <sys/syscall.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <fstream>
-#include <string>
 #include <thread>
+#include <unistd.h>
 
 #include "tacta/sim/realtime.hpp"
 

@@ -1,10 +1,9 @@
 // Run-time status: a model's warning bit is counted per body with its remedy in report.json and
 // printed once, without failing the run; an error bit makes the run exit 1 and is reported too.
 // The bit table has one entry per (source, bit), each with a remedy.
+#include <nlohmann/json.hpp>
 #include <set>
 #include <utility>
-
-#include <nlohmann/json.hpp>
 
 #include "sim/status_bits.hpp"
 #include "sim_test_support.hpp"
@@ -18,7 +17,8 @@ nlohmann::json body_status(const std::string& dir) {
 }
 
 RunResult run_cube(const std::string& model, const std::string& out) {
-  const SceneDesc scene = scene_from_text(kCubePressScene, "status_" + model, {"bodies.cube.model=" + model});
+  const SceneDesc scene =
+      scene_from_text(kCubePressScene, "status_" + model, {"bodies.cube.model=" + model});
   RunOptions options;
   options.out_dir = out;
   return run_scene(scene, options);
@@ -38,13 +38,15 @@ TEST(RunStatus, ModelWarningIsCountedWithRemedyAndDoesNotFail) {
   EXPECT_NEAR(status[0]["first_time_s"].get<double>(), 0.1, 1e-9);
   EXPECT_FALSE(status[0]["remedy"].get<std::string>().empty());
   size_t lines = 0;
-  for (const std::string& line : r.status.lines) lines += line.find("solver_not_converged") != std::string::npos;
+  for (const std::string& line : r.status.lines)
+    lines += line.find("solver_not_converged") != std::string::npos;
   EXPECT_EQ(lines, 1u) << "one console line per kind, not per tick";
 }
 
 TEST(RunStatus, ModelErrorBitExitsOne) {
   const std::string out = fresh_dir("status_error");
-  const RunResult r = run_cube("{name: test_fault_model, fault_kind: diverged, fault_step: 200}", out);
+  const RunResult r =
+      run_cube("{name: test_fault_model, fault_kind: diverged, fault_step: 200}", out);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_GE(r.status.errors, 1u);
   const nlohmann::json status = body_status(out);
@@ -59,7 +61,8 @@ TEST(RunStatus, CleanRunReportsNoStatus) {
   const RunResult r = run_cube("{name: test_fault_model, fault_kind: none}", out);
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_TRUE(body_status(out).empty());
-  EXPECT_EQ(r.status.errors + r.status.warnings, 0u) << (r.status.lines.empty() ? "" : r.status.lines[0]);
+  EXPECT_EQ(r.status.errors + r.status.warnings, 0u)
+      << (r.status.lines.empty() ? "" : r.status.lines[0]);
 }
 
 TEST(RunStatus, RunEndsWhenNothingIsLeftToStep) {

@@ -2,13 +2,12 @@
 // ticks) and a frame at every 1/60 s of simulated time; a stop flag ends the run early. Realtime
 // for 0.3 s: 300 ticks on absolute deadlines, measured durations, a render thread that took
 // several frames through a triple buffer. Also runs under ThreadSanitizer (preset tsan).
+#include <atomic>
+#include <cmath>
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>
 #include <time.h>
-
-#include <atomic>
-#include <cmath>
 #include <vector>
 
 #include "tacta/sim/scheduler.hpp"
@@ -29,7 +28,8 @@ class CountingTask final : public tacta::HapticTask {
   bool tick(uint64_t index, double time, double dt) noexcept override {
     if (index != ticks) ++index_errors;
     // Against the exact tick time index / rate: accumulation would drift by ~1e-11 s at 1e5 ticks.
-    max_time_error = std::max(max_time_error, std::fabs(time - static_cast<double>(index) / rate()));
+    max_time_error =
+        std::max(max_time_error, std::fabs(time - static_cast<double>(index) / rate()));
     if (dt != dt_expected_) ++dt_errors;
     last_time = time;
     ++ticks;
@@ -209,7 +209,8 @@ class SlowTask final : public tacta::HapticTask {
     }
     timespec now{};
     do clock_gettime(CLOCK_MONOTONIC, &now);
-    while (now.tv_sec < until.tv_sec || (now.tv_sec == until.tv_sec && now.tv_nsec < until.tv_nsec));
+    while (now.tv_sec < until.tv_sec ||
+           (now.tv_sec == until.tv_sec && now.tv_nsec < until.tv_nsec));
     int policy = 0;
     sched_param p{};
     pthread_getschedparam(pthread_self(), &policy, &p);

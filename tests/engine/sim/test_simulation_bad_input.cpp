@@ -25,8 +25,9 @@ int live_fault_models() {
 }
 
 // A good first body (the counting test model) and a second body the test breaks.
-std::string two_bodies(const std::string& second_body_extra, const std::string& second_mesh =
-                                                                  "{box_grid: {size: [0.1, 0.1, 0.1], cells: [2, 2, 2]}}") {
+std::string two_bodies(
+    const std::string& second_body_extra,
+    const std::string& second_mesh = "{box_grid: {size: [0.1, 0.1, 0.1], cells: [2, 2, 2]}}") {
   return R"(
 name: broken
 gravity: [0, 0, 0]
@@ -36,7 +37,8 @@ bodies:
     material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}
     model: test_fault_model
   - name: bad
-    mesh: )" + second_mesh + R"(
+    mesh: )" +
+         second_mesh + R"(
     material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}
     model: test_fault_model
 )" + second_body_extra;
@@ -123,7 +125,8 @@ TEST(SimulationBadInput, DeviceWithCollisionOffStillBuilds) {
     try {
       Simulation simulation(scene, plugins());
     } catch (const InputError& e) {
-      ADD_FAILURE() << "scene with '" << (tail.empty() ? "no collision section" : tail) << "': " << e.what();
+      ADD_FAILURE() << "scene with '" << (tail.empty() ? "no collision section" : tail)
+                    << "': " << e.what();
     }
   }
 }

@@ -4,7 +4,6 @@
 // from that tick on (trace.csv rows and the recorded device log).
 #include <cmath>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
@@ -56,11 +55,13 @@ void expect_fault_run(const std::string& kind, uint32_t expected_bits) {
     const double t = trace.number(i, "time_s");
     const bool zero = trace.number(i, "force_x_N") == 0 && trace.number(i, "force_y_N") == 0 &&
                       trace.number(i, "force_z_N") == 0;
-    if (t < kFaultTime_s + 0.5e-3) forces_before += zero ? 0 : 1;
+    if (t < kFaultTime_s + 0.5e-3)
+      forces_before += zero ? 0 : 1;
     else if (!zero) {
       ++nonzero_after;
-      if (nonzero_after <= 3) ADD_FAILURE() << "trace.csv: force " << trace.rows[i][trace.column("force_N")]
-                                            << " N sent at t = " << t << " s, after the fault at " << kFaultTime_s;
+      if (nonzero_after <= 3)
+        ADD_FAILURE() << "trace.csv: force " << trace.rows[i][trace.column("force_N")]
+                      << " N sent at t = " << t << " s, after the fault at " << kFaultTime_s;
     }
   }
   EXPECT_GE(forces_before, 20) << "the stylus must be pressing before the fault";
@@ -83,7 +84,8 @@ void expect_fault_run(const std::string& kind, uint32_t expected_bits) {
   const size_t before = 199;  // row at t = 0.200: the state the faulting step started from
   EXPECT_NEAR(traj.number(before, "time_s"), kFaultTime_s, 1e-9);
   for (size_t i = before + 1; i < traj.rows.size(); ++i) {
-    for (const char* c : {"x", "y", "z"}) EXPECT_EQ(traj.rows[i][traj.column(c)], traj.rows[before][traj.column(c)]) << "row " << i;
+    for (const char* c : {"x", "y", "z"})
+      EXPECT_EQ(traj.rows[i][traj.column(c)], traj.rows[before][traj.column(c)]) << "row " << i;
     for (const char* c : {"vx", "vy", "vz"}) EXPECT_EQ(traj.number(i, c), 0.0) << "row " << i;
   }
 }
@@ -124,7 +126,8 @@ TEST(SimulationFaults, FrozenStateIsTheStartOfTheFaultingTick) {
     if (slot.force != std::array<double, 3>{0, 0, 0} && forced++ == 0) first_forced = k;
   }
   EXPECT_EQ(moved, 0) << "ticks in which the frozen body moved";
-  EXPECT_EQ(forced, 0) << "ticks after the fault that sent a force, the first at tick " << first_forced;
+  EXPECT_EQ(forced, 0) << "ticks after the fault that sent a force, the first at tick "
+                       << first_forced;
   EXPECT_EQ(h.loop.faults().rows().size(), 1u) << "a frozen body faults once";
 }
 

@@ -4,9 +4,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <thread>
-
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "sim_test_support.hpp"
 #include "tacta/param_defaults.hpp"
@@ -86,7 +85,8 @@ TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
   RunResult result;
   std::thread runner([&] { result = simulation.run(options); });
   while (!started.running.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  const ParamSet params = defaults_of(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
+  const ParamSet params =
+      defaults_of(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
   simulation.request_model_swap(0, "corotational_fem", params);
   runner.join();
   EXPECT_EQ(result.mode, "realtime");
@@ -138,7 +138,8 @@ TEST(SimulationRequests, DeviceInputReachesEachDeviceInstance) {
   double settled[2][3] = {};
   for (size_t i = 0; i < trace.rows.size(); ++i) {
     const auto d = static_cast<size_t>(trace.number(i, "device"));
-    for (int a = 0; a < 3; ++a) settled[d][a] = trace.number(i, std::string("device_") + "xyz"[a] + "_m");
+    for (int a = 0; a < 3; ++a)
+      settled[d][a] = trace.number(i, std::string("device_") + "xyz"[a] + "_m");
   }
   for (int a = 0; a < 3; ++a) {
     EXPECT_NEAR(settled[0][a], left[a], 1e-4) << "axis " << a;
@@ -151,7 +152,8 @@ TEST(SimulationRequests, DeviceInputReachesEachDeviceInstance) {
 // (build-tsan/bin/sim_simulation_test --gtest_filter='*DeviceInput*').
 TEST(SimulationRequests, DeviceInputDuringARealtimeRun) {
   Simulation simulation(
-      scene_from_text(kTwoMice, "one_mouse", {"clock.mode=realtime", "clock.duration_s=0.4"}), plugins());
+      scene_from_text(kTwoMice, "one_mouse", {"clock.mode=realtime", "clock.duration_s=0.4"}),
+      plugins());
   const std::string out = fresh_dir("one_mouse");
   std::atomic<bool> done{false};
   std::thread runner([&] {
@@ -175,7 +177,8 @@ TEST(SimulationRequests, DeviceInputDuringARealtimeRun) {
   ASSERT_FALSE(trace.rows.empty());
   size_t end = trace.rows.size() - 1;  // the last row of device 0, the one fed
   while (end > 0 && trace.number(end, "device") != 0) --end;
-  EXPECT_NEAR(trace.number(end, "device_y_m"), last[1], 2e-3) << "the stylus follows the fed target";
+  EXPECT_NEAR(trace.number(end, "device_y_m"), last[1], 2e-3)
+      << "the stylus follows the fed target";
 }
 
 }  // namespace

@@ -3,10 +3,9 @@
 // force limit, and report.json holding every key docs/REPORT.md lists.
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
-
-#include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
 
@@ -80,18 +79,22 @@ TEST(SimulationRuns, RecordThenReplayGivesTheSameStateHash) {
       << "the recorded session must touch the liver for the replay to mean something";
 
   // As `tacta run --replay LOG` does it.
-  const SceneDesc replay_scene = scene_from_text(
-      kSmallLiver, "liver_small", {"devices.*.plugin=replay", "devices.*.params={log: \"" + log + "\"}"});
+  const SceneDesc replay_scene =
+      scene_from_text(kSmallLiver, "liver_small",
+                      {"devices.*.plugin=replay", "devices.*.params={log: \"" + log + "\"}"});
   ASSERT_EQ(replay_scene.devices[0].plugin, "replay");
   RunOptions replay;
   replay.out_dir = out + "/replayed";
   const RunResult replayed = run_scene(replay_scene, replay);
   EXPECT_EQ(replayed.exit_code, 0);
-  EXPECT_EQ(replayed.state_hash, recorded.state_hash) << "a lockstep replay must reproduce the run bit for bit";
+  EXPECT_EQ(replayed.state_hash, recorded.state_hash)
+      << "a lockstep replay must reproduce the run bit for bit";
   const nlohmann::json replayed_report = read_json(out + "/replayed/report.json");
   EXPECT_EQ(replayed_report["devices"][0]["plugin"], "replay");
-  EXPECT_EQ(replayed_report["devices"][0]["contact_ticks"], recorded_report["devices"][0]["contact_ticks"]);
-  EXPECT_EQ(replayed_report["devices"][0]["max_force_N"], recorded_report["devices"][0]["max_force_N"]);
+  EXPECT_EQ(replayed_report["devices"][0]["contact_ticks"],
+            recorded_report["devices"][0]["contact_ticks"]);
+  EXPECT_EQ(replayed_report["devices"][0]["max_force_N"],
+            recorded_report["devices"][0]["max_force_N"]);
 }
 
 // A smaller copy of scenes/examples/beam_model_swap.yaml, stiffer (small strains, where the
@@ -158,7 +161,8 @@ output: {record_interval_s: 0}
   EXPECT_LE(change(first, {"x", "y", "z"}), 2.0 * largest_step) << "position jump at the swap";
   // The two models' forces differ at this strain (on the symmetric split the first corotational
   // tick changes v by 2.4x a neighbouring tick's): a new force, not a lost state, so the bound is 3x.
-  EXPECT_LE(change(first, {"vx", "vy", "vz"}), 3.0 * largest_dv + 1e-9) << "velocity jump at the swap";
+  EXPECT_LE(change(first, {"vx", "vy", "vz"}), 3.0 * largest_dv + 1e-9)
+      << "velocity jump at the swap";
 
   // Second swap, exactly: the ballistic model continues from the carried-over state.
   const size_t second = row_at(0.201);
@@ -168,14 +172,17 @@ output: {record_interval_s: 0}
   EXPECT_NEAR(traj.number(second, "vy"), traj.number(second - 1, "vy") + g * dt, 1e-10);
   EXPECT_NEAR(traj.number(second, "vz"), traj.number(second - 1, "vz"), 1e-10);
   for (const auto& [x, v] : {std::pair{"x", "vx"}, std::pair{"y", "vy"}, std::pair{"z", "vz"}})
-    EXPECT_NEAR(traj.number(second, x), traj.number(second - 1, x) + dt * traj.number(second, v), 1e-10) << x;
+    EXPECT_NEAR(traj.number(second, x), traj.number(second - 1, x) + dt * traj.number(second, v),
+                1e-10)
+        << x;
 }
 
 TEST(SimulationRuns, DeviceForceNeverExceedsThePeak) {
   // A stiff coupling and a hand pushing hard: the coupling asks for far more than the peak.
   const SceneDesc scene = scene_from_text(
       kCubePressScene, "force_limit",
-      {"devices.stylus.coupling={stiffness: 3000, damping: 1.0}", "devices.stylus.params.hand_stiffness=3000",
+      {"devices.stylus.coupling={stiffness: 3000, damping: 1.0}",
+       "devices.stylus.params.hand_stiffness=3000",
        "devices.stylus.params.waypoints=[0, 0.011, 0.115, 0.007,  0.1, 0.011, 0.07, 0.007]"});
   const std::string out = fresh_dir("force_limit");
   RunOptions options;
@@ -215,25 +222,29 @@ TEST(SimulationRuns, ReportJsonHasEveryDocumentedKey) {
   std::set<std::string> top;
   const std::regex key_in_backticks("`([a-z_0-9]+)(\\[\\])?`");
   while (std::getline(doc, line)) {
-    if (line.rfind("## report.json", 0) == 0) in_table = true;
-    else if (line.rfind("## ", 0) == 0) in_table = false;
+    if (line.rfind("## report.json", 0) == 0)
+      in_table = true;
+    else if (line.rfind("## ", 0) == 0)
+      in_table = false;
     if (!in_table || line.rfind("| `", 0) != 0) continue;
     const std::string first_cell = line.substr(1, line.find('|', 1) - 1);
-    for (std::sregex_iterator it(first_cell.begin(), first_cell.end(), key_in_backticks), end; it != end; ++it)
+    for (std::sregex_iterator it(first_cell.begin(), first_cell.end(), key_in_backticks), end;
+         it != end; ++it)
       top.insert((*it)[1].str());
   }
   ASSERT_GE(top.size(), 15u) << "could not read the key table of docs/REPORT.md";
-  for (const std::string& key : top) EXPECT_TRUE(report.contains(key)) << "report.json lacks '" << key << "'";
+  for (const std::string& key : top)
+    EXPECT_TRUE(report.contains(key)) << "report.json lacks '" << key << "'";
   for (const char* key : {"p50", "p99", "p999", "max", "mean"})
     EXPECT_TRUE(report["tick_ms"].contains(key)) << "tick_ms." << key;
   ASSERT_EQ(report["bodies"].size(), 1u);
-  for (const char* key : {"name", "model", "models_run", "nodes", "elements", "max_displacement_m", "kinetic_energy_J",
-                          "elastic_energy_J", "initial_energy_J", "faults"})
+  for (const char* key : {"name", "model", "models_run", "nodes", "elements", "max_displacement_m",
+                          "kinetic_energy_J", "elastic_energy_J", "initial_energy_J", "faults"})
     EXPECT_TRUE(report["bodies"][0].contains(key)) << "bodies[0]." << key;
   ASSERT_EQ(report["devices"].size(), 1u);
-  for (const char* key : {"name", "plugin", "max_force_N", "force_limit_N", "first_contact_peak_N", "steady_contact_N",
-                          "energy_injected_J", "contact_ticks", "first_contact_time_s", "zero_force_ticks",
-                          "clamped_ticks", "state"})
+  for (const char* key : {"name", "plugin", "max_force_N", "force_limit_N", "first_contact_peak_N",
+                          "steady_contact_N", "energy_injected_J", "contact_ticks",
+                          "first_contact_time_s", "zero_force_ticks", "clamped_ticks", "state"})
     EXPECT_TRUE(report["devices"][0].contains(key)) << "devices[0]." << key;
   // Values that the run fixes.
   EXPECT_EQ(report["ticks"].get<uint64_t>(), 200u);

@@ -3,9 +3,8 @@
 // load moves the body; live parameters change without a swap, others by one; bad input throws.
 #include <cmath>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "sim_test_support.hpp"
 
@@ -69,7 +68,8 @@ TEST(SteppingApi, AnAppliedLoadMovesTheBodyUntilCleared) {
     if (arrays.rest_positions[3 * n] > 0.299) tip.push_back(n);
   ASSERT_FALSE(tip.empty());
   std::vector<double> forces;
-  for (size_t i = 0; i < tip.size(); ++i) forces.insert(forces.end(), {0.0, 1.0 / static_cast<double>(tip.size()), 0.0});
+  for (size_t i = 0; i < tip.size(); ++i)
+    forces.insert(forces.end(), {0.0, 1.0 / static_cast<double>(tip.size()), 0.0});
   loaded.set_applied_forces(0, tip, forces);
   loaded.step(100);
   free.step(100);
@@ -88,9 +88,11 @@ TEST(SteppingApi, LiveParametersChangeWithoutASwapOthersByOne) {
   EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50);
   simulation.step(10);
   const size_t before = simulation.report().schedule.ticks;
-  EXPECT_FALSE(simulation.set_param(0, "restart_factor", 4)) << "not live: a swap to the same model";
+  EXPECT_FALSE(simulation.set_param(0, "restart_factor", 4))
+      << "not live: a swap to the same model";
   EXPECT_EQ(simulation.body_params(0).find("restart_factor")->number, 4);
-  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50) << "the swap keeps the live change";
+  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50)
+      << "the swap keeps the live change";
   EXPECT_THROW(simulation.set_param(0, "no_such_parameter", 1), InputError);
   EXPECT_THROW(simulation.set_param(0, "max_iterations", -3), InputError);
   EXPECT_THROW(simulation.set_param(0, "max_iterations", 2.5), InputError);
@@ -113,7 +115,8 @@ TEST(SteppingApi, AWrittenStateIsWhatTheNextStepStartsFrom) {
   fresh.step(10);
   const BodyArrays b = fresh.body_arrays(0);
   double difference = 0;
-  for (size_t i = 0; i < 3 * a.nodes; ++i) difference = std::max(difference, std::fabs(a.positions[i] - b.positions[i]));
+  for (size_t i = 0; i < 3 * a.nodes; ++i)
+    difference = std::max(difference, std::fabs(a.positions[i] - b.positions[i]));
   EXPECT_LT(difference, 1e-12) << "from rest at rest velocity, 10 steps match a fresh start";
   EXPECT_GT(simulation.kinetic_energy(0), 0.0);
 }
@@ -157,7 +160,8 @@ namespace {
 std::vector<double> beam_after(uint32_t threads, uint64_t ticks) {
   const std::string text = R"(
 name: threaded_beam
-threads: )" + std::to_string(threads) + R"(
+threads: )" + std::to_string(threads) +
+                           R"(
 gravity: [0, -9, 0]
 clock: {haptic_rate_hz: 100}
 bodies:
@@ -183,7 +187,8 @@ TEST(SteppingApi, SnapshotIsTheStateNowAndRecordsNothing) {
   EXPECT_NEAR(now.time_s, 0.037, 1e-12);
   const BodyArrays state = pictured.body_arrays(0);
   ASSERT_EQ(now.bodies.size(), 1u);
-  EXPECT_EQ(now.bodies[0].positions, std::vector<double>(state.positions, state.positions + 3 * state.nodes));
+  EXPECT_EQ(now.bodies[0].positions,
+            std::vector<double>(state.positions, state.positions + 3 * state.nodes));
   EXPECT_EQ(now.bodies[0].model, "corotational_fem");
   EXPECT_GT(now.bodies[0].elastic_J, 0.0);
   ASSERT_EQ(pictured.scene_static().bodies.size(), 1u);

@@ -2,9 +2,8 @@
 // clamped at z = 0) under gravity along -y bends in the y-z plane only. With one diagonal in
 // every cell the same beam bent 2.9 mm sideways (issue 11); with the mirrored split the tip's
 // x displacement is round-off (7e-17 m against a sag of 18 mm).
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "sim_test_support.hpp"
 
@@ -36,7 +35,7 @@ bodies:
   sag /= tip_nodes;
   sideways /= tip_nodes;
   std::printf("cantilever tip after 0.3 s: sag %.6g m, sideways %.3g m\n", sag, sideways);
-  ASSERT_GT(sag, 0.005);  // it did bend (static sag 0.0184 m on this grid)
+  ASSERT_GT(sag, 0.005);                      // it did bend (static sag 0.0184 m on this grid)
   EXPECT_LT(std::abs(sideways), 1e-9 * sag);  // round-off
 }
 

@@ -2,12 +2,11 @@
 // version), one consumer reads them. Every read must be whole (no element from another version),
 // versions must only go up, and the last version published must be seen. Built with the scheduler
 // test into sim_concurrency_test, which also runs under ThreadSanitizer (preset tsan).
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <gtest/gtest.h>
 #include <thread>
 #include <vector>
 
@@ -26,9 +25,11 @@ TEST(TripleBuffer, SingleThreadSequence) {
     buffer.publish();
   }
   ASSERT_TRUE(buffer.acquire());
-  EXPECT_EQ(buffer.read_slot().front(), 2u) << "the consumer gets the newest snapshot, not the oldest";
+  EXPECT_EQ(buffer.read_slot().front(), 2u)
+      << "the consumer gets the newest snapshot, not the oldest";
   EXPECT_FALSE(buffer.acquire()) << "a snapshot is new only once";
-  EXPECT_EQ(buffer.read_slot().front(), 2u) << "the read slot stays readable after a failed acquire";
+  EXPECT_EQ(buffer.read_slot().front(), 2u)
+      << "the read slot stays readable after a failed acquire";
   std::fill(buffer.write_slot().begin(), buffer.write_slot().end(), 3u);
   EXPECT_EQ(buffer.read_slot().front(), 2u) << "the producer's slot is not the consumer's";
   buffer.publish();

@@ -9,7 +9,8 @@ namespace {
 class ExternalDemo {
  public:
   static constexpr const char* kName = "external_demo";
-  static constexpr const char* kDescription = "out-of-tree plugin built against the installed package";
+  static constexpr const char* kDescription =
+      "out-of-tree plugin built against the installed package";
   static constexpr uint32_t kVersion = 100;
   static constexpr std::array<tacta_param_spec, 2> kParams{
       tacta::sdk::real_param("gain", "", 1.0, 0.0, 10.0, "force scale"),

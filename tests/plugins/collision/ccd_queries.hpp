@@ -39,8 +39,8 @@ inline std::vector<CcdQuery> read_ccd_queries(const std::filesystem::path& file)
         throw std::runtime_error(file.string() + ":" + std::to_string(line_number) +
                                  ": expected 7 comma-separated integers");
     for (int k = 0; k < 3; ++k)
-      q.points[3 * row + k] =
-          std::strtod(field[2 * k].c_str(), nullptr) / std::strtod(field[2 * k + 1].c_str(), nullptr);
+      q.points[3 * row + k] = std::strtod(field[2 * k].c_str(), nullptr) /
+                              std::strtod(field[2 * k + 1].c_str(), nullptr);
     if (row == 0) {
       q.truth = field[6] == "1";
       q.vertex_face = vertex_face;
@@ -57,7 +57,8 @@ inline std::vector<CcdQuery> read_ccd_queries(const std::filesystem::path& file)
 inline std::vector<CcdQuery> read_ccd_folder(const std::filesystem::path& root) {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
-    if (entry.is_regular_file() && entry.path().extension() == ".csv") files.push_back(entry.path());
+    if (entry.is_regular_file() && entry.path().extension() == ".csv")
+      files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   std::vector<CcdQuery> all;
   for (const auto& f : files) {

@@ -57,8 +57,8 @@ inline void deform(TestSurface& s, std::mt19937& rng, double amplitude, double p
     const double x = s.start[v], y = s.start[v + 1];
     s.end[v] = s.start[v] + noise(rng);
     s.end[v + 1] = s.start[v + 1] + noise(rng);
-    s.end[v + 2] = s.start[v + 2] + amplitude * std::sin(3.0 * x + phase) * std::cos(2.0 * y) * 0.3 +
-                   noise(rng);
+    s.end[v + 2] = s.start[v + 2] +
+                   amplitude * std::sin(3.0 * x + phase) * std::cos(2.0 * y) * 0.3 + noise(rng);
   }
 }
 

@@ -25,7 +25,8 @@ class CollisionPlugin {
         if (key == d.params[i].name) params[i].number = value, found = true;
       if (!found) throw std::runtime_error(name + ": no parameter " + key);
     }
-    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()), 1e-3};
+    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()),
+                                1e-3};
     char message[256] = {0};
     if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK)
       throw std::runtime_error(name + ": create failed: " + message);
@@ -75,13 +76,14 @@ class ContactPipeline {
       r.bits |= ccd_.api().detect(ccd_.instance(), &world, pairs_.data(), pair_count,
                                   contacts_.data() + first,
                                   static_cast<uint32_t>(contacts_.size()) - first, &surface);
-      r.bits |= convex_.api().detect(convex_.instance(), &world, nullptr, 0,
-                                     contacts_.data() + first + surface,
-                                     static_cast<uint32_t>(contacts_.size()) - first - surface, &shape);
+      r.bits |= convex_.api().detect(
+          convex_.instance(), &world, nullptr, 0, contacts_.data() + first + surface,
+          static_cast<uint32_t>(contacts_.size()) - first - surface, &shape);
       contact_count_ = first + surface + shape;
       r.surface_contacts += surface;
       r.shape_contacts += shape;
-      r.bits |= ccd_.api().respond(ccd_.instance(), &world, contacts_.data() + first, surface + shape);
+      r.bits |=
+          ccd_.api().respond(ccd_.instance(), &world, contacts_.data() + first, surface + shape);
       ++r.rounds;
       if (surface == 0) break;
     }

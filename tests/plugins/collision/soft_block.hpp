@@ -12,15 +12,15 @@
 namespace tacta::testing {
 
 struct SoftBlock {
-  int cells = 2;                                      // per side
-  std::vector<double> start, end, velocities;         // 3 per vertex: m, m, m/s
-  std::vector<double> masses, inverse_masses;         // kg, 1/kg
-  std::vector<uint32_t> triangles;                    // outward, counter-clockwise
+  int cells = 2;                               // per side
+  std::vector<double> start, end, velocities;  // 3 per vertex: m, m, m/s
+  std::vector<double> masses, inverse_masses;  // kg, 1/kg
+  std::vector<uint32_t> triangles;             // outward, counter-clockwise
   std::vector<std::array<uint32_t, 2>> springs;
-  std::vector<double> rest_lengths;                   // m
+  std::vector<double> rest_lengths;  // m
   // Explicit integration at 1 ms is stable for these with 2-4 cells and 0.1-0.5 kg.
-  double stiffness = 200;                             // N/m per spring
-  double damping = 0.05;                              // N s/m per spring, along it
+  double stiffness = 200;  // N/m per spring
+  double damping = 0.05;   // N s/m per spring, along it
 
   uint32_t vertex_count() const { return static_cast<uint32_t>(start.size() / 3); }
   uint32_t index(int i, int j, int k) const {
@@ -46,7 +46,8 @@ struct SoftBlock {
       for (int j = 0; j < cells; ++j)
         for (int i = 0; i < cells; ++i) {
           uint32_t corners[8];
-          for (int c = 0; c < 8; ++c) corners[c] = b.index(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+          for (int c = 0; c < 8; ++c)
+            corners[c] = b.index(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
           for (int p = 0; p < 8; ++p)
             for (int q = p + 1; q < 8; ++q) {
               b.springs.push_back({corners[p], corners[q]});
@@ -58,7 +59,8 @@ struct SoftBlock {
 
   double distance(uint32_t p, uint32_t q) const {
     double s = 0;
-    for (int a = 0; a < 3; ++a) s += (end[3 * p + a] - end[3 * q + a]) * (end[3 * p + a] - end[3 * q + a]);
+    for (int a = 0; a < 3; ++a)
+      s += (end[3 * p + a] - end[3 * q + a]) * (end[3 * p + a] - end[3 * q + a]);
     return std::sqrt(s);
   }
 
@@ -73,8 +75,8 @@ struct SoftBlock {
         d[a] = (end[3 * q + a] - end[3 * p + a]) / (length > 0 ? length : 1);
         dv[a] = velocities[3 * q + a] - velocities[3 * p + a];
       }
-      const double magnitude =
-          stiffness * (length - rest_lengths[s]) + damping * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]);
+      const double magnitude = stiffness * (length - rest_lengths[s]) +
+                               damping * (dv[0] * d[0] + dv[1] * d[1] + dv[2] * d[2]);
       for (int a = 0; a < 3; ++a) {
         force[3 * p + a] += magnitude * d[a];
         force[3 * q + a] -= magnitude * d[a];
@@ -82,7 +84,8 @@ struct SoftBlock {
     }
     for (uint32_t v = 0; v < vertex_count(); ++v)
       for (int a = 0; a < 3; ++a) {
-        if (inverse_masses[v] > 0) velocities[3 * v + a] += dt * (force[3 * v + a] * inverse_masses[v] + gravity[a]);
+        if (inverse_masses[v] > 0)
+          velocities[3 * v + a] += dt * (force[3 * v + a] * inverse_masses[v] + gravity[a]);
         end[3 * v + a] = start[3 * v + a] + dt * velocities[3 * v + a];
       }
   }
@@ -110,7 +113,8 @@ struct SoftBlock {
   double kinetic_energy() const {  // J
     double e = 0;
     for (uint32_t v = 0; v < vertex_count(); ++v)
-      for (int a = 0; a < 3; ++a) e += 0.5 * masses[v] * velocities[3 * v + a] * velocities[3 * v + a];
+      for (int a = 0; a < 3; ++a)
+        e += 0.5 * masses[v] * velocities[3 * v + a] * velocities[3 * v + a];
     return e;
   }
   std::array<double, 3> first_moment() const {  // sum m x (kg m), over end positions
@@ -126,14 +130,18 @@ struct SoftBlock {
     for (size_t t = 0; t < triangles.size(); t += 3) {
       double r[3][3], len[3];
       for (int c = 0; c < 3; ++c) {
-        for (int a = 0; a < 3; ++a) r[c][a] = end[3 * triangles[t + static_cast<size_t>(c)] + a] - x[a];
+        for (int a = 0; a < 3; ++a)
+          r[c][a] = end[3 * triangles[t + static_cast<size_t>(c)] + a] - x[a];
         len[c] = std::sqrt(r[c][0] * r[c][0] + r[c][1] * r[c][1] + r[c][2] * r[c][2]);
       }
       const double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
                          r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
                          r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
-      auto dot = [&](int p, int q) { return r[p][0] * r[q][0] + r[p][1] * r[q][1] + r[p][2] * r[q][2]; };
-      const double denominator = len[0] * len[1] * len[2] + dot(0, 1) * len[2] + dot(1, 2) * len[0] + dot(2, 0) * len[1];
+      auto dot = [&](int p, int q) {
+        return r[p][0] * r[q][0] + r[p][1] * r[q][1] + r[p][2] * r[q][2];
+      };
+      const double denominator =
+          len[0] * len[1] * len[2] + dot(0, 1) * len[2] + dot(1, 2) * len[0] + dot(2, 0) * len[1];
       total += 2.0 * std::atan2(det, denominator);
     }
     return total / (4.0 * M_PI);
@@ -149,10 +157,14 @@ struct SoftBlock {
         e1[k] = start[3 * b + k] - start[3 * a + k];
         e2[k] = start[3 * c + k] - start[3 * a + k];
       }
-      const double normal[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-      const bool flip = normal[0] * outward[0] + normal[1] * outward[1] + normal[2] * outward[2] < 0;
-      if (flip) triangles.insert(triangles.end(), {a, c, b, a, d, c});
-      else triangles.insert(triangles.end(), {a, b, c, a, c, d});
+      const double normal[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                e1[0] * e2[1] - e1[1] * e2[0]};
+      const bool flip =
+          normal[0] * outward[0] + normal[1] * outward[1] + normal[2] * outward[2] < 0;
+      if (flip)
+        triangles.insert(triangles.end(), {a, c, b, a, d, c});
+      else
+        triangles.insert(triangles.end(), {a, b, c, a, c, d});
     };
     for (int axis = 0; axis < 3; ++axis)
       for (int side = 0; side < 2; ++side) {

@@ -1,9 +1,8 @@
 // BVH plugin: candidate pairs equal brute force on random deforming meshes (AABB and OBB
 // nodes, body-body and self), haptic queries against brute force, bad input reported.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <array>
+#include <gtest/gtest.h>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -60,7 +59,8 @@ class BvhPlugin : public ::testing::TestWithParam<int> {
   void* make(int volume) {
     auto params = tacta::testing::default_params(plugin_.descriptor("bvh"));
     params[0].number = volume;
-    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()), 1e-3};
+    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()),
+                                1e-3};
     void* instance = nullptr;
     char message[256] = {0};
     EXPECT_EQ(api().create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -88,10 +88,13 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
     ASSERT_EQ(bits & ~TACTA_COLLIDE_REBUILT, 0u);
     rebuilds += (bits & TACTA_COLLIDE_REBUILT) != 0;
     uint32_t count = 0;
-    ASSERT_EQ(api().find_pairs(bvh, &world, pairs.data(), static_cast<uint32_t>(pairs.size()), &count), 0u);
+    ASSERT_EQ(
+        api().find_pairs(bvh, &world, pairs.data(), static_cast<uint32_t>(pairs.size()), &count),
+        0u);
     std::set<Pair> found;
     for (uint32_t i = 0; i < count; ++i)
-      found.insert({pairs[i].surface_a, pairs[i].element_a, pairs[i].surface_b, pairs[i].element_b});
+      found.insert(
+          {pairs[i].surface_a, pairs[i].element_a, pairs[i].surface_b, pairs[i].element_b});
     EXPECT_EQ(found.size(), count) << "duplicate pairs at tick " << tick;
     const auto expected = brute_force({&a, &b}, margin);
     EXPECT_GT(expected.size(), 100u);
@@ -154,7 +157,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   // Empty mesh.
   TestSurface empty;
   std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
-  tacta_collision_world empty_world{sizeof world, 1, none.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0, nullptr, 0,
+                                    nullptr,      1e-3, 0.0};
   ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
   api().update(bvh, &empty_world);
   uint32_t count = 5;
@@ -164,7 +168,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   api().destroy(bvh);
 }
 
-INSTANTIATE_TEST_SUITE_P(Volumes, BvhPlugin, ::testing::Values(0, 1),
-                         [](const auto& param_info) { return param_info.param == 0 ? "Aabb" : "Obb"; });
+INSTANTIATE_TEST_SUITE_P(Volumes, BvhPlugin, ::testing::Values(0, 1), [](const auto& param_info) {
+  return param_info.param == 0 ? "Aabb" : "Obb";
+});
 
 }  // namespace

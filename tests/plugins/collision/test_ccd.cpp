@@ -1,9 +1,8 @@
 // CCD plugin: zero false negatives on every query of tests/data/ccd, degenerate unit cases,
 // and the plain baseline exercised through the same ABI.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "ccd_queries.hpp"
 #include "plugin_fixture.hpp"
@@ -47,8 +46,8 @@ TEST_F(CcdPlugin, DescriptorIsCollisionKindWithRequiredEntries) {
   EXPECT_EQ(d.kind, TACTA_KIND_COLLISION);
   EXPECT_EQ(d.api_size, sizeof(tacta_collision_api));
   for (const tacta_api_field& field : tacta_collision_api_fields) {
-    const void* entry = *reinterpret_cast<const void* const*>(
-        static_cast<const char*>(d.api) + field.offset);
+    const void* entry =
+        *reinterpret_cast<const void* const*>(static_cast<const char*>(d.api) + field.offset);
     if (field.required) {
       EXPECT_NE(entry, nullptr) << field.name;
     }
@@ -59,7 +58,8 @@ TEST_F(CcdPlugin, DescriptorIsCollisionKindWithRequiredEntries) {
 }
 
 TEST_F(CcdPlugin, NoFalseNegativeOnAnyReferenceQuery) {
-  const auto queries = tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+  const auto queries =
+      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
   ASSERT_EQ(queries.size(), 2824u);
   int positives = 0, false_positives = 0;
   for (const auto& q : queries) {
@@ -84,7 +84,7 @@ TEST_F(CcdPlugin, NoFalseNegativeOnAnyReferenceQuery) {
 TEST_F(CcdPlugin, VertexThroughStillTriangleGivesTimeAndBarycentric) {
   // Triangle in z = 0; vertex falls from z = 1 to z = -1 above (0.25, 0.25): contact at t = 0.5.
   tacta_ccd_hit hit{};
-  ASSERT_TRUE(vf({0.25, 0.25, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+  ASSERT_TRUE(vf({0.25, 0.25, 1,  0, 0, 0, 1, 0, 0, 0, 1, 0,  //
                   0.25, 0.25, -1, 0, 0, 0, 1, 0, 0, 0, 1, 0},
                  hit));
   EXPECT_NEAR(hit.toi, 0.5, 1e-5);
@@ -109,15 +109,15 @@ TEST_F(CcdPlugin, DegenerateVertexFaceCases) {
                   1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0},
                  hit));
   // Coplanar sliding into the triangle through an edge.
-  EXPECT_TRUE(vf({-1, 0.2, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+  EXPECT_TRUE(vf({-1,  0.2, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
                   0.2, 0.2, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0},
                  hit));
   // Degenerate (zero-area) triangle crossed by the vertex: a segment-point contact.
-  EXPECT_TRUE(vf({0.5, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0,  //
+  EXPECT_TRUE(vf({0.5, 1,  0, 0, 0, 0, 1, 0, 0, 1, 0, 0,  //
                   0.5, -1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0},
                  hit));
   // Passing just outside a corner misses.
-  EXPECT_FALSE(vf({1.001, 0.001, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+  EXPECT_FALSE(vf({1.001, 0.001, 1,  0, 0, 0, 1, 0, 0, 0, 1, 0,  //
                    1.001, 0.001, -1, 0, 0, 0, 1, 0, 0, 0, 1, 0},
                   hit));
 }
@@ -125,7 +125,7 @@ TEST_F(CcdPlugin, DegenerateVertexFaceCases) {
 TEST_F(CcdPlugin, DegenerateEdgeEdgeCases) {
   tacta_ccd_hit hit{};
   // Crossing edges: a along x at z = 1 moving to z = -1, b along y at z = 0.
-  EXPECT_TRUE(ee({-1, 0, 1, 1, 0, 1, 0, -1, 0, 0, 1, 0,  //
+  EXPECT_TRUE(ee({-1, 0, 1,  1, 0, 1,  0, -1, 0, 0, 1, 0,  //
                   -1, 0, -1, 1, 0, -1, 0, -1, 0, 0, 1, 0},
                  hit));
   EXPECT_NEAR(hit.toi, 0.5, 1e-4);
@@ -139,7 +139,7 @@ TEST_F(CcdPlugin, DegenerateEdgeEdgeCases) {
                    0, 0, 5, 1, 0, 5, 0, 1, 5, 1, 1, 5},
                   hit));
   // Zero-length edge (a point) crossing a segment.
-  EXPECT_TRUE(ee({0.5, 1, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0,  //
+  EXPECT_TRUE(ee({0.5, 1,  0, 0.5, 1,  0, 0, 0, 0, 1, 0, 0,  //
                   0.5, -1, 0, 0.5, -1, 0, 0, 0, 0, 1, 0, 0},
                  hit));
 }
@@ -153,7 +153,7 @@ TEST_F(CcdPlugin, NotFiniteInputIsReportedNotCrashed) {
 TEST_F(CcdPlugin, PlainBaselineRunsThroughTheSameAbi) {
   void* plain = make(1);
   ASSERT_NE(plain, nullptr);
-  const double p[24] = {0.25, 0.25, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0,
+  const double p[24] = {0.25, 0.25, 1,  0, 0, 0, 1, 0, 0, 0, 1, 0,
                         0.25, 0.25, -1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
   tacta_ccd_hit hit{};
   EXPECT_EQ(api().vertex_face(plain, p, &hit), 1);
@@ -169,7 +169,8 @@ namespace {
 // and checks our conservative test does strictly better on the same queries.
 TEST_F(CcdPlugin, PlainBaselineMissesWhereOursDoesNot) {
   void* plain = make(1);
-  const auto queries = tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+  const auto queries =
+      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
   int plain_misses = 0, plain_false_positives = 0;
   for (const auto& q : queries) {
     tacta_ccd_hit hit{};

@@ -1,12 +1,11 @@
 // Contact response (plugin ccd, respond) with vertex-shape detection (plugin convex, detect):
 // a soft block driven into a plane obstacle, a moving tool sphere pressing a block, a thin
 // fast tool that would tunnel, Coulomb friction against mu g, and bad input.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
-#include <string>
+#include <gtest/gtest.h>
 #include <limits>
+#include <string>
 
 #include "contact_pipeline.hpp"
 #include "soft_block.hpp"
@@ -23,10 +22,10 @@ std::string number(double value) {
 using tacta::testing::ContactPipeline;
 using tacta::testing::SoftBlock;
 
-constexpr double kDt = 1e-3;          // s
-constexpr double kThickness = 1e-4;   // m
-constexpr double kGravity = 9.81;     // m/s^2
-constexpr double kTolerance = 1e-9;   // m: allowed penetration of the thickness layer
+constexpr double kDt = 1e-3;         // s
+constexpr double kThickness = 1e-4;  // m
+constexpr double kGravity = 9.81;    // m/s^2
+constexpr double kTolerance = 1e-9;  // m: allowed penetration of the thickness layer
 
 tacta_collision_world make_world(tacta_collision_surface* surfaces, uint32_t surface_count,
                                  const tacta_collision_shape* tools, uint32_t tool_count,
@@ -55,11 +54,14 @@ TEST(ContactResponse, BlockDrivenIntoPlaneStaysAboveItAndCarriesItsWeight) {
   for (int tick = 0; tick < 600; ++tick) {
     block.integrate(kDt, {0, 0, -kGravity});
     const auto r = pipeline.tick(world);
-    ASSERT_EQ(r.bits & (TACTA_COLLIDE_UNRESOLVED | TACTA_COLLIDE_NOT_FINITE), 0u) << "tick " << tick;
+    ASSERT_EQ(r.bits & (TACTA_COLLIDE_UNRESOLVED | TACTA_COLLIDE_NOT_FINITE), 0u)
+        << "tick " << tick;
     for (uint32_t v = 0; v < block.vertex_count(); ++v)
-      ASSERT_GE(block.end[3 * v + 2], kThickness - kTolerance) << "vertex " << v << " tick " << tick;
+      ASSERT_GE(block.end[3 * v + 2], kThickness - kTolerance)
+          << "vertex " << v << " tick " << tick;
     if (tick >= 500)
-      for (uint32_t c = 0; c < pipeline.contact_count(); ++c) support += pipeline.contacts()[c].force[2];
+      for (uint32_t c = 0; c < pipeline.contact_count(); ++c)
+        support += pipeline.contacts()[c].force[2];
   }
   // At rest the plane carries the weight: mean contact force = m g (within 5 %).
   RecordProperty("mean_support_N", number(support / 100.0));
@@ -74,7 +76,8 @@ TEST(ContactResponse, MovingToolSpherePressesBlockWithoutEnteringIt) {
   const std::vector<double> rest = block.start;
   tacta_collision_surface surface = block.view(0, kThickness);
   const double radius = 0.02, speed = 0.1;  // m, m/s downwards
-  tacta_collision_shape tool = tacta::testing::sphere_tool(radius, 0.003, -0.002, 0.05 + radius + 0.002);
+  tacta_collision_shape tool =
+      tacta::testing::sphere_tool(radius, 0.003, -0.002, 0.05 + radius + 0.002);
   tacta_collision_world world = make_world(&surface, 1, &tool, 1, nullptr, 0);
   ContactPipeline pipeline(0.3);
   pipeline.prepare(world);
@@ -86,11 +89,14 @@ TEST(ContactResponse, MovingToolSpherePressesBlockWithoutEnteringIt) {
     const auto r = pipeline.tick(world);
     ASSERT_EQ(r.bits & TACTA_COLLIDE_UNRESOLVED, 0u) << "tick " << tick;
     push_z = 0;
-    for (uint32_t c = 0; c < pipeline.contact_count(); ++c) push_z -= pipeline.contacts()[c].force[2];
+    for (uint32_t c = 0; c < pipeline.contact_count(); ++c)
+      push_z -= pipeline.contacts()[c].force[2];
     for (uint32_t v = 0; v < block.vertex_count(); ++v) {
       double d2 = 0;
-      for (int a = 0; a < 3; ++a) d2 += std::pow(block.end[3 * v + a] - tool.pose_end.position[a], 2);
-      ASSERT_GE(std::sqrt(d2), radius + kThickness - kTolerance) << "vertex " << v << " tick " << tick;
+      for (int a = 0; a < 3; ++a)
+        d2 += std::pow(block.end[3 * v + a] - tool.pose_end.position[a], 2);
+      ASSERT_GE(std::sqrt(d2), radius + kThickness - kTolerance)
+          << "vertex " << v << " tick " << tick;
       if (block.inverse_masses[v] == 0.0) {
         for (int a = 0; a < 3; ++a) ASSERT_EQ(block.end[3 * v + a], rest[3 * v + a]);
       }
@@ -195,7 +201,8 @@ TEST(ContactResponse, ParallelEdgesGetTheApproachNormal) {
   EXPECT_GE(edge_edge, 3);
   // After the response (rounds as the engine runs them) the corrected motion crosses nothing.
   for (int round = 0; round < 3 && count > 0; ++round) {
-    EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, contacts, count) & TACTA_COLLIDE_UNRESOLVED, 0u);
+    EXPECT_EQ(ccd.api().respond(ccd.instance(), &world, contacts, count) & TACTA_COLLIDE_UNRESOLVED,
+              0u);
     EXPECT_EQ(ccd.api().detect(ccd.instance(), &world, nullptr, 0, contacts, 64, &count), 0u);
   }
   EXPECT_EQ(count, 0u);
@@ -205,7 +212,8 @@ TEST(ContactResponse, BadInputIsReportedNotFatal) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Vertex 0: fixed, below the floor. Vertex 1: NaN. Vertex 2: free, squeezed between the floor
   // and a ceiling 1.5e-4 m above it, narrower than the two thickness layers (2e-4 m).
-  std::vector<double> start{0, 0, 0, 1, 0, 0, 2, 0, 7.5e-5}, end{0, 0, -0.01, nan, 0, 0, 2, 0, 7.5e-5};
+  std::vector<double> start{0, 0, 0, 1, 0, 0, 2, 0, 7.5e-5},
+      end{0, 0, -0.01, nan, 0, 0, 2, 0, 7.5e-5};
   std::vector<double> velocity(9, 0.0), inverse_mass{0.0, 1.0, 1.0};
   tacta_collision_surface surface{};
   surface.vertex_count = 3;
@@ -228,7 +236,8 @@ TEST(ContactResponse, BadInputIsReportedNotFatal) {
   ASSERT_EQ(count, 2u);
   EXPECT_EQ(contacts[0].nodes_a[0], 2u);
   EXPECT_NE(convex.api().detect(convex.instance(), &world, nullptr, 0, contacts + 2, 1, &count) &
-                TACTA_COLLIDE_OVERFLOW, 0u);
+                TACTA_COLLIDE_OVERFLOW,
+            0u);
   EXPECT_EQ(count, 1u);
   // Conflicting walls: reported unresolved, the result stays finite and between the walls.
   EXPECT_NE(ccd.api().respond(ccd.instance(), &world, contacts, 2) & TACTA_COLLIDE_UNRESOLVED, 0u);

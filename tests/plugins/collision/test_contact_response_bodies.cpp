@@ -1,12 +1,11 @@
 // Contact response between deformable bodies (exact CCD contacts, plugin ccd): a soft block
 // dropped on another never has a vertex inside it, and the response conserves momentum and
 // never adds kinetic energy.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
-#include <string>
+#include <gtest/gtest.h>
 #include <random>
+#include <string>
 
 #include "contact_pipeline.hpp"
 #include "soft_block.hpp"
@@ -27,7 +26,8 @@ constexpr double kDt = 1e-3;         // s
 constexpr double kThickness = 1e-4;  // m
 
 tacta_collision_world two_block_world(tacta_collision_surface* surfaces,
-                                      const tacta_collision_shape* obstacles, uint32_t obstacle_count) {
+                                      const tacta_collision_shape* obstacles,
+                                      uint32_t obstacle_count) {
   tacta_collision_world w{};
   w.struct_size = sizeof w;
   w.surface_count = 2;
@@ -71,8 +71,10 @@ TEST(ContactResponseBodies, BlockDroppedOnBlockNeverEntersIt) {
   // The upper block stayed on top: the centres are about one side apart (both blocks sag and
   // still oscillate after the impact), far from the lower centre it would pass if it fell in.
   double lower_centre = 0, upper_centre = 0;
-  for (uint32_t v = 0; v < lower.vertex_count(); ++v) lower_centre += lower.end[3 * v + 2] / lower.vertex_count();
-  for (uint32_t v = 0; v < upper.vertex_count(); ++v) upper_centre += upper.end[3 * v + 2] / upper.vertex_count();
+  for (uint32_t v = 0; v < lower.vertex_count(); ++v)
+    lower_centre += lower.end[3 * v + 2] / lower.vertex_count();
+  for (uint32_t v = 0; v < upper.vertex_count(); ++v)
+    upper_centre += upper.end[3 * v + 2] / upper.vertex_count();
   RecordProperty("centre_distance_m", number(upper_centre - lower_centre));
   EXPECT_GT(upper_centre - lower_centre, 0.75 * size);
   EXPECT_LT(upper_centre - lower_centre, 1.1 * size);
@@ -111,7 +113,8 @@ TEST(ContactResponseBodies, DeformableResponseConservesMomentum) {
     const auto r = pipeline.tick(world);
     if (r.surface_contacts > 0) ++ticks_with_contacts;
     // Inelastic impulses and friction only take kinetic energy away.
-    ASSERT_LE(left.kinetic_energy() + right.kinetic_energy(), energy_before * (1 + 1e-12)) << "tick " << tick;
+    ASSERT_LE(left.kinetic_energy() + right.kinetic_energy(), energy_before * (1 + 1e-12))
+        << "tick " << tick;
     ASSERT_EQ(r.bits & TACTA_COLLIDE_UNRESOLVED, 0u);
     const auto p1 = left.momentum(), q1 = right.momentum();
     const auto x1 = left.first_moment(), y1 = right.first_moment();

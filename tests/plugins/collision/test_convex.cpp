@@ -1,8 +1,7 @@
 // Convex plugin (libccd): depth, normal and distance against analytic sphere-sphere and
 // sphere-box cases; bad input reported.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "plugin_fixture.hpp"
 #include "tacta/collision_api.h"
@@ -22,7 +21,8 @@ class ConvexPlugin : public ::testing::Test {
  protected:
   void SetUp() override {
     auto params = tacta::testing::default_params(plugin_.descriptor("convex"));
-    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()), 1e-3};
+    tacta_collision_setup setup{sizeof setup, params.data(), static_cast<uint32_t>(params.size()),
+                                1e-3};
     char message[256] = {0};
     ASSERT_EQ(api().create(&setup, &instance_, message, sizeof message), TACTA_OK) << message;
   }
@@ -81,8 +81,10 @@ TEST_F(ConvexPlugin, BadInputIsReported) {
   auto a = sphere(std::nan(""), 0, 0, 1.0);
   const auto b = sphere(0, 0, 0, 1.0);
   tacta_shape_result r{};
-  EXPECT_EQ(api().shape_query(instance_, &a, &b, nullptr, &r), static_cast<uint32_t>(TACTA_COLLIDE_NOT_FINITE));
-  EXPECT_EQ(api().shape_query(instance_, &b, nullptr, nullptr, &r), static_cast<uint32_t>(TACTA_COLLIDE_DEGENERATE));
+  EXPECT_EQ(api().shape_query(instance_, &a, &b, nullptr, &r),
+            static_cast<uint32_t>(TACTA_COLLIDE_NOT_FINITE));
+  EXPECT_EQ(api().shape_query(instance_, &b, nullptr, nullptr, &r),
+            static_cast<uint32_t>(TACTA_COLLIDE_DEGENERATE));
 }
 
 }  // namespace

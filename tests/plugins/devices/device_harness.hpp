@@ -3,7 +3,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-
 #include <string>
 #include <vector>
 
@@ -20,8 +19,14 @@ class DeviceParams {
       if (values_[i].values != nullptr)
         vectors_[i].assign(values_[i].values, values_[i].values + values_[i].count);
   }
-  DeviceParams& number(const std::string& name, double v) { values_[index(name)].number = v; return *this; }
-  DeviceParams& vector(const std::string& name, std::vector<double> v) { vectors_[index(name)] = std::move(v); return *this; }
+  DeviceParams& number(const std::string& name, double v) {
+    values_[index(name)].number = v;
+    return *this;
+  }
+  DeviceParams& vector(const std::string& name, std::vector<double> v) {
+    vectors_[index(name)] = std::move(v);
+    return *this;
+  }
   DeviceParams& text(const std::string& name, std::string v) {
     const uint32_t i = index(name);
     texts_[i] = std::move(v);
@@ -35,10 +40,11 @@ class DeviceParams {
         values_[i].values = vectors_[i].data();
         values_[i].count = static_cast<uint32_t>(vectors_[i].size());
       }
-      if (descriptor_.params[i].type == TACTA_PARAM_TEXT && !texts_[i].empty()) values_[i].text = texts_[i].c_str();
+      if (descriptor_.params[i].type == TACTA_PARAM_TEXT && !texts_[i].empty())
+        values_[i].text = texts_[i].c_str();
     }
     return {sizeof(tacta_device_setup), values_.data(), static_cast<uint32_t>(values_.size()),
-            base_directory_.c_str(), seed, 1e-3};
+            base_directory_.c_str(),    seed,           1e-3};
   }
 
  private:
@@ -61,19 +67,31 @@ class DeviceInstance {
     status_ = api_.create(&setup, &instance_, message_, sizeof message_);
     if (status_ == TACTA_OK) status_ = api_.connect(instance_, message_, sizeof message_);
   }
-  ~DeviceInstance() { if (instance_ != nullptr) api_.destroy(instance_); }
+  ~DeviceInstance() {
+    if (instance_ != nullptr) api_.destroy(instance_);
+  }
   DeviceInstance(const DeviceInstance&) = delete;
   DeviceInstance& operator=(const DeviceInstance&) = delete;
 
   tacta_status create_status() const { return status_; }
   std::string message() const { return message_; }
-  tacta_device_state read(double time, tacta_device_sample& s) { return api_.read(instance_, time, &s); }
-  tacta_device_sample read(double time) { tacta_device_sample s{}; api_.read(instance_, time, &s); return s; }
+  tacta_device_state read(double time, tacta_device_sample& s) {
+    return api_.read(instance_, time, &s);
+  }
+  tacta_device_sample read(double time) {
+    tacta_device_sample s{};
+    api_.read(instance_, time, &s);
+    return s;
+  }
   void write(double time, double fx, double fy, double fz) {
     tacta_device_command c{{fx, fy, fz}, {0.0, 0.0, 0.0}};
     api_.write(instance_, time, &c);
   }
-  tacta_device_capabilities capabilities() { tacta_device_capabilities c{}; api_.capabilities(instance_, &c); return c; }
+  tacta_device_capabilities capabilities() {
+    tacta_device_capabilities c{};
+    api_.capabilities(instance_, &c);
+    return c;
+  }
   tacta_device_state status(std::string& reason) {
     char buffer[512] = {0};
     const tacta_device_state s = api_.status(instance_, buffer, sizeof buffer);

@@ -1,12 +1,11 @@
 // The device log format (tacta/device_log.hpp): round trip, validation with file:line, recorder.
-#include <gtest/gtest.h>
+#include "tacta/device_log.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-
-#include "tacta/device_log.hpp"
+#include <gtest/gtest.h>
 
 namespace tacta {
 namespace {
@@ -29,7 +28,8 @@ TEST(DeviceLog, WriteThenReadIsBitExact) {
   std::vector<DeviceLogSample> samples;
   for (int i = 0; i < 200; ++i) samples.push_back(awkward_sample(i));
   samples.back().position[0] = 5e-324;  // a denormal survives too
-  const std::string path = (std::filesystem::temp_directory_path() / "tacta_device_log_roundtrip.csv").string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "tacta_device_log_roundtrip.csv").string();
   write_device_log(path, samples.data(), samples.size());
   const std::vector<DeviceLogSample> back = read_device_log(path);
   ASSERT_EQ(back.size(), samples.size());
@@ -51,23 +51,32 @@ TEST(DeviceLog, MalformedLinesNameFileLineAndWhatWasExpected) {
   const std::string header = std::string(kDeviceLogHeader) + "\n";
   const std::string good = "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n";
   EXPECT_NE(error_of("").find("session.csv:1: expected the device log header"), std::string::npos);
-  EXPECT_NE(error_of("time,x\n" + good).find("session.csv:1: expected the device log header"), std::string::npos);
+  EXPECT_NE(error_of("time,x\n" + good).find("session.csv:1: expected the device log header"),
+            std::string::npos);
   // Truncated: the last line stops after a few columns.
-  EXPECT_NE(error_of(header + good + "0.001,0.1,0.2").find("session.csv:3: expected 15 columns, found 3"),
-            std::string::npos) << error_of(header + good + "0.001,0.1,0.2");
+  EXPECT_NE(
+      error_of(header + good + "0.001,0.1,0.2").find("session.csv:3: expected 15 columns, found 3"),
+      std::string::npos)
+      << error_of(header + good + "0.001,0.1,0.2");
   EXPECT_NE(error_of(header + good + good + "0.001,abc,0,0,1,0,0,0,0,0,0,0,0,0,0\n")
                 .find("session.csv:4: expected a finite number in column 2 (px), found 'abc'"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "0,nan,0,0,1,0,0,0,0,0,0,0,0,0,0\n").find("session.csv:2: expected a finite number"),
+  EXPECT_NE(error_of(header + "0,nan,0,0,1,0,0,0,0,0,0,0,0,0,0\n")
+                .find("session.csv:2: expected a finite number"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,-1,0,0,0\n").find("session.csv:2: expected an unsigned 32-bit integer"),
+  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,-1,0,0,0\n")
+                .find("session.csv:2: expected an unsigned 32-bit integer"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "1,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n" + good).find("session.csv:3: expected non-decreasing time_s"),
+  EXPECT_NE(error_of(header + "1,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n" + good)
+                .find("session.csv:3: expected non-decreasing time_s"),
             std::string::npos);
-  EXPECT_NE(error_of(header + good + "\n" + good).find("session.csv:3: expected a sample, found an empty line"),
+  EXPECT_NE(error_of(header + good + "\n" + good)
+                .find("session.csv:3: expected a sample, found an empty line"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,7\n").find("found more"), std::string::npos);
-  EXPECT_EQ(error_of(header + good + "\r\n"), "no error");  // CRLF and a trailing blank line are fine
+  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0,7\n").find("found more"),
+            std::string::npos);
+  EXPECT_EQ(error_of(header + good + "\r\n"),
+            "no error");  // CRLF and a trailing blank line are fine
 }
 
 TEST(DeviceLog, ImplausibleValuesAreRefusedWithTheLine) {
@@ -76,14 +85,19 @@ TEST(DeviceLog, ImplausibleValuesAreRefusedWithTheLine) {
   // The sample that once replayed as 1.3e29 J of injected energy.
   EXPECT_NE(error_of(header + good + "0.001,1e30,0,0,1,0,0,0,0,0,0,0,0,0,0\n")
                 .find("session.csv:3: column 2 (px) = 1e+30 is beyond 1000 m"),
-            std::string::npos) << error_of(header + good + "0.001,1e30,0,0,1,0,0,0,0,0,0,0,0,0,0\n");
-  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,1e300,0,0,0,0\n").find("session.csv:2: column 11 (vz)"),
+            std::string::npos)
+      << error_of(header + good + "0.001,1e30,0,0,1,0,0,0,0,0,0,0,0,0,0\n");
+  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,1e300,0,0,0,0\n")
+                .find("session.csv:2: column 11 (vz)"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "0,0,0,0,1,0,0,0,0,0,0,0,0,-2e4,0\n").find("session.csv:2: column 14 (fy)"),
+  EXPECT_NE(
+      error_of(header + "0,0,0,0,1,0,0,0,0,0,0,0,0,-2e4,0\n").find("session.csv:2: column 14 (fy)"),
+      std::string::npos);
+  EXPECT_NE(error_of(header + "1e12,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n")
+                .find("session.csv:2: column 1 (time_s)"),
             std::string::npos);
-  EXPECT_NE(error_of(header + "1e12,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n").find("session.csv:2: column 1 (time_s)"),
-            std::string::npos);
-  EXPECT_NE(error_of(header + "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n").find("session.csv:2: the orientation (qw qx qy qz) has norm 0"),
+  EXPECT_NE(error_of(header + "0,0,0,0,0,0,0,0,0,0,0,0,0,0,0\n")
+                .find("session.csv:2: the orientation (qw qx qy qz) has norm 0"),
             std::string::npos);
 }
 

@@ -1,12 +1,11 @@
 // The net device plugin through the real C ABI, with the real C client on a thread of the test:
 // connect, forces back, watchdog (zero force at once, disconnected, clean reconnect), bad,
 // duplicate, out-of-order and foreign datagrams dropped and counted, connect timeout.
-#include <gtest/gtest.h>
-
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
 #include <map>
 #include <thread>
 
@@ -29,7 +28,9 @@ class Bridge {
       std::ifstream(port_file) >> port;
       const tnet_hello caps{{-1, -1, -1}, {1, 1, 1}, 2.5, 1.0, 800.0, 1000.0, 3, 3};
       char error[256];
-      if (tacta_net_open(&dev_, "127.0.0.1", static_cast<uint16_t>(port), &caps, error, sizeof error) != 0) return;
+      if (tacta_net_open(&dev_, "127.0.0.1", static_cast<uint16_t>(port), &caps, error,
+                         sizeof error) != 0)
+        return;
       opened_ = true;
       while (!stop_) {
         if (sending_) {
@@ -63,13 +64,17 @@ struct NetDeviceTest : ::testing::Test {
   const tacta_device_api& api = plugin.api<tacta_device_api>("net");
   DeviceParams params{plugin.descriptor("net")};
   fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" /
-                  ("net_device_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                  ("net_device_" +
+                   std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   void* device = nullptr;
 
   void SetUp() override {
     fs::remove_all(work);
     fs::create_directories(work);
-    params.number("port", 0).text("port_file", (work / "port").string()).number("connect_timeout", 10).number("watchdog", 0.2);  // s: a loaded CI machine may stall a thread for 50 ms
+    params.number("port", 0)
+        .text("port_file", (work / "port").string())
+        .number("connect_timeout", 10)
+        .number("watchdog", 0.2);  // s: a loaded CI machine may stall a thread for 50 ms
   }
   void TearDown() override {
     if (device != nullptr) api.destroy(device);
@@ -77,8 +82,10 @@ struct NetDeviceTest : ::testing::Test {
   std::string create_and_connect() {
     const tacta_device_setup setup = params.setup();
     char message[512] = {0};
-    if (api.create(&setup, &device, message, sizeof message) != TACTA_OK) return std::string("create: ") + message;
-    if (api.connect(device, message, sizeof message) != TACTA_OK) return std::string("connect: ") + message;
+    if (api.create(&setup, &device, message, sizeof message) != TACTA_OK)
+      return std::string("create: ") + message;
+    if (api.connect(device, message, sizeof message) != TACTA_OK)
+      return std::string("connect: ") + message;
     return "";
   }
   std::map<std::string, double> counters() {
@@ -91,7 +98,8 @@ struct NetDeviceTest : ::testing::Test {
   // Reads until the state is `want` or a second passed.
   tacta_device_state read_until(tacta_device_state want, tacta_device_sample& s) {
     tacta_device_state state = TACTA_DEVICE_FAULT;
-    for (int i = 0; i < 1000 && (state = api.read(device, 0.0, &s)) != want; ++i) std::this_thread::sleep_for(1ms);
+    for (int i = 0; i < 1000 && (state = api.read(device, 0.0, &s)) != want; ++i)
+      std::this_thread::sleep_for(1ms);
     return state;
   }
   void write_force_y(double fy) {
@@ -148,8 +156,8 @@ TEST_F(NetDeviceTest, BadDuplicateOutOfOrderAndForeignDatagramsAreDroppedAndCoun
   const auto send = [&](const std::vector<unsigned char>& d) {
     sendto(raw, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   };
-  send({1, 2, 3});                                 // short
-  send(std::vector<unsigned char>(40, 0xAB));      // no magic
+  send({1, 2, 3});                             // short
+  send(std::vector<unsigned char>(40, 0xAB));  // no magic
   const tnet_state s{{0, 0, 0}, {1, 0, 0, 0}, {0, 0, 0}, 0, 0};
   std::vector<unsigned char> foreign(TNET_HEADER_SIZE + TNET_STATE_SIZE);
   tnet_header h{};
@@ -168,7 +176,8 @@ TEST_F(NetDeviceTest, BadDuplicateOutOfOrderAndForeignDatagramsAreDroppedAndCoun
   tacta_device_sample sample{};
   ASSERT_EQ(read_until(TACTA_DEVICE_CONNECTED, sample), TACTA_DEVICE_CONNECTED);
   bridge.sending_ = false;
-  std::this_thread::sleep_for(400ms);  // the bridge's session is silent now: a new one may take over
+  std::this_thread::sleep_for(
+      400ms);  // the bridge's session is silent now: a new one may take over
   h.session = 78;
   for (uint32_t seq : {5u, 5u, 3u, 6u}) {  // 5 taken, 5 duplicate, 3 out of order, 6 taken
     h.sequence = seq;
@@ -187,7 +196,8 @@ TEST_F(NetDeviceTest, BadDuplicateOutOfOrderAndForeignDatagramsAreDroppedAndCoun
 TEST_F(NetDeviceTest, NoDeviceMeansAConnectErrorNamingThePort) {
   params.number("connect_timeout", 0.2);
   const std::string error = create_and_connect();
-  EXPECT_NE(error.find("connect: net: no HELLO from a device on UDP port"), std::string::npos) << error;
+  EXPECT_NE(error.find("connect: net: no HELLO from a device on UDP port"), std::string::npos)
+      << error;
 }
 
 TEST_F(NetDeviceTest, BindAddressThatIsNotAnAddressIsRefusedAtCreate) {

@@ -1,16 +1,16 @@
 // The net protocol (tacta_net_protocol.h) and the C client's passivity filter, without sockets.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <gtest/gtest.h>
 #include <random>
 
 #include "tacta_net_device.h"
 
 namespace {
 
-std::vector<unsigned char> datagram(uint32_t type, uint32_t session, uint32_t sequence, const void* payload) {
+std::vector<unsigned char> datagram(uint32_t type, uint32_t session, uint32_t sequence,
+                                    const void* payload) {
   std::vector<unsigned char> out(TNET_MAX_DATAGRAM);
   tnet_header h{};
   h.type = static_cast<uint16_t>(type);
@@ -18,8 +18,10 @@ std::vector<unsigned char> datagram(uint32_t type, uint32_t session, uint32_t se
   h.sequence = sequence;
   h.sender_time_ns = 123456789012345ull;
   uint32_t size = tnet_encode_header(out.data(), h);
-  if (type == TNET_STATE) size += tnet_encode_state(out.data() + size, static_cast<const tnet_state*>(payload));
-  if (type == TNET_FORCE) size += tnet_encode_force(out.data() + size, static_cast<const tnet_force*>(payload));
+  if (type == TNET_STATE)
+    size += tnet_encode_state(out.data() + size, static_cast<const tnet_state*>(payload));
+  if (type == TNET_FORCE)
+    size += tnet_encode_force(out.data() + size, static_cast<const tnet_force*>(payload));
   out.resize(size);
   return out;
 }
@@ -83,10 +85,18 @@ TEST(NetClient, DropsDuplicateOlderAndForeignForces) {
   d.session = 9;
   d.watchdog_s = 1.0;
   const tnet_force f{{0, 1, 0}, {0, 0, 0}, 0.5, 0.7, 0, 0};
-  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 10, &f).data(), TNET_HEADER_SIZE + TNET_FORCE_SIZE, 1), 1);
-  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 10, &f).data(), TNET_HEADER_SIZE + TNET_FORCE_SIZE, 2), 0);
-  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 8, &f).data(), TNET_HEADER_SIZE + TNET_FORCE_SIZE, 3), 0);
-  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 8, 11, &f).data(), TNET_HEADER_SIZE + TNET_FORCE_SIZE, 4), 0);
+  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 10, &f).data(),
+                             TNET_HEADER_SIZE + TNET_FORCE_SIZE, 1),
+            1);
+  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 10, &f).data(),
+                             TNET_HEADER_SIZE + TNET_FORCE_SIZE, 2),
+            0);
+  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 9, 8, &f).data(),
+                             TNET_HEADER_SIZE + TNET_FORCE_SIZE, 3),
+            0);
+  EXPECT_EQ(tacta_net_accept(&d, datagram(TNET_FORCE, 8, 11, &f).data(),
+                             TNET_HEADER_SIZE + TNET_FORCE_SIZE, 4),
+            0);
   EXPECT_EQ(d.received, 1u);
   EXPECT_EQ(d.dropped, 2u);
   EXPECT_EQ(d.malformed, 1u);
@@ -132,7 +142,8 @@ TEST(NetClient, PassivityFilterKeepsTheExactLedgerAndTheBudget) {
     }
     const double still[3] = {0, 0, 0};
     double unused[3];
-    tacta_net_passivity_filter(&p, x, still, 1e-3, remote, still, kPeak, unused);  // charges the last tick
+    tacta_net_passivity_filter(&p, x, still, 1e-3, remote, still, kPeak,
+                               unused);  // charges the last tick
     EXPECT_NEAR(tacta_net_passivity_ledger(&p), exact, 1e-12);
     EXPECT_GT(p.dissipated, 0.0);
   }

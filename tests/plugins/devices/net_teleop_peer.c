@@ -19,7 +19,12 @@
 #include "tacta_net_device.h"
 
 #define QUEUE 8192
-typedef struct held { uint64_t due; int to_sim; size_t size; unsigned char data[TNET_MAX_DATAGRAM]; } held;
+typedef struct held {
+  uint64_t due;
+  int to_sim;
+  size_t size;
+  unsigned char data[TNET_MAX_DATAGRAM];
+} held;
 static held queue[QUEUE];
 static int queued = 0;
 
@@ -36,7 +41,8 @@ static void sleep_until_ns(uint64_t deadline) {
 
 int main(int argc, char** argv) {
   const double pressed_y = 0.147 - 0.008, start_y = 0.147 + 0.012; /* m, at x = -0.049, z = 0.027 */
-  const double mass = 0.1, k_hand = 300.0, b_hand = 11.0, dt = 1e-3, ramp = 1.0; /* kg, N/m, N s/m, s, s */
+  const double mass = 0.1, k_hand = 300.0, b_hand = 11.0, dt = 1e-3,
+               ramp = 1.0; /* kg, N/m, N s/m, s, s */
   tnet_hello caps = {{-0.13, 0.06, -0.035}, {0.03, 0.18, 0.105}, 3.3, 0.88, 1000.0, 1000.0, 3, 3};
   struct sockaddr_in relay_address = {0}, sim_address = {0}, client_address = {0};
   socklen_t size = sizeof relay_address;
@@ -51,10 +57,13 @@ int main(int argc, char** argv) {
   tacta_net_device dev;
   FILE* out;
   if (argc != 8 && !(argc == 9 && strcmp(argv[8], "unfiltered") == 0)) {
-    fprintf(stderr, "usage: %s PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv [unfiltered]\n", argv[0]);
+    fprintf(stderr,
+            "usage: %s PORT RTT_MS JITTER_MS LOSS SEED PRESS_DURATION_S OUT.csv [unfiltered]\n",
+            argv[0]);
     return 2;
   }
-  const double one_way = atof(argv[2]) * 0.5e-3, jitter = atof(argv[3]) * 1e-3, loss = atof(argv[4]);
+  const double one_way = atof(argv[2]) * 0.5e-3, jitter = atof(argv[3]) * 1e-3,
+               loss = atof(argv[4]);
   const double duration = atof(argv[6]);
   const int filtered = argc == 8;
   rng = (unsigned)strtoul(argv[5], NULL, 10);
@@ -62,14 +71,17 @@ int main(int argc, char** argv) {
   relay = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
   relay_address.sin_family = AF_INET;
   relay_address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (out == NULL || relay < 0 || bind(relay, (struct sockaddr*)&relay_address, sizeof relay_address) != 0) return 2;
+  if (out == NULL || relay < 0 ||
+      bind(relay, (struct sockaddr*)&relay_address, sizeof relay_address) != 0)
+    return 2;
   getsockname(relay, (struct sockaddr*)&relay_address, &size);
   sim_address = relay_address;
   sim_address.sin_port = htons((uint16_t)atoi(argv[1]));
   {
     char port[16];
     snprintf(port, sizeof port, "%u", (unsigned)ntohs(relay_address.sin_port));
-    if (tacta_net_open(&dev, "127.0.0.1", (uint16_t)atoi(port), &caps, error, sizeof error) != 0) return 2;
+    if (tacta_net_open(&dev, "127.0.0.1", (uint16_t)atoi(port), &caps, error, sizeof error) != 0)
+      return 2;
   }
   size = sizeof client_address;
   getsockname(dev.socket, (struct sockaddr*)&client_address, &size);
@@ -85,7 +97,8 @@ int main(int argc, char** argv) {
     /* The delay line: what arrives at the relay waits for its due time, or is lost. */
     for (;;) {
       socklen_t from_size = sizeof from;
-      const ssize_t n = recvfrom(relay, buffer, sizeof buffer, 0, (struct sockaddr*)&from, &from_size);
+      const ssize_t n =
+          recvfrom(relay, buffer, sizeof buffer, 0, (struct sockaddr*)&from, &from_size);
       double delay;
       if (n < 0) break;
       if (uniform(&rng) < loss || queued == QUEUE || (size_t)n > TNET_MAX_DATAGRAM) continue;
@@ -97,9 +110,13 @@ int main(int argc, char** argv) {
       ++queued;
     }
     for (i = 0; i < queued;) {
-      if (queue[i].due > now) { ++i; continue; }
+      if (queue[i].due > now) {
+        ++i;
+        continue;
+      }
       sendto(relay, queue[i].data, queue[i].size, 0,
-             (struct sockaddr*)(queue[i].to_sim ? &sim_address : &client_address), sizeof sim_address);
+             (struct sockaddr*)(queue[i].to_sim ? &sim_address : &client_address),
+             sizeof sim_address);
       queue[i] = queue[--queued];
     }
     /* The bridge's servo tick. */
@@ -110,7 +127,8 @@ int main(int argc, char** argv) {
     if (start != 0 && tau > duration) break;
     if (start == 0 && now - begun > 60000000000ull) return 3; /* no simulation answered in 60 s */
     if (filtered) {
-      tacta_net_passivity_filter(&dev.passivity, x, v, dt, tacta_net_remote_budget(&dev), raw, caps.peak_force, f);
+      tacta_net_passivity_filter(&dev.passivity, x, v, dt, tacta_net_remote_budget(&dev), raw,
+                                 caps.peak_force, f);
     } else {
       const double m = sqrt(raw[0] * raw[0] + raw[1] * raw[1] + raw[2] * raw[2]);
       for (i = 0; i < 3; ++i) f[i] = m > caps.peak_force ? raw[i] * caps.peak_force / m : raw[i];
@@ -125,7 +143,8 @@ int main(int argc, char** argv) {
         x[a] += v[a] * (dt / 10);
       }
     }
-    exact_ledger -= f[0] * (x[0] - last_x[0]) + f[1] * (x[1] - last_x[1]) + f[2] * (x[2] - last_x[2]);
+    exact_ledger -=
+        f[0] * (x[0] - last_x[0]) + f[1] * (x[1] - last_x[1]) + f[2] * (x[2] - last_x[2]);
     if (start != 0) {
       const double ledger = tacta_net_passivity_ledger(&dev.passivity);
       const double m = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
@@ -137,9 +156,12 @@ int main(int argc, char** argv) {
         held_pressing += m > 0.2;
         held_force += m;
       }
-      if (dev.round_trip_s > 0) { rtt_sum += dev.round_trip_s; ++rtt_count; }
-      fprintf(out, "%.4f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6g\n", tau, last_x[0], last_x[1], last_x[2], f[0], f[1],
-              f[2], ledger);
+      if (dev.round_trip_s > 0) {
+        rtt_sum += dev.round_trip_s;
+        ++rtt_count;
+      }
+      fprintf(out, "%.4f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6g\n", tau, last_x[0], last_x[1],
+              last_x[2], f[0], f[1], f[2], ledger);
       ++ticks;
     }
     {
@@ -149,10 +171,11 @@ int main(int argc, char** argv) {
   }
   tacta_net_close(&dev);
   fclose(out);
-  printf("ticks %ld min_ledger %.9g min_exact_ledger %.9g peak %.6f held_fraction %.4f held_mean %.6f "
-         "rtt_mean_ms %.3f dissipated %.6g forces %llu dropped %llu\n",
-         ticks, min_ledger, min_exact, peak, held_ticks ? (double)held_pressing / held_ticks : 0.0,
-         held_ticks ? held_force / held_ticks : 0.0, rtt_count ? rtt_sum / rtt_count * 1e3 : -1.0,
-         dev.passivity.dissipated, (unsigned long long)dev.received, (unsigned long long)dev.dropped);
+  printf(
+      "ticks %ld min_ledger %.9g min_exact_ledger %.9g peak %.6f held_fraction %.4f held_mean %.6f "
+      "rtt_mean_ms %.3f dissipated %.6g forces %llu dropped %llu\n",
+      ticks, min_ledger, min_exact, peak, held_ticks ? (double)held_pressing / held_ticks : 0.0,
+      held_ticks ? held_force / held_ticks : 0.0, rtt_count ? rtt_sum / rtt_count * 1e3 : -1.0,
+      dev.passivity.dissipated, (unsigned long long)dev.received, (unsigned long long)dev.dropped);
   return 0;
 }

@@ -6,29 +6,28 @@
 // without the filter it does. The force never exceeds the device's peak and contact is held.
 // Prints the latency table of docs/DEVICES.md (force error and transparency against the
 // undelayed run).
-#include <gtest/gtest.h>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <gtest/gtest.h>
 #include <map>
+#include <signal.h>
+#include <spawn.h>
 #include <sstream>
+#include <sys/wait.h>
 #include <thread>
 
 #include "tacta/device_api.h"
 #include "tacta/plugin_registry.hpp"
-#include "tacta_net_device.h"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/sim/simulation.hpp"
+#include "tacta_net_device.h"
 
 extern char** environ;
 
@@ -55,11 +54,11 @@ const PluginRegistry& plugins() {
 }
 
 struct TeleopRun {
-  std::map<std::string, double> peer;        // the peer's summary line
+  std::map<std::string, double> peer;         // the peer's summary line
   std::vector<std::pair<double, double>> fy;  // (s, N): the force the hand felt, vertical
-  double min_exact_ledger = 0;                // J: the lowest of -sum F(n).(x(n+1) - x(n)) over the run
+  double min_exact_ledger = 0;  // J: the lowest of -sum F(n).(x(n+1) - x(n)) over the run
   RunResult sim;
-  std::map<std::string, double> link;        // the net device's counters
+  std::map<std::string, double> link;  // the net device's counters
 };
 
 bool wait_for_file(const fs::path& file, double seconds) {
@@ -76,37 +75,43 @@ SceneDesc teleop_scene(const fs::path& work, const std::string& override_) {
   fs::remove_all(work);
   fs::create_directories(work);
   const RegistrySchemas schemas(plugins());
-  return load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
-                    {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-                     "output.plots=[]", override_,
-                     // SCHED_FIFO (granted to root) would let a haptic thread slowed by a sanitizer
-                     // starve the peer process on a 2-core machine; the test measures delay, not jitter.
-                     "clock.haptic_priority=0"});
+  return load_scene(
+      std::string(TACTA_SOURCE_DIR) + "/scenes/examples/teleoperated_palpation.yaml", schemas,
+      {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+       "output.plots=[]", override_,
+       // SCHED_FIFO (granted to root) would let a haptic thread slowed by a sanitizer
+       // starve the peer process on a 2-core machine; the test measures delay, not jitter.
+       "clock.haptic_priority=0"});
 }
 
 TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss, bool filtered = true) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" /
-                        ("net_teleop_" + std::to_string(static_cast<int>(round_trip_ms)) + (filtered ? "" : "_unfiltered"));
+                        ("net_teleop_" + std::to_string(static_cast<int>(round_trip_ms)) +
+                         (filtered ? "" : "_unfiltered"));
   const SceneDesc scene = teleop_scene(work, "devices.0.params.connect_timeout=30");
   // The simulation connects (waits for the peer's HELLO) on its own thread while the peer starts.
-  auto building = std::async(std::launch::async, [&] { return std::make_unique<Simulation>(scene, plugins()); });
+  auto building = std::async(std::launch::async,
+                             [&] { return std::make_unique<Simulation>(scene, plugins()); });
   EXPECT_TRUE(wait_for_file(work / "port", 20.0)) << "the net device wrote no port file";
   std::string port;
   std::ifstream(work / "port") >> port;
   const std::string out_csv = (work / "peer.csv").string(), summary = (work / "peer.txt").string();
-  std::vector<std::string> args{NET_TELEOP_PEER, port, std::to_string(round_trip_ms), std::to_string(jitter_ms),
-                                std::to_string(loss), "7", std::to_string(kPressSeconds), out_csv};
+  std::vector<std::string> args{
+      NET_TELEOP_PEER,      port, std::to_string(round_trip_ms), std::to_string(jitter_ms),
+      std::to_string(loss), "7",  std::to_string(kPressSeconds), out_csv};
   if (!filtered) args.emplace_back("unfiltered");
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, summary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 1, summary.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   pid_t peer = 0;
   EXPECT_EQ(posix_spawn(&peer, NET_TELEOP_PEER, &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
-  std::unique_ptr<Simulation> sim = building.get();  // throws (test fails) if the peer never said HELLO
+  std::unique_ptr<Simulation> sim =
+      building.get();  // throws (test fails) if the peer never said HELLO
 
   // The run ends when the peer is done (it says BYE); the duration is only a bound.
   std::atomic<bool> peer_done{false};
@@ -138,7 +143,8 @@ TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss, bool 
     std::istringstream row(line);
     double t, x[3], f[3];
     char c;
-    if (!(row >> t >> c >> x[0] >> c >> x[1] >> c >> x[2] >> c >> f[0] >> c >> f[1] >> c >> f[2])) continue;
+    if (!(row >> t >> c >> x[0] >> c >> x[1] >> c >> x[2] >> c >> f[0] >> c >> f[1] >> c >> f[2]))
+      continue;
     if (!first) {
       for (int a = 0; a < 3; ++a) ledger -= previous_f[a] * (x[a] - previous_x[a]);
       run.min_exact_ledger = std::min(run.min_exact_ledger, ledger);
@@ -153,7 +159,8 @@ TeleopRun teleoperate(double round_trip_ms, double jitter_ms, double loss, bool 
 }
 
 // RMS (N) of the difference of two force traces over their common span, by time.
-double force_error(const std::vector<std::pair<double, double>>& run, const std::vector<std::pair<double, double>>& base) {
+double force_error(const std::vector<std::pair<double, double>>& run,
+                   const std::vector<std::pair<double, double>>& base) {
   double sum = 0;
   size_t n = 0, j = 0;
   for (const auto& [t, f] : run) {
@@ -174,34 +181,44 @@ constexpr double kHeldFraction = 0.8;
 #endif
 
 TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
-  struct Case { double rtt_ms, jitter_ms, loss; };
+  struct Case {
+    double rtt_ms, jitter_ms, loss;
+  };
   const Case cases[] = {{0, 0, 0}, {20, 1, 0.01}, {100, 5, 0.01}, {250, 12.5, 0.01}};
   std::vector<std::pair<Case, TeleopRun>> runs;
   for (const Case& c : cases) {
     SCOPED_TRACE("round trip " + std::to_string(c.rtt_ms) + " ms");
     TeleopRun run = teleoperate(c.rtt_ms, c.jitter_ms, c.loss);
     ASSERT_GT(run.peer["ticks"], 0.5 * kPressSeconds * 1000) << "the peer did not run through";
-    EXPECT_GE(run.min_exact_ledger, -kLedgerTolerance) << "the device returned more energy than the hand put in";
+    EXPECT_GE(run.min_exact_ledger, -kLedgerTolerance)
+        << "the device returned more energy than the hand put in";
     EXPECT_LE(run.peer["peak"], kPeakForce + 1e-9);
     EXPECT_GE(run.peer["held_fraction"], kHeldFraction) << "contact was not held while pressed in";
-    EXPECT_GT(run.sim.devices.at(0).contact_ticks, 100u);  // ticks: fewer when the engine runs late (ASan, load)
+    EXPECT_GT(run.sim.devices.at(0).contact_ticks,
+              100u);  // ticks: fewer when the engine runs late (ASan, load)
     EXPECT_LE(run.sim.devices.at(0).max_force_N, kPeakForce + 1e-9);
-    if (c.rtt_ms > 0) {  // the engine measures the injected round trip (plus loopback and a tick or two)
+    if (c.rtt_ms >
+        0) {  // the engine measures the injected round trip (plus loopback and a tick or two)
       EXPECT_GT(run.link["round_trip_p50_ms"], 0.8 * c.rtt_ms);
       EXPECT_LT(run.link["round_trip_p50_ms"], c.rtt_ms + 40.0);
-      EXPECT_GT(run.link["dropped_out_of_order"] + run.link["late"], 0.0) << "jitter reordered nothing";
+      EXPECT_GT(run.link["dropped_out_of_order"] + run.link["late"], 0.0)
+          << "jitter reordered nothing";
     }
     runs.emplace_back(c, std::move(run));
   }
   const TeleopRun& base = runs.front().second;
-  std::printf("| round trip (ms) | jitter (ms) | loss | RTT p50 / p99 (ms) | force error RMS (N) | transparency | "
-              "min exact ledger (J) | dissipated (J) | peak (N) | watchdog trips |\n");
+  std::printf(
+      "| round trip (ms) | jitter (ms) | loss | RTT p50 / p99 (ms) | force error RMS (N) | "
+      "transparency | "
+      "min exact ledger (J) | dissipated (J) | peak (N) | watchdog trips |\n");
   for (const auto& [c, run] : runs) {
     const double transparency = run.peer.at("held_mean") / base.peer.at("held_mean");
-    std::printf("| %.0f | %.1f | %.0f %% | %.2f / %.2f | %.3f | %.3f | %.1e | %.1e | %.3f | %.0f |\n", c.rtt_ms,
-                c.jitter_ms, c.loss * 100, run.link.at("round_trip_p50_ms"), run.link.at("round_trip_p99_ms"),
-                force_error(run.fy, base.fy), transparency, run.min_exact_ledger,
-                run.peer.at("dissipated"), run.peer.at("peak"), run.link.at("watchdog_trips"));
+    std::printf(
+        "| %.0f | %.1f | %.0f %% | %.2f / %.2f | %.3f | %.3f | %.1e | %.1e | %.3f | %.0f |\n",
+        c.rtt_ms, c.jitter_ms, c.loss * 100, run.link.at("round_trip_p50_ms"),
+        run.link.at("round_trip_p99_ms"), force_error(run.fy, base.fy), transparency,
+        run.min_exact_ledger, run.peer.at("dissipated"), run.peer.at("peak"),
+        run.link.at("watchdog_trips"));
   }
 }
 
@@ -210,7 +227,8 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
 TEST(NetTeleoperation, WithoutTheFilterTheDelayedLoopCreatesEnergy) {
   const TeleopRun run = teleoperate(250, 12.5, 0.01, false);
   ASSERT_GT(run.peer.at("ticks"), 0.5 * kPressSeconds * 1000) << "the peer did not run through";
-  std::printf("unfiltered, 250 ms: min exact ledger %.2e J, peak %.3f N\n", run.min_exact_ledger, run.peer.at("peak"));
+  std::printf("unfiltered, 250 ms: min exact ledger %.2e J, peak %.3f N\n", run.min_exact_ledger,
+              run.peer.at("peak"));
   EXPECT_LT(run.min_exact_ledger, -100 * kLedgerTolerance);
 }
 
@@ -225,10 +243,13 @@ TEST(NetTeleoperation, ASilentBridgeIsDisconnectedThenReconnects) {
     if (!wait_for_file(work / "port", 20.0)) return;
     unsigned port = 0;
     std::ifstream(work / "port") >> port;
-    const tnet_hello caps{{-0.13, 0.06, -0.035}, {0.03, 0.18, 0.105}, 3.3, 0.88, 1000.0, 1000.0, 3, 3};
+    const tnet_hello caps{
+        {-0.13, 0.06, -0.035}, {0.03, 0.18, 0.105}, 3.3, 0.88, 1000.0, 1000.0, 3, 3};
     tacta_net_device dev;
     char error[256];
-    if (tacta_net_open(&dev, "127.0.0.1", static_cast<uint16_t>(port), &caps, error, sizeof error) != 0) return;
+    if (tacta_net_open(&dev, "127.0.0.1", static_cast<uint16_t>(port), &caps, error,
+                       sizeof error) != 0)
+      return;
     const tnet_state held{{-0.049, 0.16, 0.027}, {1, 0, 0, 0}, {0, 0, 0}, 0, 0};  // above the liver
     while (!stop) {
       if (silent_ms > 0) {
@@ -262,7 +283,8 @@ TEST(NetTeleoperation, ASilentBridgeIsDisconnectedThenReconnects) {
   EXPECT_EQ(result.faults, device.reconnections) << "each drop is reported";
   EXPECT_EQ(result.exit_code, 1);
   std::ifstream report(work / "run" / "report.json");
-  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  const std::string text((std::istreambuf_iterator<char>(report)),
+                         std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"watchdog_trips\""), std::string::npos);
   EXPECT_NE(text.find("\"reconnections\""), std::string::npos);
 }

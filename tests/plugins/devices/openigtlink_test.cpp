@@ -3,19 +3,18 @@
 // poses that press the liver, and receives the SENSOR forces and the POLYDATA surface. The last
 // surface it gets is checked against the simulation's own state at that time: vertex count,
 // triangles, positions.
-#include <gtest/gtest.h>
-#include <igtlClientSocket.h>
-#include <igtlPolyDataMessage.h>
-#include <igtlSensorMessage.h>
-#include <igtlStringMessage.h>
-#include <igtlTransformMessage.h>
-
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <gtest/gtest.h>
+#include <igtlClientSocket.h>
+#include <igtlPolyDataMessage.h>
+#include <igtlSensorMessage.h>
+#include <igtlStringMessage.h>
+#include <igtlTransformMessage.h>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -67,7 +66,9 @@ class SlicerLikeClient {
     int port = 0;
     igtl::ClientSocket::Pointer socket = igtl::ClientSocket::New();
     for (int i = 0; i < 1000 && !stop_; ++i) {  // the server comes up while the scene loads
-      if (fs::exists(port_file) && (std::ifstream(port_file) >> port) && socket->ConnectToServer("127.0.0.1", port) == 0) break;
+      if (fs::exists(port_file) && (std::ifstream(port_file) >> port) &&
+          socket->ConnectToServer("127.0.0.1", port) == 0)
+        break;
       std::this_thread::sleep_for(10ms);
     }
     if (!socket->GetConnected()) return;
@@ -141,7 +142,9 @@ class SlicerLikeClient {
 // Every snapshot the render task took: the liver's node positions by simulated time.
 struct StateKeeper final : FrameObserver {
   void on_start(const SceneStatic& scene) override { body = scene.bodies.at(0); }
-  void on_frame(const SceneStatic&, const Snapshot& s) override { positions[s.time_s] = s.bodies.at(0).positions; }
+  void on_frame(const SceneStatic&, const Snapshot& s) override {
+    positions[s.time_s] = s.bodies.at(0).positions;
+  }
   BodyStatic body;
   std::map<double, std::vector<double>> positions;
 };
@@ -153,9 +156,10 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   PluginRegistry plugins;
   plugins.load();
   const RegistrySchemas schemas(plugins);
-  const SceneDesc scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
-                                     {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-                                      "devices.0.params.connect_timeout=30"});
+  const SceneDesc scene = load_scene(
+      std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
+      {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
+       "devices.0.params.connect_timeout=30"});
   SlicerLikeClient client(work / "port");
   Simulation sim(scene, plugins);  // connect waits for the client's first TRANSFORM
   StateKeeper keeper;
@@ -167,7 +171,8 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   client.stop_sending = true;
   ASSERT_FALSE(keeper.positions.empty());
   const double final_time = keeper.positions.rbegin()->first;
-  for (int i = 0; i < 300; ++i) {  // the final frame's POLYDATA follows within a frame period or two
+  for (int i = 0; i < 300;
+       ++i) {  // the final frame's POLYDATA follows within a frame period or two
     {
       std::lock_guard<std::mutex> lock(client.mutex);
       if (client.surface_time >= final_time - 1e-6) break;  // s: the stamp carries ~1 ns
@@ -184,9 +189,10 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
 
   std::lock_guard<std::mutex> lock(client.mutex);
   EXPECT_EQ(client.surface_name, "liver");
-  const auto state = keeper.positions.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
-  ASSERT_TRUE(state != keeper.positions.end() && state->first < client.surface_time + 1e-6) << "the surface's time stamp " << client.surface_time
-                                            << " s is no state the simulation had";
+  const auto state =
+      keeper.positions.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
+  ASSERT_TRUE(state != keeper.positions.end() && state->first < client.surface_time + 1e-6)
+      << "the surface's time stamp " << client.surface_time << " s is no state the simulation had";
   // The streamed vertices are the nodes the boundary triangles use, in the order first used.
   std::vector<int64_t> vertex_of_node(keeper.body.rest_positions.size() / 3, -1);
   std::vector<uint32_t> node_of_vertex, expected_triangles;
@@ -203,13 +209,14 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   for (size_t v = 0; v < node_of_vertex.size(); ++v)
     for (size_t a = 0; a < 3; ++a) {
       const double simulated = state->second[3 * node_of_vertex[v] + a];
-      worst = std::max(worst, std::abs(static_cast<double>(client.points[3 * v + a]) * 1e-3 - simulated));
-      moved = std::max(moved, std::abs(simulated - keeper.body.rest_positions[3 * node_of_vertex[v] + a]));
+      worst = std::max(worst,
+                       std::abs(static_cast<double>(client.points[3 * v + a]) * 1e-3 - simulated));
+      moved = std::max(moved,
+                       std::abs(simulated - keeper.body.rest_positions[3 * node_of_vertex[v] + a]));
     }
   EXPECT_LT(worst, 1e-7) << "m: float32 mm carries a ~0.2 mm-long coordinate to ~1e-8 m";
   EXPECT_GT(moved, 1e-3) << "the pressed liver's surface should have moved";
 }
-
 
 // Through the C ABI: a corrupt message and an unknown one are dropped and counted, a lost
 // connection reads DISCONNECTED (zero force), and the next client reconnects.
@@ -220,7 +227,9 @@ TEST(OpenIgtlinkDevice, CorruptAndUnknownMessagesAndADisconnectNeverCrash) {
   testing::LoadedPlugin plugin("tacta_openigtlink.so");
   const tacta_device_api& api = plugin.api<tacta_device_api>("openigtlink");
   testing::DeviceParams params(plugin.descriptor("openigtlink"));
-  params.number("port", 0).text("port_file", (work / "port").string()).number("connect_timeout", 20);
+  params.number("port", 0)
+      .text("port_file", (work / "port").string())
+      .number("connect_timeout", 20);
   const auto send_pose = [](igtl::ClientSocket& socket, float y_mm, bool corrupt) {
     igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
     igtl::Matrix4x4 matrix;
@@ -228,13 +237,15 @@ TEST(OpenIgtlinkDevice, CorruptAndUnknownMessagesAndADisconnectNeverCrash) {
     matrix[1][3] = y_mm;
     m->SetMatrix(matrix);
     m->Pack();
-    if (corrupt) static_cast<unsigned char*>(m->GetPackBodyPointer())[4] ^= 0x5A;  // the CRC no longer holds
+    if (corrupt)
+      static_cast<unsigned char*>(m->GetPackBodyPointer())[4] ^= 0x5A;  // the CRC no longer holds
     socket.Send(m->GetPackPointer(), static_cast<int>(m->GetPackSize()));
   };
   const auto connect = [&](igtl::ClientSocket::Pointer& socket) {
     for (int i = 0; i < 1000; ++i) {
       int port = 0;
-      if (fs::exists(work / "port") && (std::ifstream(work / "port") >> port) && socket->ConnectToServer("127.0.0.1", port) == 0)
+      if (fs::exists(work / "port") && (std::ifstream(work / "port") >> port) &&
+          socket->ConnectToServer("127.0.0.1", port) == 0)
         return true;
       std::this_thread::sleep_for(10ms);
     }
@@ -265,18 +276,21 @@ TEST(OpenIgtlinkDevice, CorruptAndUnknownMessagesAndADisconnectNeverCrash) {
   EXPECT_NEAR(s.position[1], 0.1, 1e-9) << "the corrupt pose was taken";
   first->CloseSocket();
   tacta_device_state state = TACTA_DEVICE_CONNECTED;
-  for (int i = 0; i < 1000 && (state = api.read(device, 0.002, &s)) == TACTA_DEVICE_CONNECTED; ++i) std::this_thread::sleep_for(1ms);
+  for (int i = 0; i < 1000 && (state = api.read(device, 0.002, &s)) == TACTA_DEVICE_CONNECTED; ++i)
+    std::this_thread::sleep_for(1ms);
   EXPECT_EQ(state, TACTA_DEVICE_DISCONNECTED);
 
   igtl::ClientSocket::Pointer second = igtl::ClientSocket::New();
   ASSERT_TRUE(connect(second));
   send_pose(*second, 120.0f, false);
-  for (int i = 0; i < 1000 && (state = api.read(device, 0.003, &s)) != TACTA_DEVICE_CONNECTED; ++i) std::this_thread::sleep_for(1ms);
+  for (int i = 0; i < 1000 && (state = api.read(device, 0.003, &s)) != TACTA_DEVICE_CONNECTED; ++i)
+    std::this_thread::sleep_for(1ms);
   EXPECT_EQ(state, TACTA_DEVICE_CONNECTED);
   EXPECT_NEAR(s.position[1], 0.12, 1e-7);
   tacta_device_counter c[32];
   std::map<std::string, double> counters;
-  for (uint32_t i = 0, n = api.counters(device, c, 32); i < n; ++i) counters[c[i].name] = c[i].value;
+  for (uint32_t i = 0, n = api.counters(device, c, 32); i < n; ++i)
+    counters[c[i].name] = c[i].value;
   EXPECT_EQ(counters["dropped"], 1.0);
   EXPECT_EQ(counters["ignored"], 1.0);
   EXPECT_EQ(counters["connections"], 2.0);

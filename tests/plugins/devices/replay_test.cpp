@@ -1,12 +1,11 @@
 // replay through the real C ABI: exact at samples, linear between, slerp for orientation, a
 // sim_stylus session recorded then replayed bit for bit, the end of the log, bad logs at create.
-#include <gtest/gtest.h>
-
 #include <cmath>
-#include <numbers>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
+#include <numbers>
 #include <unistd.h>
 
 #include "device_harness.hpp"
@@ -16,7 +15,8 @@ namespace tacta::testing {
 namespace {
 
 std::string temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() / ("tacta_replay_test_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("tacta_replay_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir.string();
 }
@@ -31,7 +31,9 @@ struct ReplayTest : ::testing::Test {
     write_device_log(dir + "/" + name, samples.data(), samples.size());
     return name;
   }
-  void write_text(const std::string& name, const std::string& text) { std::ofstream(dir + "/" + name) << text; }
+  void write_text(const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/" + name) << text;
+  }
 };
 
 std::vector<DeviceLogSample> three_samples() {
@@ -63,8 +65,12 @@ TEST_F(ReplayTest, ExactAtSamplesAndLinearBetween) {
   }
   for (double u : {0.25, 0.5, 0.9}) {
     const tacta_device_sample s = device.read(0.01 + 0.01 * u);
-    EXPECT_NEAR(s.position[0], samples[1].position[0] + u * (samples[2].position[0] - samples[1].position[0]), 1e-15);
-    EXPECT_NEAR(s.position[1], samples[1].position[1] + u * (samples[2].position[1] - samples[1].position[1]), 1e-15);
+    EXPECT_NEAR(s.position[0],
+                samples[1].position[0] + u * (samples[2].position[0] - samples[1].position[0]),
+                1e-15);
+    EXPECT_NEAR(s.position[1],
+                samples[1].position[1] + u * (samples[2].position[1] - samples[1].position[1]),
+                1e-15);
     EXPECT_NEAR(s.velocity[2], 0.5 + 0.5 * u, 1e-14);
     EXPECT_EQ(s.buttons, 1u);  // from the earlier sample
     // slerp from 90 degrees about z back to identity: (1 - u) * 90 degrees.
@@ -135,10 +141,13 @@ TEST_F(ReplayTest, RecordedSessionReplaysBitForBit) {
 TEST_F(ReplayTest, TruncatedOrMalformedLogIsRefusedAtCreateWithTheLine) {
   const std::string header = std::string(kDeviceLogHeader) + "\n";
   const std::string good = "0,0,0,0,1,0,0,0,0,0,0,0,0,0,0\n";
-  struct Case { std::string text, expected; };
+  struct Case {
+    std::string text, expected;
+  };
   const std::vector<Case> cases = {
       {header + good + good + "0.002,0.1,0.2,0.3,1,0", "bad.csv:4: expected 15 columns, found 6"},
-      {header + good + "0.001,0.1,x,0.3,1,0,0,0,0,0,0,0,0,0,0\n", "bad.csv:3: expected a finite number in column 3 (py)"},
+      {header + good + "0.001,0.1,x,0.3,1,0,0,0,0,0,0,0,0,0,0\n",
+       "bad.csv:3: expected a finite number in column 3 (py)"},
       {header, "bad.csv:2: expected at least one sample"},
       {"", "bad.csv:1: expected the device log header"},
   };
@@ -154,7 +163,8 @@ TEST_F(ReplayTest, TruncatedOrMalformedLogIsRefusedAtCreateWithTheLine) {
   params.text("log", "wide.csv");
   DeviceInstance wide(api, params.setup(1, dir));
   EXPECT_EQ(wide.create_status(), TACTA_ERR_INVALID_ARGUMENT);
-  EXPECT_NE(wide.message().find("wide.csv:3: px = 0.3 m is outside the device's workspace"), std::string::npos)
+  EXPECT_NE(wide.message().find("wide.csv:3: px = 0.3 m is outside the device's workspace"),
+            std::string::npos)
       << wide.message();
   // With the workspace placed, a sample off it by more than the tolerance is refused ...
   write_text("off.csv", header + good + "0.001,0,0.075,0,1,0,0,0,0,0,0,0,0,0,0\n");

@@ -1,8 +1,7 @@
 // sim_stylus through the real C ABI: free-space tracking, force saturation, the closed loop
 // against a stiff wall, deterministic seeded noise, quantisation and the scripted patterns.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <numbers>
 #include <vector>
 
@@ -84,7 +83,8 @@ TEST_F(SimStylusTest, WrittenForceSaturatesAtThePeak) {
 // hand force k_hand (target - y) balances the wall force k_wall (-y).
 TEST_F(SimStylusTest, ClosedLoopSettlesWhereHandBalancesWall) {
   const double k_hand = 300.0, k_wall = 1000.0, target = -0.005;
-  params.vector("waypoints", {0.0, 0.0, 0.01, 0.0, 0.3, 0.0, target, 0.0}).number("hand_stiffness", k_hand);
+  params.vector("waypoints", {0.0, 0.0, 0.01, 0.0, 0.3, 0.0, target, 0.0})
+      .number("hand_stiffness", k_hand);
   DeviceInstance device(api, params.setup());
   ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
   tacta_device_sample s{};
@@ -129,19 +129,24 @@ TEST_F(SimStylusTest, SeededNoiseIsDeterministicWithTheRightSpread) {
 
 TEST_F(SimStylusTest, EncoderQuantisationSnapsToCounts) {
   const double step = 1e-4;
-  params.vector("waypoints", {0.0, 0.0, 0.0, 0.0, 1.0, 0.0123, 0.00456, 0.0}).number("encoder_resolution", step);
+  params.vector("waypoints", {0.0, 0.0, 0.0, 0.0, 1.0, 0.0123, 0.00456, 0.0})
+      .number("encoder_resolution", step);
   DeviceInstance device(api, params.setup());
   for (int n = 0; n < 1000; n += 37) {
     const tacta_device_sample s = device.read(n * kTick);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(s.position[i] / step, std::round(s.position[i] / step), 1e-6);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(s.position[i] / step, std::round(s.position[i] / step), 1e-6);
   }
 }
 
 TEST_F(SimStylusTest, PalpationPressesEachPointToDepth) {
   params.number("pattern", 3)
       .vector("palpation_points", {0.0, 0.0, 0.0, 0.02, 0.0, 0.01})
-      .number("depth", 0.004).number("approach_height", 0.01)
-      .number("travel_duration", 0.4).number("press_duration", 0.3).number("dwell_duration", 0.5);
+      .number("depth", 0.004)
+      .number("approach_height", 0.01)
+      .number("travel_duration", 0.4)
+      .number("press_duration", 0.3)
+      .number("dwell_duration", 0.5);
   DeviceInstance device(api, params.setup());
   ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
   tacta_device_sample s{};
@@ -168,8 +173,11 @@ TEST_F(SimStylusTest, RepeatedPalpationStartsOverAtTheFirstPoint) {
   for (const bool repeat : {true, false}) {
     params.number("pattern", 3)
         .vector("palpation_points", {0.0, 0.0, 0.0, 0.02, 0.0, 0.01})
-        .number("depth", 0.004).number("approach_height", 0.01)
-        .number("travel_duration", 0.4).number("press_duration", 0.3).number("dwell_duration", 0.5)
+        .number("depth", 0.004)
+        .number("approach_height", 0.01)
+        .number("travel_duration", 0.4)
+        .number("press_duration", 0.3)
+        .number("dwell_duration", 0.5)
         .number("palpation_repeat", repeat ? 1 : 0);
     DeviceInstance device(api, params.setup());
     ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
@@ -189,8 +197,11 @@ TEST_F(SimStylusTest, RepeatedPalpationStartsOverAtTheFirstPoint) {
 
 TEST_F(SimStylusTest, TapAndStrokePatternsReachTheirPoints) {
   // Tap: top of the stroke at each period start, deepest at half period (raised cosine).
-  params.number("pattern", 1).vector("tap_point", {0.01, 0.0, 0.0}).number("tap_period", 0.5)
-      .number("depth", 0.004).number("approach_height", 0.01);
+  params.number("pattern", 1)
+      .vector("tap_point", {0.01, 0.0, 0.0})
+      .number("tap_period", 0.5)
+      .number("depth", 0.004)
+      .number("approach_height", 0.01);
   {
     DeviceInstance device(api, params.setup());
     ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
@@ -209,7 +220,9 @@ TEST_F(SimStylusTest, TapAndStrokePatternsReachTheirPoints) {
     EXPECT_NEAR(s.position[0], 0.01, 1e-9);
   }
   // Stroke: down at the start, along to the end at 20 mm/s, up again.
-  params.number("pattern", 2).vector("stroke_start", {0.0, 0.0, 0.0}).vector("stroke_end", {0.02, 0.0, 0.0})
+  params.number("pattern", 2)
+      .vector("stroke_start", {0.0, 0.0, 0.0})
+      .vector("stroke_end", {0.02, 0.0, 0.0})
       .number("stroke_speed", 0.02);
   DeviceInstance device(api, params.setup());
   ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
@@ -218,7 +231,7 @@ TEST_F(SimStylusTest, TapAndStrokePatternsReachTheirPoints) {
   for (int n = 0; n <= 3000; ++n) {
     device.read(n * kTick, s);
     if (n == static_cast<int>((vertical + 0.5) * 1000)) {
-      EXPECT_NEAR(s.position[0], 0.01, 2e-4);   // half way along
+      EXPECT_NEAR(s.position[0], 0.01, 2e-4);    // half way along
       EXPECT_NEAR(s.position[1], -0.004, 2e-4);  // at depth
     }
   }

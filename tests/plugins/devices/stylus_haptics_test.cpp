@@ -1,8 +1,7 @@
 // The real sim_stylus (C ABI) in the loop with the engine's ContactRenderer: the haptic tick as
 // the engine runs it (read, render, write), against an analytic tissue plane.
-#include <gtest/gtest.h>
-
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "../../engine/haptics/analytic_surfaces.hpp"
 #include "device_harness.hpp"
@@ -40,9 +39,13 @@ struct StylusHapticsTest : ::testing::Test {
 };
 
 TEST_F(StylusHapticsTest, PalpationFeelsTheSteadyForceWithoutAnOnsetSpike) {
-  params.number("pattern", 3).vector("palpation_points", {0.0, 0.0, 0.0})
-      .number("depth", 0.005).number("approach_height", 0.01)
-      .number("travel_duration", 0.0).number("press_duration", 0.4).number("dwell_duration", 1.0);
+  params.number("pattern", 3)
+      .vector("palpation_points", {0.0, 0.0, 0.0})
+      .number("depth", 0.005)
+      .number("approach_height", 0.01)
+      .number("travel_duration", 0.0)
+      .number("press_duration", 0.4)
+      .number("dwell_duration", 1.0);
   DeviceInstance device(api, params.setup());
   ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
   ContactRendererParams rp;
@@ -50,8 +53,10 @@ TEST_F(StylusHapticsTest, PalpationFeelsTheSteadyForceWithoutAnOnsetSpike) {
   rp.stats.settle_delay = 0.6;  // contact begins mid-press; the dwell holds from 0.4 s to 1.4 s
   const haptics::ContactStats stats = run(device, rp, 1.2);
   std::printf("palpation: first contact %.3f s, peak %.4f N, steady %.4f N, injected %.2e J\n",
-              stats.first_contact_time, stats.first_contact_peak, stats.steady_contact, stats.energy_injected);
-  EXPECT_NEAR(stats.steady_contact, 300.0 * 1000.0 / 1300.0 * 0.005, 0.01);  // hand and coupling in series
+              stats.first_contact_time, stats.first_contact_peak, stats.steady_contact,
+              stats.energy_injected);
+  EXPECT_NEAR(stats.steady_contact, 300.0 * 1000.0 / 1300.0 * 0.005,
+              0.01);  // hand and coupling in series
   EXPECT_LE(stats.first_contact_peak, 1.2 * stats.steady_contact);
   EXPECT_LT(stats.energy_injected, 1e-5);
 }
@@ -59,8 +64,12 @@ TEST_F(StylusHapticsTest, PalpationFeelsTheSteadyForceWithoutAnOnsetSpike) {
 // Undamped hand tapping a 3000 N/m wall with no coupling damping: the observer sees the sampled
 // wall return more energy than it took unless the controller is on.
 TEST_F(StylusHapticsTest, UndampedTapsOnAStiffWallInjectNoEnergyWithTheController) {
-  params.number("pattern", 1).vector("tap_point", {0.0, 0.0, 0.0}).number("tap_period", 0.25)
-      .number("depth", 0.0005).number("approach_height", 0.002).number("hand_damping", 0.0)
+  params.number("pattern", 1)
+      .vector("tap_point", {0.0, 0.0, 0.0})
+      .number("tap_period", 0.25)
+      .number("depth", 0.0005)
+      .number("approach_height", 0.002)
+      .number("hand_damping", 0.0)
       .number("hand_stiffness", 200.0);
   ContactRendererParams rp;
   rp.coupling = {3000.0, 0.0};

@@ -31,8 +31,9 @@ struct CompareRow {
   std::string out_dir;       // the run's subfolder of the output folder
   std::vector<double> final_positions;  // m, every body's nodes at the end, in body order
   // Against the reference model (empty without one, or when either run has no final state):
-  std::optional<double> displacement_ratio;           // max_displacement_m / the reference's
-  std::optional<double> difference_from_reference_m;  // m, RMS over nodes of |x - x_reference| at the end
+  std::optional<double> displacement_ratio;  // max_displacement_m / the reference's
+  std::optional<double>
+      difference_from_reference_m;  // m, RMS over nodes of |x - x_reference| at the end
 };
 
 struct CompareSummary {
@@ -43,13 +44,14 @@ struct CompareSummary {
 };
 
 struct CompareOptions {
-  std::string scene;                    // scene file
-  std::vector<std::string> models;      // each NAME or NAME:param=value:... (fd_debunne:symmetric=true)
-  std::vector<std::string> overrides;   // key.path=value, for every run (the model's comes last)
-  double duration_s = -1;               // s; <= 0 keeps the scene's clock.duration_s
-  std::string reference;                // one of `models`: the others are measured against it
-  std::string out_dir;                  // each run's outputs in <out_dir>/<model>/; empty: none
-  std::function<void(const std::string&)> note;  // progress and notes ("running x ..."); null: silent
+  std::string scene;                // scene file
+  std::vector<std::string> models;  // each NAME or NAME:param=value:... (fd_debunne:symmetric=true)
+  std::vector<std::string> overrides;  // key.path=value, for every run (the model's comes last)
+  double duration_s = -1;              // s; <= 0 keeps the scene's clock.duration_s
+  std::string reference;               // one of `models`: the others are measured against it
+  std::string out_dir;                 // each run's outputs in <out_dir>/<model>/; empty: none
+  std::function<void(const std::string&)>
+      note;  // progress and notes ("running x ..."); null: silent
 };
 
 // Runs the scene once per model (every body takes it, lockstep, the scene's swaps ignored) and
@@ -67,11 +69,12 @@ void compare_with_reference(CompareSummary& summary);
 // Throw std::runtime_error naming the file when it cannot be written.
 void write_compare_json(const std::string& path, const CompareSummary& summary);
 // `label_faults` appends " (fault)" to the model of a faulted row: for the chart's input only.
-void write_compare_csv(const std::string& path, const CompareSummary& summary, bool label_faults = false);
+void write_compare_csv(const std::string& path, const CompareSummary& summary,
+                       bool label_faults = false);
 // compare.json, compare.csv and the bar chart compare.png in `dir`; returns the files written
 // (the chart is left out, with a warning in `warning`, when its script fails).
-std::vector<std::string> write_compare_outputs(const std::string& dir, const CompareSummary& summary,
-                                               std::string& warning);
+std::vector<std::string> write_compare_outputs(const std::string& dir,
+                                               const CompareSummary& summary, std::string& warning);
 void print_compare_table(std::FILE* out, const CompareSummary& summary);
 
 // Metric columns worth a bar chart: energy_end_J stands in for an all-empty energy_drift, and the

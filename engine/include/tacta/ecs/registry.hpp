@@ -47,7 +47,8 @@ class Registry {
       alive_[index] = true;
       return {index, generations_[index]};
     }
-    if (generations_.size() >= Entity::kNullIndex) throw std::length_error("ecs: out of entity slots");
+    if (generations_.size() >= Entity::kNullIndex)
+      throw std::length_error("ecs: out of entity slots");
     generations_.push_back(1);
     alive_.push_back(true);
     return {static_cast<uint32_t>(generations_.size() - 1), 1};
@@ -75,7 +76,8 @@ class Registry {
   }
 
   bool valid(Entity e) const noexcept {
-    return e.index < generations_.size() && alive_[e.index] && generations_[e.index] == e.generation;
+    return e.index < generations_.size() && alive_[e.index] &&
+           generations_[e.index] == e.generation;
   }
 
   size_t alive_count() const noexcept { return generations_.size() - free_.size(); }

@@ -35,12 +35,12 @@ struct ContactRendererParams {
 
 // The per-device report numbers (N, J).
 struct ContactStats {
-  double max_force = 0.0;           // N, largest force sent
-  double force_limit = 0.0;         // N, the peak it was limited to
-  double first_contact_peak = 0.0;  // N, largest force in the onset window of the first contact
-  double steady_contact = 0.0;      // N, mean force in the steady window of the first contact
-  double energy_injected = 0.0;     // J, worst energy the coupling returned beyond what it took
-  double first_contact_time = -1.0; // s, -1 before any contact
+  double max_force = 0.0;               // N, largest force sent
+  double force_limit = 0.0;             // N, the peak it was limited to
+  double first_contact_peak = 0.0;      // N, largest force in the onset window of the first contact
+  double steady_contact = 0.0;          // N, mean force in the steady window of the first contact
+  double energy_injected = 0.0;         // J, worst energy the coupling returned beyond what it took
+  double first_contact_time = -1.0;     // s, -1 before any contact
   unsigned long non_finite_forces = 0;  // ticks where a NaN/inf force was zeroed
   unsigned long limited_forces = 0;     // ticks where the force was scaled down to the peak
 };
@@ -49,7 +49,7 @@ struct ContactRendering {
   Vec3 device_force{0.0, 0.0, 0.0};   // N, to write to the device
   Vec3 body_reaction{0.0, 0.0, 0.0};  // N, on the touched body at contact.point (= -device_force)
   bool in_contact = false;
-  SurfaceHit contact{};               // valid when in_contact
+  SurfaceHit contact{};  // valid when in_contact
 };
 
 class ContactRenderer {

@@ -16,10 +16,10 @@
 namespace tacta::haptics {
 
 struct GodObjectParams {
-  double radius = 0.0;             // m, proxy sphere radius (tool tip)
-  double skin = 1e-6;              // m, the proxy is kept this far outside the surface
-  int max_iterations = 4;          // constraint updates per tick
-  double inside_search = 0.02;     // m, how far closest_point looks for a device found inside
+  double radius = 0.0;          // m, proxy sphere radius (tool tip)
+  double skin = 1e-6;           // m, the proxy is kept this far outside the surface
+  int max_iterations = 4;       // constraint updates per tick
+  double inside_search = 0.02;  // m, how far closest_point looks for a device found inside
 };
 
 class GodObjectProxy {

@@ -31,12 +31,14 @@ struct LocalCompliance {
 
 // The coupling stretch (proxy - device, m) seen through the local model (along local.normal),
 // coupling_stiffness k_c in N/m. The other directions are unchanged.
-inline Vec3 yield_stretch(const Vec3& stretch, double coupling_stiffness, const LocalCompliance& local) noexcept {
+inline Vec3 yield_stretch(const Vec3& stretch, double coupling_stiffness,
+                          const LocalCompliance& local) noexcept {
   if (!local.active || !(local.stiffness > 0.0) || !(coupling_stiffness > 0.0)) return stretch;
   const Vec3& normal = local.normal;
   const double d = dot(stretch, normal);
   if (d <= 0.0) return stretch;  // not pressing: nothing to yield
-  const double s = (local.reference_force + local.stiffness * d) / (local.stiffness + coupling_stiffness);
+  const double s =
+      (local.reference_force + local.stiffness * d) / (local.stiffness + coupling_stiffness);
   return add_scaled(stretch, normal, s - d);
 }
 

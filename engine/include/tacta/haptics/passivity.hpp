@@ -18,9 +18,9 @@
 namespace tacta::haptics {
 
 struct PassivityParams {
-  double max_damping = 40.0;      // N s/m, cap on the adaptive damper
-  double min_speed = 1e-6;        // m/s, below this no damper is added (alpha would blow up)
-  bool controller_enabled = true; // false: observe only (for comparisons and tests)
+  double max_damping = 40.0;       // N s/m, cap on the adaptive damper
+  double min_speed = 1e-6;         // m/s, below this no damper is added (alpha would blow up)
+  bool controller_enabled = true;  // false: observe only (for comparisons and tests)
 };
 
 class PassivityController {
@@ -39,10 +39,10 @@ class PassivityController {
   // The force really sent this tick (after limiting), so the next observation uses it.
   void record_sent(const Vec3& force) noexcept { last_sent_ = force; }
 
-  double observed_energy() const noexcept { return energy_; }          // J, >= 0 when passive
-  double worst_energy_deficit() const noexcept { return worst_deficit_; } // J, max of -E seen
-  double dissipated_energy() const noexcept { return dissipated_; }    // J, predicted, by the damper
-  double last_damping() const noexcept { return last_alpha_; }         // N s/m
+  double observed_energy() const noexcept { return energy_; }              // J, >= 0 when passive
+  double worst_energy_deficit() const noexcept { return worst_deficit_; }  // J, max of -E seen
+  double dissipated_energy() const noexcept { return dissipated_; }  // J, predicted, by the damper
+  double last_damping() const noexcept { return last_alpha_; }       // N s/m
 
  private:
   PassivityParams params_;

@@ -8,11 +8,11 @@
 namespace tacta::haptics {
 
 struct SurfaceHit {
-  double fraction = 0.0;           // where along the sweep [0, 1] the sphere first touches
-  Vec3 point{0.0, 0.0, 0.0};       // m, the touched point on the surface
-  Vec3 normal{0.0, 0.0, 1.0};      // unit outward surface normal at point
-  int body = -1;                   // which body was touched (engine-defined id; -1 unknown)
-  int triangle = -1;               // which surface triangle (for barycentric force transfer)
+  double fraction = 0.0;       // where along the sweep [0, 1] the sphere first touches
+  Vec3 point{0.0, 0.0, 0.0};   // m, the touched point on the surface
+  Vec3 normal{0.0, 0.0, 1.0};  // unit outward surface normal at point
+  int body = -1;               // which body was touched (engine-defined id; -1 unknown)
+  int triangle = -1;           // which surface triangle (for barycentric force transfer)
   double barycentric[3] = {0.0, 0.0, 0.0};  // of point in that triangle, when known
 };
 

@@ -32,13 +32,13 @@ struct BodyDraw {
   double scalar_min = 0;
   double scalar_max = 1;
   Rgb base_colour{0.80f, 0.55f, 0.45f};
-  bool wireframe = false;                // draw the triangle edges on top
+  bool wireframe = false;               // draw the triangle edges on top
   std::vector<double> fixed_positions;  // 3 per fixed node, m: drawn as small dark cubes
 };
 
 struct ToolDraw {
   bool present = false;
-  Vec3d position{0, 0, 0};                      // m, the tool's origin (tip) in the world
+  Vec3d position{0, 0, 0};                        // m, the tool's origin (tip) in the world
   std::array<double, 4> orientation{1, 0, 0, 0};  // unit quaternion w, x, y, z (tool to world)
   double radius = 0.005;                          // m, sphere fallback when no mesh is given
   std::optional<SurfaceMesh> mesh;                // tool shape in the tool's frame, m
@@ -55,8 +55,8 @@ struct RenderFrame {
   ToolDraw tool;
   std::optional<Vec3d> proxy;  // m, the proxy (god-object) position on the surface
   std::vector<ContactDraw> contacts;
-  Vec3d force{0, 0, 0};              // N, force rendered to the device, drawn as an arrow at the tool
-  double force_arrow_scale = 0.01;   // m/N: arrow length per newton
+  Vec3d force{0, 0, 0};  // N, force rendered to the device, drawn as an arrow at the tool
+  double force_arrow_scale = 0.01;           // m/N: arrow length per newton
   std::optional<double> floor_height = 0.0;  // m along +y; nullopt: no floor grid
   bool axes = true;                          // x red, y green, z blue at the origin
   std::vector<std::string> overlay_lines;    // top-left text, one entry a line (ASCII)

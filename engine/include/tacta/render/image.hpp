@@ -23,7 +23,7 @@ Image read_png(const std::filesystem::path& file);
 // Tolerance of the golden tests: a pixel differs when any channel differs by more than
 // `channel_tolerance`; the images match when at most `max_differing_fraction` of pixels differ.
 struct CompareTolerance {
-  int channel_tolerance = 5;             // of 255
+  int channel_tolerance = 5;              // of 255
   double max_differing_fraction = 0.001;  // 0.1 %
 };
 

@@ -14,11 +14,12 @@ namespace tacta::render {
 struct SnapshotStyle {
   bool colour_by_displacement = true;  // colour map over |x - x_rest|, m
   bool wireframe = false;
-  std::string model_label;             // overlay text, e.g. "model: corotational_fem"
+  std::string model_label;  // overlay text, e.g. "model: corotational_fem"
 };
 
 // A picture of the snapshot; the camera is fitted to the rest bounds so it does not wander.
-RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot, const SnapshotStyle& style = {});
+RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot,
+                              const SnapshotStyle& style = {});
 
 class HeadlessRenderer;
 struct Image;
@@ -29,11 +30,13 @@ std::string models_label(const Snapshot& snapshot);
 // One picture of `snapshot` drawn by `renderer` and written as a PNG at `path` (folders made),
 // labelled with its models unless style.model_label is set: what `tacta snapshot` and Python's
 // Simulation.snapshot write. Throws std::runtime_error when the file cannot be written.
-Image write_snapshot_png(HeadlessRenderer& renderer, const SceneStatic& scene, const Snapshot& snapshot,
-                         const std::string& path, SnapshotStyle style = {});
+Image write_snapshot_png(HeadlessRenderer& renderer, const SceneStatic& scene,
+                         const Snapshot& snapshot, const std::string& path,
+                         SnapshotStyle style = {});
 
 // Writes <directory>/frame_<time in ms>.png for the chosen times (s; empty = every frame).
-std::unique_ptr<FrameObserver> make_png_frame_writer(const std::string& directory, std::vector<double> times,
-                                                     int width, int height);
+std::unique_ptr<FrameObserver> make_png_frame_writer(const std::string& directory,
+                                                     std::vector<double> times, int width,
+                                                     int height);
 
 }  // namespace tacta::render

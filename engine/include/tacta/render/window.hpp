@@ -13,8 +13,8 @@
 namespace tacta::render {
 
 struct WindowOptions {
-  int width = 1280;   // pixels
-  int height = 800;   // pixels
+  int width = 1280;  // pixels
+  int height = 800;  // pixels
   std::string title = "Tacta";
   bool vsync = true;  // swap at the display's rate (60 Hz on most), which paces the render task
 };

@@ -63,8 +63,8 @@ struct CollisionAdapter {
                              tacta_surface_hit* hit) noexcept {
     return self(instance).sphere_cast(*world, surface, from, to, radius, *hit) ? 1 : 0;
   }
-  static int32_t closest_point(void* instance, const tacta_collision_world* world,
-                               uint32_t surface, const double point[3], double max_distance,
+  static int32_t closest_point(void* instance, const tacta_collision_world* world, uint32_t surface,
+                               const double point[3], double max_distance,
                                tacta_surface_hit* hit) noexcept {
     return self(instance).closest_point(*world, surface, point, max_distance, *hit) ? 1 : 0;
   }
@@ -73,8 +73,7 @@ struct CollisionAdapter {
                          tacta_contact* contacts, uint32_t capacity, uint32_t* count) noexcept {
     return self(instance).detect(*world, pairs, pair_count, contacts, capacity, *count);
   }
-  static int32_t vertex_face(void* instance, const double points[24],
-                             tacta_ccd_hit* hit) noexcept {
+  static int32_t vertex_face(void* instance, const double points[24], tacta_ccd_hit* hit) noexcept {
     return self(instance).vertex_face(points, *hit) ? 1 : 0;
   }
   static int32_t edge_edge(void* instance, const double points[24], tacta_ccd_hit* hit) noexcept {
@@ -95,34 +94,34 @@ struct CollisionAdapter {
     tacta_collision_api api{};
     api.create = &create;
     api.destroy = &destroy;
-    if constexpr (requires(T& t, World w) { t.prepare(w); }) api.prepare = &prepare;
-    if constexpr (requires(T& t, World w) { t.update(w); }) api.update = &update;
-    if constexpr (requires(T& t, World w, tacta_collision_pair* p, uint32_t& n) {
+    if constexpr (requires(T & t, World w) { t.prepare(w); }) api.prepare = &prepare;
+    if constexpr (requires(T & t, World w) { t.update(w); }) api.update = &update;
+    if constexpr (requires(T & t, World w, tacta_collision_pair * p, uint32_t & n) {
                     t.find_pairs(w, p, 0u, n);
                   })
       api.find_pairs = &find_pairs;
-    if constexpr (requires(T& t, World w, const tacta_collision_shape& s, uint32_t* o,
+    if constexpr (requires(T & t, World w, const tacta_collision_shape& s, uint32_t* o,
                            uint32_t& n) { t.overlap_shape(w, s, 0u, o, 0u, n); })
       api.overlap_shape = &overlap_shape;
-    if constexpr (requires(T& t, World w, const double* x, tacta_surface_hit& h) {
+    if constexpr (requires(T & t, World w, const double* x, tacta_surface_hit& h) {
                     t.sphere_cast(w, 0u, x, x, 0.0, h);
                   })
       api.sphere_cast = &sphere_cast;
-    if constexpr (requires(T& t, World w, const double* x, tacta_surface_hit& h) {
+    if constexpr (requires(T & t, World w, const double* x, tacta_surface_hit& h) {
                     t.closest_point(w, 0u, x, 0.0, h);
                   })
       api.closest_point = &closest_point;
-    if constexpr (requires(T& t, World w, const tacta_collision_pair* p, tacta_contact* c,
+    if constexpr (requires(T & t, World w, const tacta_collision_pair* p, tacta_contact* c,
                            uint32_t& n) { t.detect(w, p, 0u, c, 0u, n); })
       api.detect = &detect;
-    if constexpr (requires(T& t, const double* x, tacta_ccd_hit& h) { t.vertex_face(x, h); })
+    if constexpr (requires(T & t, const double* x, tacta_ccd_hit& h) { t.vertex_face(x, h); })
       api.vertex_face = &vertex_face;
-    if constexpr (requires(T& t, const double* x, tacta_ccd_hit& h) { t.edge_edge(x, h); })
+    if constexpr (requires(T & t, const double* x, tacta_ccd_hit& h) { t.edge_edge(x, h); })
       api.edge_edge = &edge_edge;
-    if constexpr (requires(T& t, const tacta_collision_shape& s, const double* x,
+    if constexpr (requires(T & t, const tacta_collision_shape& s, const double* x,
                            tacta_shape_result& r) { t.shape_query(s, &s, x, r); })
       api.shape_query = &shape_query;
-    if constexpr (requires(T& t, tacta_collision_world& w, tacta_contact* c) {
+    if constexpr (requires(T & t, tacta_collision_world & w, tacta_contact * c) {
                     t.respond(w, c, 0u);
                   })
       api.respond = &respond;

@@ -143,9 +143,9 @@ inline tacta_status register_descriptors(uint64_t host_abi, const tacta_host* ho
 
 // Defines the exported entry point; pass descriptor pointers, e.g.
 //   TACTA_PLUGIN_EXPORT(tacta::sdk::model_descriptor<MyModel>())
-#define TACTA_PLUGIN_EXPORT(...)                                                            \
-  extern "C" TACTA_EXPORT tacta_status tacta_plugin_entry(                                  \
-      uint64_t host_abi, const tacta_host* host, char* message, size_t message_capacity) {  \
-    return ::tacta::sdk::register_descriptors(host_abi, host, message, message_capacity,    \
-                                              {__VA_ARGS__});                               \
+#define TACTA_PLUGIN_EXPORT(...)                                                           \
+  extern "C" TACTA_EXPORT tacta_status tacta_plugin_entry(                                 \
+      uint64_t host_abi, const tacta_host* host, char* message, size_t message_capacity) { \
+    return ::tacta::sdk::register_descriptors(host_abi, host, message, message_capacity,   \
+                                              {__VA_ARGS__});                              \
   }

@@ -33,7 +33,8 @@ struct DeviceAdapter {
     return guarded(message, capacity, [&] { static_cast<T*>(instance)->connect(); });
   }
   static void disconnect(void* instance) noexcept { static_cast<T*>(instance)->disconnect(); }
-  static tacta_device_state read(void* instance, double time, tacta_device_sample* sample) noexcept {
+  static tacta_device_state read(void* instance, double time,
+                                 tacta_device_sample* sample) noexcept {
     return static_cast<T*>(instance)->read(time, *sample);
   }
   static void write(void* instance, double time, const tacta_device_command* command) noexcept {
@@ -66,8 +67,10 @@ struct DeviceAdapter {
     api.write = &write;
     api.capabilities = &capabilities;
     if constexpr (requires(const T& t, char* r) { t.status(r, size_t{0}); }) api.status = &status;
-    if constexpr (requires(T* t, const double* v) { T::input(t, v, uint32_t{0}); }) api.input = &input;
-    if constexpr (requires(T& t, const tacta_device_surface& s) { t.surface(s); }) api.surface = &surface;
+    if constexpr (requires(T * t, const double* v) { T::input(t, v, uint32_t{0}); })
+      api.input = &input;
+    if constexpr (requires(T & t, const tacta_device_surface& s) { t.surface(s); })
+      api.surface = &surface;
     if constexpr (requires(const T& t, tacta_device_counter* c) { t.counters(c, uint32_t{0}); })
       api.counters = &counters;
     return api;

@@ -78,16 +78,17 @@ struct ModelAdapter {
     api.create = &create;
     api.destroy = &destroy;
     api.step = &step;
-    if constexpr (requires(T& t, const tacta_body_state& s) { t.begin(s, 0.0); }) api.begin = &begin;
-    if constexpr (requires(T& t, const double* x) { t.elastic_energy(x); })
+    if constexpr (requires(T & t, const tacta_body_state& s) { t.begin(s, 0.0); })
+      api.begin = &begin;
+    if constexpr (requires(T & t, const double* x) { t.elastic_energy(x); })
       api.elastic_energy = &elastic_energy;
-    if constexpr (requires(T& t, const double* x, double* f) { t.internal_forces(x, f); })
+    if constexpr (requires(T & t, const double* x, double* f) { t.internal_forces(x, f); })
       api.internal_forces = &internal_forces;
-    if constexpr (requires(T& t, const tacta_param_value& v) { t.set_param(0u, v); })
+    if constexpr (requires(T & t, const tacta_param_value& v) { t.set_param(0u, v); })
       api.set_param = &set_param;
-    if constexpr (requires(T& t, const double* x, double* s) { t.node_stress(x, s); })
+    if constexpr (requires(T & t, const double* x, double* s) { t.node_stress(x, s); })
       api.node_stress = &node_stress;
-    if constexpr (requires(T& t, tacta_model_counter* c) { t.counters(c, 0u); })
+    if constexpr (requires(T & t, tacta_model_counter * c) { t.counters(c, 0u); })
       api.counters = &counters;
     if constexpr (requires(const T& t) { t.describe(); }) api.describe = &describe;
     if constexpr (requires { T::kClaims; }) api.claims = T::kClaims;

@@ -13,10 +13,10 @@
 namespace tacta {
 
 struct RealtimeOptions {
-  int priority = 80;          // SCHED_FIFO priority, 1..99; 0: do not ask for SCHED_FIFO
-  int cpu = -1;               // CPU the haptic thread is pinned to; -1: no pinning
-  bool lock_memory = true;    // mlockall(MCL_CURRENT | MCL_FUTURE) for the run
-  double spin_us = 50;        // the last microseconds before a deadline are spun, not slept
+  int priority = 80;        // SCHED_FIFO priority, 1..99; 0: do not ask for SCHED_FIFO
+  int cpu = -1;             // CPU the haptic thread is pinned to; -1: no pinning
+  bool lock_memory = true;  // mlockall(MCL_CURRENT | MCL_FUTURE) for the run
+  double spin_us = 50;      // the last microseconds before a deadline are spun, not slept
 };
 
 // What the kernel granted (report.json "realtime").
@@ -26,10 +26,10 @@ struct RealtimeGrant {
   int nice = 0;                           // the haptic thread's nice value with SCHED_OTHER
   std::string scheduler_note;             // why SCHED_FIFO was not granted, and the fallback
   bool memory_locked = false;
-  std::string memory_note;                // why mlockall failed, when it did
-  int cpu = -1;                           // the haptic thread's CPU; -1: not pinned
-  std::string cpu_note;                   // why pinning failed, when it did
-  uint32_t helper_threads_lowered = 0;    // other threads moved to a lower priority (and off `cpu`)
+  std::string memory_note;              // why mlockall failed, when it did
+  int cpu = -1;                         // the haptic thread's CPU; -1: not pinned
+  std::string cpu_note;                 // why pinning failed, when it did
+  uint32_t helper_threads_lowered = 0;  // other threads moved to a lower priority (and off `cpu`)
   double spin_us = 0;
   // Tick at which a SCHED_FIFO haptic thread that missed every deadline for
   // kStarvingTicks ticks was dropped to SCHED_OTHER; -1: never.

@@ -9,7 +9,8 @@ namespace tacta {
 class RegistrySchemas final : public SchemaLookup {
  public:
   explicit RegistrySchemas(const PluginRegistry& registry) : registry_(registry) {}
-  std::optional<std::span<const tacta_param_spec>> schema(tacta_kind kind, std::string_view name) const override {
+  std::optional<std::span<const tacta_param_spec>> schema(tacta_kind kind,
+                                                          std::string_view name) const override {
     return registry_.schema(kind, name);
   }
   std::vector<std::string> names(tacta_kind kind) const override {

@@ -13,12 +13,12 @@ namespace tacta {
 enum class StatusSeverity { Info, Warning, Error };
 
 struct StatusBitCount {
-  std::string name;     // e.g. "solver_not_converged"
-  uint32_t bit = 0;     // the bit's value in its source's bit set
+  std::string name;  // e.g. "solver_not_converged"
+  uint32_t bit = 0;  // the bit's value in its source's bit set
   StatusSeverity severity = StatusSeverity::Warning;
-  uint64_t ticks = 0;   // ticks (or steps) the bit was raised on
+  uint64_t ticks = 0;  // ticks (or steps) the bit was raised on
   double first_time_s = 0;
-  std::string remedy;   // one line
+  std::string remedy;  // one line
 };
 
 struct CollisionPluginResult {

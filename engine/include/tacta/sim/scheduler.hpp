@@ -51,20 +51,20 @@ struct ScheduleOptions {
   double haptic_rate_hz = 1000;
   double render_rate_hz = 60;
   double duration_s = 1;
-  std::atomic<bool>* stop = nullptr;                  // set from outside to end the run early
-  std::function<void(double fraction)> on_progress;   // called from the scheduling thread, ~10 Hz
-  RealtimeOptions realtime;                           // realtime: scheduling, memory, CPU, wait
+  std::atomic<bool>* stop = nullptr;                 // set from outside to end the run early
+  std::function<void(double fraction)> on_progress;  // called from the scheduling thread, ~10 Hz
+  RealtimeOptions realtime;                          // realtime: scheduling, memory, CPU, wait
 };
 
 struct ScheduleResult {
   uint64_t ticks = 0;
   uint64_t frames = 0;
-  uint64_t deadline_misses = 0;  // realtime: ticks that ended after their deadline
+  uint64_t deadline_misses = 0;    // realtime: ticks that ended after their deadline
   double max_start_jitter_ms = 0;  // realtime: latest tick start after its scheduled start
   double wall_time_s = 0;
   bool stopped_early = false;
   TickSummary tick;
-  RealtimeGrant realtime;                  // realtime: what the kernel granted the haptic thread
+  RealtimeGrant realtime;  // realtime: what the kernel granted the haptic thread
   // Before the first tick, at the first frame 1 s into the run (after the renderer and the
   // records have warmed up: growth after this is what a leak would show), after the last tick.
   ResidentMemory memory_start, memory_warm, memory_end;

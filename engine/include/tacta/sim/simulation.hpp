@@ -24,12 +24,12 @@
 namespace tacta {
 
 struct RunOptions {
-  std::string out_dir;                 // empty: write nothing
-  std::optional<double> duration_s;    // overrides the scene's clock.duration_s
-  std::optional<bool> realtime;        // overrides the scene's clock.mode
-  bool progress = false;               // a progress bar on stderr
-  std::string record_log;              // write the first device's session log here
-  bool frames = false;                 // force PNG frames on
+  std::string out_dir;               // empty: write nothing
+  std::optional<double> duration_s;  // overrides the scene's clock.duration_s
+  std::optional<bool> realtime;      // overrides the scene's clock.mode
+  bool progress = false;             // a progress bar on stderr
+  std::string record_log;            // write the first device's session log here
+  bool frames = false;               // force PNG frames on
   // Called with every snapshot the render task takes (frames, VTK, a window). Not owned.
   std::vector<FrameObserver*> observers;
 };
@@ -41,15 +41,16 @@ struct BodyResult {
   double initial_energy_J = 0;  // kinetic + elastic at t = 0
   bool frozen = false;
   std::string fault;
-  std::string mesh;                        // what the mesh source became (describe_body_mesh)
-  std::vector<std::string> mesh_warnings;  // the mesh loader's warnings (surface not closed, pieces, ...)
+  std::string mesh;  // what the mesh source became (describe_body_mesh)
+  std::vector<std::string>
+      mesh_warnings;  // the mesh loader's warnings (surface not closed, pieces, ...)
   // A body with step_thread: own (its steps ran on a worker thread at step_rate_hz).
   bool own_thread = false;
-  double step_rate_hz = 0;           // 0: stepped every haptic tick
+  double step_rate_hz = 0;  // 0: stepped every haptic tick
   uint64_t worker_steps = 0;
-  TickSummary worker_step_ms;        // wall time of each step on the worker
-  uint64_t late_boundaries = 0;      // realtime: boundaries where the step was not finished
-  double max_lateness_s = 0;         // realtime: longest time a step was collected past its boundary
+  TickSummary worker_step_ms;    // wall time of each step on the worker
+  uint64_t late_boundaries = 0;  // realtime: boundaries where the step was not finished
+  double max_lateness_s = 0;     // realtime: longest time a step was collected past its boundary
   // Bodies that came or went while the scene ran (-1: in the scene from the start / never removed);
   // pending: requested or scheduled, not taken in yet.
   double added_s = -1, removed_s = -1;
@@ -75,20 +76,20 @@ struct RunResult {
   std::vector<DeviceResult> devices;
   size_t faults = 0;
   std::vector<std::string> fault_messages;  // one per fault: who, when (s), why
-  std::vector<std::string> outputs;  // files written
-  RunStatus status;                  // status bits seen, collision roles (docs/REPORT.md `status`)
-  int exit_code = 0;                 // 0 ok, 1 runtime fault or error bit
+  std::vector<std::string> outputs;         // files written
+  RunStatus status;   // status bits seen, collision roles (docs/REPORT.md `status`)
+  int exit_code = 0;  // 0 ok, 1 runtime fault or error bit
 };
 
 // One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed
 // (bodies are never re-allocated after load). Write positions and velocities only between steps.
 struct BodyArrays {
   size_t nodes = 0;
-  double* positions = nullptr;            // 3 per node, m
-  double* velocities = nullptr;           // 3 per node, m/s
-  const double* rest_positions = nullptr; // 3 per node, m
-  const uint8_t* fixed = nullptr;         // 1 per node: held at rest
-  const double* masses = nullptr;         // 1 per node, kg (lumped)
+  double* positions = nullptr;             // 3 per node, m
+  double* velocities = nullptr;            // 3 per node, m/s
+  const double* rest_positions = nullptr;  // 3 per node, m
+  const uint8_t* fixed = nullptr;          // 1 per node: held at rest
+  const double* masses = nullptr;          // 1 per node, kg (lumped)
 };
 
 // A device's last sample and the force it was last sent, read between steps.
@@ -127,12 +128,12 @@ class Simulation {
   uint64_t step(uint64_t ticks = 1);
   // Steps whole ticks until time() reaches `time_s` (to within half a tick); returns the ticks.
   uint64_t advance_to(double time_s);
-  double time() const noexcept;     // s, simulated: tick() * dt()
-  uint64_t tick() const noexcept;   // haptic ticks run since open
+  double time() const noexcept;    // s, simulated: tick() * dt()
+  uint64_t tick() const noexcept;  // haptic ticks run since open
   // What the ticks of the last step()/advance_to() raised (model, collision and device bits,
   // OR-ed, and whether one is an error, e.g. a body faulted and frozen); report() has the counts.
   TickStatus step_status() const noexcept;
-  double dt() const noexcept;       // s, one haptic tick
+  double dt() const noexcept;  // s, one haptic tick
   // Frame observers for stepping (a window, a frame writer): told at each 1/render_rate of
   // simulated time. Not owned; detach before destroying them.
   void attach(FrameObserver* observer);
@@ -149,7 +150,8 @@ class Simulation {
   const std::vector<uint32_t>& surface_triangles(size_t body) const;
   std::vector<double> surface_positions(size_t body) const;
   // A load (N) on `nodes`, added to gravity and contact for every step until cleared or replaced.
-  void set_applied_forces(size_t body, const std::vector<uint32_t>& nodes, const std::vector<double>& forces);
+  void set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,
+                          const std::vector<double>& forces);
   void clear_applied_forces(size_t body);
   double kinetic_energy(size_t body) const;  // J
   double elastic_energy(size_t body) const;  // J
@@ -199,9 +201,9 @@ class Simulation {
   // scene's folder).
   BodyHandle add_body(const std::string& yaml);
   void remove_body(BodyHandle body);
-  BodyHandle body_handle(size_t body) const;    // InputError for an index past body_count()
+  BodyHandle body_handle(size_t body) const;        // InputError for an index past body_count()
   bool body_alive(BodyHandle body) const noexcept;  // false once removal was requested
-  size_t body_index(BodyHandle body) const;     // InputError when stale (names the body)
+  size_t body_index(BodyHandle body) const;         // InputError when stale (names the body)
 
   // Ends run() after the current tick. The request is consumed when that run() returns, so a
   // later run() runs again (how the viewer pauses and plays on).

@@ -10,11 +10,11 @@
 namespace tacta {
 
 struct BodySnapshot {
-  std::vector<double> positions;   // 3 per node, m
-  std::vector<double> velocities;  // 3 per node, m/s
-  std::vector<double> von_mises;   // 1 per node, Pa (empty when the model gives no stress)
+  std::vector<double> positions;          // 3 per node, m
+  std::vector<double> velocities;         // 3 per node, m/s
+  std::vector<double> von_mises;          // 1 per node, Pa (empty when the model gives no stress)
   std::vector<double> surface_positions;  // 3 per embedded surface vertex, m (empty: none)
-  std::string model;               // model name at the time of the snapshot (set at swaps only)
+  std::string model;  // model name at the time of the snapshot (set at swaps only)
   bool frozen = false;
   bool present = true;  // false while an added body waits for its time, and after it was removed
   double kinetic_J = 0, elastic_J = 0, max_displacement_m = 0;
@@ -25,7 +25,7 @@ struct DeviceSnapshot {
   std::array<double, 3> proxy{};     // m
   std::array<double, 3> force{};     // N, as sent to the device
   bool contact = false;
-  int touched_body = -1;             // index of the body it touches, -1 when none
+  int touched_body = -1;  // index of the body it touches, -1 when none
 };
 
 struct Snapshot {
@@ -39,11 +39,11 @@ struct Snapshot {
 // What does not change during a run, for whoever draws or saves snapshots.
 struct BodyStatic {
   std::string name;
-  std::vector<double> rest_positions;   // 3 per node, m
-  std::vector<uint32_t> triangles;      // 3 per triangle: the surface to draw (outward)
-  std::vector<uint32_t> tets;           // 4 per tet (VTK output)
-  std::vector<uint32_t> quads;          // 4 per quad (planar meshes)
-  std::vector<uint32_t> fixed_nodes;    // indices of the fixed nodes
+  std::vector<double> rest_positions;  // 3 per node, m
+  std::vector<uint32_t> triangles;     // 3 per triangle: the surface to draw (outward)
+  std::vector<uint32_t> tets;          // 4 per tet (VTK output)
+  std::vector<uint32_t> quads;         // 4 per quad (planar meshes)
+  std::vector<uint32_t> fixed_nodes;   // indices of the fixed nodes
   uint32_t dimension = 3;
   // The embedded surface (tacta/embedded_surface.hpp), drawn instead of `triangles` when present.
   std::vector<double> surface_rest_positions;  // 3 per surface vertex, m

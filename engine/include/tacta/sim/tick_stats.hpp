@@ -2,8 +2,8 @@
 // percentiles afterwards.
 #pragma once
 
-#include <cstddef>
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,14 +21,16 @@ class TickRecorder {
   void reserve(size_t capacity) { durations_ms_.reserve(capacity); }
   // Room for `more` durations past those kept, `limit` in all; later ticks count in max and mean.
   void grow(size_t more, size_t limit) {
-    durations_ms_.reserve(std::min(durations_ms_.size() + more, std::max(limit, durations_ms_.capacity())));
+    durations_ms_.reserve(
+        std::min(durations_ms_.size() + more, std::max(limit, durations_ms_.capacity())));
   }
 
   void record(double duration_ms) noexcept {
     ++count_;
     sum_ms_ += duration_ms;
     if (duration_ms > max_ms_) max_ms_ = duration_ms;
-    if (durations_ms_.size() < durations_ms_.capacity()) durations_ms_.push_back(static_cast<float>(duration_ms));
+    if (durations_ms_.size() < durations_ms_.capacity())
+      durations_ms_.push_back(static_cast<float>(duration_ms));
   }
   uint64_t count() const noexcept { return count_; }
   TickSummary summary() const;  // sorts a copy; call after the run

@@ -21,7 +21,8 @@ class TripleBuffer {
 
   // Producer: hands the filled slot over; the previous middle slot becomes the next write slot.
   void publish() noexcept {
-    const uint8_t previous = middle_.exchange(static_cast<uint8_t>(write_ | kFresh), std::memory_order_acq_rel);
+    const uint8_t previous =
+        middle_.exchange(static_cast<uint8_t>(write_ | kFresh), std::memory_order_acq_rel);
     write_ = previous & kIndexMask;
   }
 

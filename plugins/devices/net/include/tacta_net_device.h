@@ -40,16 +40,16 @@ extern "C" {
 #endif
 
 typedef struct tacta_net_passivity {
-  double energy_in;   /* J: work the hand did against the device's force (exact, see below) */
-  double energy_out;  /* J: work the device's force did on the hand */
-  double dissipated;  /* J: sampled work the controller removed (damper or scaling) */
-  double link_out;    /* J: energy returned to the hand in sampled power, for the two-port bound */
-  int use_remote;     /* 1: also bound by the environment's returned energy (two-port) */
-  int have_last;      /* a force is held since last_position */
+  double energy_in;  /* J: work the hand did against the device's force (exact, see below) */
+  double energy_out; /* J: work the device's force did on the hand */
+  double dissipated; /* J: sampled work the controller removed (damper or scaling) */
+  double link_out;   /* J: energy returned to the hand in sampled power, for the two-port bound */
+  int use_remote;    /* 1: also bound by the environment's returned energy (two-port) */
+  int have_last;     /* a force is held since last_position */
   double last_position[3], last_force[3]; /* m, N: the previous tick's position and held force */
   double last_predicted[3];               /* m: the displacement that tick was planned with */
   double last_step[3], curvature[3];      /* m: its v dt, and the newest (actual - v dt) */
-  double miss;        /* m: recent largest |actual - predicted displacement|, decaying */
+  double miss; /* m: recent largest |actual - predicted displacement|, decaying */
 } tacta_net_passivity;
 
 typedef struct tacta_net_device {
@@ -59,13 +59,13 @@ typedef struct tacta_net_device {
   uint32_t session, sequence;
   tnet_hello hello;
   uint64_t last_hello_ns;
-  tnet_force force;            /* newest accepted FORCE */
+  tnet_force force; /* newest accepted FORCE */
   int have_force;
   uint32_t force_sequence;
-  uint64_t force_sender_ns;    /* its sender_time_ns, echoed back */
-  uint64_t force_received_ns;  /* local clock when it arrived */
-  double watchdog_s;           /* silence longer than this: zero force (default 0.05 s) */
-  double round_trip_s;         /* newest measured round trip, -1 before any */
+  uint64_t force_sender_ns;   /* its sender_time_ns, echoed back */
+  uint64_t force_received_ns; /* local clock when it arrived */
+  double watchdog_s;          /* silence longer than this: zero force (default 0.05 s) */
+  double round_trip_s;        /* newest measured round trip, -1 before any */
   uint64_t sent, received, dropped, malformed;
   tacta_net_passivity passivity;
 } tacta_net_device;
@@ -113,8 +113,9 @@ static inline void tacta_net_limit(double f[3], double peak) {
  * per tick, about 0.5 s). A miss beyond that leaves a deficit: zero force until the hand has
  * put it back. */
 static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const double position[3],
-                                              const double velocity[3], double dt, double remote_budget,
-                                              const double desired[3], double peak, double out[3]) {
+                                              const double velocity[3], double dt,
+                                              double remote_budget, const double desired[3],
+                                              double peak, double out[3]) {
   double f[3] = {desired[0], desired[1], desired[2]}, d[3], speed2, sampled, own, worst, planned;
   int i;
   if (!(isfinite(position[0]) && isfinite(position[1]) && isfinite(position[2]))) {
@@ -130,8 +131,10 @@ static inline void tacta_net_passivity_filter(tacta_net_passivity* p, const doub
       p->curvature[i] = moved[i] - p->last_step[i];
     }
     work = tacta_net_dot3(p->last_force, moved);
-    if (work > 0.0) p->energy_out += work;
-    else p->energy_in -= work;
+    if (work > 0.0)
+      p->energy_out += work;
+    else
+      p->energy_in -= work;
     p->miss = sqrt(miss2) > p->miss * 0.998 ? sqrt(miss2) : p->miss * 0.998;
   }
   /* Two-port: the energy returned to the hand, in sampled power f.v dt as the simulation sums
@@ -192,7 +195,9 @@ static inline int tacta_net_send_datagram(tacta_net_device* d, uint32_t type, co
   size = tnet_encode_header(buffer, h);
   if (type == TNET_HELLO) size += tnet_encode_hello(buffer + size, (const tnet_hello*)payload);
   if (type == TNET_STATE) size += tnet_encode_state(buffer + size, (const tnet_state*)payload);
-  if (sendto(d->socket, buffer, size, 0, (const struct sockaddr*)&d->peer, d->peer_size) != (ssize_t)size) return -1;
+  if (sendto(d->socket, buffer, size, 0, (const struct sockaddr*)&d->peer, d->peer_size) !=
+      (ssize_t)size)
+    return -1;
   ++d->sent;
   d->last_hello_ns = type == TNET_HELLO ? now : d->last_hello_ns;
   return 0;
@@ -200,8 +205,9 @@ static inline int tacta_net_send_datagram(tacta_net_device* d, uint32_t type, co
 
 /* Opens a non-blocking UDP socket towards the simulation and says HELLO with `capabilities`.
  * 0 on success; -1 with a reason in `error`. */
-static inline int tacta_net_open(tacta_net_device* d, const char* host, uint16_t port, const tnet_hello* capabilities,
-                                 char* error, size_t error_capacity) {
+static inline int tacta_net_open(tacta_net_device* d, const char* host, uint16_t port,
+                                 const tnet_hello* capabilities, char* error,
+                                 size_t error_capacity) {
   struct addrinfo hints, *found = NULL;
   char service[8];
   int status;
@@ -226,7 +232,8 @@ static inline int tacta_net_open(tacta_net_device* d, const char* host, uint16_t
   d->peer_size = (socklen_t)found->ai_addrlen;
   freeaddrinfo(found);
   if (d->socket < 0 || tacta_net_send_datagram(d, TNET_HELLO, &d->hello) != 0) {
-    snprintf(error, error_capacity, "cannot send to %s:%u: %s", host, (unsigned)port, strerror(errno));
+    snprintf(error, error_capacity, "cannot send to %s:%u: %s", host, (unsigned)port,
+             strerror(errno));
     if (d->socket >= 0) close(d->socket);
     d->socket = -1;
     return -1;
@@ -237,12 +244,14 @@ static inline int tacta_net_open(tacta_net_device* d, const char* host, uint16_t
 /* Sends one STATE (and a HELLO once a second, so a simulation started later still learns the
  * capabilities). 0 on success. */
 static inline int tacta_net_send_state(tacta_net_device* d, const tnet_state* state) {
-  if (tacta_net_now_ns() - d->last_hello_ns > 1000000000ull) tacta_net_send_datagram(d, TNET_HELLO, &d->hello);
+  if (tacta_net_now_ns() - d->last_hello_ns > 1000000000ull)
+    tacta_net_send_datagram(d, TNET_HELLO, &d->hello);
   return tacta_net_send_datagram(d, TNET_STATE, state);
 }
 
 /* Handles one received datagram: 1 accepted, 0 dropped (counted). For tests that delay it. */
-static inline int tacta_net_accept(tacta_net_device* d, const unsigned char* buffer, size_t size, uint64_t now) {
+static inline int tacta_net_accept(tacta_net_device* d, const unsigned char* buffer, size_t size,
+                                   uint64_t now) {
   tnet_header h;
   tnet_force f;
   int order;

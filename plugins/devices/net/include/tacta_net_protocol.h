@@ -82,16 +82,19 @@ typedef struct tnet_force {
 /* Why a datagram was refused (tnet_decode_header). */
 typedef enum tnet_error {
   TNET_OK = 0,
-  TNET_ERR_SHORT,    /* shorter than its header or than its payload_size says */
-  TNET_ERR_MAGIC,    /* not a Tacta net datagram */
-  TNET_ERR_VERSION,  /* another protocol version */
-  TNET_ERR_TYPE,     /* unknown type, or a payload size that does not fit the type */
-  TNET_ERR_VALUE     /* a non-finite number, or a quaternion far from unit length */
+  TNET_ERR_SHORT,   /* shorter than its header or than its payload_size says */
+  TNET_ERR_MAGIC,   /* not a Tacta net datagram */
+  TNET_ERR_VERSION, /* another protocol version */
+  TNET_ERR_TYPE,    /* unknown type, or a payload size that does not fit the type */
+  TNET_ERR_VALUE    /* a non-finite number, or a quaternion far from unit length */
 } tnet_error;
 
 /* ---- little-endian fields ------------------------------------------------------------------ */
 static inline void tnet_put_u32(unsigned char* p, uint32_t v) {
-  p[0] = (unsigned char)v; p[1] = (unsigned char)(v >> 8); p[2] = (unsigned char)(v >> 16); p[3] = (unsigned char)(v >> 24);
+  p[0] = (unsigned char)v;
+  p[1] = (unsigned char)(v >> 8);
+  p[2] = (unsigned char)(v >> 16);
+  p[3] = (unsigned char)(v >> 24);
 }
 static inline uint32_t tnet_get_u32(const unsigned char* p) {
   return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
@@ -118,7 +121,8 @@ static inline void tnet_put_f64s(unsigned char* p, const double* v, int n) {
   int i;
   for (i = 0; i < n; ++i) tnet_put_f64(p + 8 * i, v[i]);
 }
-static inline int tnet_get_f64s(const unsigned char* p, double* v, int n) { /* 0: a non-finite value */
+static inline int tnet_get_f64s(const unsigned char* p, double* v,
+                                int n) { /* 0: a non-finite value */
   int i, finite = 1;
   for (i = 0; i < n; ++i) {
     v[i] = tnet_get_f64(p + 8 * i);
@@ -129,15 +133,19 @@ static inline int tnet_get_f64s(const unsigned char* p, double* v, int n) { /* 0
 
 /* ---- header -------------------------------------------------------------------------------- */
 static inline uint32_t tnet_payload_size(uint32_t type) {
-  return type == TNET_HELLO ? TNET_HELLO_SIZE : type == TNET_STATE ? TNET_STATE_SIZE
-       : type == TNET_FORCE ? TNET_FORCE_SIZE : 0u;
+  return type == TNET_HELLO   ? TNET_HELLO_SIZE
+         : type == TNET_STATE ? TNET_STATE_SIZE
+         : type == TNET_FORCE ? TNET_FORCE_SIZE
+                              : 0u;
 }
 
 /* Writes the header for `h.type` (version and payload_size filled in); returns the bytes. */
 static inline uint32_t tnet_encode_header(unsigned char* out, tnet_header h) {
   tnet_put_u32(out, TNET_MAGIC);
-  out[4] = (unsigned char)TNET_VERSION; out[5] = 0;
-  out[6] = (unsigned char)h.type; out[7] = (unsigned char)(h.type >> 8);
+  out[4] = (unsigned char)TNET_VERSION;
+  out[5] = 0;
+  out[6] = (unsigned char)h.type;
+  out[7] = (unsigned char)(h.type >> 8);
   tnet_put_u32(out + 8, h.session);
   tnet_put_u32(out + 12, h.sequence);
   tnet_put_u64(out + 16, h.sender_time_ns);
@@ -182,11 +190,14 @@ static inline tnet_error tnet_decode_hello(const unsigned char* p, tnet_hello* v
   if (!tnet_get_f64s(p, reals, 10)) return TNET_ERR_VALUE;
   memcpy(v->workspace_min, reals, sizeof v->workspace_min);
   memcpy(v->workspace_max, reals + 3, sizeof v->workspace_max);
-  v->peak_force = reals[6]; v->continuous_force = reals[7];
-  v->usable_stiffness = reals[8]; v->nominal_rate = reals[9];
+  v->peak_force = reals[6];
+  v->continuous_force = reals[7];
+  v->usable_stiffness = reals[8];
+  v->nominal_rate = reals[9];
   v->dof_in = tnet_get_u32(p + 80);
   v->dof_out = tnet_get_u32(p + 84);
-  if (!(v->peak_force > 0.0) || v->continuous_force < 0.0 || v->usable_stiffness < 0.0 || v->nominal_rate < 0.0)
+  if (!(v->peak_force > 0.0) || v->continuous_force < 0.0 || v->usable_stiffness < 0.0 ||
+      v->nominal_rate < 0.0)
     return TNET_ERR_VALUE;
   return TNET_OK;
 }
@@ -227,7 +238,8 @@ static inline tnet_error tnet_decode_force(const unsigned char* p, tnet_force* v
   v->energy_absorbed = tnet_get_f64(p + 56);
   v->device_state = (int32_t)tnet_get_u32(p + 64);
   v->reserved = tnet_get_u32(p + 68);
-  if (!(v->energy_returned - v->energy_returned == 0.0) || !(v->energy_absorbed - v->energy_absorbed == 0.0))
+  if (!(v->energy_returned - v->energy_returned == 0.0) ||
+      !(v->energy_absorbed - v->energy_absorbed == 0.0))
     return TNET_ERR_VALUE;
   return TNET_OK;
 }

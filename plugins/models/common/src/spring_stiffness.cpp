@@ -19,8 +19,11 @@ std::vector<double> edge_stiffness(const char* model, const tacta_mesh_view& mes
   const double* rest = mesh.rest_positions;
   std::vector<double> length(mesh.edge_count);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
-    length[e] = (node_position(rest, mesh.edges[2 * e]) - node_position(rest, mesh.edges[2 * e + 1])).norm();
-    if (!(length[e] > 0)) throw std::invalid_argument(name + ": edge " + std::to_string(e) + " has zero length");
+    length[e] =
+        (node_position(rest, mesh.edges[2 * e]) - node_position(rest, mesh.edges[2 * e + 1]))
+            .norm();
+    if (!(length[e] > 0))
+      throw std::invalid_argument(name + ": edge " + std::to_string(e) + " has zero length");
   }
   const Lame lame = lame_from_young(material.youngs_modulus, material.poisson_ratio);
   std::vector<double> stiffness(mesh.edge_count, 0.0);  // N/m
@@ -30,11 +33,14 @@ std::vector<double> edge_stiffness(const char* model, const tacta_mesh_view& mes
     for (int k = 0; k < 4; ++k) {
       if (tet[k] >= mesh.node_count)
         throw std::invalid_argument(name + ": tet " + std::to_string(t) + " names node " +
-                                    std::to_string(tet[k]) + " of " + std::to_string(mesh.node_count));
+                                    std::to_string(tet[k]) + " of " +
+                                    std::to_string(mesh.node_count));
       x[k] = node_position(rest, tet[k]);
     }
-    const double volume = std::abs(tet_signed_volume(x[0], x[1], x[2], x[3]));  // m^3, either orientation
-    if (!(volume > 0)) throw std::invalid_argument(name + ": tet " + std::to_string(t) + " has zero volume");
+    const double volume =
+        std::abs(tet_signed_volume(x[0], x[1], x[2], x[3]));  // m^3, either orientation
+    if (!(volume > 0))
+      throw std::invalid_argument(name + ": tet " + std::to_string(t) + " has zero volume");
     const std::array<Vec3, 4> g = tet_shape_gradients(x[0], x[1], x[2], x[3]);
     for (int p = 0; p < 4; ++p)
       for (int q = p + 1; q < 4; ++q) {

@@ -49,7 +49,8 @@ tacta_material make_material(double youngs_modulus, double poisson_ratio, double
 }
 
 tacta_material make_material_lame(double lambda, double mu, double density) {
-  return {young_from_lame(lambda, mu), poisson_from_lame(lambda, mu), density, lambda, mu, 0.0, 0.0};
+  return {
+      young_from_lame(lambda, mu), poisson_from_lame(lambda, mu), density, lambda, mu, 0.0, 0.0};
 }
 
 namespace {
@@ -106,10 +107,13 @@ std::vector<uint32_t> boundary_of_tets(const std::vector<uint32_t>& tets) {
   return out;
 }
 
-TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, double density, GridSplit split) {
+TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, double density,
+                      GridSplit split) {
   TestMesh m;
   m.positions = grid_nodes(n, size);
-  auto id = [&](uint32_t i, uint32_t j, uint32_t k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
+  auto id = [&](uint32_t i, uint32_t j, uint32_t k) {
+    return i + (n[0] + 1) * (j + (n[1] + 1) * k);
+  };
   // Six paths across the cell's diagonal, one axis step at a time: one tet each. The symmetric
   // split (as the engine's grids and SOFA's Hexa2Tetra with swapping): along each axis, odd cells
   // start from the far side, so each cell mirrors its neighbours and no diagonal is preferred.
@@ -119,7 +123,8 @@ TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, dou
     for (uint32_t j = 0; j < n[1]; ++j)
       for (uint32_t i = 0; i < n[0]; ++i)
         for (const auto& order : kAxisOrder) {
-          const uint32_t odd = split == GridSplit::kSymmetric ? 1u : 0u;  // mirror odd cells or none
+          const uint32_t odd =
+              split == GridSplit::kSymmetric ? 1u : 0u;  // mirror odd cells or none
           const std::array<uint32_t, 3> cell{i & odd, j & odd, k & odd};
           std::array<uint32_t, 3> c{i + cell[0], j + cell[1], k + cell[2]};
           std::array<uint32_t, 4> tet{};
@@ -145,7 +150,9 @@ TestMesh box_tet_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, dou
 TestMesh grid_edge_mesh(std::array<uint32_t, 3> n, std::array<double, 3> size, double density) {
   TestMesh m;
   m.positions = grid_nodes(n, size);
-  auto id = [&](uint32_t i, uint32_t j, uint32_t k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
+  auto id = [&](uint32_t i, uint32_t j, uint32_t k) {
+    return i + (n[0] + 1) * (j + (n[1] + 1) * k);
+  };
   const double h[3] = {n[0] ? size[0] / n[0] : 1.0, n[1] ? size[1] / n[1] : 1.0,
                        n[2] ? size[2] / n[2] : 1.0};
   for (uint32_t k = 0; k <= n[2]; ++k)

@@ -30,9 +30,10 @@ std::vector<double> lumped_tet_masses(std::span<const double> positions,
                                       std::span<const uint32_t> tets, double density) {
   std::vector<double> masses(positions.size() / 3, 0.0);
   for (size_t t = 0; t + 3 < tets.size(); t += 4) {
-    const double volume = std::abs(tet_signed_volume(
-        node_position(positions.data(), tets[t]), node_position(positions.data(), tets[t + 1]),
-        node_position(positions.data(), tets[t + 2]), node_position(positions.data(), tets[t + 3])));
+    const double volume = std::abs(tet_signed_volume(node_position(positions.data(), tets[t]),
+                                                     node_position(positions.data(), tets[t + 1]),
+                                                     node_position(positions.data(), tets[t + 2]),
+                                                     node_position(positions.data(), tets[t + 3])));
     for (size_t k = 0; k < 4; ++k) masses[tets[t + k]] += density * volume / 4.0;
   }
   return masses;

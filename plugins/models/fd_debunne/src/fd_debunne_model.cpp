@@ -84,7 +84,8 @@ void FdDebunneModel::internal_forces(const double* positions, double* forces) co
       double dd[3];  // d_j - d_i, m
       for (int c = 0; c < 3; ++c) dd[c] = (positions[j3 + c] - rest_[j3 + c]) - (xi[c] - ri[c]);
       const double along = dd[0] * u[0] + dd[1] * u[1] + dd[2] * u[2];
-      for (int c = 0; c < 3; ++c) f[c] += weight_[k] * (mu_ * dd[c] + lambda_plus_mu_ * along * u[c]);
+      for (int c = 0; c < 3; ++c)
+        f[c] += weight_[k] * (mu_ * dd[c] + lambda_plus_mu_ * along * u[c]);
     }
     for (int c = 0; c < 3; ++c) forces[3 * i + c] = f[c];
   }

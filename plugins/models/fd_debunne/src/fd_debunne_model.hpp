@@ -52,16 +52,16 @@ class FdDebunneModel {
  private:
   FdDebunneOptions options_;
   uint32_t node_count_ = 0;
-  std::vector<double> rest_;        // 3 per node, m
-  std::vector<double> mass_;        // kg
+  std::vector<double> rest_;  // 3 per node, m
+  std::vector<double> mass_;  // kg
   std::vector<uint8_t> fixed_;
-  std::vector<uint32_t> offset_;    // compressed rows of neighbours
+  std::vector<uint32_t> offset_;  // compressed rows of neighbours
   std::vector<uint32_t> neighbour_;
-  std::vector<double> weight_;      // per (i, j) entry: s * 2 V_i / (S_i L_ij), m (N/m per Pa)
-  std::vector<double> direction_;   // per (i, j) entry: rest unit vector u_ij, 3 each
+  std::vector<double> weight_;          // per (i, j) entry: s * 2 V_i / (S_i L_ij), m (N/m per Pa)
+  std::vector<double> direction_;       // per (i, j) entry: rest unit vector u_ij, 3 each
   double mu_ = 0, lambda_plus_mu_ = 0;  // Pa
   double scale_ = 1;
-  std::vector<double> force_;       // scratch, 3 per node, N
+  std::vector<double> force_;  // scratch, 3 per node, N
   DivergenceGuard guard_;
 };
 

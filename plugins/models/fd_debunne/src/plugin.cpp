@@ -39,7 +39,8 @@ class FdDebunnePlugin {
   double elastic_energy(const double* x) noexcept { return model_.elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_.internal_forces(x, f); }
   void set_param(uint32_t index, const tacta_param_value& value) {
-    if (index != 1) throw std::invalid_argument("fd_debunne: only 'damping' can change while running");
+    if (index != 1)
+      throw std::invalid_argument("fd_debunne: only 'damping' can change while running");
     model_.set_damping(value.number);
   }
 

@@ -44,7 +44,8 @@ BaraffWitkinSolver::BaraffWitkinSolver(const MassSpringModel& model) {
     v->setZero(3 * n);
 }
 
-void BaraffWitkinSolver::assemble(const MassSpringModel& model, const double* x, double dt) noexcept {
+void BaraffWitkinSolver::assemble(const MassSpringModel& model, const double* x,
+                                  double dt) noexcept {
   double* values = matrix_.valuePtr();
   for (Eigen::Index k = 0; k < matrix_.nonZeros(); ++k) values[k] = 0.0;
   const SpringSet& springs = model.springs();
@@ -83,7 +84,8 @@ void BaraffWitkinSolver::assemble(const MassSpringModel& model, const double* x,
 }
 
 bool BaraffWitkinSolver::solve(int max_iterations, double tolerance) noexcept {
-  for (Eigen::Index k = 0; k < matrix_.outerSize(); ++k) inverse_diagonal_[k] = 1.0 / matrix_.coeff(k, k);
+  for (Eigen::Index k = 0; k < matrix_.outerSize(); ++k)
+    inverse_diagonal_[k] = 1.0 / matrix_.coeff(k, k);
   dv_.setZero();
   residual_ = rhs_;
   preconditioned_ = inverse_diagonal_.cwiseProduct(residual_);

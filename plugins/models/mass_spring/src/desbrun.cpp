@@ -14,7 +14,8 @@ DesbrunSolver::DesbrunSolver(const MassSpringModel& model, double dt) {
   const std::vector<uint8_t>& fixed = model.fixed();
   std::vector<Eigen::Triplet<double>> lap, system;
   for (size_t s = 0; s < springs.size(); ++s) {
-    const int a = static_cast<int>(springs.ends[2 * s]), b = static_cast<int>(springs.ends[2 * s + 1]);
+    const int a = static_cast<int>(springs.ends[2 * s]),
+              b = static_cast<int>(springs.ends[2 * s + 1]);
     const double k = springs.stiffness[s];
     lap.insert(lap.end(), {{a, a, k}, {b, b, k}, {a, b, -k}, {b, a, -k}});
     // C = alpha M + beta K with K approximated by L_k, as the linear part itself.
@@ -35,7 +36,8 @@ DesbrunSolver::DesbrunSolver(const MassSpringModel& model, double dt) {
   matrix.setFromTriplets(system.begin(), system.end());
   factor_.compute(matrix);
   if (factor_.info() != Eigen::Success)
-    throw std::invalid_argument("mass_spring: Desbrun matrix M + dt^2 L_k is not positive definite");
+    throw std::invalid_argument(
+        "mass_spring: Desbrun matrix M + dt^2 L_k is not positive definite");
   inverse_d_ = factor_.vectorD().cwiseInverse();
   for (Eigen::VectorXd* v : {&column_, &permuted_, &velocity_column_, &laplacian_v_}) v->setZero(n);
   force_.setZero(3 * n);
@@ -53,7 +55,8 @@ void DesbrunSolver::solve_in_place(Eigen::VectorXd& column) noexcept {
   for (Eigen::Index i = 0; i < column.size(); ++i) column[backward[i]] = permuted_[i];
 }
 
-void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state, double dt) noexcept {
+void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state,
+                         double dt) noexcept {
   const uint32_t n = model.node_count();
   const std::vector<uint8_t>& fixed = model.fixed();
   double* x = state.positions;
@@ -64,10 +67,10 @@ void DesbrunSolver::step(const MassSpringModel& model, tacta_body_state& state, 
     laplacian_v_.noalias() = laplacian_ * velocity_column_;
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t k = 3 * i + c;
-      column_[i] = fixed[i] ? 0.0
-                            : dt * (force_[k] + state.external_forces[k] -
-                                    model.damping_per_node(i) * v[k] -
-                                    (dt + model.stiffness_damping()) * laplacian_v_[i]);
+      column_[i] =
+          fixed[i] ? 0.0
+                   : dt * (force_[k] + state.external_forces[k] - model.damping_per_node(i) * v[k] -
+                           (dt + model.stiffness_damping()) * laplacian_v_[i]);
     }
     solve_in_place(column_);
     for (uint32_t i = 0; i < n; ++i) dv_[3 * i + c] = column_[i];

@@ -14,7 +14,8 @@ namespace tacta::models {
 void SpringSet::forces(const double* x, uint32_t node_count, double* out) const noexcept {
   for (size_t k = 0; k < 3 * static_cast<size_t>(node_count); ++k) out[k] = 0.0;
   for (size_t s = 0; s < size(); ++s) {
-    const size_t a = 3 * static_cast<size_t>(ends[2 * s]), b = 3 * static_cast<size_t>(ends[2 * s + 1]);
+    const size_t a = 3 * static_cast<size_t>(ends[2 * s]),
+                 b = 3 * static_cast<size_t>(ends[2 * s + 1]);
     const double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1], dz = x[b + 2] - x[a + 2];
     const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (!(length > 0)) continue;  // coincident ends: no direction, no force
@@ -27,7 +28,8 @@ void SpringSet::forces(const double* x, uint32_t node_count, double* out) const 
 double SpringSet::energy(const double* x) const noexcept {
   double energy = 0;
   for (size_t s = 0; s < size(); ++s) {
-    const size_t a = 3 * static_cast<size_t>(ends[2 * s]), b = 3 * static_cast<size_t>(ends[2 * s + 1]);
+    const size_t a = 3 * static_cast<size_t>(ends[2 * s]),
+                 b = 3 * static_cast<size_t>(ends[2 * s + 1]);
     const double dx = x[b] - x[a], dy = x[b + 1] - x[a + 1], dz = x[b + 2] - x[a + 2];
     const double stretch = std::sqrt(dx * dx + dy * dy + dz * dz) - rest_length[s];
     energy += 0.5 * stiffness[s] * stretch * stretch;
@@ -39,7 +41,8 @@ MassSpringModel::MassSpringModel(const tacta_model_setup& setup, const MassSprin
     : options_(options) {
   const tacta_mesh_view& mesh = *setup.mesh;
   if (mesh.tet_count == 0)
-    throw std::invalid_argument("mass_spring needs a tetrahedral mesh (stiffness from tet volumes)");
+    throw std::invalid_argument(
+        "mass_spring needs a tetrahedral mesh (stiffness from tet volumes)");
   node_count_ = mesh.node_count;
   alpha_ = setup.material->rayleigh_mass;
   beta_ = setup.material->rayleigh_stiffness;
@@ -49,11 +52,13 @@ MassSpringModel::MassSpringModel(const tacta_model_setup& setup, const MassSprin
   for (uint32_t i = 0; i < node_count_; ++i)
     if (!(mass_[i] > 0) && !fixed_[i])
       throw std::invalid_argument("mass_spring: node " + std::to_string(i) + " has mass <= 0");
-  const std::vector<double> stiffness = edge_stiffness("mass_spring", mesh, *setup.material, options.stiffness_rule);
+  const std::vector<double> stiffness =
+      edge_stiffness("mass_spring", mesh, *setup.material, options.stiffness_rule);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const uint32_t a = mesh.edges[2 * e], b = mesh.edges[2 * e + 1];
     springs_.ends.insert(springs_.ends.end(), {a, b});
-    springs_.rest_length.push_back((node_position(mesh.rest_positions, a) - node_position(mesh.rest_positions, b)).norm());
+    springs_.rest_length.push_back(
+        (node_position(mesh.rest_positions, a) - node_position(mesh.rest_positions, b)).norm());
     springs_.stiffness.push_back(stiffness[e]);
   }
   force_.assign(3 * static_cast<size_t>(node_count_), 0.0);
@@ -92,7 +97,8 @@ uint32_t MassSpringModel::step_symplectic(tacta_body_state& state, double dt) no
         state.velocities[c] = 0.0;
         continue;
       }
-      const double f = force_[c] + state.external_forces[c] - damping_per_node(i) * state.velocities[c];
+      const double f =
+          force_[c] + state.external_forces[c] - damping_per_node(i) * state.velocities[c];
       state.velocities[c] += dt * f / mass_[i];
       state.positions[c] += dt * state.velocities[c];
     }

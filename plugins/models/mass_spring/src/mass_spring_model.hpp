@@ -17,17 +17,17 @@
 #include <vector>
 
 #include "tacta/model_api.h"
-#include "tacta/models/spring_stiffness.hpp"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/spring_stiffness.hpp"
 
 namespace tacta::models {
 
 struct MassSpringOptions {
   enum class Integrator { kSymplecticEuler = 0, kImplicitEuler = 1, kDesbrun = 2 };
   Integrator integrator = Integrator::kSymplecticEuler;
-  double damping = 0.0;        // N s/m per node, added to the material's alpha * m
-  int cg_max_iterations = 200;  // Baraff-Witkin CG
-  double cg_tolerance = 1e-8;  // relative residual
+  double damping = 0.0;            // N s/m per node, added to the material's alpha * m
+  int cg_max_iterations = 200;     // Baraff-Witkin CG
+  double cg_tolerance = 1e-8;      // relative residual
   bool desbrun_correction = true;  // Desbrun: remove the angular momentum the linear filter adds
   double divergence_stretch = DivergenceGuard::kDefaultStretchLimit;
   StiffnessRule stiffness_rule = StiffnessRule::kVanGelder;
@@ -35,8 +35,8 @@ struct MassSpringOptions {
 
 // The springs and their forces; shared by the integrators.
 struct SpringSet {
-  std::vector<uint32_t> ends;   // 2 per spring
-  std::vector<double> stiffness;  // N/m
+  std::vector<uint32_t> ends;       // 2 per spring
+  std::vector<double> stiffness;    // N/m
   std::vector<double> rest_length;  // m
   size_t size() const { return stiffness.size(); }
   void forces(const double* positions, uint32_t node_count, double* out) const noexcept;
@@ -54,7 +54,9 @@ class MassSpringModel {
   MassSpringModel& operator=(const MassSpringModel&) = delete;
 
   uint32_t step(tacta_body_state& state, double dt) noexcept;
-  double elastic_energy(const double* positions) const noexcept { return springs_.energy(positions); }
+  double elastic_energy(const double* positions) const noexcept {
+    return springs_.energy(positions);
+  }
   void internal_forces(const double* positions, double* forces) const noexcept {
     springs_.forces(positions, node_count_, forces);
   }

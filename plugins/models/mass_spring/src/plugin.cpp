@@ -15,11 +15,13 @@ class MassSpringPlugin {
  public:
   static constexpr const char* kName = "mass_spring";
   static constexpr const char* kDescription =
-      "Mass-spring on the mesh edges (spring constants from E, nu): symplectic Euler, Baraff-Witkin "
+      "Mass-spring on the mesh edges (spring constants from E, nu): symplectic Euler, "
+      "Baraff-Witkin "
       "implicit Euler, Desbrun's precomputed linear part";
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  static constexpr uint32_t kClaims =
+      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
   static constexpr std::array<tacta_param_spec, 7> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "
@@ -35,9 +37,10 @@ class MassSpringPlugin {
                              "(only when no node is fixed)"),
       tacta::sdk::real_param("divergence_stretch", "", 10.0, 1.5, 1e6,
                              "fault when an edge grows past this multiple of its rest length"),
-      tacta::sdk::choice_param("stiffness_rule", "van_gelder|fem_projection", 0,
-                               "spring constants from E and nu: Van Gelder's E V / L^2 (nu ignored), "
-                               "or each tet's linear-FEM edge block projected on the spring"),
+      tacta::sdk::choice_param(
+          "stiffness_rule", "van_gelder|fem_projection", 0,
+          "spring constants from E and nu: Van Gelder's E V / L^2 (nu ignored), "
+          "or each tet's linear-FEM edge block projected on the spring"),
   };
 
   explicit MassSpringPlugin(const tacta_model_setup& setup) : model_(setup, options(setup)) {}
@@ -50,8 +53,8 @@ class MassSpringPlugin {
     const auto slack = std::count(k.begin(), k.end(), 0.0);
     return std::string("spring constants by ") +
            tacta::models::stiffness_rule_name(model_.options().stiffness_rule) + ": " +
-           tacta::models::median_and_range(k) + " N/m over " + std::to_string(k.size()) +
-           " edges" + (slack ? ", " + std::to_string(slack) + " of them 0 (obtuse tets)" : "");
+           tacta::models::median_and_range(k) + " N/m over " + std::to_string(k.size()) + " edges" +
+           (slack ? ", " + std::to_string(slack) + " of them 0 (obtuse tets)" : "");
   }
 
  private:

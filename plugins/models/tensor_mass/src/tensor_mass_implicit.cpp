@@ -22,8 +22,7 @@ ImplicitEulerSolver::ImplicitEulerSolver(const TensorMassModel& model,
   auto add_block = [&](uint32_t a, uint32_t b, const Eigen::Matrix3d& block) {
     if (fixed_[a] || fixed_[b]) return;
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        entries.emplace_back(3 * a + r, 3 * b + c, k_scale * block(r, c));
+      for (int c = 0; c < 3; ++c) entries.emplace_back(3 * a + r, 3 * b + c, k_scale * block(r, c));
   };
   for (uint32_t i = 0; i < model.node_count(); ++i) {
     add_block(i, i, model.vertex_blocks()[i]);
@@ -40,7 +39,8 @@ ImplicitEulerSolver::ImplicitEulerSolver(const TensorMassModel& model,
   matrix.setFromTriplets(entries.begin(), entries.end());
   factor_.compute(matrix);
   if (factor_.info() != Eigen::Success)
-    throw std::invalid_argument("tensor_mass: implicit matrix M + dt C + dt^2 K is not positive definite");
+    throw std::invalid_argument(
+        "tensor_mass: implicit matrix M + dt C + dt^2 K is not positive definite");
   inverse_d_ = factor_.vectorD().cwiseInverse();
   rhs_.setZero(n);
   permuted_.setZero(n);
@@ -57,10 +57,10 @@ uint32_t ImplicitEulerSolver::step(const TensorMassModel& model, tacta_body_stat
   model.apply_stiffness(v, stiffness_v_.data());
   for (uint32_t i = 0; i < model.node_count(); ++i)
     for (uint32_t c = 3 * i; c < 3 * i + 3; ++c)
-      rhs_[c] = fixed_[i] ? 0.0
-                          : dt * (force_[c] + state.external_forces[c] -
-                                  (alpha_ * mass_[i] + damping_) * v[c] -
-                                  (beta_ + dt) * stiffness_v_[c]);
+      rhs_[c] = fixed_[i]
+                    ? 0.0
+                    : dt * (force_[c] + state.external_forces[c] -
+                            (alpha_ * mass_[i] + damping_) * v[c] - (beta_ + dt) * stiffness_v_[c]);
   // A = P^T L D L^T P  ->  dv = P^T L^-T D^-1 L^-1 P rhs, without temporaries.
   // (P b)[P(i)] = b[i]: written as loops, Eigen's permutation products allocate here.
   const auto& forward = factor_.permutationP().indices();

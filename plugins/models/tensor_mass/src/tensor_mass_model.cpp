@@ -75,23 +75,27 @@ TensorMassModel::TensorMassModel(const tacta_model_setup& setup, const TensorMas
     const double limit = central_difference_limit();
     implicit = setup.dt > 0 && limit > 0 && setup.dt > 0.9 * limit;
     char text[256];
-    std::snprintf(text, sizeof text, "integrator auto: %s (central differences are stable below %.3g s; dt is %.3g s)",
+    std::snprintf(text, sizeof text,
+                  "integrator auto: %s (central differences are stable below %.3g s; dt is %.3g s)",
                   implicit ? "implicit_euler" : "central_difference", limit, setup.dt);
     note_ = text;
   }
   if (implicit) {
     if (!(setup.dt > 0)) throw std::invalid_argument("tensor_mass: implicit_euler needs dt > 0");
-    implicit_ = std::make_unique<ImplicitEulerSolver>(*this, mass_, fixed_, material, options.damping,
-                                                      setup.dt);
+    implicit_ = std::make_unique<ImplicitEulerSolver>(*this, mass_, fixed_, material,
+                                                      options.damping, setup.dt);
   }
 }
 
 TensorMassModel::~TensorMassModel() = default;
 
 double TensorMassModel::central_difference_limit() const {
-  std::vector<double> row_sum(3 * static_cast<size_t>(node_count_), 0.0);  // sum of |K| along each row
+  std::vector<double> row_sum(3 * static_cast<size_t>(node_count_),
+                              0.0);  // sum of |K| along each row
   const auto add_rows = [&](uint32_t node, const Eigen::Matrix3d& block) {
-    for (int r = 0; r < 3; ++r) row_sum[3 * static_cast<size_t>(node) + static_cast<size_t>(r)] += block.row(r).cwiseAbs().sum();
+    for (int r = 0; r < 3; ++r)
+      row_sum[3 * static_cast<size_t>(node) + static_cast<size_t>(r)] +=
+          block.row(r).cwiseAbs().sum();
   };
   for (uint32_t i = 0; i < node_count_; ++i) add_rows(i, vertex_block_[i]);
   for (size_t e = 0; e < edge_block_.size(); ++e) {
@@ -101,16 +105,19 @@ double TensorMassModel::central_difference_limit() const {
   double omega_squared = 0;
   for (uint32_t i = 0; i < node_count_; ++i)
     if (!fixed_[i] && mass_[i] > 0)
-      for (size_t r = 0; r < 3; ++r) omega_squared = std::max(omega_squared, row_sum[3 * size_t{i} + r] / mass_[i]);
+      for (size_t r = 0; r < 3; ++r)
+        omega_squared = std::max(omega_squared, row_sum[3 * size_t{i} + r] / mass_[i]);
   return omega_squared > 0 ? 2.0 / std::sqrt(omega_squared) : 0.0;
 }
 
 void TensorMassModel::apply_stiffness(const double* u, double* y) const noexcept {
   using Map = Eigen::Map<Eigen::Vector3d>;
   using ConstMap = Eigen::Map<const Eigen::Vector3d>;
-  for (uint32_t i = 0; i < node_count_; ++i) Map(y + 3 * i) = vertex_block_[i] * ConstMap(u + 3 * i);
+  for (uint32_t i = 0; i < node_count_; ++i)
+    Map(y + 3 * i) = vertex_block_[i] * ConstMap(u + 3 * i);
   for (size_t e = 0; e < edge_block_.size(); ++e) {
-    const size_t a = 3 * static_cast<size_t>(edges_[2 * e]), b = 3 * static_cast<size_t>(edges_[2 * e + 1]);
+    const size_t a = 3 * static_cast<size_t>(edges_[2 * e]),
+                 b = 3 * static_cast<size_t>(edges_[2 * e + 1]);
     Map(y + a) += edge_block_[e] * ConstMap(u + b);
     Map(y + b) += edge_block_[e].transpose() * ConstMap(u + a);
   }

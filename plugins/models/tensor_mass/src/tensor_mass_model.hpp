@@ -70,7 +70,7 @@ class TensorMassModel {
   uint32_t node_count_ = 0;
   std::vector<double> rest_, mass_, gamma_;  // m; kg; N s/m
   std::vector<uint8_t> fixed_;
-  std::vector<uint32_t> edges_;                 // 2 per edge (a < b)
+  std::vector<uint32_t> edges_;                // 2 per edge (a < b)
   std::vector<Eigen::Matrix3d> vertex_block_;  // K_ii, N/m
   std::vector<Eigen::Matrix3d> edge_block_;    // K_ab for edge (a, b); K_ba = K_ab^T
   std::vector<double> previous_;               // central differences: x(t - dt)

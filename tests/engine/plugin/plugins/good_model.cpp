@@ -16,7 +16,8 @@ class AnchorSprings {
   static constexpr std::array<tacta_param_spec, 4> kParams{
       tacta::sdk::real_param("stiffness", "N/m", 100.0, 0.0, 1e9, "anchor spring stiffness"),
       tacta::sdk::choice_param("integrator", "semi_implicit|explicit", 0, "time integrator"),
-      tacta::sdk::vector_param("offset", "m", 3, "0 0 0", -1.0, 1.0, "rest offset added to every node"),
+      tacta::sdk::vector_param("offset", "m", 3, "0 0 0", -1.0, 1.0,
+                               "rest offset added to every node"),
       tacta::sdk::int_param("substeps", 1, 1, 100, "substeps per step"),
   };
 
@@ -34,7 +35,8 @@ class AnchorSprings {
     const double h = dt / substeps_;
     for (int s = 0; s < substeps_; ++s)
       for (uint32_t i = 0; i < 3 * state.node_count; ++i) {
-        const double force = state.external_forces[i] - stiffness_ * (state.positions[i] - rest_[i]);
+        const double force =
+            state.external_forces[i] - stiffness_ * (state.positions[i] - rest_[i]);
         state.velocities[i] += h * force / masses_[i / 3];
         state.positions[i] += h * state.velocities[i];
       }

@@ -20,13 +20,16 @@ std::atomic<int> live_instances{0};
 class FaultModel {
  public:
   static constexpr const char* kName = "test_fault_model";
-  static constexpr const char* kDescription = "damped anchor springs that fault at a chosen step (test only)";
+  static constexpr const char* kDescription =
+      "damped anchor springs that fault at a chosen step (test only)";
   static constexpr uint32_t kVersion = 10000;
   static constexpr std::array<tacta_param_spec, 4> kParams{
-      tacta::sdk::real_param("stiffness", "N/m", 2000.0, 0.0, 1e9, "anchor spring stiffness per node"),
+      tacta::sdk::real_param("stiffness", "N/m", 2000.0, 0.0, 1e9,
+                             "anchor spring stiffness per node"),
       tacta::sdk::real_param("damping", "N s/m", 5.0, 0.0, 1e9, "damper per node"),
       tacta::sdk::int_param("fault_step", 100, 0, 100000000, "step() call that faults"),
-      tacta::sdk::choice_param("fault_kind", "nan|diverged|none|warn", 0, "what the faulting step does"),
+      tacta::sdk::choice_param("fault_kind", "nan|diverged|none|warn", 0,
+                               "what the faulting step does"),
   };
 
   explicit FaultModel(const tacta_model_setup& setup)
@@ -53,7 +56,8 @@ class FaultModel {
       state.velocities[i] += dt * force / masses_[i / 3];
       state.positions[i] += dt * state.velocities[i];
     }
-    if (fault_kind_ == 3) return call >= fault_step_ ? TACTA_STEP_SOLVER_NOT_CONVERGED : TACTA_STEP_OK;
+    if (fault_kind_ == 3)
+      return call >= fault_step_ ? TACTA_STEP_SOLVER_NOT_CONVERGED : TACTA_STEP_OK;
     if (call != fault_step_) return TACTA_STEP_OK;
     if (fault_kind_ == 1) return TACTA_STEP_DIVERGED;
     if (fault_kind_ == 0) {
@@ -67,11 +71,11 @@ class FaultModel {
   }
 
  private:
-  std::vector<double> rest_;     // m
-  std::vector<double> masses_;   // kg
+  std::vector<double> rest_;    // m
+  std::vector<double> masses_;  // kg
   std::vector<uint8_t> fixed_;
-  double stiffness_ = 0;         // N/m
-  double damping_ = 0;           // N s/m
+  double stiffness_ = 0;  // N/m
+  double damping_ = 0;    // N s/m
   int64_t fault_step_ = 0;
   int fault_kind_ = 0;
   int64_t steps_ = 0;

@@ -15,7 +15,8 @@ std::atomic<long> respond_calls{0};
 class LegacyResponse {
  public:
   static constexpr const char* kName = "test_legacy_response";
-  static constexpr const char* kDescription = "a response that moves nothing, without declared roles (test only)";
+  static constexpr const char* kDescription =
+      "a response that moves nothing, without declared roles (test only)";
   static constexpr uint32_t kVersion = 10000;
   static constexpr std::array<tacta_param_spec, 0> kParams{};
   explicit LegacyResponse(const tacta_collision_setup&) {}
@@ -33,6 +34,8 @@ const tacta_descriptor* legacy_descriptor() {
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) long tacta_test_legacy_response_calls() { return respond_calls; }
+extern "C" __attribute__((visibility("default"))) long tacta_test_legacy_response_calls() {
+  return respond_calls;
+}
 
 TACTA_PLUGIN_EXPORT(legacy_descriptor())

@@ -1,10 +1,9 @@
 // bullet_softbody: loads through the C ABI, steps, falls under gravity, keeps fixed nodes, and
 // the documented E -> kLST rule behaves (in (0, 1], stiffer material gives a larger kLST, and
 // n iterations close what one implicit step of the link's spring would).
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 #include <string>
 
 #include "bullet_softbody.hpp"
@@ -26,8 +25,15 @@ struct PluginRun {
   tacta_material material = tacta::models::make_material(1e5, 0.3, 1000.0);
 
   void* create(const TestMesh& mesh, const tacta_mesh_view& view, char* message, size_t size) {
-    tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), descriptor.param_count, 1e-3, nullptr};
+    tacta_model_setup setup{sizeof(tacta_model_setup),
+                            &view,
+                            &material,
+                            mesh.masses.data(),
+                            mesh.fixed.data(),
+                            params.data(),
+                            descriptor.param_count,
+                            1e-3,
+                            nullptr};
     void* instance = nullptr;
     const tacta_status status = api.create(&setup, &instance, message, size);
     return status == TACTA_OK ? instance : nullptr;

@@ -1,7 +1,6 @@
 // Support library for model plugins: geometry, Lamé conversions, meshes, divergence guard.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <limits>
 
 #include "tacta/models/divergence_guard.hpp"

@@ -1,18 +1,16 @@
 // The 1 kHz path allocates nothing: malloc and friends are interposed in this executable and
 // counted while the models step. (glibc only; skipped under AddressSanitizer, which owns malloc.)
-#include <gtest/gtest.h>
-
 #include <cstddef>
+#include <gtest/gtest.h>
 #include <memory>
 
+#include "allocation_counter.hpp"
 #include "fd_debunne_model.hpp"
 #include "hyperelastic_model.hpp"
 #include "mass_spring_model.hpp"
 #include "tacta/models/model_checks.hpp"
 #include "tacta/models/test_meshes.hpp"
 #include "tensor_mass_model.hpp"
-
-#include "allocation_counter.hpp"
 
 using namespace tacta::models;
 
@@ -25,8 +23,15 @@ long allocations_in_steps(const Options& options, bool with_begin) {
   mesh.fix_plane(0, 0.0);
   const tacta_mesh_view view = mesh.view();
   const tacta_material material = make_material(1e5, 0.3, 1000.0);
-  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                          mesh.fixed.data(), nullptr, 0, 1e-4, nullptr};
+  tacta_model_setup setup{sizeof(tacta_model_setup),
+                          &view,
+                          &material,
+                          mesh.masses.data(),
+                          mesh.fixed.data(),
+                          nullptr,
+                          0,
+                          1e-4,
+                          nullptr};
   Model model(setup, options);
   checks::StateBuffers s(mesh.positions);
   for (size_t i = 2; i < s.f_ext.size(); i += 3) s.f_ext[i] = -9.81 * mesh.masses[i / 3];
@@ -56,7 +61,7 @@ struct Hyperelastic {
               std::span<const uint8_t>(setup.fixed, setup.mesh->node_count),
               with_moduli(options, *setup.material)) {}
   static tacta::models::hyperelastic::Options with_moduli(tacta::models::hyperelastic::Options o,
-                                                         const tacta_material& m) {
+                                                          const tacta_material& m) {
     o.material.mu = m.lame_mu;
     o.material.lambda = m.lame_lambda;
     o.material.c10 = 0.5 * m.lame_mu;
@@ -76,8 +81,8 @@ TEST(ModelsNoAllocation, HyperelasticStepsWithoutAllocating) {
   using tacta::models::hyperelastic::MaterialLaw;
   using tacta::models::hyperelastic::SolveMode;
   using tacta::models::hyperelastic::Volumetric;
-  for (const MaterialLaw law : {MaterialLaw::kNeoHookean, MaterialLaw::kStVenantKirchhoff,
-                                MaterialLaw::kMooneyRivlin})
+  for (const MaterialLaw law :
+       {MaterialLaw::kNeoHookean, MaterialLaw::kStVenantKirchhoff, MaterialLaw::kMooneyRivlin})
     for (const Volumetric volumetric : {Volumetric::kElement, Volumetric::kNodalAverage})
       for (const SolveMode mode : {SolveMode::kDynamic, SolveMode::kStatic})
         for (const auto solver : {tacta::models::sparse::LinearSolver::kConjugateGradient,
@@ -91,8 +96,7 @@ TEST(ModelsNoAllocation, HyperelasticStepsWithoutAllocating) {
           o.solver.solver = solver;
           EXPECT_EQ((allocations_in_steps<Hyperelastic>(o, true)), 0)
               << "hyperelastic " << static_cast<int>(law) << " " << static_cast<int>(volumetric)
-              << " " << static_cast<int>(mode) << " "
-              << static_cast<int>(solver);
+              << " " << static_cast<int>(mode) << " " << static_cast<int>(solver);
         }
 }
 
@@ -104,20 +108,26 @@ TEST(ModelsNoAllocation, EveryIntegratorStepsWithoutAllocating) {
   g_counting = false;
   ASSERT_GT(g_allocations, 0);
 
-  for (auto integrator : {FdDebunneOptions::Integrator::kSymplecticEuler, FdDebunneOptions::Integrator::kExplicitEuler}) {
+  for (auto integrator : {FdDebunneOptions::Integrator::kSymplecticEuler,
+                          FdDebunneOptions::Integrator::kExplicitEuler}) {
     FdDebunneOptions o;
     o.integrator = integrator;
-    EXPECT_EQ((allocations_in_steps<FdDebunneModel>(o, false)), 0) << "fd_debunne " << static_cast<int>(integrator);
+    EXPECT_EQ((allocations_in_steps<FdDebunneModel>(o, false)), 0)
+        << "fd_debunne " << static_cast<int>(integrator);
   }
-  for (auto integrator : {TensorMassOptions::Integrator::kCentralDifference, TensorMassOptions::Integrator::kImplicitEuler}) {
+  for (auto integrator : {TensorMassOptions::Integrator::kCentralDifference,
+                          TensorMassOptions::Integrator::kImplicitEuler}) {
     TensorMassOptions o;
     o.integrator = integrator;
-    EXPECT_EQ((allocations_in_steps<TensorMassModel>(o, true)), 0) << "tensor_mass " << static_cast<int>(integrator);
+    EXPECT_EQ((allocations_in_steps<TensorMassModel>(o, true)), 0)
+        << "tensor_mass " << static_cast<int>(integrator);
   }
-  for (auto integrator : {MassSpringOptions::Integrator::kSymplecticEuler, MassSpringOptions::Integrator::kImplicitEuler,
-                          MassSpringOptions::Integrator::kDesbrun}) {
+  for (auto integrator :
+       {MassSpringOptions::Integrator::kSymplecticEuler,
+        MassSpringOptions::Integrator::kImplicitEuler, MassSpringOptions::Integrator::kDesbrun}) {
     MassSpringOptions o;
     o.integrator = integrator;
-    EXPECT_EQ((allocations_in_steps<MassSpringModel>(o, false)), 0) << "mass_spring " << static_cast<int>(integrator);
+    EXPECT_EQ((allocations_in_steps<MassSpringModel>(o, false)), 0)
+        << "mass_spring " << static_cast<int>(integrator);
   }
 }

@@ -15,8 +15,7 @@ namespace tacta::models::corotational::testing {
 inline std::unique_ptr<CorotationalFem> make_model(const TestMesh& mesh,
                                                    const tacta_material& material,
                                                    const Options& options = {}) {
-  return std::make_unique<CorotationalFem>(mesh.view(), material, mesh.masses, mesh.fixed,
-                                           options);
+  return std::make_unique<CorotationalFem>(mesh.view(), material, mesh.masses, mesh.fixed, options);
 }
 
 // Positions, velocities and external forces of one body, as plain arrays.

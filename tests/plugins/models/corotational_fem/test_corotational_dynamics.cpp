@@ -1,12 +1,10 @@
 // Time stepping of the corotational FEM: inversion recovery, damping, fixed nodes, and a step
 // that allocates nothing (malloc is interposed in this test binary to count).
+#include <cmath>
 #include <gtest/gtest.h>
 
-#include <cmath>
-
-#include "corotational_test_support.hpp"
-
 #include "allocation_counter.hpp"  // the shared malloc interposer; off under the sanitizers
+#include "corotational_test_support.hpp"
 
 namespace tacta::models::corotational {
 namespace {
@@ -141,8 +139,7 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& param_info) {
       return std::string(param_info.param.rotation == RotationMethod::kPolar ? "polar" : "svd") +
              (param_info.param.solver == LinearSolver::kCholesky ? "_cholesky" : "_pcg") +
-             (param_info.param.preconditioner == Preconditioner::kIncompleteCholesky ? "_ic"
-                                                                                      : "");
+             (param_info.param.preconditioner == Preconditioner::kIncompleteCholesky ? "_ic" : "");
     });
 
 TEST(CorotationalInput, RejectsInvertedRestElement) {

@@ -1,9 +1,8 @@
 // Internal forces and stiffness of the corotational FEM: rest, rigid motions, patch test,
 // symmetry and positive semi-definiteness, for both rotation methods.
-#include <gtest/gtest.h>
-
 #include <Eigen/Dense>
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "corotational_test_support.hpp"
 
@@ -54,8 +53,8 @@ TEST_P(CorotationalForces, ZeroUnderLargeRigidRotation) {
       Eigen::AngleAxisd(2.0, Eigen::Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
   std::vector<double> x(mesh.positions.size()), f(x.size());
   for (uint32_t i = 0; i < mesh.node_count(); ++i) {
-    const Eigen::Vector3d p = r * node_position(mesh.positions.data(), i) +
-                              Eigen::Vector3d(0.1, -0.2, 0.3);
+    const Eigen::Vector3d p =
+        r * node_position(mesh.positions.data(), i) + Eigen::Vector3d(0.1, -0.2, 0.3);
     for (int c = 0; c < 3; ++c) x[3 * i + c] = p[c];
   }
   model->internal_forces(x.data(), f.data());
@@ -78,13 +77,13 @@ TEST_P(CorotationalForces, PatchTestLinearFieldLeavesInteriorNodesFree) {
   double interior = 0.0, boundary = 0.0;
   for (uint32_t i = 0; i < mesh.node_count(); ++i) {
     const Eigen::Vector3d p = node_position(mesh.positions.data(), i);
-    const bool inside = p.x() > 1e-9 && p.x() < 0.3 - 1e-9 && p.y() > 1e-9 &&
-                        p.y() < 0.2 - 1e-9 && p.z() > 1e-9 && p.z() < 0.4 - 1e-9;
+    const bool inside = p.x() > 1e-9 && p.x() < 0.3 - 1e-9 && p.y() > 1e-9 && p.y() < 0.2 - 1e-9 &&
+                        p.z() > 1e-9 && p.z() < 0.4 - 1e-9;
     const double magnitude = Eigen::Vector3d(f[3 * i], f[3 * i + 1], f[3 * i + 2]).norm();
     (inside ? interior : boundary) = std::max(inside ? interior : boundary, magnitude);
   }
   const double strain_force = 1e-4 * force_scale();  // what a boundary node carries, roughly
-  EXPECT_GT(boundary, 0.05 * strain_force);  // the field is not trivial
+  EXPECT_GT(boundary, 0.05 * strain_force);          // the field is not trivial
   EXPECT_LT(interior, 1e-9 * strain_force);
   // Energy of a homogeneous small strain: V (mu eps:eps + lambda/2 tr(eps)^2), up to rotation
   // terms of order |gradient|^3.

@@ -1,7 +1,6 @@
 // The corotational_fem plugin as a host sees it: loaded through the C ABI, schema checked,
 // created with default parameters, stepped under gravity; bad input gives a message.
 #include <gtest/gtest.h>
-
 #include <string>
 
 #include "plugin_fixture.hpp"
@@ -21,8 +20,15 @@ struct Cantilever {
         view(mesh.view()),
         material(tacta::models::make_material(2e6, 0.45, 1100)),
         params(tacta::testing::default_params(d)),
-        setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(), mesh.fixed.data(),
-              params.data(), d.param_count, 1e-3, nullptr} {}
+        setup{sizeof(tacta_model_setup),
+              &view,
+              &material,
+              mesh.masses.data(),
+              mesh.fixed.data(),
+              params.data(),
+              d.param_count,
+              1e-3,
+              nullptr} {}
   Cantilever(const Cantilever&) = delete;
   Cantilever& operator=(const Cantilever&) = delete;
   static tacta::models::TestMesh fixed_root(tacta::models::TestMesh m) {
@@ -43,9 +49,8 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   std::vector<std::string> names;
   for (uint32_t i = 0; i < d.param_count; ++i) names.emplace_back(d.params[i].name);
   EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
-                                             "max_iterations", "tolerance",
-                                             "refactor_interval", "fallback",
-                                             "restart_factor", "solve", "load_steps",
+                                             "max_iterations", "tolerance", "refactor_interval",
+                                             "fallback", "restart_factor", "solve", "load_steps",
                                              "static_iterations", "static_tolerance"}));
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
@@ -60,7 +65,8 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
-  std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0), stress(mesh.node_count());
+  std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0),
+                      stress(mesh.node_count());
   for (uint32_t i = 0; i < mesh.node_count(); ++i) f[3 * i + 1] = -9.81 * mesh.masses[i];
   tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
   api.begin(instance, &state, 1e-3);

@@ -1,10 +1,9 @@
 // Solver safety: with its default settings the corotational FEM must follow the direct solve on
 // SOFA's cantilever setup (shared/data/README.md), where a CG capped at 25 iterations and
 // accepted unconverged collapsed the beam at 0.44 s.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "corotational_test_support.hpp"
 
@@ -46,17 +45,18 @@ TEST(CorotationalSolverSafety, DefaultFollowsTheDirectSolveOnSofasCantilever) {
   direct.solver = LinearSolver::kCholesky;
   const CantileverRun reference = run_sofa_cantilever(direct);
   const CantileverRun safe = run_sofa_cantilever(Options{});
-  std::printf("cantilever tip after 1 s: direct %.6f m, default %.6f m (%+.4f%%); solves %llu, "
-              "CG iterations %llu, warm starts rejected %llu, restarts %llu, direct fallbacks "
-              "%llu, held on direct %llu\n",
-              reference.tip_deflection, safe.tip_deflection,
-              100.0 * (safe.tip_deflection / reference.tip_deflection - 1.0),
-              static_cast<unsigned long long>(safe.counters.solves),
-              static_cast<unsigned long long>(safe.counters.cg_iterations),
-              static_cast<unsigned long long>(safe.counters.warm_starts_rejected),
-              static_cast<unsigned long long>(safe.counters.restarts),
-              static_cast<unsigned long long>(safe.counters.direct_fallbacks),
-              static_cast<unsigned long long>(safe.counters.direct_solves_held));
+  std::printf(
+      "cantilever tip after 1 s: direct %.6f m, default %.6f m (%+.4f%%); solves %llu, "
+      "CG iterations %llu, warm starts rejected %llu, restarts %llu, direct fallbacks "
+      "%llu, held on direct %llu\n",
+      reference.tip_deflection, safe.tip_deflection,
+      100.0 * (safe.tip_deflection / reference.tip_deflection - 1.0),
+      static_cast<unsigned long long>(safe.counters.solves),
+      static_cast<unsigned long long>(safe.counters.cg_iterations),
+      static_cast<unsigned long long>(safe.counters.warm_starts_rejected),
+      static_cast<unsigned long long>(safe.counters.restarts),
+      static_cast<unsigned long long>(safe.counters.direct_fallbacks),
+      static_cast<unsigned long long>(safe.counters.direct_solves_held));
   ASSERT_FALSE(reference.faulted);
   ASSERT_FALSE(safe.faulted);
   EXPECT_NEAR(safe.tip_deflection / reference.tip_deflection, 1.0, 0.005);
@@ -76,8 +76,7 @@ TEST(CorotationalSolverSafety, WithoutFallbackTheCappedSolveDoesNotFollow) {
               run.faulted ? "faulted" : "ran", run.tip_deflection,
               static_cast<unsigned long long>(run.counters.unconverged));
   EXPECT_GT(run.counters.unconverged, 0u);
-  EXPECT_TRUE(run.faulted ||
-              std::abs(run.tip_deflection / reference.tip_deflection - 1.0) > 0.005);
+  EXPECT_TRUE(run.faulted || std::abs(run.tip_deflection / reference.tip_deflection - 1.0) > 0.005);
 }
 
 }  // namespace

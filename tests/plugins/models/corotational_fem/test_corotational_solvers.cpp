@@ -1,11 +1,10 @@
 // The block incomplete Cholesky preconditioner and the CG that uses it: exact where IC(0) has no
 // fill to drop (one tet), the same solution as sparse Cholesky on a bent beam's system in fewer
 // iterations than block Jacobi, and the same trajectory as Cholesky when stepping.
-#include <gtest/gtest.h>
-
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 
 #include "corotational_test_support.hpp"

@@ -1,9 +1,8 @@
 // Validation of the corotational FEM against analytic values: the first longitudinal mode of a
 // clamped bar (bar wave speed sqrt(E/rho)), and SOFA's cantilever under refinement.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 #include <numbers>
 
 #include "corotational_test_support.hpp"
@@ -45,7 +44,8 @@ TEST(CorotationalValidation, BarWaveSpeedFromFirstLongitudinalMode) {
   for (int step = 1; step <= 2000 && crossings.size() < 3; ++step) {
     ASSERT_EQ(model->step(body.state, dt) & TACTA_STEP_FAULT_MASK, 0u);
     const double now = tip();
-    if (previous > 0.0 && now <= 0.0) crossings.push_back(dt * (step - 1 + previous / (previous - now)));
+    if (previous > 0.0 && now <= 0.0)
+      crossings.push_back(dt * (step - 1 + previous / (previous - now)));
     previous = now;
   }
   ASSERT_EQ(crossings.size(), 3u);
@@ -61,7 +61,8 @@ TEST(CorotationalValidation, BarWaveSpeedFromFirstLongitudinalMode) {
 // g 9.81 along -y, z = 0 clamped) on a grid of nodes, by Newton iterations of the corotational
 // equilibrium: a backward Euler step with a huge dt and zero velocity is a Newton step.
 double cantilever_tip_deflection(std::array<uint32_t, 3> nodes) {
-  TestMesh mesh = box_tet_mesh({nodes[0] - 1, nodes[1] - 1, nodes[2] - 1}, {0.02, 0.02, 0.2}, 1100.0);
+  TestMesh mesh =
+      box_tet_mesh({nodes[0] - 1, nodes[1] - 1, nodes[2] - 1}, {0.02, 0.02, 0.2}, 1100.0);
   mesh.fix_plane(2, 0.0);
   Options options;
   options.solver = LinearSolver::kCholesky;
@@ -69,7 +70,9 @@ double cantilever_tip_deflection(std::array<uint32_t, 3> nodes) {
   BodyState body(mesh);
   body.add_gravity(mesh, {0.0, -9.81, 0.0});
   model->begin(body.state, 1.0);
-  const auto tip = [&] { return -mesh.mean_displacement_on_plane(body.positions.data(), 2, 0.2, 1); };
+  const auto tip = [&] {
+    return -mesh.mean_displacement_on_plane(body.positions.data(), 2, 0.2, 1);
+  };
   double deflection = 0.0;
   for (int newton = 0; newton < 30; ++newton) {
     std::fill(body.velocities.begin(), body.velocities.end(), 0.0);
@@ -88,9 +91,10 @@ TEST(CorotationalValidation, CantileverConvergesUnderRefinement) {
   const double coarse = cantilever_tip_deflection({3, 3, 12});
   const double medium = cantilever_tip_deflection({5, 5, 30});
   const double reference = kEulerBernoulli + kShear;
-  std::printf("cantilever tip deflection: 3x3x12 %.5f m (%.1f%%), 5x5x30 %.5f m (%.1f%%), "
-              "analytic %.5f m\n",
-              coarse, 100 * coarse / reference, medium, 100 * medium / reference, reference);
+  std::printf(
+      "cantilever tip deflection: 3x3x12 %.5f m (%.1f%%), 5x5x30 %.5f m (%.1f%%), "
+      "analytic %.5f m\n",
+      coarse, 100 * coarse / reference, medium, 100 * medium / reference, reference);
   // Linear tets lock in bending (worse at nu = 0.45): the deflection grows toward the analytic
   // value under refinement and never overshoots it.
   EXPECT_GT(medium, coarse * 1.2);
@@ -108,15 +112,18 @@ TEST(CorotationalValidation, StaticSolveFindsTheSameEquilibrium) {
   BodyState body(mesh);
   body.add_gravity(mesh, {0.0, -9.81, 0.0});
   model->begin(body.state, 1e-3);
-  ASSERT_EQ(model->step(body.state, 1e-3) & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED), 0u);
+  ASSERT_EQ(
+      model->step(body.state, 1e-3) & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED),
+      0u);
   const double tip = -mesh.mean_displacement_on_plane(body.positions.data(), 2, 0.2, 1);
   const double reference = cantilever_tip_deflection({5, 5, 30});
   const StaticCounters& counters = model->static_counters();
-  std::printf("static solve: tip %.6f m (Newton limit %.6f m), %llu Newton iterations, %llu "
-              "load cuts, residual %.2e N, direct fallbacks %llu\n", tip, reference,
-              static_cast<unsigned long long>(counters.newton_iterations),
-              static_cast<unsigned long long>(counters.load_cuts), counters.last_residual,
-              static_cast<unsigned long long>(model->counters().direct_fallbacks));
+  std::printf(
+      "static solve: tip %.6f m (Newton limit %.6f m), %llu Newton iterations, %llu "
+      "load cuts, residual %.2e N, direct fallbacks %llu\n",
+      tip, reference, static_cast<unsigned long long>(counters.newton_iterations),
+      static_cast<unsigned long long>(counters.load_cuts), counters.last_residual,
+      static_cast<unsigned long long>(model->counters().direct_fallbacks));
   EXPECT_NEAR(tip / reference, 1.0, 1e-4);
   EXPECT_GT(counters.newton_iterations, 1u);
   for (const double v : body.velocities) EXPECT_EQ(v, 0.0);
@@ -129,8 +136,8 @@ TEST(CorotationalValidation, StaticSolveFindsTheSameEquilibrium) {
 // The fine levels take minutes: run once with --gtest_also_run_disabled_tests and record.
 TEST(CorotationalValidation, DISABLED_CantileverFineLevels) {
   const double reference = kEulerBernoulli + kShear;
-  for (std::array<uint32_t, 3> n : {std::array<uint32_t, 3>{3, 3, 12}, {5, 5, 30}, {7, 7, 42},
-                                    {9, 9, 60}, {11, 11, 80}}) {
+  for (std::array<uint32_t, 3> n :
+       {std::array<uint32_t, 3>{3, 3, 12}, {5, 5, 30}, {7, 7, 42}, {9, 9, 60}, {11, 11, 80}}) {
     const double d = cantilever_tip_deflection(n);
     std::printf("| %ux%ux%u | %u | %.5f | %.1f%% |\n", n[0], n[1], n[2], n[0] * n[1] * n[2], d,
                 100 * d / reference);

@@ -1,9 +1,8 @@
 // fd_debunne: wave speeds, energy drift and the stable step.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <gtest/gtest.h>
 
 #include "fd_test_body.hpp"
 #include "tacta/models/lame.hpp"
@@ -26,15 +25,17 @@ double bar_mode_speed(int axis, FdDebunneOptions::OperatorScale scale, uint32_t 
   const uint32_t nx = fine ? 40u : 20u;
   if (fine) cells_across = 12;
   const double width = length / nx * cells_across;
-  TestMesh mesh = tet_edges ? box_tet_mesh({nx, cells_across, cells_across}, {length, width, width}, kRho)
-                            : grid_edge_mesh({nx, cells_across, cells_across}, {length, width, width}, kRho);
+  TestMesh mesh =
+      tet_edges ? box_tet_mesh({nx, cells_across, cells_across}, {length, width, width}, kRho)
+                : grid_edge_mesh({nx, cells_across, cells_across}, {length, width, width}, kRho);
   mesh.fix_plane(0, 0.0);
   FdDebunneOptions options;
   options.operator_scale = scale;
   FdBody body(std::move(mesh), make_material_lame(kLambda, kMu, kRho), options);
   checks::StateBuffers s(body.mesh.positions);
   for (size_t i = 0; i < s.x.size(); i += 3)
-    s.x[i + static_cast<size_t>(axis)] += 1e-3 * std::sin(M_PI * body.mesh.positions[i] / (2 * length));
+    s.x[i + static_cast<size_t>(axis)] +=
+        1e-3 * std::sin(M_PI * body.mesh.positions[i] / (2 * length));
   const double c_guess = axis == 0 ? p_wave_speed(kLambda, kMu, kRho) : s_wave_speed(kMu, kRho);
   const double dt = 0.1 * (length / nx) / p_wave_speed(kLambda, kMu, kRho);
   const uint32_t tip = nx;  // node (L, 0, 0)
@@ -56,8 +57,10 @@ TEST(FdDebunneWaves, DimensionScaleGivesPAndSSpeedsWithinFivePercent) {
   const double cp = p_wave_speed(kLambda, kMu, kRho), cs = s_wave_speed(kMu, kRho);
   const double p = bar_mode_speed(0, FdDebunneOptions::OperatorScale::kDimension, 6);
   const double s = bar_mode_speed(1, FdDebunneOptions::OperatorScale::kDimension, 6);
-  std::printf("fd_debunne grid bar, scale=dimension: P %.4f (exact %.4f, %+.2f%%), S %.4f (exact %.4f, %+.2f%%)\n",
-              p, cp, 100 * (p / cp - 1), s, cs, 100 * (s / cs - 1));
+  std::printf(
+      "fd_debunne grid bar, scale=dimension: P %.4f (exact %.4f, %+.2f%%), S %.4f (exact %.4f, "
+      "%+.2f%%)\n",
+      p, cp, 100 * (p / cp - 1), s, cs, 100 * (s / cs - 1));
   EXPECT_NEAR(p / cp, 1.0, 0.05);
   EXPECT_NEAR(s / cs, 1.0, 0.05);
 }
@@ -65,7 +68,8 @@ TEST(FdDebunneWaves, DimensionScaleGivesPAndSSpeedsWithinFivePercent) {
 TEST(FdDebunneWaves, PaperScaleIsSlowByRootOfDimension) {
   const double cp = p_wave_speed(kLambda, kMu, kRho);
   const double p = bar_mode_speed(0, FdDebunneOptions::OperatorScale::kPaper, 6);
-  std::printf("fd_debunne grid bar, scale=paper: P %.4f = %.3f x exact (1/sqrt(3) = 0.577)\n", p, p / cp);
+  std::printf("fd_debunne grid bar, scale=paper: P %.4f = %.3f x exact (1/sqrt(3) = 0.577)\n", p,
+              p / cp);
   EXPECT_LT(p / cp, 0.7);
   EXPECT_GT(p / cp, 0.5);
 }
@@ -76,7 +80,8 @@ TEST(FdDebunneWaves, TetEdgeGraphIsAnisotropicNoScaleFitsBoth) {
   const double cp = p_wave_speed(kLambda, kMu, kRho), cs = s_wave_speed(kMu, kRho);
   const double p = bar_mode_speed(0, FdDebunneOptions::OperatorScale::kDimension, 6, true);
   const double s = bar_mode_speed(1, FdDebunneOptions::OperatorScale::kDimension, 6, true);
-  std::printf("fd_debunne 20x6x6 tet edge graph, scale=dimension: P %.3f x exact, S %.3f x exact\n", p / cp, s / cs);
+  std::printf("fd_debunne 20x6x6 tet edge graph, scale=dimension: P %.3f x exact, S %.3f x exact\n",
+              p / cp, s / cs);
   EXPECT_GT(std::abs(p / cp - s / cs), 0.05);
 }
 
@@ -90,7 +95,8 @@ TEST(FdDebunneDynamics, SymplecticEnergyDriftIsBoundedWithoutDamping) {
   const double dt = 0.01;  // s: about 0.13 of the measured critical step (0.861 h / c_p, h = 1/3 m)
   auto total = [&] {
     double kinetic = 0;
-    for (size_t i = 0; i < s.v.size(); ++i) kinetic += 0.5 * body.mesh.masses[i / 3] * s.v[i] * s.v[i];
+    for (size_t i = 0; i < s.v.size(); ++i)
+      kinetic += 0.5 * body.mesh.masses[i / 3] * s.v[i] * s.v[i];
     return kinetic + body.model->elastic_energy(s.x.data());
   };
   const double e0 = total();
@@ -106,8 +112,9 @@ TEST(FdDebunneDynamics, SymplecticEnergyDriftIsBoundedWithoutDamping) {
   }
   // Symplectic Euler's energy oscillates (O(omega dt)) around a conserved shadow energy: the
   // oscillation is bounded and the mean does not drift.
-  std::printf("fd_debunne symplectic, dt %.1e s, %d steps: energy range %.2f%% of E0, mean drift %+.3f%%\n",
-              dt, steps, 100 * (hi - lo) / e0, 100 * (late / early - 1));
+  std::printf(
+      "fd_debunne symplectic, dt %.1e s, %d steps: energy range %.2f%% of E0, mean drift %+.3f%%\n",
+      dt, steps, 100 * (hi - lo) / e0, 100 * (late / early - 1));
   EXPECT_LT((hi - lo) / e0, 0.15);
   EXPECT_NEAR(late / early, 1.0, 0.01);
 }
@@ -115,7 +122,9 @@ TEST(FdDebunneDynamics, SymplecticEnergyDriftIsBoundedWithoutDamping) {
 TEST(FdDebunneDynamics, StableStepScalesWithElementSize) {
   const tacta_material material = make_material(1e4, 0.3, 1000.0);
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
-  std::printf("fd_debunne stable dt (unit cube of tets, symplectic Euler)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
+  std::printf(
+      "fd_debunne stable dt (unit cube of tets, symplectic Euler)\n  cells  h (m)   dt_crit (s)  "
+      "dt_crit*c_p/h\n");
   double first_ratio = 0;
   for (uint32_t cells : {2u, 4u, 6u}) {
     FdDebunneOptions options;

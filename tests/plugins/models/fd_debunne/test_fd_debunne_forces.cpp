@@ -1,9 +1,8 @@
 // fd_debunne: static properties of the finite-difference forces.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 #include "fd_test_body.hpp"
 #include "tacta/models/model_checks.hpp"
@@ -47,7 +46,8 @@ TEST_P(FdDebunneVariants, ZeroForceAtRestAndUnderTranslation) {
   body.model->internal_forces(body.mesh.positions.data(), f.data());
   for (double v : f) EXPECT_EQ(v, 0.0);
   std::vector<double> moved = body.mesh.positions;
-  for (size_t i = 0; i < moved.size(); i += 3) moved[i] += 0.3, moved[i + 1] -= 1.7, moved[i + 2] += 2.0;
+  for (size_t i = 0; i < moved.size(); i += 3)
+    moved[i] += 0.3, moved[i + 1] -= 1.7, moved[i + 2] += 2.0;
   body.model->internal_forces(moved.data(), f.data());
   for (double v : f) EXPECT_NEAR(v, 0.0, 1e-9);
   EXPECT_NEAR(body.model->elastic_energy(moved.data()), 0.0, 1e-9);  // J, rounding of d
@@ -87,8 +87,8 @@ TEST(FdDebunne, SymmetricStiffnessIsSymmetricPositiveSemidefinite) {
   EXPECT_GT(report.min_eigenvalue, -1e-8 * report.max_eigenvalue);
   // Paper form: K is not symmetric on an irregular mesh (same cause as the momentum loss).
   FdBody paper(irregular_box(), make_material(1e5, 0.3, 1000.0), FdDebunneOptions{});
-  const auto paper_report =
-      checks::inspect_stiffness(checks::stiffness_by_differences(*paper.model, paper.mesh.positions));
+  const auto paper_report = checks::inspect_stiffness(
+      checks::stiffness_by_differences(*paper.model, paper.mesh.positions));
   EXPECT_GT(paper_report.asymmetry, 1e-3);
 }
 
@@ -115,7 +115,8 @@ TEST(FdDebunne, SurfaceNodesResistAnInfinitesimalRotation) {
   FdBody body(box_tet_mesh({4, 4, 4}, {1, 1, 1}, 1000.0, GridSplit::kOneDiagonal),
               make_material(1e5, 0.3, 1000.0), options);
   const auto& rest = body.mesh.positions;
-  std::vector<double> rotated(rest.size()), stretched(rest), f_rotation(rest.size()), f_stretch(rest.size());
+  std::vector<double> rotated(rest.size()), stretched(rest), f_rotation(rest.size()),
+      f_stretch(rest.size());
   for (size_t i = 0; i < rest.size(); i += 3) {
     rotated[i] = rest[i] - angle * rest[i + 1];  // d = angle z x x
     rotated[i + 1] = rest[i + 1] + angle * rest[i];
@@ -130,12 +131,17 @@ TEST(FdDebunne, SurfaceNodesResistAnInfinitesimalRotation) {
     const double s = std::hypot(f_stretch[i], f_stretch[i + 1], f_stretch[i + 2]);
     bool surface = false;
     for (int c = 0; c < 3; ++c) surface |= rest[i + c] < 1e-9 || rest[i + c] > 1 - 1e-9;
-    if (surface) surface_rotation = std::max(surface_rotation, r), surface_stretch = std::max(surface_stretch, s);
+    if (surface)
+      surface_rotation = std::max(surface_rotation, r),
+      surface_stretch = std::max(surface_stretch, s);
   }
   const size_t centre = 3 * (2 + 5 * (2 + 5 * 2));  // node (2, 2, 2) of the 5x5x5
-  const double interior_rotation = std::hypot(f_rotation[centre], f_rotation[centre + 1], f_rotation[centre + 2]);
-  std::printf("fd_debunne, 1e-6 rad rotation: largest surface force %.3g N (stretch 1e-6: %.3g N), "
-              "centre node %.3g N\n", surface_rotation, surface_stretch, interior_rotation);
+  const double interior_rotation =
+      std::hypot(f_rotation[centre], f_rotation[centre + 1], f_rotation[centre + 2]);
+  std::printf(
+      "fd_debunne, 1e-6 rad rotation: largest surface force %.3g N (stretch 1e-6: %.3g N), "
+      "centre node %.3g N\n",
+      surface_rotation, surface_stretch, interior_rotation);
   EXPECT_GT(surface_rotation, 0.3 * surface_stretch);
   EXPECT_LT(interior_rotation, 1e-6 * surface_rotation);
 }

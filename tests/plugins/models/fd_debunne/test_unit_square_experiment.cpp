@@ -2,10 +2,9 @@
 // square, nodes SW (0,0), SE (1,0), NW (0,1), NE (1,1); rho 1, mu 0.01, lambda 1; no gravity,
 // nothing fixed. Edge graph: the four sides only. The paper says the displaced NE corner first
 // moves its neighbours NW and SE and only then SW, so SW is not a neighbour of NE: no diagonals.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "fd_test_body.hpp"
 #include "tacta/models/model_checks.hpp"
@@ -18,15 +17,17 @@ namespace {
 struct SquareRun {
   double energy_start = 0, energy_max = 0, energy_end = 0;  // J (per m of thickness)
   double max_displacement = 0;                              // m, over all nodes and steps
-  double shape_error_end = 0;     // m: largest |edge length - rest length| at the end
-  double com_x = 0, com_y = 0;    // m: centre of mass at the end
-  double speed_end = 0;           // m/s: largest node speed at the end
+  double shape_error_end = 0;   // m: largest |edge length - rest length| at the end
+  double com_x = 0, com_y = 0;  // m: centre of mass at the end
+  double speed_end = 0;         // m/s: largest node speed at the end
   uint32_t status = 0;
   int fault_step = -1;
 };
 
-SquareRun run_square(FdDebunneOptions options, double corner, double dt, int steps, uint32_t cells = 1) {
-  FdBody body(quad_grid_mesh(cells, cells, 1.0, 1.0, 1.0), make_material_lame(1.0, 0.01, 1.0), options);
+SquareRun run_square(FdDebunneOptions options, double corner, double dt, int steps,
+                     uint32_t cells = 1) {
+  FdBody body(quad_grid_mesh(cells, cells, 1.0, 1.0, 1.0), make_material_lame(1.0, 0.01, 1.0),
+              options);
   checks::StateBuffers s(body.mesh.positions);
   const size_t ne = 3 * (static_cast<size_t>(cells + 1) * (cells + 1) - 1);  // last node: (1, 1)
   s.x[ne] += corner, s.x[ne + 1] += corner;
@@ -65,10 +66,11 @@ SquareRun run_square(FdDebunneOptions options, double corner, double dt, int ste
 }
 
 void print(const char* label, const SquareRun& r) {
-  std::printf("%s: E0 %.4e J, Emax %.4e, Eend %.4e, max|d| %.4f m, shape err %.2e m, "
-              "COM (%.5f, %.5f), max speed %.2e m/s, status %u at step %d\n",
-              label, r.energy_start, r.energy_max, r.energy_end, r.max_displacement, r.shape_error_end,
-              r.com_x, r.com_y, r.speed_end, r.status, r.fault_step);
+  std::printf(
+      "%s: E0 %.4e J, Emax %.4e, Eend %.4e, max|d| %.4f m, shape err %.2e m, "
+      "COM (%.5f, %.5f), max speed %.2e m/s, status %u at step %d\n",
+      label, r.energy_start, r.energy_max, r.energy_end, r.max_displacement, r.shape_error_end,
+      r.com_x, r.com_y, r.speed_end, r.status, r.fault_step);
 }
 
 FdDebunneOptions paper_options(double damping) {

@@ -3,11 +3,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <Eigen/Dense>
-#include <Eigen/Geometry>
 #include <memory>
 #include <random>
 #include <string>
@@ -25,7 +25,7 @@ inline std::vector<MaterialLaw> all_laws() {
   return {MaterialLaw::kNeoHookean, MaterialLaw::kStVenantKirchhoff, MaterialLaw::kMooneyRivlin};
 }
 inline std::string law_name(MaterialLaw law) {
-  return law == MaterialLaw::kNeoHookean ? "NeoHookean"
+  return law == MaterialLaw::kNeoHookean          ? "NeoHookean"
          : law == MaterialLaw::kStVenantKirchhoff ? "StVenantKirchhoff"
                                                   : "MooneyRivlin";
 }
@@ -124,7 +124,8 @@ inline std::vector<double> rigidly_moved(const TestMesh& mesh) {
       Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   std::vector<double> x = mesh.positions;
   for (size_t i = 0; i < x.size(); i += 3) {
-    const Eigen::Vector3d p = r * Eigen::Vector3d(x[i], x[i + 1], x[i + 2]) + Eigen::Vector3d(0.3, -1, 2);
+    const Eigen::Vector3d p =
+        r * Eigen::Vector3d(x[i], x[i + 1], x[i + 2]) + Eigen::Vector3d(0.3, -1, 2);
     for (int c = 0; c < 3; ++c) x[i + c] = p[c];
   }
   return x;
@@ -141,7 +142,8 @@ inline InvertedCorner push_corner_through(HyperelasticModel& model, const TestMe
   std::vector<double> x = mesh.positions, f(x.size());
   const uint32_t top = mesh.node_count() - 1;
   x[3 * top + 2] = -0.05;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(dense(model.assemble_stiffness(x.data())));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(
+      dense(model.assemble_stiffness(x.data())));
   InvertedCorner result;
   result.lowest_eigenvalue_share = eigen.eigenvalues().minCoeff() / eigen.eigenvalues().maxCoeff();
   model.internal_forces(x.data(), f.data());
@@ -173,7 +175,7 @@ inline std::pair<double, double> neo_hookean_uniaxial(double mu, double lambda, 
 }
 
 struct UniaxialResult {
-  double lateral = 0.0, nominal_stress = 0.0;  // analytic lateral stretch; P, Pa
+  double lateral = 0.0, nominal_stress = 0.0;     // analytic lateral stretch; P, Pa
   double worst_axial = 0.0, worst_lateral = 0.0;  // m: largest node error against them
   uint32_t status = 0;
   uint64_t newton_iterations = 0, load_cuts = 0;
@@ -218,9 +220,9 @@ inline UniaxialResult neo_hookean_uniaxial_patch(double nu, double stretch, Volu
     result.worst_axial = std::max(
         result.worst_axial, std::abs(body.x[3 * i + 2] - stretch * mesh.positions[3 * i + 2]));
     for (int c = 0; c < 2; ++c)
-      result.worst_lateral = std::max(
-          result.worst_lateral,
-          std::abs(body.x[3 * i + c] - result.lateral * mesh.positions[3 * i + c]));
+      result.worst_lateral =
+          std::max(result.worst_lateral,
+                   std::abs(body.x[3 * i + c] - result.lateral * mesh.positions[3 * i + c]));
   }
   result.newton_iterations = model->counters().newton_iterations;
   result.load_cuts = model->counters().load_cuts;

@@ -2,11 +2,10 @@
 // against finite differences, no force under a rigid motion, a positive semi-definite projected
 // tangent through inversion, the uniaxial patch test at nu 0.499, and the static cantilever at
 // nu 0.499 against both beam theory and the per-element formulation (which locks).
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 #include <stdexcept>
 
 #include "hyperelastic_test_support.hpp"
@@ -34,7 +33,8 @@ TEST_P(NodalPerLaw, ExactTangentIsMinusTheForceJacobian) {
   const TestMesh mesh = box_tet_mesh({2, 2, 2}, {0.1, 0.1, 0.1}, 1000.0);
   auto model = make_model(mesh, GetParam(), 1e4, 0.49, false, nodal());
   Eigen::MatrixXd k;
-  EXPECT_LT(testing::tangent_jacobian_error(*model, testing::deformed_cube(mesh, 5, 0.007), k), 1e-5);
+  EXPECT_LT(testing::tangent_jacobian_error(*model, testing::deformed_cube(mesh, 5, 0.007), k),
+            1e-5);
   // The 1-ring coupling is really there: nodes two cells apart (0 and 2 along x share no tet
   // but share node 1's averaged volume) get a nonzero block.
   ASSERT_DOUBLE_EQ(mesh.positions[6], 0.1);  // node 2 is (0.1, 0, 0)
@@ -79,10 +79,11 @@ TEST(NodalVolume, UniaxialPatchTestIsExactAtNu0499) {
   for (const double stretch : {1.3, 0.75}) {
     const testing::UniaxialResult r =
         testing::neo_hookean_uniaxial_patch(0.499, stretch, Volumetric::kNodalAverage, 1e-10);
-    std::printf("nodal_average uniaxial, nu 0.499, stretch %.2f: lateral %.5f, worst node error "
-                "%.2e m axial, %.2e m lateral, %llu Newton iterations\n",
-                stretch, r.lateral, r.worst_axial, r.worst_lateral,
-                static_cast<unsigned long long>(r.newton_iterations));
+    std::printf(
+        "nodal_average uniaxial, nu 0.499, stretch %.2f: lateral %.5f, worst node error "
+        "%.2e m axial, %.2e m lateral, %llu Newton iterations\n",
+        stretch, r.lateral, r.worst_axial, r.worst_lateral,
+        static_cast<unsigned long long>(r.newton_iterations));
     ASSERT_EQ(r.status & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED), 0u);
     EXPECT_LT(r.worst_axial, 1e-8);  // m, against 0.1 m of cube: 1e-7 of it
     EXPECT_LT(r.worst_lateral, 1e-8);
@@ -98,19 +99,17 @@ TEST(NodalVolume, CantileverDoesNotLockAtNu0499) {
   constexpr double kBeamTheory = 0.03237;  // m, independent of nu
   constexpr std::array<uint32_t, 3> kCells = {4, 4, 29};
   const auto law = MaterialLaw::kNeoHookean;
-  const auto [locked, locked_status] =
-      testing::static_cantilever_tip(kCells, law, 0.499, Volumetric::kElement, nullptr,
-                                     GridSplit::kOneDiagonal);
-  const auto [averaged, status] =
-      testing::static_cantilever_tip(kCells, law, 0.499, Volumetric::kNodalAverage, nullptr,
-                                     GridSplit::kOneDiagonal);
-  const auto [compressible, compressible_status] =
-      testing::static_cantilever_tip(kCells, law, 0.3, Volumetric::kElement, nullptr,
-                                     GridSplit::kOneDiagonal);
-  std::printf("cantilever 5x5x30 nodes: nu 0.499 element %.5f m (%.1f%%), nodal_average %.5f m "
-              "(%.1f%%); nu 0.3 element %.5f m (%.1f%%); beam theory %.5f m\n",
-              locked, 100 * locked / kBeamTheory, averaged, 100 * averaged / kBeamTheory,
-              compressible, 100 * compressible / kBeamTheory, kBeamTheory);
+  const auto [locked, locked_status] = testing::static_cantilever_tip(
+      kCells, law, 0.499, Volumetric::kElement, nullptr, GridSplit::kOneDiagonal);
+  const auto [averaged, status] = testing::static_cantilever_tip(
+      kCells, law, 0.499, Volumetric::kNodalAverage, nullptr, GridSplit::kOneDiagonal);
+  const auto [compressible, compressible_status] = testing::static_cantilever_tip(
+      kCells, law, 0.3, Volumetric::kElement, nullptr, GridSplit::kOneDiagonal);
+  std::printf(
+      "cantilever 5x5x30 nodes: nu 0.499 element %.5f m (%.1f%%), nodal_average %.5f m "
+      "(%.1f%%); nu 0.3 element %.5f m (%.1f%%); beam theory %.5f m\n",
+      locked, 100 * locked / kBeamTheory, averaged, 100 * averaged / kBeamTheory, compressible,
+      100 * compressible / kBeamTheory, kBeamTheory);
   (void)locked_status;  // the locked solve stops short of its tolerance (VALIDATION.md)
   EXPECT_EQ(status & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED), 0u);
   EXPECT_EQ(compressible_status & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED), 0u);

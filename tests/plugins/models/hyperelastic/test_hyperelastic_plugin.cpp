@@ -2,7 +2,6 @@
 // parameters on a clamped beam, stepped under gravity for each material, counters reported,
 // and bad input refused with a message that names what is wrong.
 #include <gtest/gtest.h>
-
 #include <string>
 
 #include "plugin_fixture.hpp"
@@ -40,13 +39,23 @@ TEST(HyperelasticPlugin, EveryMaterialStepsABeamUnderGravity) {
     auto params = tacta::testing::default_params(d);
     const uint32_t choice = index_of(d, "material");
     params[choice].text = material;
-    params[choice].number = std::string(material) == "neo_hookean" ? 0 : std::string(material) == "stvk" ? 1 : 2;
-    const tacta_model_setup setup{sizeof(tacta_model_setup), &view, &elastic, mesh.masses.data(),
-                                  mesh.fixed.data(), params.data(), d.param_count, 1e-3, nullptr};
+    params[choice].number = std::string(material) == "neo_hookean" ? 0
+                            : std::string(material) == "stvk"      ? 1
+                                                                   : 2;
+    const tacta_model_setup setup{sizeof(tacta_model_setup),
+                                  &view,
+                                  &elastic,
+                                  mesh.masses.data(),
+                                  mesh.fixed.data(),
+                                  params.data(),
+                                  d.param_count,
+                                  1e-3,
+                                  nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
-    std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0), stress(mesh.node_count());
+    std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0),
+                        stress(mesh.node_count());
     for (uint32_t i = 0; i < mesh.node_count(); ++i) f[3 * i + 1] = -9.81 * mesh.masses[i];
     tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
     api.begin(instance, &state, 1e-3);
@@ -75,8 +84,15 @@ TEST(HyperelasticPlugin, RefusesBadInputWithAMessage) {
   const tacta_mesh_view view = mesh.view();
   const tacta_material elastic = tacta::models::make_material(2e6, 0.45, 1100);
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &elastic, mesh.masses.data(),
-                          mesh.fixed.data(), params.data(), d.param_count, 1e-3, nullptr};
+  tacta_model_setup setup{sizeof(tacta_model_setup),
+                          &view,
+                          &elastic,
+                          mesh.masses.data(),
+                          mesh.fixed.data(),
+                          params.data(),
+                          d.param_count,
+                          1e-3,
+                          nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   // A static solve with nothing held has no equilibrium under a net load.

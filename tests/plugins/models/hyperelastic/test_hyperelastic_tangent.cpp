@@ -3,10 +3,9 @@
 // energy, and the assembled tangent against the forces (exact tangent, non-inverted state).
 // Then what makes it robust: no force at rest or under a rigid rotation, and a projected
 // tangent that stays positive semi-definite with an element turned inside out.
-#include <gtest/gtest.h>
-
 #include <Eigen/Dense>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 
 #include "hyperelastic_test_support.hpp"
@@ -50,7 +49,8 @@ TEST_P(PerLaw, TangentIsMinusTheForceJacobian) {
   const TestMesh mesh = box_tet_mesh({2, 2, 2}, {0.1, 0.1, 0.1}, 1000.0);
   auto model = make_model(mesh, GetParam(), 1e4, 0.4, /*project=*/false);
   Eigen::MatrixXd k;
-  EXPECT_LT(testing::tangent_jacobian_error(*model, testing::deformed_cube(mesh, 5, 0.007), k), 1e-5);
+  EXPECT_LT(testing::tangent_jacobian_error(*model, testing::deformed_cube(mesh, 5, 0.007), k),
+            1e-5);
 }
 
 TEST_P(PerLaw, NoForceAtRestOrUnderRigidRotation) {

@@ -1,10 +1,9 @@
 // Validation of the hyperelastic model: Neo-Hookean uniaxial tension at 50% stretch against the
 // analytic homogeneous solution (static solve), the static cantilever converging under
 // refinement toward Euler-Bernoulli, and recovery from an inverted start in dynamic steps.
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 #include <vector>
 
 #include "hyperelastic_test_support.hpp"
@@ -13,7 +12,6 @@
 namespace tacta::models::hyperelastic {
 namespace {
 
-
 using testing::Body;
 
 TEST(HyperelasticValidation, NeoHookeanUniaxialTensionMatchesTheAnalyticStretch) {
@@ -21,11 +19,12 @@ TEST(HyperelasticValidation, NeoHookeanUniaxialTensionMatchesTheAnalyticStretch)
   const testing::UniaxialResult r =
       testing::neo_hookean_uniaxial_patch(0.45, stretch, Volumetric::kElement);
   ASSERT_EQ(r.status & (TACTA_STEP_FAULT_MASK | TACTA_STEP_SOLVER_NOT_CONVERGED), 0u);
-  std::printf("uniaxial Neo-Hookean, stretch %.2f: P %.1f Pa, lateral stretch %.5f; worst node "
-              "error %.2e m axial, %.2e m lateral; Newton iterations %llu, load cuts %llu\n",
-              stretch, r.nominal_stress, r.lateral, r.worst_axial, r.worst_lateral,
-              static_cast<unsigned long long>(r.newton_iterations),
-              static_cast<unsigned long long>(r.load_cuts));
+  std::printf(
+      "uniaxial Neo-Hookean, stretch %.2f: P %.1f Pa, lateral stretch %.5f; worst node "
+      "error %.2e m axial, %.2e m lateral; Newton iterations %llu, load cuts %llu\n",
+      stretch, r.nominal_stress, r.lateral, r.worst_axial, r.worst_lateral,
+      static_cast<unsigned long long>(r.newton_iterations),
+      static_cast<unsigned long long>(r.load_cuts));
   EXPECT_LT(r.worst_axial, 0.01 * (stretch - 1.0) * side);  // within 1% of the elongation
   EXPECT_LT(r.worst_lateral, 0.01 * (1.0 - r.lateral) * side);
 }
@@ -40,9 +39,10 @@ TEST(HyperelasticValidation, StaticCantileverConvergesUnderRefinement) {
   const double reference = 0.03237 + 0.00038;  // m: Euler-Bernoulli plus Timoshenko shear
   const double coarse = static_cantilever_tip({2, 2, 11}, MaterialLaw::kNeoHookean);
   const double medium = static_cantilever_tip({4, 4, 29}, MaterialLaw::kNeoHookean);
-  std::printf("static Neo-Hookean cantilever: 3x3x12 nodes %.5f m (%.1f%%), 5x5x30 %.5f m "
-              "(%.1f%%), analytic %.5f m\n",
-              coarse, 100 * coarse / reference, medium, 100 * medium / reference, reference);
+  std::printf(
+      "static Neo-Hookean cantilever: 3x3x12 nodes %.5f m (%.1f%%), 5x5x30 %.5f m "
+      "(%.1f%%), analytic %.5f m\n",
+      coarse, 100 * coarse / reference, medium, 100 * medium / reference, reference);
   // Linear tets lock in bending at nu 0.45: the deflection grows toward the analytic value.
   EXPECT_GT(medium, 1.2 * coarse);
   EXPECT_LT(medium, 1.02 * reference);
@@ -74,8 +74,10 @@ TEST(HyperelasticValidation, DynamicStepsRecoverFromAnInvertedStart) {
           << testing::law_name(law) << " step " << step;
     // Restored: every element right side out and (the free body may keep spinning) almost all
     // the strain energy gone, dissipated by backward Euler.
-    EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_INVERTED_ELEMENT, 0u) << testing::law_name(law);
-    EXPECT_LT(model->elastic_energy(body.x.data()), 1e-3 * initial_energy) << testing::law_name(law);
+    EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_INVERTED_ELEMENT, 0u)
+        << testing::law_name(law);
+    EXPECT_LT(model->elastic_energy(body.x.data()), 1e-3 * initial_energy)
+        << testing::law_name(law);
   }
 }
 
@@ -115,9 +117,10 @@ TEST(HyperelasticValidation, ReusedTangentFollowsTheFreshTangentPath) {
     travel = std::max(travel, std::abs(tips[0][k]));
     worst = std::max(worst, std::abs(tips[1][k] - tips[0][k]));
   }
-  std::printf("reused tangent: tip travel %.4f m, largest difference %.2e m, %llu of 400 first "
-              "corrections reused\n",
-              travel, worst, static_cast<unsigned long long>(lagged[1]));
+  std::printf(
+      "reused tangent: tip travel %.4f m, largest difference %.2e m, %llu of 400 first "
+      "corrections reused\n",
+      travel, worst, static_cast<unsigned long long>(lagged[1]));
   EXPECT_GT(travel, 0.01);
   EXPECT_LT(worst, 0.001 * travel);
   EXPECT_EQ(lagged[0], 0u);

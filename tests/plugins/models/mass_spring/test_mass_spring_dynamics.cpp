@@ -1,9 +1,8 @@
 // mass_spring: effective Young's modulus of a bar, energy, stable step, implicit integrators.
-#include <gtest/gtest.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "ms_test_body.hpp"
 #include "tacta/models/lame.hpp"
@@ -24,8 +23,9 @@ double kinetic_energy(const MsBody& body, const std::vector<double>& v) {
 Eigen::Vector3d angular_momentum(const MsBody& body, const checks::StateBuffers& s) {
   Eigen::Vector3d l = Eigen::Vector3d::Zero();
   for (uint32_t i = 0; i < body.mesh.node_count(); ++i)
-    l += body.mesh.masses[i] * Eigen::Vector3d(s.x[3 * i], s.x[3 * i + 1], s.x[3 * i + 2])
-                                   .cross(Eigen::Vector3d(s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]));
+    l += body.mesh.masses[i] *
+         Eigen::Vector3d(s.x[3 * i], s.x[3 * i + 1], s.x[3 * i + 2])
+             .cross(Eigen::Vector3d(s.v[3 * i], s.v[3 * i + 1], s.v[3 * i + 2]));
   return l;
 }
 
@@ -71,15 +71,17 @@ TEST(MassSpringStatics, BarStretchGivesYoungsModulusWithinFivePercent) {
   }
   const double strain = (u_three_quarter / n_three - u_quarter / n_quarter) / 0.5;
   const double effective = sigma / strain;
-  std::printf("mass_spring bar 20x3x3: effective E %.4e Pa for E %.4e (%+.2f%%)\n", effective, e_modulus,
-              100 * (effective / e_modulus - 1));
+  std::printf("mass_spring bar 20x3x3: effective E %.4e Pa for E %.4e (%+.2f%%)\n", effective,
+              e_modulus, 100 * (effective / e_modulus - 1));
   EXPECT_NEAR(effective / e_modulus, 1.0, 0.05);  // lattice analysis predicts +3.4% in the bulk
 }
 
 TEST(MassSpringDynamics, SymplecticEnergyBoundedAndStableStepTable) {
   const tacta_material material = make_material(1e4, 0.3, 1000.0);
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
-  std::printf("mass_spring stable dt (unit cube, symplectic Euler)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
+  std::printf(
+      "mass_spring stable dt (unit cube, symplectic Euler)\n  cells  h (m)   dt_crit (s)  "
+      "dt_crit*c_p/h\n");
   double first = 0, dt_crit_3 = 0;
   for (uint32_t cells : {2u, 3u, 4u, 6u}) {
     MsBody body(box_tet_mesh({cells, cells, cells}, {1, 1, 1}, 1000.0), material,
@@ -101,7 +103,8 @@ TEST(MassSpringDynamics, SymplecticEnergyBoundedAndStableStepTable) {
     EXPECT_NEAR(dt * cp / h, first, 0.25 * first);
   }
   // Energy at 0.13 of the critical step, no damping: oscillates, does not drift.
-  MsBody body(box_tet_mesh({3, 3, 3}, {1, 1, 1}, 1000.0), material, with_integrator(Integrator::kSymplecticEuler));
+  MsBody body(box_tet_mesh({3, 3, 3}, {1, 1, 1}, 1000.0), material,
+              with_integrator(Integrator::kSymplecticEuler));
   checks::StateBuffers s(body.mesh.positions);
   checks::TestRandom random(3);
   for (double& v : s.v) v = 1e-2 * random.next();
@@ -116,8 +119,10 @@ TEST(MassSpringDynamics, SymplecticEnergyBoundedAndStableStepTable) {
     if (k < 1000) early += e / 1000;
     if (k >= steps - 1000) late += e / 1000;
   }
-  std::printf("mass_spring symplectic, dt %.2e s, %d steps: energy range %.2f%% of mean, mean drift %+.3f%%\n",
-              dt, steps, 100 * (hi - lo) / early, 100 * (late / early - 1));
+  std::printf(
+      "mass_spring symplectic, dt %.2e s, %d steps: energy range %.2f%% of mean, mean drift "
+      "%+.3f%%\n",
+      dt, steps, 100 * (hi - lo) / early, 100 * (late / early - 1));
   EXPECT_LT((hi - lo) / early, 0.2);
   EXPECT_NEAR(late / early, 1.0, 0.01);
 }
@@ -170,7 +175,8 @@ TEST(MassSpringDesbrun, CorrectionKeepsAngularMomentumOfASpinningBody) {
     MassSpringOptions options = with_integrator(Integrator::kDesbrun);
     options.desbrun_correction = corrected == 1;
     const double dt = 0.005;
-    MsBody body(box_tet_mesh({3, 3, 3}, {0.3, 0.3, 0.3}, 1000.0), make_material(1e5, 0.3, 1000.0), options, dt);
+    MsBody body(box_tet_mesh({3, 3, 3}, {0.3, 0.3, 0.3}, 1000.0), make_material(1e5, 0.3, 1000.0),
+                options, dt);
     checks::StateBuffers s(body.mesh.positions);
     for (uint32_t i = 0; i < body.mesh.node_count(); ++i) {
       s.v[3 * i] = -2.0 * (s.x[3 * i + 1] - 0.15);
@@ -183,8 +189,10 @@ TEST(MassSpringDesbrun, CorrectionKeepsAngularMomentumOfASpinningBody) {
     }
     kept[corrected] = angular_momentum(body, s).z() / l0;
   }
-  std::printf("Desbrun, spinning cube after 2 s: angular momentum kept %.4f without correction, %.6f with\n",
-              kept[0], kept[1]);
+  std::printf(
+      "Desbrun, spinning cube after 2 s: angular momentum kept %.4f without correction, %.6f "
+      "with\n",
+      kept[0], kept[1]);
   EXPECT_LT(kept[0], 0.99);
   EXPECT_NEAR(kept[1], 1.0, 1e-6);
 }

@@ -1,7 +1,6 @@
 // mass_spring: static properties of the spring forces and the stiffness rule.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <stdexcept>
 #include <string>
 
@@ -48,8 +47,8 @@ TEST(MassSpring, ZeroForceAtRestTranslationAndRotationNetForceZero) {
 
 TEST(MassSpring, StiffnessSymmetricPositiveSemidefiniteAtRest) {
   MsBody body(box_tet_mesh({2, 2, 2}, {0.2, 0.2, 0.2}, 1000.0), make_material(1e5, 0.3, 1000.0));
-  const auto report =
-      checks::inspect_stiffness(checks::stiffness_by_differences(*body.model, body.mesh.positions, 1e-7));
+  const auto report = checks::inspect_stiffness(
+      checks::stiffness_by_differences(*body.model, body.mesh.positions, 1e-7));
   EXPECT_LT(report.asymmetry, 1e-6);
   EXPECT_GT(report.min_eigenvalue, -1e-6 * report.max_eigenvalue);
 }
@@ -78,8 +77,9 @@ TestMesh regular_tet(double edge) {
   const double s = edge / std::sqrt(8.0);  // cube corners (s,s,s), (s,-s,-s), ...: edge 2 s sqrt 2
   mesh.positions = {s, s, s, s, -s, -s, -s, s, -s, -s, -s, s};
   mesh.tets = {0, 1, 2, 3};
-  if (tet_signed_volume(node_position(mesh.positions.data(), 0), node_position(mesh.positions.data(), 1),
-                        node_position(mesh.positions.data(), 2), node_position(mesh.positions.data(), 3)) < 0)
+  if (tet_signed_volume(
+          node_position(mesh.positions.data(), 0), node_position(mesh.positions.data(), 1),
+          node_position(mesh.positions.data(), 2), node_position(mesh.positions.data(), 3)) < 0)
     mesh.tets = {0, 2, 1, 3};
   mesh.edges = edges_of_tets(mesh.tets);
   mesh.triangles = boundary_of_tets(mesh.tets);
@@ -99,10 +99,12 @@ TEST(MassSpring, FemProjectionOnARegularTet) {
   projection.stiffness_rule = StiffnessRule::kFemProjection;
   for (double nu : {0.25, 0.45}) {
     MsBody body(regular_tet(edge), make_material(e_modulus, nu, 1000.0), projection);
-    const double lambda = e_modulus * nu / ((1 + nu) * (1 - 2 * nu)), mu = e_modulus / (2 * (1 + nu));
+    const double lambda = e_modulus * nu / ((1 + nu) * (1 - 2 * nu)),
+                 mu = e_modulus / (2 * (1 + nu));
     const double expected = volume * (lambda + 1.5 * mu) / (edge * edge);
     ASSERT_EQ(body.model->springs().size(), 6u);
-    for (double k : body.model->springs().stiffness) EXPECT_NEAR(k, expected, 1e-9 * expected) << nu;
+    for (double k : body.model->springs().stiffness)
+      EXPECT_NEAR(k, expected, 1e-9 * expected) << nu;
     if (nu == 0.25) {
       EXPECT_NEAR(expected, e_modulus * volume / (edge * edge), 1e-9 * expected);
     }
@@ -134,16 +136,20 @@ TEST(MassSpring, FemProjectionMatchesTheFemEdgeBlocksOnAJitteredBox) {
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) {
         const Eigen::Vector3d unit = (node_position(x, n[b]) - node_position(x, n[a])).normalized();
-        const Eigen::Matrix3d block = v * (material.lame_lambda * g[a] * g[b].transpose() +
-                                           material.lame_mu * g[b] * g[a].transpose() +
-                                           material.lame_mu * g[a].dot(g[b]) * Eigen::Matrix3d::Identity());
+        const Eigen::Matrix3d block =
+            v * (material.lame_lambda * g[a] * g[b].transpose() +
+                 material.lame_mu * g[b] * g[a].transpose() +
+                 material.lame_mu * g[a].dot(g[b]) * Eigen::Matrix3d::Identity());
         for (size_t s = 0; s < springs.size(); ++s)
-          if ((springs.ends[2 * s] == std::min(n[a], n[b])) && springs.ends[2 * s + 1] == std::max(n[a], n[b]))
+          if ((springs.ends[2 * s] == std::min(n[a], n[b])) &&
+              springs.ends[2 * s + 1] == std::max(n[a], n[b]))
             expected[s] -= unit.dot(block * unit);
       }
   }
   for (size_t s = 0; s < springs.size(); ++s)
-    EXPECT_NEAR(springs.stiffness[s], std::max(expected[s], 0.0), 1e-9 * std::abs(expected[s]) + 1e-12) << s;
+    EXPECT_NEAR(springs.stiffness[s], std::max(expected[s], 0.0),
+                1e-9 * std::abs(expected[s]) + 1e-12)
+        << s;
 }
 
 TEST(MassSpring, EdgeNamingAMissingNodeIsRefusedByName) {
@@ -156,7 +162,9 @@ TEST(MassSpring, EdgeNamingAMissingNodeIsRefusedByName) {
       MsBody body(mesh, make_material(1e4, 0.3, 1000.0), options);
       ADD_FAILURE() << "accepted an edge to node 9";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find("edge 5 (2, 9) is invalid for 4 nodes"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("edge 5 (2, 9) is invalid for 4 nodes"),
+                std::string::npos)
+          << e.what();
     }
   }
 }

@@ -1,9 +1,8 @@
 // tensor_mass: wave speeds, energy drift, stable step, implicit Euler.
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <gtest/gtest.h>
 
 #include "tacta/models/lame.hpp"
 #include "tacta/models/model_checks.hpp"
@@ -19,7 +18,8 @@ namespace {
 template <class Shape, class Probe>
 double bar_period(TmBody& body, Shape&& shape, Probe&& probe, double dt, double duration) {
   checks::StateBuffers s(body.mesh.positions);
-  for (uint32_t i = 0; i < body.mesh.node_count(); ++i) shape(&body.mesh.positions[3 * i], &s.x[3 * i]);
+  for (uint32_t i = 0; i < body.mesh.node_count(); ++i)
+    shape(&body.mesh.positions[3 * i], &s.x[3 * i]);
   tacta_body_state st = s.state();
   body.model->begin(st, dt);
   std::vector<double> signal;
@@ -43,10 +43,15 @@ TEST(TensorMassWaves, PWaveSpeedFromFirstLongitudinalMode) {
   const double cp = p_wave_speed(body.material.lame_lambda, body.material.lame_mu, rho);
   const uint32_t tip = 20;
   const double period = bar_period(
-      body, [&](const double* rest, double* x) { x[0] += 1e-4 * std::sin(M_PI * rest[0] / (2 * length)); },
-      [&](const std::vector<double>& x) { return x[3 * tip] - length; }, 0.1 * 0.05 / cp, 3.5 * 4 * length / cp);
+      body,
+      [&](const double* rest, double* x) {
+        x[0] += 1e-4 * std::sin(M_PI * rest[0] / (2 * length));
+      },
+      [&](const std::vector<double>& x) { return x[3 * tip] - length; }, 0.1 * 0.05 / cp,
+      3.5 * 4 * length / cp);
   const double speed = 4 * length / period;
-  std::printf("tensor_mass P: 20x2x2 bar, nu 0: %.4f m/s (exact %.4f, %+.2f%%)\n", speed, cp, 100 * (speed / cp - 1));
+  std::printf("tensor_mass P: 20x2x2 bar, nu 0: %.4f m/s (exact %.4f, %+.2f%%)\n", speed, cp,
+              100 * (speed / cp - 1));
   EXPECT_NEAR(speed / cp, 1.0, 0.05);
 }
 
@@ -78,8 +83,9 @@ TEST(TensorMassWaves, SWaveSpeedFromFirstTorsionalMode) {
           p_wave_speed(body.material.lame_lambda, body.material.lame_mu, rho),
       2.1 * 4 * length / c_torsion);  // two upward tip crossings (0.75 T and 1.75 T)
   const double speed = 4 * length / period / std::sqrt(6 * 0.1406);  // back to c_s
-  std::printf("tensor_mass S: %ux%ux%u bar (side %.2f m) torsion: c_s %.4f m/s (exact %.4f, %+.2f%%)\n",
-              along, across, across, side, speed, cs, 100 * (speed / cs - 1));
+  std::printf(
+      "tensor_mass S: %ux%ux%u bar (side %.2f m) torsion: c_s %.4f m/s (exact %.4f, %+.2f%%)\n",
+      along, across, across, side, speed, cs, 100 * (speed / cs - 1));
   EXPECT_NEAR(speed / cs, 1.0, 0.05);
 }
 
@@ -93,7 +99,8 @@ TEST(TensorMassDynamics, CentralDifferenceEnergyBoundedWithoutDamping) {
   body.model->begin(st, dt);
   auto total = [&] {
     double kinetic = 0;
-    for (size_t i = 0; i < s.v.size(); ++i) kinetic += 0.5 * body.mesh.masses[i / 3] * s.v[i] * s.v[i];
+    for (size_t i = 0; i < s.v.size(); ++i)
+      kinetic += 0.5 * body.mesh.masses[i / 3] * s.v[i] * s.v[i];
     return kinetic + body.model->elastic_energy(s.x.data());
   };
   const int steps = 5000;
@@ -106,8 +113,10 @@ TEST(TensorMassDynamics, CentralDifferenceEnergyBoundedWithoutDamping) {
     if (k < 1000) early += e / 1000;
     if (k >= steps - 1000) late += e / 1000;
   }
-  std::printf("tensor_mass central differences, dt %.1e s, %d steps: energy range %.2f%% of mean, mean drift %+.3f%%\n",
-              dt, steps, 100 * (hi - lo) / early, 100 * (late / early - 1));
+  std::printf(
+      "tensor_mass central differences, dt %.1e s, %d steps: energy range %.2f%% of mean, mean "
+      "drift %+.3f%%\n",
+      dt, steps, 100 * (hi - lo) / early, 100 * (late / early - 1));
   EXPECT_LT((hi - lo) / early, 0.3);
   EXPECT_NEAR(late / early, 1.0, 0.01);
 }
@@ -115,7 +124,9 @@ TEST(TensorMassDynamics, CentralDifferenceEnergyBoundedWithoutDamping) {
 TEST(TensorMassDynamics, StableStepScalesWithElementSize) {
   const tacta_material material = make_material(1e4, 0.3, 1000.0);
   const double cp = p_wave_speed(material.lame_lambda, material.lame_mu, material.density);
-  std::printf("tensor_mass stable dt (unit cube, 6 tets per cell, central differences)\n  cells  h (m)   dt_crit (s)  dt_crit*c_p/h\n");
+  std::printf(
+      "tensor_mass stable dt (unit cube, 6 tets per cell, central differences)\n  cells  h (m)   "
+      "dt_crit (s)  dt_crit*c_p/h\n");
   double first = 0;
   for (uint32_t cells : {2u, 4u, 6u}) {
     TmBody body(box_tet_mesh({cells, cells, cells}, {1, 1, 1}, 1000.0), material);

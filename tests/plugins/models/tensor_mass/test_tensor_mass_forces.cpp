@@ -1,7 +1,6 @@
 // tensor_mass: static properties of the K_ii / K_ij forces.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 #include "tacta/models/model_checks.hpp"
 #include "tm_test_body.hpp"
@@ -65,7 +64,7 @@ TEST(TensorMass, PatchTestLinearFieldGivesZeroInteriorForce) {
     double& worst = on_boundary(body.mesh, i) ? boundary : interior;
     worst = std::max(worst, n);
   }
-  EXPECT_GT(boundary, 1.0);                // the uniform stress acts on the surface (N)
+  EXPECT_GT(boundary, 1.0);               // the uniform stress acts on the surface (N)
   EXPECT_LT(interior, 1e-10 * boundary);  // and cancels inside
 }
 
@@ -87,7 +86,9 @@ TEST(TensorMass, LinearStrainGivesSpuriousForcesUnderFiniteRotation) {
   // the largest nodal force grows like angle^2 relative to the force of a same-size stretch.
   TmBody body(box_tet_mesh({2, 2, 2}, {1, 1, 1}, 1000.0), make_material(1e5, 0.3, 1000.0));
   std::vector<double> f(body.mesh.positions.size());
-  std::printf("tensor_mass under rigid rotation about z (1 m cube, E 1e5 Pa):\n  angle (rad)  max |F| (N)\n");
+  std::printf(
+      "tensor_mass under rigid rotation about z (1 m cube, E 1e5 Pa):\n  angle (rad)  max |F| "
+      "(N)\n");
   double previous = 0, at_small = 0;
   for (double angle : {0.01, 0.1, 0.5}) {
     const auto x = checks::rotated_about_z(body.mesh.positions, angle);

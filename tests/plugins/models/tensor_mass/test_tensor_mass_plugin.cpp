@@ -1,7 +1,6 @@
 // tensor_mass through the real C ABI: load the .so, create with each integrator, step, destroy.
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 #include <string>
 
 #include "plugin_fixture.hpp"
@@ -24,8 +23,15 @@ TEST(TensorMassPlugin, LoadsCreatesAndStepsBothIntegrators) {
   for (double integrator : {0.0, 1.0}) {
     auto params = tacta::testing::default_params(d);
     params[0].number = integrator;
-    tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
+    tacta_model_setup setup{sizeof(tacta_model_setup),
+                            &view,
+                            &material,
+                            mesh.masses.data(),
+                            mesh.fixed.data(),
+                            params.data(),
+                            d.param_count,
+                            1e-4,
+                            nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -48,7 +54,7 @@ TEST(TensorMassPlugin, AutoIntegratorIsStableAtTheTickAndSaysWhy) {
   const auto& api = plugin.api<tacta_model_api>("tensor_mass");
   ASSERT_NE(api.describe, nullptr);
   const auto defaults = tacta::testing::default_params(d);
-  EXPECT_EQ(defaults[0].number, 2.0);  // auto
+  EXPECT_EQ(defaults[0].number, 2.0);                                   // auto
   TestMesh mesh = box_tet_mesh({6, 2, 2}, {0.06, 0.02, 0.02}, 1000.0);  // 1 cm cells
   mesh.fix_plane(0, 0.0);
   const tacta_mesh_view view = mesh.view();
@@ -57,8 +63,15 @@ TEST(TensorMassPlugin, AutoIntegratorIsStableAtTheTickAndSaysWhy) {
   const auto run = [&](double integrator, double dt, std::string& note) {
     auto params = defaults;
     params[0].number = integrator;
-    tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                            mesh.fixed.data(), params.data(), d.param_count, dt, nullptr};
+    tacta_model_setup setup{sizeof(tacta_model_setup),
+                            &view,
+                            &material,
+                            mesh.masses.data(),
+                            mesh.fixed.data(),
+                            params.data(),
+                            d.param_count,
+                            dt,
+                            nullptr};
     void* instance = nullptr;
     char message[256] = {0};
     EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -70,7 +83,8 @@ TEST(TensorMassPlugin, AutoIntegratorIsStableAtTheTickAndSaysWhy) {
     tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
     api.begin(instance, &state, dt);
     uint32_t bits = 0;
-    for (int k = 0; k < 500 && !(bits & TACTA_STEP_FAULT_MASK); ++k) bits = api.step(instance, &state, dt);
+    for (int k = 0; k < 500 && !(bits & TACTA_STEP_FAULT_MASK); ++k)
+      bits = api.step(instance, &state, dt);
     api.destroy(instance);
     return bits & TACTA_STEP_FAULT_MASK;
   };
@@ -94,8 +108,15 @@ TEST(TensorMassPlugin, NaNInStateIsReportedNotThrown) {
   const tacta_mesh_view view = mesh.view();
   const tacta_material material = make_material(1e5, 0.3, 1000.0);
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup), &view, &material, mesh.masses.data(),
-                          mesh.fixed.data(), params.data(), d.param_count, 1e-4, nullptr};
+  tacta_model_setup setup{sizeof(tacta_model_setup),
+                          &view,
+                          &material,
+                          mesh.masses.data(),
+                          mesh.fixed.data(),
+                          params.data(),
+                          d.param_count,
+                          1e-4,
+                          nullptr};
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

@@ -16,7 +16,8 @@ using Point = std::array<double, 3>;
 inline constexpr double kOmniPeakForce = 3.3;           // N
 inline constexpr double kOmniContinuousForce = 0.88;    // N
 inline constexpr double kOmniUsableStiffness = 1000.0;  // N/m (1 N/mm at 1 kHz)
-inline constexpr Point kOmniWorkspaceHalf{0.080, 0.060, 0.035};  // m: 160 wide (x), 120 high (y), 70 deep (z)
+inline constexpr Point kOmniWorkspaceHalf{0.080, 0.060,
+                                          0.035};  // m: 160 wide (x), 120 high (y), 70 deep (z)
 
 // The force the motors can render: the command scaled down to the peak (direction kept), and
 // zero for a non-finite command.
@@ -31,8 +32,10 @@ inline Point saturate_force(const double command[3]) noexcept {
 inline tacta_device_capabilities omni_capabilities(const Point& origin, uint32_t dof_in) noexcept {
   tacta_device_capabilities c{};
   for (int i = 0; i < 3; ++i) {
-    c.workspace_min[i] = origin[static_cast<size_t>(i)] - kOmniWorkspaceHalf[static_cast<size_t>(i)];
-    c.workspace_max[i] = origin[static_cast<size_t>(i)] + kOmniWorkspaceHalf[static_cast<size_t>(i)];
+    c.workspace_min[i] =
+        origin[static_cast<size_t>(i)] - kOmniWorkspaceHalf[static_cast<size_t>(i)];
+    c.workspace_max[i] =
+        origin[static_cast<size_t>(i)] + kOmniWorkspaceHalf[static_cast<size_t>(i)];
   }
   c.peak_force = kOmniPeakForce;
   c.continuous_force = kOmniContinuousForce;

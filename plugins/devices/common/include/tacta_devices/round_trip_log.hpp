@@ -28,7 +28,8 @@ class RoundTripLog {
     std::vector<double> kept;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      kept.assign(samples_.begin(), samples_.begin() + static_cast<std::ptrdiff_t>(std::min(next_, samples_.size())));
+      kept.assign(samples_.begin(),
+                  samples_.begin() + static_cast<std::ptrdiff_t>(std::min(next_, samples_.size())));
     }
     if (kept.empty()) return -1.0;
     const auto k = static_cast<size_t>(q * static_cast<double>(kept.size() - 1) + 0.5);

@@ -24,10 +24,10 @@ static void sleep_until_ns(uint64_t deadline) {
 static int read_row(FILE* in, double* time, tnet_state* s) {
   double force[3];
   unsigned buttons;
-  const int n = fscanf(in, " %lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%u,%lf,%lf,%lf", time, &s->position[0],
-                       &s->position[1], &s->position[2], &s->orientation[0], &s->orientation[1], &s->orientation[2],
-                       &s->orientation[3], &s->velocity[0], &s->velocity[1], &s->velocity[2], &buttons, &force[0],
-                       &force[1], &force[2]);
+  const int n = fscanf(in, " %lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%u,%lf,%lf,%lf", time,
+                       &s->position[0], &s->position[1], &s->position[2], &s->orientation[0],
+                       &s->orientation[1], &s->orientation[2], &s->orientation[3], &s->velocity[0],
+                       &s->velocity[1], &s->velocity[2], &buttons, &force[0], &force[1], &force[2]);
   if (n == EOF) return 0;
   if (n != 15) return -1;
   s->buttons = buttons;
@@ -78,8 +78,8 @@ int main(int argc, char** argv) {
     ++sent;
     tacta_net_poll(&dev);
     tacta_net_force(&dev, force);
-    tacta_net_passivity_filter(&dev.passivity, s.position, s.velocity, dt, tacta_net_remote_budget(&dev), force,
-                               caps.peak_force, force);
+    tacta_net_passivity_filter(&dev.passivity, s.position, s.velocity, dt,
+                               tacta_net_remote_budget(&dev), force, caps.peak_force, force);
     {
       const double m = force[0] * force[0] + force[1] * force[1] + force[2] * force[2];
       if (m > peak * peak) peak = sqrt(m);
@@ -87,9 +87,11 @@ int main(int argc, char** argv) {
   }
   fclose(in);
   tacta_net_close(&dev);
-  printf("states sent %ld, forces received %llu, dropped %llu, malformed %llu, peak force %.3f N, "
-         "last round trip %.3f ms, ledger %.6f J\n",
-         sent, (unsigned long long)dev.received, (unsigned long long)dev.dropped, (unsigned long long)dev.malformed,
-         peak, dev.round_trip_s * 1e3, tacta_net_passivity_ledger(&dev.passivity));
+  printf(
+      "states sent %ld, forces received %llu, dropped %llu, malformed %llu, peak force %.3f N, "
+      "last round trip %.3f ms, ledger %.6f J\n",
+      sent, (unsigned long long)dev.received, (unsigned long long)dev.dropped,
+      (unsigned long long)dev.malformed, peak, dev.round_trip_s * 1e3,
+      tacta_net_passivity_ledger(&dev.passivity));
   return 0;
 }

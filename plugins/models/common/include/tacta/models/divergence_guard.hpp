@@ -28,8 +28,8 @@ class DivergenceGuard {
 
  private:
   uint32_t node_count_ = 0;
-  std::vector<uint32_t> edges_;          // 2 per edge
-  std::vector<double> rest_length_sq_;   // m^2, 1 per edge
+  std::vector<uint32_t> edges_;         // 2 per edge
+  std::vector<double> rest_length_sq_;  // m^2, 1 per edge
   double stretch_limit_ = kDefaultStretchLimit;
 };
 

@@ -14,7 +14,9 @@ struct EdgeGraph {
   std::vector<uint32_t> neighbour;  // 2 * edge_count
   std::vector<uint32_t> edge;       // 2 * edge_count: edge index of each (i, neighbour) entry
 
-  uint32_t node_count() const { return offset.empty() ? 0u : static_cast<uint32_t>(offset.size() - 1); }
+  uint32_t node_count() const {
+    return offset.empty() ? 0u : static_cast<uint32_t>(offset.size() - 1);
+  }
   uint32_t degree(uint32_t node) const { return offset[node + 1] - offset[node]; }
 
   // Throws std::invalid_argument naming the edge when an index is out of range or i == j.

@@ -79,7 +79,8 @@ inline double period_from_crossings(const std::vector<double>& signal, double dt
   std::vector<double> crossings;
   for (size_t k = 1; k < signal.size(); ++k)
     if (signal[k - 1] < 0 && signal[k] >= 0)
-      crossings.push_back(dt * (static_cast<double>(k) - 1 + signal[k - 1] / (signal[k - 1] - signal[k])));
+      crossings.push_back(
+          dt * (static_cast<double>(k) - 1 + signal[k - 1] / (signal[k - 1] - signal[k])));
   if (crossings.size() < 2) return 0;
   return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
 }
