@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>  // glibc declares these noexcept; the definitions below match
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define TACTA_COUNT_ALLOCATIONS 0
@@ -28,24 +29,24 @@ void* __libc_malloc(size_t);
 void* __libc_calloc(size_t, size_t);
 void* __libc_realloc(void*, size_t);
 void* __libc_memalign(size_t, size_t);
-void* malloc(size_t size) {
+void* malloc(size_t size) noexcept {
   if (g_counting) ++g_allocations;
   return __libc_malloc(size);
 }
-void* calloc(size_t count, size_t size) {
+void* calloc(size_t count, size_t size) noexcept {
   if (g_counting) ++g_allocations;
   return __libc_calloc(count, size);
 }
-void* realloc(void* pointer, size_t size) {
+void* realloc(void* pointer, size_t size) noexcept {
   if (g_counting) ++g_allocations;
   return __libc_realloc(pointer, size);
 }
-int posix_memalign(void** out, size_t alignment, size_t size) {
+int posix_memalign(void** out, size_t alignment, size_t size) noexcept {
   if (g_counting) ++g_allocations;
   *out = __libc_memalign(alignment, size);
   return *out ? 0 : 12;  // ENOMEM
 }
-void* aligned_alloc(size_t alignment, size_t size) {
+void* aligned_alloc(size_t alignment, size_t size) noexcept {
   if (g_counting) ++g_allocations;
   return __libc_memalign(alignment, size);
 }
