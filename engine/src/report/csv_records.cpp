@@ -46,8 +46,8 @@ void write_csv_records(const std::string& dir, const HapticLoop& loop, const Wor
     std::fprintf(f.get(), "time_s,body,node,x,y,z,vx,vy,vz\n");
     for (const TrajectoryRow& r : loop.trajectory().rows())
       std::fprintf(f.get(), "%.6f,%s,%u,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r.time_s,
-                   world.body(r.body).name.c_str(), r.node, r.x[0], r.x[1], r.x[2], r.v[0], r.v[1],
-                   r.v[2]);
+                   world.body(r.body).info.name.c_str(), r.node, r.x[0], r.x[1], r.x[2], r.v[0],
+                   r.v[1], r.v[2]);
     result.outputs.push_back(path);
   }
   if (!loop.probes().rows().empty()) {
@@ -55,10 +55,11 @@ void write_csv_records(const std::string& dir, const HapticLoop& loop, const Wor
     File f = open_or_throw(path);
     std::fprintf(f.get(), "time_s,body,probe,x,y,z,ux,uy,uz\n");
     for (const ProbeRow& r : loop.probes().rows()) {
-      const Vec3& rest = world.body(r.body).probes[r.probe].rest;
+      const Vec3& rest = world.body(r.body).recording.probes[r.probe].rest;
       std::fprintf(f.get(), "%.6f,%s,%s,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", r.time_s,
-                   world.body(r.body).name.c_str(), world.body(r.body).probes[r.probe].name.c_str(),
-                   r.x[0], r.x[1], r.x[2], r.x[0] - rest[0], r.x[1] - rest[1], r.x[2] - rest[2]);
+                   world.body(r.body).info.name.c_str(),
+                   world.body(r.body).recording.probes[r.probe].name.c_str(), r.x[0], r.x[1],
+                   r.x[2], r.x[0] - rest[0], r.x[1] - rest[1], r.x[2] - rest[2]);
     }
     result.outputs.push_back(path);
   }
@@ -68,7 +69,7 @@ void write_csv_records(const std::string& dir, const HapticLoop& loop, const Wor
     std::fprintf(f.get(), "time_s,body,kinetic_J,elastic_J,total_J,max_displacement_m\n");
     for (const EnergyRow& r : loop.energy().rows())
       std::fprintf(f.get(), "%.6f,%s,%.12g,%.12g,%.12g,%.9g\n", r.time_s,
-                   world.body(r.body).name.c_str(), r.kinetic_J, r.elastic_J,
+                   world.body(r.body).info.name.c_str(), r.kinetic_J, r.elastic_J,
                    r.kinetic_J + r.elastic_J, r.max_displacement_m);
     result.outputs.push_back(path);
   }

@@ -12,7 +12,7 @@ namespace {
 // The paper's corner names for the nodes of a 4-node planar square, else "node N".
 std::string node_label(const SoftBody& body, uint32_t node) {
   static const char* const corners[] = {"SW", "SE", "NW", "NE"};
-  if (body.topology->mesh.dimension == 2 && body.node_count() == 4)
+  if (body.shape.topology->mesh.dimension == 2 && body.node_count() == 4)
     return std::string(corners[node]) + " (node " + std::to_string(node) + ")";
   return "node " + std::to_string(node);
 }
@@ -34,13 +34,14 @@ void write_plots(const std::string& dir, const World& world, RunResult& result,
       }
       args.insert(args.end(), {scripts + "/phase_portrait.py", dir + "/trajectory.csv", png,
                                "--title", world.scene().name});
-      const SoftBody* body = nullptr;
-      for (size_t i = 0; i < world.body_count() && body == nullptr; ++i)
-        if (!world.body(i).recorded_nodes.empty()) body = &world.body(i);
+      size_t first = 0;
+      while (first + 1 < world.body_count() && world.body(first).recording.recorded_nodes.empty())
+        ++first;
+      const SoftBody body = world.body(first);
       std::string nodes, labels;
-      for (uint32_t n : body->recorded_nodes) {
+      for (uint32_t n : body.recording.recorded_nodes) {
         nodes += (nodes.empty() ? "" : ",") + std::to_string(n);
-        labels += (labels.empty() ? "" : ",") + node_label(*body, n);
+        labels += (labels.empty() ? "" : ",") + node_label(body, n);
       }
       args.insert(args.end(), {"--nodes", nodes, "--labels", labels});
     } else if (plot == "force") {

@@ -90,7 +90,7 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
   j.key("bodies").begin_array();
   for (size_t i = 0; i < result.bodies.size(); ++i) {
     const BodyResult& b = result.bodies[i];
-    const SoftBody& body = world.body(i);
+    const SoftBody body = world.body(i);
     j.begin_object();
     j.field("name", b.name).field("model", b.model);
     // Only for bodies that came or went while the scene ran (scene events, Simulation::add_body).
@@ -100,21 +100,21 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     // Every model the body ran, with the simulated time it took over (s): the scene's scheduled
     // swaps and the ones requested while running, in time order.
     std::vector<std::pair<double, std::string>> runs{
-        {std::max(0.0, b.added_s), body.initial_model}};
-    for (size_t s = 0; s < body.next_swap; ++s)
-      runs.emplace_back(body.swaps[s].time_s, body.swaps[s].model_name);
-    for (const RuntimeSwap& r : body.runtime_swaps) runs.emplace_back(r.time_s, r.model);
+        {std::max(0.0, b.added_s), body.model.initial_model}};
+    for (size_t s = 0; s < body.model.next_swap; ++s)
+      runs.emplace_back(body.model.swaps[s].time_s, body.model.swaps[s].model_name);
+    for (const RuntimeSwap& r : body.model.runtime_swaps) runs.emplace_back(r.time_s, r.model);
     std::stable_sort(runs.begin(), runs.end(),
                      [](const auto& x, const auto& y) { return x.first < y.first; });
     j.key("models_run").begin_array();
     for (const auto& [time, model] : runs)
       j.begin_object().field("time_s", time).field("model", model).end_object();
     j.end_array();
-    j.field("models_run_unlisted", body.runtime_swaps_unlisted);
+    j.field("models_run_unlisted", body.model.runtime_swaps_unlisted);
     j.field("nodes", static_cast<uint64_t>(b.nodes))
         .field("elements", static_cast<uint64_t>(b.elements));
-    write_mesh_origin(j, b, body.topology->load);
-    j.field("model_notes", body.model->describe());
+    write_mesh_origin(j, b, body.shape.topology->load);
+    j.field("model_notes", body.model.instance->describe());
     j.field("max_displacement_m", b.max_displacement_m);
     j.field("kinetic_energy_J", b.kinetic_energy_J).field("elastic_energy_J", b.elastic_energy_J);
     j.field("initial_energy_J", b.initial_energy_J);
@@ -124,8 +124,8 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
       j.end_object();
     }
     j.field("step_thread", b.own_thread ? "own" : "haptic").field("step_rate_hz", b.step_rate_hz);
-    if (body.surface) {  // what the body was drawn, touched and collided through
-      const EmbeddedSurface& s = *body.surface;
+    if (body.surface.mesh) {  // what the body was drawn, touched and collided through
+      const EmbeddedSurface& s = *body.surface.mesh;
       j.key("surface").begin_object();
       j.field("source", s.source).field("vertices", static_cast<uint64_t>(s.vertex_count()));
       j.field("triangles", static_cast<uint64_t>(s.triangle_count()));
@@ -145,8 +145,8 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
     }
     // Probes at the end of the run: rest point, position and displacement, m.
     j.key("probes").begin_array();
-    for (const Probe& probe : body.probes) {
-      const Vec3 x = probe.position(body.positions.data());
+    for (const Probe& probe : body.recording.probes) {
+      const Vec3 x = probe.position(body.nodes.positions.data());
       j.begin_object().field("name", probe.name);
       j.key("rest").begin_array();
       for (double c : probe.rest) j.value(c);

@@ -6,14 +6,14 @@
 
 namespace tacta {
 
-BodyWorker::BodyWorker(SoftBody& body, const Vec3& gravity, bool wait_at_boundaries,
+BodyWorker::BodyWorker(const SoftBody& body, const Vec3& gravity, bool wait_at_boundaries,
                        size_t expected_steps)
     : body_(body), gravity_(gravity), wait_at_boundaries_(wait_at_boundaries) {
-  const size_t n3 = body.positions.size();
-  positions_ = body.positions;
-  velocities_ = body.velocities;
+  const size_t n3 = body.nodes.positions.size();
+  positions_ = body.nodes.positions;
+  velocities_ = body.nodes.velocities;
   external_forces_.assign(n3, 0.0);
-  saved_positions_ = body.positions;
+  saved_positions_ = body.nodes.positions;
   contact_mean_.assign(n3, 0.0);
   impulse_.assign(n3, 0.0);
   von_mises_.assign(body.node_count(), 0.0);
@@ -26,11 +26,11 @@ BodyWorker::~BodyWorker() { stop(); }
 void BodyWorker::start() {
   if (thread_.joinable()) return;
   // The body may have changed between runs (a viewer pausing and playing on): start from it.
-  std::copy(body_.positions.begin(), body_.positions.end(), positions_.begin());
-  std::copy(body_.velocities.begin(), body_.velocities.end(), velocities_.begin());
-  elastic_J_ = body_.model->elastic_energy(positions_.data());
-  has_stress_ = body_.model->has_stress();
-  if (has_stress_) body_.model->node_stress(positions_.data(), von_mises_.data());
+  std::copy(body_.nodes.positions.begin(), body_.nodes.positions.end(), positions_.begin());
+  std::copy(body_.nodes.velocities.begin(), body_.nodes.velocities.end(), velocities_.begin());
+  elastic_J_ = body_.model.instance->elastic_energy(positions_.data());
+  has_stress_ = body_.model.instance->has_stress();
+  if (has_stress_) body_.model.instance->node_stress(positions_.data(), von_mises_.data());
   quit_.store(false, std::memory_order_relaxed);
   thread_ = std::thread([this] { run(); });
   // The name lets a realtime run tell body workers (simulation work) from helper threads.
@@ -83,14 +83,16 @@ bool BodyWorker::finish_step(double time) noexcept {
 void BodyWorker::collect() noexcept {
   in_flight_ = false;
   collected_ = job_outcome_;
-  ++body_.refreshes;
+  ++body_.schedule.refreshes;
   // The state the haptic thread renders against moves to the finished step; the one it replaces
   // becomes the start of the body's motion for the collision layer's swept queries.
-  std::copy(body_.positions.begin(), body_.positions.end(), body_.saved_positions.begin());
-  std::copy(positions_.begin(), positions_.end(), body_.positions.begin());
-  std::copy(velocities_.begin(), velocities_.end(), body_.velocities.begin());
+  std::copy(body_.nodes.positions.begin(), body_.nodes.positions.end(),
+            body_.nodes.step_start.begin());
+  std::copy(positions_.begin(), positions_.end(), body_.nodes.positions.begin());
+  std::copy(velocities_.begin(), velocities_.end(), body_.nodes.velocities.begin());
   if (!(collected_.bits & TACTA_STEP_FAULT_MASK))
-    body_.max_displacement_m = std::max(body_.max_displacement_m, collected_.max_displacement);
+    body_.fault.max_displacement_m =
+        std::max(body_.fault.max_displacement_m, collected_.max_displacement);
   elastic_J_ = job_elastic_J_;
   has_stress_ = job_has_stress_;
   if (has_stress_) std::copy(job_von_mises_.begin(), job_von_mises_.end(), von_mises_.begin());
@@ -103,7 +105,7 @@ void BodyWorker::post(double time, double dt) noexcept {
   for (size_t i = 0; i < impulse_.size(); ++i) contact_mean_[i] = impulse_[i] / span;
   std::fill(impulse_.begin(), impulse_.end(), 0.0);
   impulse_time_ = 0;
-  job_model_ = body_.model.get();
+  job_model_ = body_.model.instance.get();
   job_time_ = time;
   job_dt_ = dt;
   due_time_ = time + dt;
@@ -128,8 +130,9 @@ void BodyWorker::step_job() noexcept {
   const auto start = std::chrono::steady_clock::now();
   const StepArrays arrays{positions_, velocities_, external_forces_, saved_positions_,
                           contact_mean_};
-  job_outcome_ = step_body_arrays(*job_model_, *body_.topology, gravity_, body_.divergence_limit_m,
-                                  arrays, job_time_, job_dt_, body_.boundary.get());
+  job_outcome_ =
+      step_body_arrays(*job_model_, *body_.shape.topology, gravity_, body_.fault.divergence_limit_m,
+                       arrays, job_time_, job_dt_, body_.constraints.boundary.get());
   // What snapshots want from the model is computed here, where the model lives during a step.
   job_elastic_J_ = job_model_->elastic_energy(positions_.data());
   job_has_stress_ = job_model_->has_stress();

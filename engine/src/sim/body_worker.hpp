@@ -2,11 +2,11 @@
 // `step_rate_hz`), for models that cannot step within the 1 ms haptic tick.
 //
 // The split: the worker thread owns a private copy of the node state and the model while a step
-// is in flight; the haptic thread keeps rendering against the body's arrays in SoftBody, which
+// is in flight; the haptic thread keeps rendering against the body's arrays in its NodeState, which
 // are the last state the worker finished (the "local contact model" the proxy touches, see
 // haptics/local_compliance.hpp for how it yields between refreshes). At each of the body's
 // period boundaries the haptic thread collects the finished step (copies the new state into
-// SoftBody), takes any model swap, and posts the next step with the mean contact force of the
+// NodeState), takes any model swap, and posts the next step with the mean contact force of the
 // period just ended, so the impulse the tool gave the body is handed over whole.
 //
 // Pipelined: the state the haptic thread sees at boundary k is the result of the step posted at
@@ -38,7 +38,8 @@ struct WorkerStats {
 class BodyWorker {
  public:
   // Sizes every buffer for `body` (allocates; load time). expected_steps sizes the step timer.
-  BodyWorker(SoftBody& body, const Vec3& gravity, bool wait_at_boundaries, size_t expected_steps);
+  BodyWorker(const SoftBody& body, const Vec3& gravity, bool wait_at_boundaries,
+             size_t expected_steps);
   ~BodyWorker();
   BodyWorker(const BodyWorker&) = delete;
   BodyWorker& operator=(const BodyWorker&) = delete;
@@ -50,7 +51,7 @@ class BodyWorker {
   // impulse.
   void accumulate(const std::vector<double>& contact, double dt) noexcept;
   // Haptic thread, when the body's clock has fallen due at `time`: collects the step in flight
-  // (waiting for it in lockstep) into SoftBody. Returns false when it is still running (realtime
+  // (waiting for it in lockstep) into NodeState. Returns false when it is still running (realtime
   // only): the caller renders on against the old state and tries again next tick.
   bool finish_step(double time) noexcept;
   // Haptic thread, after finish_step (the model is idle: swaps may happen in between): posts the
@@ -70,9 +71,9 @@ class BodyWorker {
  private:
   void run() noexcept;       // the worker thread
   void step_job() noexcept;  // one step on the private arrays
-  void collect() noexcept;   // haptic thread, worker idle: private state -> SoftBody
+  void collect() noexcept;   // haptic thread, worker idle: private state -> NodeState
 
-  SoftBody& body_;
+  SoftBody body_;  // references into the World's pools, which never move
   Vec3 gravity_;
   bool wait_at_boundaries_;
   // Private state, touched by the worker only while a step is in flight.

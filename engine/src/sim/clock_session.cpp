@@ -36,14 +36,14 @@ class OffsetTask final : public HapticTask {
 namespace {
 
 BodyStatic describe_body(const SoftBody& b) {
-  const VolumeMesh& m = b.topology->mesh;
-  BodyStatic bs{b.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
-  if (b.surface) {
-    bs.surface_rest_positions = b.surface->rest_positions;
-    bs.surface_triangles = b.surface->triangles;
+  const VolumeMesh& m = b.shape.topology->mesh;
+  BodyStatic bs{b.info.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
+  if (b.surface.mesh) {
+    bs.surface_rest_positions = b.surface.mesh->rest_positions;
+    bs.surface_triangles = b.surface.mesh->triangles;
   }
-  for (uint32_t n = 0; n < b.topology->fixed.size(); ++n)
-    if (b.topology->fixed[n]) bs.fixed_nodes.push_back(n);
+  for (uint32_t n = 0; n < b.shape.topology->fixed.size(); ++n)
+    if (b.shape.topology->fixed[n]) bs.fixed_nodes.push_back(n);
   return bs;
 }
 
@@ -68,10 +68,11 @@ std::vector<double> begin_models(World& world) {
   std::vector<double> energy;
   const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
   for (size_t i = 0; i < world.body_count(); ++i) {
-    SoftBody& b = world.body(i);
-    energy.push_back(b.kinetic_energy() + b.model->elastic_energy(b.positions.data()));
+    const SoftBody b = world.body(i);
+    energy.push_back(b.kinetic_energy() +
+                     b.model.instance->elastic_energy(b.nodes.positions.data()));
     const tacta_body_state state = b.state_view(0.0);
-    b.model->begin(state, b.step_dt(haptic_dt));
+    b.model.instance->begin(state, b.step_dt(haptic_dt));
   }
   return energy;
 }
@@ -98,7 +99,7 @@ ClockSession::~ClockSession() { loop_.stop_workers(); }
 void ClockSession::add_body(size_t slot) {
   // Slots are filled in order; the snapshots and the description grow to cover this one.
   while (scene_static_.bodies.size() <= slot) {
-    SoftBody& b = world_.body(scene_static_.bodies.size());
+    const SoftBody b = world_.body(scene_static_.bodies.size());
     scene_static_.bodies.push_back(describe_body(b));
     const BodySnapshot prototype = HapticLoop::body_prototype(b);
     snapshots_.for_each_slot([&](Snapshot& s) { s.bodies.push_back(prototype); });

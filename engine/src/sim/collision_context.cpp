@@ -179,7 +179,7 @@ void check_thickness(const CollisionDesc& c, const World& world,
               "in reach of many others and the edge-edge CCD cost per tick grows fast with "
               "thickness / edge (a 1000 m margin on soft_drop took ~0.6 s of CPU a tick, against "
               "~0.1 ms)",
-              c.thickness, world.body(static_cast<size_t>(body_of_surface[k])).name,
+              c.thickness, world.body(static_cast<size_t>(body_of_surface[k])).info.name,
               kMaxThicknessPerEdge, edge, limit));
   }
 }
@@ -245,31 +245,31 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
 }
 
 bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
-  SoftBody& b = world_.body(i);
-  if (!world_.body_desc(i).collide || b.topology->mesh.triangles.empty() ||
-      b.topology->mesh.dimension != 3)
+  const SoftBody b = world_.body(i);
+  if (!world_.body_desc(i).collide || b.shape.topology->mesh.triangles.empty() ||
+      b.shape.topology->mesh.dimension != 3)
     return false;
   std::vector<double>& inv = inverse_masses_[i];
   inv.resize(b.node_count());
   // A body stepping on its own thread has its state replaced at each refresh, so a correction
   // made here would be lost: for the response it is a moving obstacle (infinite mass).
   for (size_t n = 0; n < inv.size(); ++n)
-    inv[n] = b.own_thread || b.topology->fixed[n] || b.topology->masses[n] <= 0
+    inv[n] = b.schedule.own_thread || b.shape.topology->fixed[n] || b.shape.topology->masses[n] <= 0
                  ? 0.0
-                 : 1.0 / b.topology->masses[n];
+                 : 1.0 / b.shape.topology->masses[n];
   s.body_id = static_cast<uint32_t>(i);
   s.vertex_count = static_cast<uint32_t>(b.node_count());
-  s.positions_start = b.saved_positions.data();
-  s.positions_end = b.positions.data();
-  s.velocities = b.velocities.data();
+  s.positions_start = b.nodes.step_start.data();
+  s.positions_end = b.nodes.positions.data();
+  s.velocities = b.nodes.velocities.data();
   s.inverse_masses = inv.data();
-  s.triangle_count = static_cast<uint32_t>(b.topology->mesh.triangles.size() / 3);
-  s.triangles = b.topology->mesh.triangles.data();
-  s.tet_count = static_cast<uint32_t>(b.topology->mesh.tets.size() / 4);
-  s.tets = s.tet_count ? b.topology->mesh.tets.data() : nullptr;
+  s.triangle_count = static_cast<uint32_t>(b.shape.topology->mesh.triangles.size() / 3);
+  s.triangles = b.shape.topology->mesh.triangles.data();
+  s.tet_count = static_cast<uint32_t>(b.shape.topology->mesh.tets.size() / 4);
+  s.tets = s.tet_count ? b.shape.topology->mesh.tets.data() : nullptr;
   s.thickness = world_.scene().collision.thickness;
   // A body with an embedded surface is seen, touched and collided through that surface.
-  if (b.surface) {
+  if (b.surface.mesh) {
     embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(world_, i, inverse_masses_[i]);
     embedded_[i]->describe(s);
   }
@@ -393,9 +393,9 @@ void CollisionContext::refit(double time, double dt) noexcept {
   bool moved = !refitted_once_;
   for (size_t i = 0; i < surface_of_body_.size(); ++i) {
     if (surface_of_body_[i] < 0) continue;
-    const SoftBody& b = world_.body(i);
-    if (!b.own_thread || b.refreshes != refits_seen_[i]) moved = true;
-    refits_seen_[i] = b.refreshes;
+    const SoftBody b = world_.body(i);
+    if (!b.schedule.own_thread || b.schedule.refreshes != refits_seen_[i]) moved = true;
+    refits_seen_[i] = b.schedule.refreshes;
   }
   if (!moved) return;
   refitted_once_ = true;

@@ -94,7 +94,7 @@ class CollisionContext {
   std::vector<int> surface_of_body_;
   std::vector<std::unique_ptr<EmbeddedCollisionSurface>>
       embedded_;                       // per body; null: its tets' boundary
-  std::vector<uint64_t> refits_seen_;  // per body: its SoftBody::refreshes at the last refit
+  std::vector<uint64_t> refits_seen_;  // per body: its StepSchedule::refreshes at the last refit
   bool refitted_once_ = false;
   std::vector<int> body_of_surface_;
   std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)

@@ -7,7 +7,7 @@ namespace tacta {
 EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
                                                    const std::vector<double>& node_inverse_masses)
     : world_(world), body_(body), node_inverse_masses_(node_inverse_masses) {
-  const EmbeddedSurface& s = *this->body().surface;
+  const EmbeddedSurface& s = *this->body().surface.mesh;
   const size_t vertices = s.vertex_count(), nodes = this->body().node_count();
   start_.assign(3 * vertices, 0.0);
   velocities_.assign(3 * vertices, 0.0);
@@ -30,7 +30,7 @@ EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
 }
 
 void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept {
-  EmbeddedSurface& s = *body().surface;
+  EmbeddedSurface& s = *body().surface.mesh;
   view.vertex_count = static_cast<uint32_t>(s.vertex_count());
   view.positions_start = start_.data();
   view.positions_end = s.positions.data();
@@ -43,21 +43,21 @@ void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept 
 }
 
 void EmbeddedCollisionSurface::refresh() noexcept {
-  SoftBody& b = body();
-  interpolate_to_surface(*b.surface, b.saved_positions.data(), start_.data());
-  update_embedded_surface(*b.surface, b.positions.data());
-  interpolate_to_surface(*b.surface, b.velocities.data(), velocities_.data());
+  const SoftBody b = body();
+  interpolate_to_surface(*b.surface.mesh, b.nodes.step_start.data(), start_.data());
+  update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
+  interpolate_to_surface(*b.surface.mesh, b.nodes.velocities.data(), velocities_.data());
 }
 
 void EmbeddedCollisionSurface::remember() noexcept {
-  const EmbeddedSurface& s = *body().surface;
+  const EmbeddedSurface& s = *body().surface.mesh;
   std::copy(s.positions.begin(), s.positions.end(), end_before_.begin());
   std::copy(velocities_.begin(), velocities_.end(), velocities_before_.begin());
 }
 
 void EmbeddedCollisionSurface::apply_response() noexcept {
-  SoftBody& b = body();
-  EmbeddedSurface& s = *b.surface;
+  const SoftBody b = body();
+  EmbeddedSurface& s = *b.surface.mesh;
   // What the response asked of each vertex: its corrected end position and velocity.
   bool any = false;
   for (size_t v = 0; v < s.vertex_count(); ++v) {
@@ -74,8 +74,8 @@ void EmbeddedCollisionSurface::apply_response() noexcept {
   // Averaging under-corrects where vertices share nodes: a few passes close the gap to the targets.
   constexpr int kPasses = 4;
   for (int pass = 0; pass < kPasses; ++pass) {
-    interpolate_to_surface(s, b.positions.data(), s.positions.data());
-    interpolate_to_surface(s, b.velocities.data(), velocities_.data());
+    interpolate_to_surface(s, b.nodes.positions.data(), s.positions.data());
+    interpolate_to_surface(s, b.nodes.velocities.data(), velocities_.data());
     for (size_t v = 0; v < s.vertex_count(); ++v) {
       if (!corrected_[v]) continue;
       double position_impulse[3], velocity_impulse[3];
@@ -94,8 +94,8 @@ void EmbeddedCollisionSurface::apply_response() noexcept {
       if (node_reached_[n] == 0) continue;
       const double scale = node_inverse_masses_[n] / static_cast<double>(node_reached_[n]);
       for (size_t a = 0; a < 3; ++a) {
-        b.positions[3 * n + a] += scale * node_position_change_[3 * n + a];
-        b.velocities[3 * n + a] += scale * node_velocity_change_[3 * n + a];
+        b.nodes.positions[3 * n + a] += scale * node_position_change_[3 * n + a];
+        b.nodes.velocities[3 * n + a] += scale * node_velocity_change_[3 * n + a];
         node_position_change_[3 * n + a] = 0;
         node_velocity_change_[3 * n + a] = 0;
       }

@@ -32,7 +32,7 @@ class EmbeddedCollisionSurface {
   void apply_response() noexcept;
 
  private:
-  SoftBody& body() noexcept { return world_.body(body_); }
+  SoftBody body() noexcept { return world_.body(body_); }
   World& world_;
   size_t body_;
   const std::vector<double>& node_inverse_masses_;

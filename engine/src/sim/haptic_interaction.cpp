@@ -79,10 +79,10 @@ std::array<double, 3> touch_weights(const double* barycentric) noexcept {
 // Where the point with those weights on `triangle` of the body is, in `positions` (m).
 Vec3 point_on_triangle(const SoftBody& body, const std::vector<double>& positions, int triangle,
                        const double* barycentric) noexcept {
-  if (body.surface)
-    return surface_point(*body.surface, static_cast<uint32_t>(triangle), barycentric,
+  if (body.surface.mesh)
+    return surface_point(*body.surface.mesh, static_cast<uint32_t>(triangle), barycentric,
                          positions.data());
-  const std::vector<uint32_t>& tris = body.topology->mesh.triangles;
+  const std::vector<uint32_t>& tris = body.shape.topology->mesh.triangles;
   const std::array<double, 3> w = touch_weights(barycentric);
   Vec3 p{0, 0, 0};
   for (size_t k = 0; k < 3; ++k) {
@@ -98,10 +98,10 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
                                        const Vec3& force) noexcept {
   if (hit.body < 0 || static_cast<size_t>(hit.body) >= world.body_count() || hit.triangle < 0)
     return;
-  SoftBody& body = world.body(static_cast<size_t>(hit.body));
+  const SoftBody body = world.body(static_cast<size_t>(hit.body));
   if (!body.present()) return;
   const std::vector<uint32_t>& triangles =
-      body.surface ? body.surface->triangles : body.topology->mesh.triangles;
+      body.surface.mesh ? body.surface.mesh->triangles : body.shape.topology->mesh.triangles;
   const auto t = static_cast<size_t>(hit.triangle);
   if (3 * t + 2 >= triangles.size()) return;
   // The reaction goes to the touched triangle's vertices by the touched point's weights; an
@@ -109,11 +109,13 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
   const std::array<double, 3> w = touch_weights(hit.barycentric);
   for (size_t k = 0; k < 3; ++k) {
     const double share[3] = {w[k] * force[0], w[k] * force[1], w[k] * force[2]};
-    if (body.surface) {
-      spread_to_nodes(*body.surface, triangles[3 * t + k], share, body.contact_forces.data());
+    if (body.surface.mesh) {
+      spread_to_nodes(*body.surface.mesh, triangles[3 * t + k], share,
+                      body.loads.contact_forces.data());
       continue;
     }
-    for (size_t a = 0; a < 3; ++a) body.contact_forces[3 * triangles[3 * t + k] + a] += share[a];
+    for (size_t a = 0; a < 3; ++a)
+      body.loads.contact_forces[3 * triangles[3 * t + k] + a] += share[a];
   }
 }
 
@@ -122,20 +124,20 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   LocalModel& m = ch.local;
   const int touched = m.body >= 0 ? m.body : slot.touched_body;
   if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() ||
-      !world.body(static_cast<size_t>(touched)).own_thread) {
+      !world.body(static_cast<size_t>(touched)).schedule.own_thread) {
     ch.renderer.set_local_compliance({});
     return;
   }
-  const SoftBody& body = world.body(static_cast<size_t>(touched));
+  const SoftBody body = world.body(static_cast<size_t>(touched));
   if (m.body != touched) {
     m = LocalModel{};
     m.body = touched;
-    m.refreshes_seen = body.refreshes;
+    m.refreshes_seen = body.schedule.refreshes;
   }
-  if (body.refreshes != m.refreshes_seen) {
+  if (body.schedule.refreshes != m.refreshes_seen) {
     // The worker finished a step and took the next: the state now shown felt `posted`, the step
     // now running is driven by the mean of the ticks since (BodyWorker::post does the same sums).
-    m.refreshes_seen = body.refreshes;
+    m.refreshes_seen = body.schedule.refreshes;
     m.felt = m.posted;
     m.posted = m.impulse_time > 0 ? scaled(m.impulse, 1.0 / m.impulse_time) : Vec3{0, 0, 0};
     m.impulse = {0, 0, 0};
@@ -143,13 +145,13 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
     if (m.pressing) {
       // The refresh moved the touched point (collect() kept the previous state in
       // saved_positions): the proxy moves with it.
-      const Vec3 before = point_on_triangle(body, body.saved_positions, m.triangle, m.barycentric);
-      const Vec3 after = point_on_triangle(body, body.positions, m.triangle, m.barycentric);
+      const Vec3 before = point_on_triangle(body, body.nodes.step_start, m.triangle, m.barycentric);
+      const Vec3 after = point_on_triangle(body, body.nodes.positions, m.triangle, m.barycentric);
       ch.renderer.carry_proxy(sub(after, before));
       // Secant point stiffness: the normal force the state felt over how far the pressed material
       // point has gone in since the contact began; smoothed, since one step is not a static state.
       const Vec3 now =
-          point_on_triangle(body, body.positions, m.onset_triangle, m.onset_barycentric);
+          point_on_triangle(body, body.nodes.positions, m.onset_triangle, m.onset_barycentric);
       const double depth = dot(sub(m.onset_point, now), m.onset_normal);  // m
       const double force = dot(m.felt, m.onset_normal);                   // N
       if (depth > 1e-4 && force > 0.02) {
@@ -162,7 +164,7 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   // Until the body has shown its stiffness (the first refresh of a press) the surface is rendered
   // as the last step left it: an analytic guess (a flat punch on a half-space) came out 3 to 4
   // times softer than the meshes' own response and made the force jump when the measurement came.
-  c.active = body.local_contact_yielding && m.stiffness > 0;
+  c.active = body.schedule.local_contact_yielding && m.stiffness > 0;
   // Why the measured stiffness matters: the surface the loop sees lags the force it renders by
   // two periods (the step posted at k runs on the forces of k-2..k-1 and shows at k+1). With the
   // device still, F_k = const + g F_(k-2) with g = k_c (k_true - k_l) / (k_true (k_l + k_c)): the
@@ -194,7 +196,7 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch,
     m.onset_triangle = out.contact.triangle;
     for (int k = 0; k < 3; ++k) m.onset_barycentric[k] = out.contact.barycentric[k];
     m.onset_point = point_on_triangle(world.body(static_cast<size_t>(m.body)),
-                                      world.body(static_cast<size_t>(m.body)).positions,
+                                      world.body(static_cast<size_t>(m.body)).nodes.positions,
                                       m.onset_triangle, m.onset_barycentric);
     m.onset_normal = out.contact.normal;
   }

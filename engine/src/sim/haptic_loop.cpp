@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "body_systems.hpp"
+
 namespace tacta {
 
 namespace {
@@ -35,8 +37,8 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
   trace_.grow(expected_ticks * std::max<size_t>(devices, 1) + 16, kMaxRunTicks);
   size_t recorded_nodes = 0, probes = 0;
   for (size_t i = 0; i < world_.body_count(); ++i) {
-    recorded_nodes += world_.body(i).recorded_nodes.size();
-    probes += world_.body(i).probes.size();
+    recorded_nodes += world_.body(i).recording.recorded_nodes.size();
+    probes += world_.body(i).recording.probes.size();
   }
   const double interval_ticks =
       record_interval_s_ > 0 ? record_interval_s_ * scene.clock.haptic_rate_hz : 1.0;
@@ -60,13 +62,13 @@ const char* HapticLoop::stage_name(int stage) noexcept {
   return stage >= 0 && stage < kStageCount ? names[stage] : "?";
 }
 
-BodySnapshot HapticLoop::body_prototype(SoftBody& b) {
+BodySnapshot HapticLoop::body_prototype(const SoftBody& b) {
   BodySnapshot bs;
-  bs.positions = b.positions;
-  bs.velocities = b.velocities;
-  if (b.model->has_stress()) bs.von_mises.assign(b.node_count(), 0.0);
-  if (b.surface) bs.surface_positions = b.surface->positions;
-  bs.model = b.model->name();
+  bs.positions = b.nodes.positions;
+  bs.velocities = b.nodes.velocities;
+  if (b.model.instance->has_stress()) bs.von_mises.assign(b.node_count(), 0.0);
+  if (b.surface.mesh) bs.surface_positions = b.surface.mesh->positions;
+  bs.model = b.model.instance->name();
   bs.model.reserve(64);  // a swap copies the new name without reallocating
   return bs;
 }
@@ -90,21 +92,13 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   // The tick boundary: bodies requested in or out since the last tick (or due by the scene's
   // events) enter or leave before anything reads the world.
   world_.apply_entity_commands(time);
-  apply_swaps(time);
+  take_model_swaps(world_, time);
   read_devices(time);
   const auto read_done = Clock::now();
-  for (size_t i = 0; i < world_.body_count(); ++i) {
-    SoftBody& b = world_.body(i);
-    if (!b.present()) continue;
-    // Loads set from outside (the stepping API) start each tick's contact sum.
-    if (b.applied_forces.empty())
-      std::fill(b.contact_forces.begin(), b.contact_forces.end(), 0.0);
-    else
-      std::copy(b.applied_forces.begin(), b.applied_forces.end(), b.contact_forces.begin());
-  }
+  start_contact_sums(world_);
   for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
   const auto haptics_done = Clock::now();
-  const bool healthy = step_bodies(time, dt);
+  const bool healthy = step_bodies(world_, workers_, *this, time, dt);
   const auto models_done = Clock::now();
   if (healthy)
     for (Interaction* interaction : interactions_) {
@@ -133,7 +127,7 @@ bool HapticLoop::should_continue() const noexcept {
   // Every body gone (removed, or still to come) is not the end: one may be added.
   bool any_present = false;
   for (size_t i = 0; i < world_.body_count(); ++i) {
-    const SoftBody& b = world_.body(i);
+    const SoftBody b = world_.body(i);
     if (b.presence.state == BodyPresence::kPending) return true;
     if (!b.present()) continue;
     any_present = true;
@@ -147,49 +141,10 @@ bool HapticLoop::should_continue() const noexcept {
   return false;
 }
 
-void HapticLoop::count_model_bits(size_t body, uint32_t bits, double time) noexcept {
-  last_status_.model_bits |= bits;
-  last_status_.error = last_status_.error || has_error_bit(StatusSource::Model, bits);
-  body_status_[body].add(bits, time);
-}
-
 void HapticLoop::raise_device(size_t device, uint32_t bit) noexcept {
   last_status_.device_bits |= bit;
   last_status_.error = last_status_.error || has_error_bit(StatusSource::Device, bit);
   device_status_[device].add(bit, tick_time_);
-}
-
-void HapticLoop::apply_swaps(double time) noexcept {
-  // A body on a worker thread takes its swaps between two of its steps (step_on_worker), when
-  // the worker is not using the model.
-  for (size_t i = 0; i < world_.body_count(); ++i)
-    if (!world_.body(i).own_thread && world_.body(i).present())
-      apply_swaps_to(world_.body(i), time);
-}
-
-void HapticLoop::apply_swaps_to(SoftBody& b, double time) noexcept {
-  const double dt = b.step_dt(1.0 / world_.scene().clock.haptic_rate_hz);
-  while (b.next_swap < b.swaps.size() && b.swaps[b.next_swap].time_s <= time + 1e-12) {
-    // The scheduled instance was built at load time; the outgoing one is parked in its place
-    // and destroyed with the world, so nothing is freed on the haptic thread.
-    std::swap(b.model, b.swaps[b.next_swap].model);
-    ++b.next_swap;
-    b.model->begin(b.state_view(time), dt);
-  }
-  if (ModelInstance* incoming = b.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel)) {
-    ModelInstance* outgoing = b.model.release();
-    b.model.reset(incoming);
-    ModelInstance* head = b.mailbox->retired.load(std::memory_order_relaxed);
-    do {
-      outgoing->retired_next = head;
-    } while (!b.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
-                                                       std::memory_order_relaxed));
-    if (b.runtime_swaps.size() < b.runtime_swaps.capacity())
-      b.runtime_swaps.push_back({time, incoming->name()});
-    else
-      ++b.runtime_swaps_unlisted;
-    b.model->begin(b.state_view(time), dt);
-  }
 }
 
 void HapticLoop::read_devices(double time) noexcept {
@@ -234,69 +189,21 @@ void HapticLoop::read_devices(double time) noexcept {
   }
 }
 
-bool HapticLoop::step_bodies(double time, double dt) noexcept {
-  const Vec3& g = world_.scene().gravity;
-  bool healthy = true;
-  for (size_t i = 0; i < world_.body_count(); ++i) {
-    SoftBody& b = world_.body(i);
-    if (b.fault.frozen || !b.present()) continue;
-    if (BodyWorker* w = i < workers_.size() ? workers_[i].get() : nullptr) {
-      healthy = step_on_worker(b, i, *w, time, dt) && healthy;
-      continue;
-    }
-    double step_dt = dt;
-    if (b.step_period_s > 0) {
-      // A slower body steps once its own clock falls due, by its own period.
-      if (time + 1e-12 < b.next_step_time_s) continue;
-      b.next_step_time_s += b.step_period_s;
-      step_dt = b.step_period_s;
-    }
-    const StepArrays arrays{b.positions, b.velocities, b.external_forces, b.saved_positions,
-                            b.contact_forces};
-    const StepOutcome out = step_body_arrays(*b.model, *b.topology, g, b.divergence_limit_m, arrays,
-                                             time, step_dt, b.boundary.get());
-    count_model_bits(i, out.bits, time);
-    if (out.why != nullptr) {
-      freeze(b, i, time, out.bits, out.why);
-      healthy = false;
-      continue;
-    }
-    b.max_displacement_m = std::max(b.max_displacement_m, out.max_displacement);
-  }
-  return healthy;
-}
-
-bool HapticLoop::step_on_worker(SoftBody& b, size_t index, BodyWorker& w, double time,
-                                double dt) noexcept {
-  w.accumulate(b.contact_forces, dt);
-  if (time + 1e-12 < b.next_step_time_s) return true;
-  if (!w.finish_step(time))
-    return true;  // realtime: still stepping, render on against the old state
-  const StepOutcome& out = w.last_outcome();
-  count_model_bits(index, out.bits, time);
-  if (out.why != nullptr) {
-    // Detected on the tick the step is collected: the device force drops in this same tick.
-    freeze(b, index, time, out.bits, out.why);
-    return false;
-  }
-  apply_swaps_to(b, time);
-  w.post(time, b.step_period_s);
-  // The next boundary counts from this post: a late step shifts the body's clock, it never
-  // makes the worker run two steps back to back.
-  b.next_step_time_s =
-      std::max(b.next_step_time_s + b.step_period_s, time + b.step_period_s - 1e-12);
-  return true;
+void HapticLoop::stepped(size_t body, uint32_t bits, double time) noexcept {
+  last_status_.model_bits |= bits;
+  last_status_.error = last_status_.error || has_error_bit(StatusSource::Model, bits);
+  body_status_[body].add(bits, time);
 }
 
 void HapticLoop::start_workers(bool lockstep, size_t expected_ticks) {
   workers_.resize(world_.body_count());
   const double haptic_rate = world_.scene().clock.haptic_rate_hz;
   for (size_t i = 0; i < world_.body_count(); ++i) {
-    SoftBody& b = world_.body(i);
-    if (!b.own_thread) continue;
-    const auto steps =
-        static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate / b.step_period_s) +
-        2;
+    const SoftBody b = world_.body(i);
+    if (!b.schedule.own_thread) continue;
+    const auto steps = static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate /
+                                           b.schedule.period_s) +
+                       2;
     if (!workers_[i])
       workers_[i] = std::make_unique<BodyWorker>(b, world_.scene().gravity, lockstep, steps);
     workers_[i]->start();
@@ -310,22 +217,22 @@ void HapticLoop::stop_workers() noexcept {
     // The step still in flight when the run ended was collected by stop(): a fault in it is
     // reported like any other, not lost with the run.
     const StepOutcome& out = workers_[i]->last_outcome();
-    SoftBody& b = world_.body(i);
+    const SoftBody b = world_.body(i);
     if (out.why != nullptr && !b.fault.frozen && b.present())
-      freeze(b, i, tick_time_, out.bits, out.why);
+      faulted(i, out.bits, out.why, tick_time_);
   }
 }
 
-void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits,
-                        const char* why) noexcept {
+void HapticLoop::faulted(size_t index, uint32_t bits, const char* why, double time) noexcept {
+  const SoftBody b = world_.body(index);
   b.fault.frozen = true;
   b.fault.bits = bits;
   b.fault.time_s = time;
   std::snprintf(b.fault.reason.data(), b.fault.reason.size(),
-                "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s", why, b.model->name(),
-                bits, time);
+                "%s (model '%s', step bits 0x%x); body frozen at t = %.6g s", why,
+                b.model.instance->name(), bits, time);
   FaultRecord f{time, static_cast<int>(index), -1, bits, {}};
-  std::snprintf(f.reason.data(), f.reason.size(), "body '%.40s': %.150s", b.name.c_str(),
+  std::snprintf(f.reason.data(), f.reason.size(), "body '%.40s': %.150s", b.info.name.c_str(),
                 b.fault.reason.data());
   faults_.push(f);
 }
@@ -333,7 +240,7 @@ void HapticLoop::freeze(SoftBody& b, size_t index, double time, uint32_t bits,
 bool HapticLoop::touches_frozen_body(const DeviceSlot& slot) const noexcept {
   // A removed body is gone for the device too: its force drops to zero from the removing tick.
   if (slot.touched_body >= 0) {
-    const SoftBody& b = world_.body(static_cast<size_t>(slot.touched_body));
+    const SoftBody b = world_.body(static_cast<size_t>(slot.touched_body));
     return b.fault.frozen || !b.present();
   }
   for (size_t i = 0; i < world_.body_count(); ++i)
@@ -399,22 +306,7 @@ void HapticLoop::record(double time) noexcept {
   }
   if (record_interval_s_ > 0 && time + 1e-12 < next_record_s_) return;
   next_record_s_ += record_interval_s_;
-  for (size_t i = 0; i < world_.body_count(); ++i) {
-    const SoftBody& b = world_.body(i);
-    if (!b.present()) continue;
-    for (uint32_t n : b.recorded_nodes) {
-      TrajectoryRow row{time, static_cast<uint32_t>(i), n, {}, {}};
-      for (int a = 0; a < 3; ++a) {
-        row.x[a] = b.positions[3 * n + a];
-        row.v[a] = b.velocities[3 * n + a];
-      }
-      trajectory_.push(row);
-    }
-    for (size_t p = 0; p < b.probes.size(); ++p) {
-      const Vec3 x = b.probes[p].position(b.positions.data());
-      probes_.push({time, static_cast<uint32_t>(i), static_cast<uint32_t>(p), {x[0], x[1], x[2]}});
-    }
-  }
+  record_bodies(world_, time, trajectory_, probes_);
 }
 
 void HapticLoop::capture(Snapshot& s, double time) const noexcept {
@@ -422,30 +314,32 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
   s.tick = tick_index_;
   s.last_tick_ms = last_tick_ms_;
   for (size_t i = 0; i < world_.body_count(); ++i) {
-    SoftBody& b = world_.body(i);
+    const SoftBody b = world_.body(i);
     if (i >= s.bodies.size())
       continue;  // added after the render task started (publish: energy rows)
     BodySnapshot& bs = s.bodies[i];
     bs.present = b.present();
     if (b.presence.state == BodyPresence::kPending) continue;
-    std::copy(b.positions.begin(), b.positions.end(), bs.positions.begin());
-    std::copy(b.velocities.begin(), b.velocities.end(), bs.velocities.begin());
-    if (b.surface)
-      interpolate_to_surface(*b.surface, b.positions.data(), bs.surface_positions.data());
+    std::copy(b.nodes.positions.begin(), b.nodes.positions.end(), bs.positions.begin());
+    std::copy(b.nodes.velocities.begin(), b.nodes.velocities.end(), bs.velocities.begin());
+    if (b.surface.mesh)
+      interpolate_to_surface(*b.surface.mesh, b.nodes.positions.data(),
+                             bs.surface_positions.data());
     const BodyWorker* w = worker(i);
     // A worker body's model may be mid-step on its thread: use what the worker computed.
     if (w != nullptr) {
       if (!bs.von_mises.empty() && w->has_stress())
         std::copy(w->von_mises().begin(), w->von_mises().end(), bs.von_mises.begin());
-    } else if (!bs.von_mises.empty() && b.model->has_stress()) {
-      b.model->node_stress(b.positions.data(), bs.von_mises.data());
+    } else if (!bs.von_mises.empty() && b.model.instance->has_stress()) {
+      b.model.instance->node_stress(b.nodes.positions.data(), bs.von_mises.data());
     }
-    if (bs.model != b.model->name())
-      bs.model.assign(b.model->name());  // capacity reserved up front
+    if (bs.model != b.model.instance->name())
+      bs.model.assign(b.model.instance->name());  // capacity reserved up front
     bs.frozen = b.fault.frozen;
     bs.kinetic_J = b.kinetic_energy();
-    bs.elastic_J = w != nullptr ? w->elastic_energy() : b.model->elastic_energy(b.positions.data());
-    bs.max_displacement_m = b.max_displacement_m;
+    bs.elastic_J = w != nullptr ? w->elastic_energy()
+                                : b.model.instance->elastic_energy(b.nodes.positions.data());
+    bs.max_displacement_m = b.fault.max_displacement_m;
   }
   for (size_t d = 0; d < world_.device_count(); ++d) {
     const DeviceSlot& slot = world_.device(d);
@@ -469,10 +363,11 @@ void HapticLoop::publish(double time) noexcept {
   }
   for (size_t i = s.bodies.size(); i < world_.body_count();
        ++i) {  // added after the render task started
-    SoftBody& b = world_.body(i);
+    const SoftBody b = world_.body(i);
     if (b.present())
       energy_.push({time, static_cast<uint32_t>(i), b.kinetic_energy(),
-                    b.model->elastic_energy(b.positions.data()), b.max_displacement_m});
+                    b.model.instance->elastic_energy(b.nodes.positions.data()),
+                    b.fault.max_displacement_m});
   }
   snapshots_.publish();
 }

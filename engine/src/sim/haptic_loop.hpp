@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 
+#include "body_systems.hpp"
 #include "body_worker.hpp"
 #include "recorders.hpp"
 #include "status_bits.hpp"
@@ -28,7 +29,7 @@ struct FaultRecord {
 };
 
 // Something that acts between ticks' device read and body step: haptic rendering, collision.
-// update() runs before the bodies step (writes body.contact_forces and device forces);
+// update() runs before the bodies step (writes body.loads.contact_forces and device forces);
 // after_step() runs after they step (e.g. contact projection).
 class Interaction {
  public:
@@ -42,7 +43,7 @@ class Interaction {
   virtual uint32_t collision_bits() const noexcept { return 0; }
 };
 
-class HapticLoop final : public HapticTask {
+class HapticLoop final : public HapticTask, private BodyStepEvents {
  public:
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames
   // (negative: expected_ticks at the scene's haptic rate).
@@ -83,7 +84,7 @@ class HapticLoop final : public HapticTask {
   const Recorder<EnergyRow>& energy() const { return energy_; }
   const Recorder<FaultRecord>& faults() const { return faults_; }
   // A prototype snapshot with every buffer sized, for building the triple buffer.
-  static BodySnapshot body_prototype(SoftBody& body);  // one body's entry, sized for it
+  static BodySnapshot body_prototype(const SoftBody& body);  // one body's entry, sized for it
   static Snapshot make_prototype(World& world);
 
   // Where a tick's time goes (ms per tick, every tick), for report.json's tick_breakdown_ms.
@@ -92,18 +93,14 @@ class HapticLoop final : public HapticTask {
   const TickRecorder& stage(int s) const { return stages_[s]; }
 
  private:
-  void apply_swaps(double time) noexcept;
-  void apply_swaps_to(SoftBody& body, double time) noexcept;
-  bool step_on_worker(SoftBody& body, size_t index, BodyWorker& worker, double time,
-                      double dt) noexcept;
   void read_devices(double time) noexcept;
-  bool step_bodies(double time, double dt) noexcept;  // false when a body faulted this tick
   void write_devices(double time, bool zero_force) noexcept;
   void record(double time) noexcept;
   bool touches_frozen_body(const DeviceSlot& slot) const noexcept;
-  // Marks the body frozen and records the fault; its state is already back at the last trusted
-  // one (step_body_arrays puts it there).
-  void freeze(SoftBody& body, size_t index, double time, uint32_t bits, const char* why) noexcept;
+  // BodyStepEvents: counts each step's bits; on a fault marks the body frozen and records it
+  // (its state is already back at the last trusted one: step_body_arrays puts it there).
+  void stepped(size_t body, uint32_t bits, double time) noexcept override;
+  void faulted(size_t body, uint32_t bits, const char* why, double time) noexcept override;
 
   World& world_;
   TripleBuffer<Snapshot>& snapshots_;
@@ -124,7 +121,6 @@ class HapticLoop final : public HapticTask {
   TickStatus last_status_;
   std::vector<StatusCounter> body_status_, device_status_;  // sized at construction
   StatusCounter collision_status_;
-  void count_model_bits(size_t body, uint32_t bits, double time) noexcept;
   void raise_device(size_t device, uint32_t bit) noexcept;
   bool should_continue() const noexcept;
 };

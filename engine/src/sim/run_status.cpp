@@ -26,7 +26,7 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
   RunStatus status;
   for (size_t i = 0; i < world.body_count(); ++i) {
     status.bodies.push_back(describe(loop.body_status(i), StatusSource::Model));
-    summarise("body " + world.body(i).name, status.bodies.back(), status);
+    summarise("body " + world.body(i).info.name, status.bodies.back(), status);
   }
   for (size_t d = 0; d < world.device_count(); ++d) {
     status.devices.push_back(describe(loop.device_status(d), StatusSource::Device));

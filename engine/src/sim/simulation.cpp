@@ -94,18 +94,19 @@ void Simulation::request_model_swap(size_t body, const std::string& model, const
   if (body >= world.body_count())
     throw InputError({world.scene().path, 0, 0, "bodies"},
                      "no body with index " + std::to_string(body));
-  SoftBody& b = world.body(body);
+  const SoftBody b = world.body(body);
   const double dt = b.step_dt(1.0 / world.scene().clock.haptic_rate_hz);
-  std::unique_ptr<ModelInstance> instance = world.make_model(
-      model, params, *b.topology, dt, {world.scene().path, 0, 0, "bodies." + b.name + ".model"});
+  std::unique_ptr<ModelInstance> instance =
+      world.make_model(model, params, *b.shape.topology, dt,
+                       {world.scene().path, 0, 0, "bodies." + b.info.name + ".model"});
   // Free what the haptic thread retired, then post; an unconsumed earlier request is replaced.
-  for (ModelInstance* m = b.mailbox->retired.exchange(nullptr, std::memory_order_acquire);
+  for (ModelInstance* m = b.model.mailbox->retired.exchange(nullptr, std::memory_order_acquire);
        m != nullptr;) {
     ModelInstance* next = m->retired_next;
     delete m;
     m = next;
   }
-  delete b.mailbox->incoming.exchange(instance.release(), std::memory_order_acq_rel);
+  delete b.model.mailbox->incoming.exchange(instance.release(), std::memory_order_acq_rel);
   impl_->requested_models[body] = model;
   impl_->requested_params[body] = params;
 }
@@ -128,11 +129,13 @@ size_t Simulation::body_count() const { return impl_->world.body_count(); }
 std::vector<std::string> Simulation::load_warnings() const {
   std::vector<std::string> warnings;
   for (size_t i = 0; i < impl_->world.body_count(); ++i)
-    if (!impl_->world.body(i).load_warning.empty())
-      warnings.push_back(impl_->world.body(i).load_warning);
+    if (!impl_->world.body(i).info.load_warning.empty())
+      warnings.push_back(impl_->world.body(i).info.load_warning);
   return warnings;
 }
-const std::string& Simulation::body_name(size_t body) const { return impl_->world.body(body).name; }
+const std::string& Simulation::body_name(size_t body) const {
+  return impl_->world.body(body).info.name;
+}
 const std::string& Simulation::body_model(size_t body) const {
   return impl_->requested_models.at(body);
 }

@@ -41,7 +41,7 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   result.sim_time_s = session.time();
   std::vector<const std::vector<double>*> arrays;
   for (size_t i = 0; i < world.body_count(); ++i) {
-    const SoftBody& b = world.body(i);
+    const SoftBody b = world.body(i);
     BodyResult br;
     br.initial_energy_J = b.presence.added_s >= 0 || i >= session.initial_energy_J.size()
                               ? b.presence.initial_energy_J
@@ -49,21 +49,21 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     br.added_s = b.presence.added_s;
     br.removed_s = b.presence.removed_s;
     br.pending = b.presence.state == BodyPresence::kPending;
-    br.name = b.name;
-    br.model = b.model->name();
+    br.name = b.info.name;
+    br.model = b.model.instance->name();
     br.nodes = b.node_count();
-    br.fixed_nodes =
-        static_cast<size_t>(std::count(b.topology->fixed.begin(), b.topology->fixed.end(), 1));
-    br.elements = element_count(b.topology->mesh);
-    br.mesh = describe_body_mesh(b.topology->mesh, b.topology->load);
-    br.mesh_warnings = b.topology->load.warnings;
-    br.max_displacement_m = b.max_displacement_m;
+    br.fixed_nodes = static_cast<size_t>(
+        std::count(b.shape.topology->fixed.begin(), b.shape.topology->fixed.end(), 1));
+    br.elements = element_count(b.shape.topology->mesh);
+    br.mesh = describe_body_mesh(b.shape.topology->mesh, b.shape.topology->load);
+    br.mesh_warnings = b.shape.topology->load.warnings;
+    br.max_displacement_m = b.fault.max_displacement_m;
     br.kinetic_energy_J = b.kinetic_energy();
-    br.elastic_energy_J = b.model->elastic_energy(b.positions.data());
-    br.model_counters = b.model->counters();
+    br.elastic_energy_J = b.model.instance->elastic_energy(b.nodes.positions.data());
+    br.model_counters = b.model.instance->counters();
     br.frozen = b.fault.frozen;
-    br.own_thread = b.own_thread;
-    br.step_rate_hz = b.step_period_s > 0 ? 1.0 / b.step_period_s : 0.0;
+    br.own_thread = b.schedule.own_thread;
+    br.step_rate_hz = b.schedule.period_s > 0 ? 1.0 / b.schedule.period_s : 0.0;
     if (const BodyWorker* w = loop.worker(i)) {
       br.worker_steps = w->stats().steps;
       br.worker_step_ms = w->step_ms().summary();
@@ -72,7 +72,7 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     }
     if (b.fault.frozen) br.fault = b.fault.reason.data();
     result.bodies.push_back(std::move(br));
-    arrays.push_back(&b.positions);
+    arrays.push_back(&b.nodes.positions);
   }
   result.state_hash = hash_positions(arrays);
   for (size_t d = 0; d < world.device_count(); ++d) {
@@ -83,10 +83,10 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   }
   result.faults = loop.faults().rows().size();
   for (const FaultRecord& f : loop.faults().rows()) {
-    const std::string who = f.body >= 0 ? "body " + world.body(static_cast<size_t>(f.body)).name
-                            : f.device >= 0
-                                ? "device " + world.device(static_cast<size_t>(f.device)).name
-                                : std::string("run");
+    const std::string who =
+        f.body >= 0     ? "body " + world.body(static_cast<size_t>(f.body)).info.name
+        : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).name
+                        : std::string("run");
     char time[32];
     std::snprintf(time, sizeof time, "%.3f", f.time_s);
     result.fault_messages.push_back(who + " at t = " + time + " s: " + f.reason.data());
@@ -125,36 +125,36 @@ void Simulation::detach(FrameObserver* observer) {
 }
 
 BodyArrays Simulation::body_arrays(size_t body) {
-  SoftBody& b = impl_->world.body(impl_->check_body(body));
-  return {b.node_count(),  b.positions.data(),       b.velocities.data(),
-          b.rest().data(), b.topology->fixed.data(), b.topology->masses.data()};
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  return {b.node_count(),  b.nodes.positions.data(),       b.nodes.velocities.data(),
+          b.rest().data(), b.shape.topology->fixed.data(), b.shape.topology->masses.data()};
 }
 
 void Simulation::state_written(size_t body) {
-  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
   // The model's history (previous positions, warm starts) no longer matches the state.
   const tacta_body_state state = b.state_view(time());
-  b.model->begin(state, b.step_dt(dt()));
+  b.model.instance->begin(state, b.step_dt(dt()));
 }
 
 const VolumeMesh& Simulation::body_mesh(size_t body) const {
-  return impl_->world.body(impl_->check_body(body)).topology->mesh;
+  return impl_->world.body(impl_->check_body(body)).shape.topology->mesh;
 }
 
 const std::vector<uint32_t>& Simulation::surface_triangles(size_t body) const {
-  const SoftBody& b = impl_->world.body(impl_->check_body(body));
-  return b.surface ? b.surface->triangles : b.topology->mesh.triangles;
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  return b.surface.mesh ? b.surface.mesh->triangles : b.shape.topology->mesh.triangles;
 }
 
 std::vector<double> Simulation::surface_positions(size_t body) const {
-  const SoftBody& b = impl_->world.body(impl_->check_body(body));
-  return b.surface ? b.surface->positions : b.positions;
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  return b.surface.mesh ? b.surface.mesh->positions : b.nodes.positions;
 }
 
 void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,
                                     const std::vector<double>& forces) {
-  SoftBody& b = impl_->world.body(impl_->check_body(body));
-  const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + " applied forces"};
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  const SourceLocation where{scene().path, 0, 0, "bodies." + b.info.name + " applied forces"};
   if (forces.size() != 3 * nodes.size())
     throw InputError(where, "expected 3 force components (N) per node, found " +
                                 std::to_string(forces.size()) + " for " +
@@ -169,11 +169,11 @@ void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& no
       applied[3 * nodes[i] + k] += forces[3 * i + k];
     }
   }
-  b.applied_forces = std::move(applied);
+  b.loads.applied_forces = std::move(applied);
 }
 
 void Simulation::clear_applied_forces(size_t body) {
-  impl_->world.body(impl_->check_body(body)).applied_forces.clear();
+  impl_->world.body(impl_->check_body(body)).loads.applied_forces.clear();
 }
 
 double Simulation::kinetic_energy(size_t body) const {
@@ -181,19 +181,20 @@ double Simulation::kinetic_energy(size_t body) const {
 }
 
 double Simulation::elastic_energy(size_t body) const {
-  const SoftBody& b = impl_->world.body(impl_->check_body(body));
-  return b.model->elastic_energy(b.positions.data());
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  return b.model.instance->elastic_energy(b.nodes.positions.data());
 }
 
 bool Simulation::set_param(size_t body, const std::string& name, double value) {
-  SoftBody& b = impl_->world.body(impl_->check_body(body));
+  const SoftBody b = impl_->world.body(impl_->check_body(body));
   // The model running now, or the one a pending swap brings in.
-  const bool pending = b.mailbox->incoming.load() != nullptr;
-  const std::string model = pending ? impl_->requested_models[body] : std::string(b.model->name());
+  const bool pending = b.model.mailbox->incoming.load() != nullptr;
+  const std::string model =
+      pending ? impl_->requested_models[body] : std::string(b.model.instance->name());
   // A scheduled swap (bodies.*.swaps) may have changed the model: its parameters start from defaults.
   const ParamSet asked =
       model == impl_->requested_models[body] ? impl_->requested_params[body] : ParamSet{};
-  const SourceLocation where{scene().path, 0, 0, "bodies." + b.name + ".params." + name};
+  const SourceLocation where{scene().path, 0, 0, "bodies." + b.info.name + ".params." + name};
   const LoadedDescriptor* found = impl_->plugins.find(TACTA_KIND_MODEL, model);
   if (found == nullptr) throw InputError(where, "no model plugin '" + model + "'");
   const tacta_descriptor& d = *found->descriptor;
@@ -216,10 +217,10 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
   params.set_number(name, value);
   // A live parameter (the schema's live list) changes in place while nothing steps the model and no
   // swap waits: between steps, on a haptic-thread body. Any other change is a swap.
-  const bool quiet = !impl_->running.load() && !b.own_thread && !pending;
+  const bool quiet = !impl_->running.load() && !b.schedule.own_thread && !pending;
   std::string why;
   if (quiet && is_live_param(d, name) &&
-      b.model->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {
+      b.model.instance->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {
     impl_->requested_params[body] = std::move(params);
     return true;
   }

@@ -61,9 +61,10 @@ std::vector<uint32_t> recorded_nodes(const BodyDesc& desc, const SceneDesc& scen
 }
 
 // Nodes with free axes are advanced against the model's internal forces (BoundaryMotion).
-void require_internal_forces(const SoftBody& body, const ModelInstance& model,
+void require_internal_forces(const BodyConstraints& constraints, const ModelInstance& model,
                              const SourceLocation& where) {
-  if (body.boundary && body.boundary->needs_internal_forces() && !model.has_internal_forces())
+  if (constraints.boundary && constraints.boundary->needs_internal_forces() &&
+      !model.has_internal_forces())
     throw InputError(where,
                      std::string("model '") + model.name() +
                          "' gives no internal forces, which per-axis constraints and plates need "
@@ -81,22 +82,26 @@ ModelMailbox::~ModelMailbox() {
   }
 }
 
-double SoftBody::kinetic_energy() const noexcept {
-  const std::vector<double>& m = topology->masses;
+double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept {
+  const std::vector<double>& m = topology.masses;
   double e = 0;
   for (size_t i = 0; i < m.size(); ++i) {
-    const double* v = &velocities[3 * i];
+    const double* v = &nodes.velocities[3 * i];
     e += 0.5 * m[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   return e;
 }
 
-SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
-                         const ModelFactory& make_model) {
-  SoftBody body;
-  body.name = desc.name;
-  body.topology = std::make_unique<BodyTopology>();
-  BodyTopology& topo = *body.topology;
+double SoftBody::kinetic_energy() const noexcept {
+  return tacta::kinetic_energy(nodes, *shape.topology);
+}
+
+BodyParts build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
+                          const ModelFactory& make_model) {
+  BodyParts body;
+  body.info.name = desc.name;
+  body.shape.topology = std::make_unique<BodyTopology>();
+  BodyTopology& topo = *body.shape.topology;
   if (desc.mesh.kind == MeshSourceDesc::Kind::File)
     require_mesh_file(desc.mesh.path, desc.mesh.where);
   if (!desc.mesh.surface_path.empty())
@@ -105,7 +110,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
   const size_t n = topo.mesh.node_count();
   if (n == 0) throw InputError(desc.where, "mesh: the mesh has no nodes");
   if (topo.mesh.embedding)
-    body.surface = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
+    body.surface.mesh = std::make_unique<EmbeddedSurface>(make_embedded_surface(topo.mesh));
   topo.view = make_view(topo.mesh);
   topo.material = make_material(desc.material);
   topo.masses = lumped_masses(topo.mesh, desc.material.density);
@@ -116,7 +121,7 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
     for (uint32_t node : select_nodes(region, topo.mesh, desc.where, "fixed")) topo.fixed[node] = 1;
   if (n > 0 &&
       std::count(topo.fixed.begin(), topo.fixed.end(), 1) == static_cast<std::ptrdiff_t>(n))
-    body.load_warning =
+    body.info.load_warning =
         InputError(
             desc.fixed_where,
             "the fixed regions hold all " + std::to_string(n) + " nodes of body '" + desc.name +
@@ -125,50 +130,52 @@ SoftBody build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
                 "for a static thing no device touches, an `obstacles` entry costs nothing per tick")
             .what();
 
-  body.boundary = BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
-  body.probes = locate_probes(desc.probes, topo.mesh, desc.where);
+  body.constraints.boundary =
+      BoundaryMotion::build(desc, topo.mesh, desc.material, topo.masses, topo.fixed);
+  body.recording.probes = locate_probes(desc.probes, topo.mesh, desc.where);
 
-  body.positions = rest;
-  body.velocities.assign(3 * n, 0.0);
+  body.nodes.positions = rest;
+  body.nodes.velocities.assign(3 * n, 0.0);
   for (size_t i = 0; i < n; ++i)
     if (!topo.fixed[i])
-      for (int a = 0; a < 3; ++a) body.velocities[3 * i + a] = desc.uniform_velocity[a];
+      for (int a = 0; a < 3; ++a) body.nodes.velocities[3 * i + a] = desc.uniform_velocity[a];
   for (const auto& d : desc.initial_displacement) {
     check_node(d.node, n, desc.where, "initial.displacement");
-    for (int a = 0; a < 3; ++a) body.positions[3 * d.node + a] += d.value[a];
+    for (int a = 0; a < 3; ++a) body.nodes.positions[3 * d.node + a] += d.value[a];
   }
   for (const auto& v : desc.initial_velocity) {
     check_node(v.node, n, desc.where, "initial.velocity");
-    for (int a = 0; a < 3; ++a) body.velocities[3 * v.node + a] = v.value[a];
+    for (int a = 0; a < 3; ++a) body.nodes.velocities[3 * v.node + a] = v.value[a];
   }
-  if (body.boundary) body.boundary->place(body.positions, body.velocities, 0.0);
-  body.external_forces.assign(3 * n, 0.0);
-  body.contact_forces.assign(3 * n, 0.0);
-  body.saved_positions = body.positions;
-  if (body.surface) update_embedded_surface(*body.surface, body.positions.data());
+  if (body.constraints.boundary)
+    body.constraints.boundary->place(body.nodes.positions, body.nodes.velocities, 0.0);
+  body.loads.external_forces.assign(3 * n, 0.0);
+  body.loads.contact_forces.assign(3 * n, 0.0);
+  body.nodes.step_start = body.nodes.positions;
+  if (body.surface.mesh) update_embedded_surface(*body.surface.mesh, body.nodes.positions.data());
   if (desc.probe_node) check_node(*desc.probe_node, n, desc.where, "probe_node");
-  body.probe_node = desc.probe_node;
-  body.recorded_nodes = recorded_nodes(desc, scene, n);
+  body.recording.probe_node = desc.probe_node;
+  body.recording.recorded_nodes = recorded_nodes(desc, scene, n);
   // Ten body sizes of displacement is far past any elastic regime: call it divergence.
-  body.divergence_limit_m = 10.0 * std::max(bounding_diagonal(rest), 1e-3);
+  body.fault.divergence_limit_m = 10.0 * std::max(bounding_diagonal(rest), 1e-3);
 
   const double dt =
       desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
-  body.step_period_s = desc.step_rate_hz > 0 ? dt : 0.0;
-  body.own_thread = desc.own_thread;
-  body.local_contact_yielding = desc.local_contact_yielding;
-  body.model = make_model(desc.model, desc.model_params, topo, dt, desc.where);
-  require_internal_forces(body, *body.model, desc.where);
-  body.initial_model = desc.model;
-  body.runtime_swaps.reserve(256);
+  body.schedule.period_s = desc.step_rate_hz > 0 ? dt : 0.0;
+  body.schedule.own_thread = desc.own_thread;
+  body.schedule.local_contact_yielding = desc.local_contact_yielding;
+  body.model.instance = make_model(desc.model, desc.model_params, topo, dt, desc.where);
+  require_internal_forces(body.constraints, *body.model.instance, desc.where);
+  body.model.initial_model = desc.model;
+  body.model.runtime_swaps.reserve(256);
   for (const SwapDesc& swap : scene.swaps) {
     if (swap.body != "*" && swap.body != desc.name) continue;
-    body.swaps.push_back(
+    body.model.swaps.push_back(
         {swap.time, swap.model, make_model(swap.model, swap.params, topo, dt, desc.where)});
-    require_internal_forces(body, *body.swaps.back().model, desc.where);
+    require_internal_forces(body.constraints, *body.model.swaps.back().model, desc.where);
   }
   std::stable_sort(
-      body.swaps.begin(), body.swaps.end(),
+      body.model.swaps.begin(), body.model.swaps.end(),
       [](const ScheduledSwap& a, const ScheduledSwap& b) { return a.time_s < b.time_s; });
   return body;
 }

@@ -8,7 +8,12 @@ namespace tacta {
 
 namespace {
 constexpr double kSetupDt = 1e-3;  // s; only used for a default when a model is created alone
+
+template <class... Ts>
+void reserve_each(ecs::Registry& registry, size_t slots) {
+  (registry.reserve<Ts>(slots), ...);
 }
+}  // namespace
 
 World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     : scene_(scene), plugins_(plugins), jobs_(std::make_unique<JobPool>(scene.threads)) {
@@ -24,21 +29,21 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
                          " slots");
   // Every slot's entity and storage are made now, so taking a body in or out at a tick boundary
   // allocates nothing. Entity index = body slot (bodies are created before devices).
-  slots_.resize(capacity);
   descs_.reserve(capacity);
   generations_ = std::make_unique<std::atomic<uint32_t>[]>(capacity);
-  registry_.reserve<BodyRef>(capacity + scene_.devices.size());
+  reserve_body_components(capacity);
+  registry_.reserve<DeviceSlot>(capacity + scene_.devices.size());
   for (size_t i = 0; i < capacity; ++i) {
-    body_entities_.push_back(registry_.create());
-    generations_[i].store(body_entities_.back().generation, std::memory_order_relaxed);
+    const ecs::Entity e = registry_.create();
+    emplace_body_components(e);
+    body_entities_.push_back(e);
+    generations_[i].store(e.generation, std::memory_order_relaxed);
   }
   commands_.resize(2 * capacity);  // an add and a remove per slot at most
   for (const BodyDesc& desc : scene_.bodies) {
-    slots_[descs_.size()] = build_body(desc);
+    install(descs_.size(), build_body(desc));
+    registry_.emplace<InScene>(body_entities_[descs_.size()]);
     descs_.push_back(desc);
-    registry_.emplace<BodyRef>(
-        body_entities_[descs_.size() - 1],
-        BodyRef{slots_[descs_.size() - 1].get(), static_cast<uint32_t>(descs_.size() - 1)});
   }
   // The scene's timed events: their bodies are built now and wait, pending, for their time.
   std::vector<std::string> names;
@@ -49,8 +54,9 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
       if (std::find(names.begin(), names.end(), e.add->name) != names.end())
         throw InputError(e.where, "duplicate body name '" + e.add->name +
                                       "' (body names are unique, removed ones too)");
-      slots_[descs_.size()] = build_body(*e.add);
-      slots_[descs_.size()]->presence.state = BodyPresence::kPending;
+      BodyParts parts = build_body(*e.add);
+      parts.presence.state = BodyPresence::kPending;
+      install(descs_.size(), std::move(parts));
       c.slot = static_cast<uint32_t>(descs_.size());
       descs_.push_back(*e.add);
       names.push_back(e.add->name);
@@ -88,24 +94,49 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
 }
 
-std::unique_ptr<SoftBody> World::build_body(const BodyDesc& desc) const {
+SoftBody World::body(size_t i) const noexcept {
+  const uint32_t e = static_cast<uint32_t>(i);  // entity index = body slot
+  return SoftBody(registry_.pool<BodyInfo>().at(e), registry_.pool<BodyPresence>().at(e),
+                  registry_.pool<NodeState>().at(e), registry_.pool<NodeLoads>().at(e),
+                  registry_.pool<RestShape>().at(e), registry_.pool<BodySurface>().at(e),
+                  registry_.pool<ModelSlot>().at(e), registry_.pool<StepSchedule>().at(e),
+                  registry_.pool<BodyConstraints>().at(e), registry_.pool<FaultState>().at(e),
+                  registry_.pool<Recording>().at(e));
+}
+
+void World::install(size_t slot, BodyParts&& p) noexcept {
+  SoftBody b = body(slot);
+  b.info = std::move(p.info);
+  b.presence = p.presence;
+  b.nodes = std::move(p.nodes);
+  b.loads = std::move(p.loads);
+  b.shape = std::move(p.shape);
+  b.surface = std::move(p.surface);
+  b.model = std::move(p.model);
+  b.schedule = p.schedule;
+  b.constraints = std::move(p.constraints);
+  b.fault = p.fault;
+  b.recording = std::move(p.recording);
+}
+
+BodyParts World::build_body(const BodyDesc& desc) const {
   const ModelFactory factory = [this](const std::string& model, const ParamSet& params,
                                       const BodyTopology& topology, double dt,
                                       const SourceLocation& where) {
     return make_model(model, params, topology, dt, where);
   };
-  return std::make_unique<SoftBody>(build_soft_body(desc, scene_, factory));
+  return build_soft_body(desc, scene_, factory);
 }
 
 int World::body_index(const std::string& name) const {
   for (size_t i = 0; i < body_count(); ++i)
-    if (body(i).name == name) return static_cast<int>(i);
+    if (body(i).info.name == name) return static_cast<int>(i);
   return -1;
 }
 
 ecs::Entity World::add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare) {
-  std::unique_ptr<SoftBody> built = build_body(desc);  // the heavy part, outside the lock
-  if (built->own_thread)
+  BodyParts built = build_body(desc);  // the heavy part, outside the lock
+  if (built.schedule.own_thread)
     throw InputError(
         desc.where,
         "a body added while the scene runs cannot have step_thread: own (its worker thread "
@@ -115,19 +146,19 @@ ecs::Entity World::add_body(const BodyDesc& desc, const std::function<void(size_
   if (body_index(desc.name) >= 0)
     throw InputError(desc.where, "a body named '" + desc.name +
                                      "' already exists (body names are unique, removed ones too)");
-  if (slot >= slots_.size())
+  if (slot >= body_capacity())
     throw InputError({scene_.path, 0, 0, "capacity.bodies"},
-                     "no free body slot: capacity.bodies is " + std::to_string(slots_.size()) +
+                     "no free body slot: capacity.bodies is " + std::to_string(body_capacity()) +
                          " (raise it in the scene to add more bodies while it runs)");
-  built->presence.state = BodyPresence::kPending;
-  slots_[slot] = std::move(built);
+  built.presence.state = BodyPresence::kPending;
+  install(slot, std::move(built));
   descs_.push_back(desc);  // reserved to capacity: never reallocates under a reader
   if (prepare) {
     try {
       prepare(slot);
     } catch (...) {
       descs_.pop_back();
-      slots_[slot].reset();
+      install(slot, BodyParts{});
       throw;
     }
   }
@@ -163,7 +194,7 @@ size_t World::body_slot(ecs::Entity handle) const {
   if (!is_live(handle))
     throw InputError({scene_.path, 0, 0, "bodies"},
                      "stale body handle " + ecs::to_string(handle) + ": body '" +
-                         body(handle.index).name +
+                         body(handle.index).info.name +
                          "' was removed (its handles' generation is now " +
                          std::to_string(generations_[handle.index].load(std::memory_order_acquire) &
                                         ~kRemovedBit) +
@@ -194,24 +225,48 @@ void World::apply_entity_commands(double time) noexcept {
 }
 
 void World::enter(size_t slot, double time) noexcept {
-  SoftBody& b = *slots_[slot];
+  const SoftBody b = body(slot);
   if (b.presence.state != BodyPresence::kPending) return;
   b.presence.state = BodyPresence::kPresent;
   b.presence.added_s = time;
-  b.presence.initial_energy_J = b.kinetic_energy() + b.model->elastic_energy(b.positions.data());
-  b.next_step_time_s = time;
-  b.model->begin(b.state_view(time), b.step_dt(1.0 / scene_.clock.haptic_rate_hz));
-  registry_.emplace<BodyRef>(body_entities_[slot], BodyRef{&b, static_cast<uint32_t>(slot)});
+  b.presence.initial_energy_J =
+      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
+  b.schedule.next_step_s = time;
+  b.model.instance->begin(b.state_view(time), b.step_dt(1.0 / scene_.clock.haptic_rate_hz));
+  ecs::Pool<InScene>& in_scene = registry_.pool<InScene>();  // reserved for every slot
+  if (!in_scene.contains(body_entities_[slot].index)) in_scene.emplace(body_entities_[slot]);
 }
 
 void World::leave(size_t slot, double time) noexcept {
-  SoftBody& b = *slots_[slot];
+  const SoftBody b = body(slot);
   if (b.presence.state == BodyPresence::kRemoved) return;
   b.presence.state = BodyPresence::kRemoved;
   b.presence.removed_s = time;
-  // The entity goes (its generation moves on); the body's storage stays for the report.
-  const ecs::Entity e = body_entities_[slot];
-  if (registry_.valid(e)) registry_.destroy(e);
+  // Out of every system; its components stay for the report (its handles are stale already).
+  registry_.pool<InScene>().remove(body_entities_[slot].index);
+}
+
+// Every body component's pool, made now for every slot: filling, entering and leaving a slot
+// later allocates nothing and never moves a component another thread holds.
+void World::reserve_body_components(size_t slots) {
+  reserve_each<InScene, BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, BodySurface,
+               ModelSlot, StepSchedule, BodyConstraints, FaultState, Recording>(registry_, slots);
+}
+
+void World::emplace_body_components(ecs::Entity e) {
+  BodyPresence pending;
+  pending.state = BodyPresence::kPending;
+  registry_.emplace<BodyInfo>(e);
+  registry_.emplace<BodyPresence>(e, pending);
+  registry_.emplace<NodeState>(e);
+  registry_.emplace<NodeLoads>(e);
+  registry_.emplace<RestShape>(e);
+  registry_.emplace<BodySurface>(e);
+  registry_.emplace<ModelSlot>(e);
+  registry_.emplace<StepSchedule>(e);
+  registry_.emplace<BodyConstraints>(e);
+  registry_.emplace<FaultState>(e);
+  registry_.emplace<Recording>(e);
 }
 
 std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const ParamSet& params,

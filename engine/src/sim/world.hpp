@@ -20,13 +20,6 @@
 
 namespace tacta {
 
-// The registry component of a body entity: where its SoftBody lives (a heap-held slot, so the
-// references body workers and collision surfaces keep never move).
-struct BodyRef {
-  SoftBody* body = nullptr;
-  uint32_t slot = 0;
-};
-
 class World {
  public:
   World(const SceneDesc& scene, const PluginRegistry& plugins);
@@ -37,10 +30,10 @@ class World {
   // Slots in use: the scene's bodies, then the added ones in the order they were requested
   // (pending, present or removed; a slot is never reused, so indices stay valid for the run).
   size_t body_count() const noexcept { return body_count_.load(std::memory_order_acquire); }
-  size_t body_capacity() const noexcept { return slots_.size(); }
+  size_t body_capacity() const noexcept { return body_entities_.size(); }
   size_t device_count() const noexcept { return devices_.size(); }
-  SoftBody& body(size_t i) { return *slots_[i]; }
-  const SoftBody& body(size_t i) const { return *slots_[i]; }
+  // Slot i's components (entity index = body slot). A removed body's stay for the report.
+  SoftBody body(size_t i) const noexcept;
   const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
   // Through pointers taken at load (devices never come or go, so their pool never moves): other
   // threads (device input) reach a device without reading the registry the tick's thread changes.
@@ -48,6 +41,11 @@ class World {
   const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
   int body_index(const std::string& name) const;
   ecs::Registry& registry() noexcept { return registry_; }
+  // Bodies in the running scene, with the components Ts (entity index = body slot).
+  template <class... Ts>
+  ecs::View<InScene, Ts...> bodies_in_scene() noexcept {
+    return registry_.view<InScene, Ts...>();
+  }
   uint32_t threads() const noexcept { return jobs_->threads(); }
 
   // Builds a model instance for a body (load time, or a swap requested from a UI thread).
@@ -83,13 +81,19 @@ class World {
   }
   void enter(size_t slot, double time) noexcept;
   void leave(size_t slot, double time) noexcept;
-  std::unique_ptr<SoftBody> build_body(const BodyDesc& desc) const;
+  BodyParts build_body(const BodyDesc& desc) const;
+  // Moves a built body into slot's components (no allocation: the pools hold every slot).
+  void install(size_t slot, BodyParts&& parts) noexcept;
+  void reserve_body_components(size_t slots);
+  void emplace_body_components(ecs::Entity e);
 
   SceneDesc scene_;
   const PluginRegistry& plugins_;
   std::unique_ptr<JobPool> jobs_;  // plugins' parallel_for workers (scene key `threads`)
-  ecs::Registry registry_;         // owned by the tick's thread once the scene runs
-  std::vector<std::unique_ptr<SoftBody>> slots_;          // capacity.bodies, filled in order
+  // Every body slot's entity has all body components from load on (reserved, so taking a body
+  // in or out only adds or removes its InScene tag). The pools are made at load and never
+  // reallocate, so a requester may fill a pending slot while the tick's thread runs views.
+  mutable ecs::Registry registry_;
   std::vector<BodyDesc> descs_;                           // per used slot (reserved to capacity)
   std::vector<ecs::Entity> body_entities_;                // per slot, created at load
   std::unique_ptr<std::atomic<uint32_t>[]> generations_;  // per slot: the live handle's generation

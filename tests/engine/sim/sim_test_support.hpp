@@ -124,8 +124,8 @@ class LoopHarness {
         loop(world, snapshots, ticks),
         dt(1.0 / scene.clock.haptic_rate_hz) {
     for (size_t i = 0; i < world.body_count(); ++i) {
-      SoftBody& b = world.body(i);
-      b.model->begin(b.state_view(0.0), dt);
+      const SoftBody b = world.body(i);
+      b.model.instance->begin(b.state_view(0.0), dt);
     }
     loop.add_interaction(&haptics);
   }

@@ -40,7 +40,7 @@ TEST(BoundaryMotionAllocations, TicksAllocateNothing) {
   g_counting = false;
   EXPECT_EQ(g_allocations, 0);
   EXPECT_FALSE(h.world.body(0).fault.frozen);
-  EXPECT_GT(h.world.body(0).boundary->managed_count(), 0u);
+  EXPECT_GT(h.world.body(0).constraints.boundary->managed_count(), 0u);
 #endif
 }
 

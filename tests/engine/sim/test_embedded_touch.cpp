@@ -116,10 +116,10 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
     h.tick();
     const DeviceSlot& slot = h.world.device(0);
     // Newton's third law through the embedding: the nodes get exactly minus the device force.
-    const SoftBody& body = h.world.body(0);
+    const SoftBody body = h.world.body(0);
     for (size_t a = 0; a < 3; ++a) {
       double sum = 0;
-      for (size_t n = 0; n < body.node_count(); ++n) sum += body.contact_forces[3 * n + a];
+      for (size_t n = 0; n < body.node_count(); ++n) sum += body.loads.contact_forces[3 * n + a];
       feel.worst_reaction_error_N = std::max(
           feel.worst_reaction_error_N, std::fabs(sum + (slot.in_contact ? slot.force[a] : 0.0)));
     }
@@ -204,23 +204,23 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
   TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
   HapticLoop loop(world, snapshots, 1000);
   loop.add_interaction(&response);
-  SoftBody& ball = world.body(0);
-  ASSERT_TRUE(ball.surface != nullptr);
+  const SoftBody ball = world.body(0);
+  ASSERT_TRUE(ball.surface.mesh != nullptr);
   const double dt = 1e-3;
-  ball.model->begin(ball.state_view(0.0), dt);
+  ball.model.instance->begin(ball.state_view(0.0), dt);
   double lowest_ever = 1;
   for (uint64_t k = 0; k < 1000; ++k) {
     loop.tick(k, static_cast<double>(k) * dt, dt);
-    update_embedded_surface(*ball.surface, ball.positions.data());
-    for (size_t v = 0; v < ball.surface->vertex_count(); ++v)
-      lowest_ever = std::min(lowest_ever, ball.surface->positions[3 * v + 1]);
+    update_embedded_surface(*ball.surface.mesh, ball.nodes.positions.data());
+    for (size_t v = 0; v < ball.surface.mesh->vertex_count(); ++v)
+      lowest_ever = std::min(lowest_ever, ball.surface.mesh->positions[3 * v + 1]);
   }
   ASSERT_FALSE(ball.fault.frozen) << ball.fault.reason.data();
   double lowest_surface = 1, lowest_node = 1;
-  for (size_t v = 0; v < ball.surface->vertex_count(); ++v)
-    lowest_surface = std::min(lowest_surface, ball.surface->positions[3 * v + 1]);
+  for (size_t v = 0; v < ball.surface.mesh->vertex_count(); ++v)
+    lowest_surface = std::min(lowest_surface, ball.surface.mesh->positions[3 * v + 1]);
   for (size_t n = 0; n < ball.node_count(); ++n)
-    lowest_node = std::min(lowest_node, ball.positions[3 * n + 1]);
+    lowest_node = std::min(lowest_node, ball.nodes.positions[3 * n + 1]);
   std::printf("lowest surface vertex %.4f m (ever %.4f m), lowest node %.4f m\n", lowest_surface,
               lowest_ever, lowest_node);
   RecordProperty("lowest_surface_m", std::to_string(lowest_surface));

@@ -18,10 +18,11 @@ TEST(HapticContact, BodyReactionIsMinusTheDeviceForceEveryContactTick) {
   for (int k = 0; k < 400; ++k) {
     h.tick();
     const DeviceSlot& slot = h.world.device(0);
-    const SoftBody& body = h.world.body(0);
+    const SoftBody body = h.world.body(0);
     double sum[3] = {0, 0, 0};
     for (size_t n = 0; n < body.node_count(); ++n)
-      for (int a = 0; a < 3; ++a) sum[a] += body.contact_forces[3 * n + static_cast<size_t>(a)];
+      for (int a = 0; a < 3; ++a)
+        sum[a] += body.loads.contact_forces[3 * n + static_cast<size_t>(a)];
     const double f_norm = std::sqrt(slot.force[0] * slot.force[0] + slot.force[1] * slot.force[1] +
                                     slot.force[2] * slot.force[2]);
     if (!slot.in_contact) {

@@ -91,7 +91,7 @@ model: corotational_fem
   EXPECT_EQ(g_allocations, 0) << "heap allocations in the 100 ticks that took the liver out";
   EXPECT_TRUE(h.world.body(1).present());
   EXPECT_TRUE(h.world.is_live(added));
-  EXPECT_GT(h.world.body(1).max_displacement_m, 0.0) << "the added cube falls";
+  EXPECT_GT(h.world.body(1).fault.max_displacement_m, 0.0) << "the added cube falls";
   EXPECT_FALSE(h.world.body(0).present());
 }
 

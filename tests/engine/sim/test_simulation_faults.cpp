@@ -104,25 +104,25 @@ TEST(SimulationFaults, FrozenStateIsTheStartOfTheFaultingTick) {
   const SceneDesc scene = scene_from_text(kCubePressScene, "fault_harness", faulting("nan"));
   LoopHarness h(scene, 400);
   for (int k = 0; k < 200; ++k) h.tick();
-  const SoftBody& body = h.world.body(0);
+  const SoftBody body = h.world.body(0);
   ASSERT_FALSE(body.fault.frozen);
-  const std::vector<double> start = body.positions;
+  const std::vector<double> start = body.nodes.positions;
   bool moving = false;
-  for (double v : body.velocities) moving = moving || v != 0.0;
+  for (double v : body.nodes.velocities) moving = moving || v != 0.0;
   EXPECT_TRUE(moving) << "the body should be moving under the stylus before the fault";
   h.tick();  // tick 200: the model writes NaN
   EXPECT_TRUE(body.fault.frozen);
   EXPECT_EQ(body.fault.bits, TACTA_STEP_NOT_FINITE);
   EXPECT_DOUBLE_EQ(body.fault.time_s, kFaultTime_s);
-  EXPECT_EQ(body.positions, start) << "positions are restored to the start of the tick";
-  for (double v : body.velocities) ASSERT_EQ(v, 0.0);
+  EXPECT_EQ(body.nodes.positions, start) << "positions are restored to the start of the tick";
+  for (double v : body.nodes.velocities) ASSERT_EQ(v, 0.0);
   const DeviceSlot& slot = h.world.device(0);
   EXPECT_EQ(slot.force, (std::array<double, 3>{0, 0, 0})) << "zero force in the same tick";
   EXPECT_EQ(slot.stats.zero_force_ticks, 1u);
   int moved = 0, forced = 0, first_forced = -1;
   for (int k = 201; k < 251; ++k) {
     h.tick();
-    if (body.positions != start) ++moved;
+    if (body.nodes.positions != start) ++moved;
     if (slot.force != std::array<double, 3>{0, 0, 0} && forced++ == 0) first_forced = k;
   }
   EXPECT_EQ(moved, 0) << "ticks in which the frozen body moved";

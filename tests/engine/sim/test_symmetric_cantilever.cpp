@@ -24,12 +24,12 @@ bodies:
 )";
   LoopHarness run(scene_from_text(scene_text, "sofa_cantilever"), 300);
   for (int tick = 0; tick < 300; ++tick) run.tick();
-  const SoftBody& beam = run.world.body(0);
+  const SoftBody beam = run.world.body(0);
   double sag = 0, sideways = 0, tip_nodes = 0;
-  for (size_t i = 0; i < beam.positions.size() / 3; ++i) {
+  for (size_t i = 0; i < beam.nodes.positions.size() / 3; ++i) {
     if (beam.rest()[3 * i + 2] < 0.2 - 1e-9) continue;
-    sideways += beam.positions[3 * i] - beam.rest()[3 * i];
-    sag += beam.rest()[3 * i + 1] - beam.positions[3 * i + 1];
+    sideways += beam.nodes.positions[3 * i] - beam.rest()[3 * i];
+    sag += beam.rest()[3 * i + 1] - beam.nodes.positions[3 * i + 1];
     ++tip_nodes;
   }
   sag /= tip_nodes;
