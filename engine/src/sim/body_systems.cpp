@@ -42,7 +42,7 @@ void swap_models(ModelSlot& slot, const StepSchedule& schedule, NodeState& nodes
 
 // A body on a worker: this tick's contact joins the period's impulse; at the body's boundary the
 // finished step is collected, swaps are taken while the model is idle, and the next step posted.
-bool step_on_worker(World& world, size_t body, BodyWorker& w, BodyStepEvents& events, double time,
+bool step_on_worker(World& world, size_t body, BodyWorker& w, TickEvents& events, double time,
                     double dt) noexcept {
   const SoftBody b = world.body(body);
   w.accumulate(b.loads.contact_forces, dt);
@@ -87,7 +87,7 @@ void take_model_swaps(World& world, double time) noexcept {
 }
 
 bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& workers,
-                 BodyStepEvents& events, double time, double dt) noexcept {
+                 TickEvents& events, double time, double dt) noexcept {
   const Vec3& g = world.scene().gravity;
   bool healthy = true;
   world

@@ -10,19 +10,10 @@
 #include "body_step.hpp"
 #include "body_worker.hpp"
 #include "recorders.hpp"
+#include "tick_events.hpp"
 #include "world.hpp"
 
 namespace tacta {
-
-// What the step system tells the tick's ledger (status counters, fault records).
-class BodyStepEvents {
- public:
-  virtual ~BodyStepEvents() = default;
-  // Every model step taken, with its TACTA_STEP_* bits.
-  virtual void stepped(size_t body, uint32_t bits, double time) noexcept = 0;
-  // A step that faulted: the body's state is already back at the step's start.
-  virtual void faulted(size_t body, uint32_t bits, const char* why, double time) noexcept = 0;
-};
 
 // Each body's contact sum starts the tick at its applied loads (stepping API), else zero.
 void start_contact_sums(World& world) noexcept;
@@ -35,7 +26,7 @@ void take_model_swaps(World& world, double time) noexcept;
 // worker's boundary; `workers` per slot, null for haptic-thread bodies). False when a body
 // faulted this tick.
 bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& workers,
-                 BodyStepEvents& events, double time, double dt) noexcept;
+                 TickEvents& events, double time, double dt) noexcept;
 
 // Trajectories of the recorded nodes and the probes' positions at `time`.
 void record_bodies(World& world, double time, Recorder<TrajectoryRow>& trajectory,

@@ -27,6 +27,7 @@ struct DeviceStats {
 
 struct DeviceSlot {
   std::string name;
+  uint32_t index = 0;  // in the scene's devices (trace, report, status counters)
   DeviceDesc desc;
   std::unique_ptr<DeviceInstance> device;
   tacta_device_sample sample{};

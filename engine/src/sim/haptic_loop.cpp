@@ -7,14 +7,9 @@
 #include <cstring>
 
 #include "body_systems.hpp"
+#include "device_systems.hpp"
 
 namespace tacta {
-
-namespace {
-
-double norm3(const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-}  // namespace
 
 HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t expected_ticks,
                        double duration_s)
@@ -93,7 +88,7 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   // events) enter or leave before anything reads the world.
   world_.apply_entity_commands(time);
   take_model_swaps(world_, time);
-  read_devices(time);
+  read_devices(world_, *this, time);
   const auto read_done = Clock::now();
   start_contact_sums(world_);
   for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
@@ -108,7 +103,7 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   collision_status_.add(last_status_.collision_bits, time);
   const auto response_done = Clock::now();
   // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
-  write_devices(time + dt, !healthy);
+  write_devices(world_, *this, time + dt, time, !healthy, device_log_.get());
   for (Interaction* interaction : interactions_) interaction->after_write(world_);
   record(time + dt);
   const auto end = Clock::now();
@@ -141,52 +136,18 @@ bool HapticLoop::should_continue() const noexcept {
   return false;
 }
 
-void HapticLoop::raise_device(size_t device, uint32_t bit) noexcept {
+void HapticLoop::device_raised(size_t device, uint32_t bit) noexcept {
   last_status_.device_bits |= bit;
   last_status_.error = last_status_.error || has_error_bit(StatusSource::Device, bit);
   device_status_[device].add(bit, tick_time_);
 }
 
-void HapticLoop::read_devices(double time) noexcept {
-  for (size_t d = 0; d < world_.device_count(); ++d) {
-    DeviceSlot& slot = world_.device(d);
-    // A disconnected device (a network link gone silent) is polled on and resumes when it comes
-    // back; finished and faulted ones stay so for the run.
-    if (slot.state != TACTA_DEVICE_CONNECTED && slot.state != TACTA_DEVICE_DISCONNECTED) continue;
-    const bool was_disconnected = slot.state == TACTA_DEVICE_DISCONNECTED;
-    tacta_device_sample sample = slot.sample;
-    const tacta_device_state state = slot.device->read(time, sample);
-    if (was_disconnected) {
-      if (state != TACTA_DEVICE_CONNECTED) {
-        raise_device(d, kDeviceDisconnected);
-        continue;
-      }
-      slot.state = TACTA_DEVICE_CONNECTED;  // the interaction restarts its proxy at the new pose
-      ++slot.stats.reconnections;
-    }
-    slot.sample = sample;
-    bool finite = true;
-    for (double p : slot.sample.position) finite = finite && std::isfinite(p);
-    if (state != TACTA_DEVICE_CONNECTED || !finite) {
-      slot.state = state == TACTA_DEVICE_CONNECTED ? TACTA_DEVICE_FAULT : state;
-      slot.status_time_s = time;
-      if (!finite)
-        std::snprintf(slot.status_reason.data(), slot.status_reason.size(),
-                      "device reported a non-finite position");
-      else
-        slot.device->status(slot.status_reason.data(), slot.status_reason.size());
-      if (slot.state == TACTA_DEVICE_FAULT)
-        raise_device(d, kDeviceFault);
-      else if (slot.state == TACTA_DEVICE_DISCONNECTED)
-        raise_device(d, kDeviceDisconnected);
-      if (state != TACTA_DEVICE_FINISHED) {
-        FaultRecord f{time, -1, static_cast<int>(d), static_cast<uint32_t>(slot.state), {}};
-        std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(),
-                      slot.status_reason.data());
-        faults_.push(f);
-      }
-    }
-  }
+void HapticLoop::device_stopped(size_t device, double time) noexcept {
+  const DeviceSlot& slot = world_.device(device);
+  FaultRecord f{time, -1, static_cast<int>(device), static_cast<uint32_t>(slot.state), {}};
+  std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.name.c_str(),
+                slot.status_reason.data());
+  faults_.push(f);
 }
 
 void HapticLoop::stepped(size_t body, uint32_t bits, double time) noexcept {
@@ -237,73 +198,8 @@ void HapticLoop::faulted(size_t index, uint32_t bits, const char* why, double ti
   faults_.push(f);
 }
 
-bool HapticLoop::touches_frozen_body(const DeviceSlot& slot) const noexcept {
-  // A removed body is gone for the device too: its force drops to zero from the removing tick.
-  if (slot.touched_body >= 0) {
-    const SoftBody b = world_.body(static_cast<size_t>(slot.touched_body));
-    return b.fault.frozen || !b.present();
-  }
-  for (size_t i = 0; i < world_.body_count(); ++i)
-    if (world_.body(i).fault.frozen && world_.body(i).present()) return true;
-  return false;
-}
-
-void HapticLoop::write_devices(double time, bool zero_force) noexcept {
-  for (size_t d = 0; d < world_.device_count(); ++d) {
-    DeviceSlot& slot = world_.device(d);
-    DeviceStats& st = slot.stats;
-    // A frozen body is a state that could not be trusted: a device touching it renders nothing,
-    // from the faulting tick for as long as it stays frozen.
-    const bool silent =
-        zero_force || slot.state != TACTA_DEVICE_CONNECTED || touches_frozen_body(slot);
-    if (silent && slot.state == TACTA_DEVICE_CONNECTED) raise_device(d, kDeviceSilenced);
-    if (silent) {
-      slot.force = {0, 0, 0};
-      ++st.zero_force_ticks;
-    }
-    // The device's declared peak is never exceeded, whatever the coupling asked for.
-    const double peak = slot.device->capabilities().peak_force;
-    const double magnitude = norm3(slot.force.data());
-    if (peak > 0 && magnitude > peak) {
-      for (double& f : slot.force) f *= peak / magnitude;
-      ++st.clamped_ticks;
-      raise_device(d, kDeviceClamped);
-    }
-    const double sent = std::min(magnitude, peak > 0 ? peak : magnitude);
-    st.max_force_N = std::max(st.max_force_N, sent);
-    if (slot.in_contact) ++st.contact_ticks;
-    if (d == 0 && device_log_) {
-      // Logged at the time the sample was read, so a replay at the same ticks is exact.
-      DeviceLogSample logged;
-      logged.time = tick_time_;
-      for (int a = 0; a < 3; ++a) {
-        logged.position[a] = slot.sample.position[a];
-        logged.velocity[a] = slot.sample.velocity[a];
-        logged.force[a] = slot.force[static_cast<size_t>(a)];
-      }
-      for (int a = 0; a < 4; ++a) logged.orientation[a] = slot.sample.orientation[a];
-      logged.buttons = slot.sample.buttons;
-      device_log_->record(logged);
-    }
-    if (slot.state == TACTA_DEVICE_CONNECTED) {
-      tacta_device_command command{};
-      for (int a = 0; a < 3; ++a) command.force[a] = slot.force[static_cast<size_t>(a)];
-      slot.device->write(time, command);
-    }
-  }
-}
-
 void HapticLoop::record(double time) noexcept {
-  for (size_t d = 0; d < world_.device_count(); ++d) {
-    const DeviceSlot& s = world_.device(d);
-    TraceRow row{time, static_cast<uint32_t>(d), {}, {}, {}, s.in_contact ? 1u : 0u, last_tick_ms_};
-    for (int a = 0; a < 3; ++a) {
-      row.position[a] = s.sample.position[a];
-      row.proxy[a] = s.proxy[static_cast<size_t>(a)];
-      row.force[a] = s.force[static_cast<size_t>(a)];
-    }
-    trace_.push(row);
-  }
+  trace_devices(world_, time, last_tick_ms_, trace_);
   if (record_interval_s_ > 0 && time + 1e-12 < next_record_s_) return;
   next_record_s_ += record_interval_s_;
   record_bodies(world_, time, trajectory_, probes_);

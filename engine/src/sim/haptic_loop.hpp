@@ -43,7 +43,7 @@ class Interaction {
   virtual uint32_t collision_bits() const noexcept { return 0; }
 };
 
-class HapticLoop final : public HapticTask, private BodyStepEvents {
+class HapticLoop final : public HapticTask, private TickEvents {
  public:
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames
   // (negative: expected_ticks at the scene's haptic rate).
@@ -93,14 +93,13 @@ class HapticLoop final : public HapticTask, private BodyStepEvents {
   const TickRecorder& stage(int s) const { return stages_[s]; }
 
  private:
-  void read_devices(double time) noexcept;
-  void write_devices(double time, bool zero_force) noexcept;
   void record(double time) noexcept;
-  bool touches_frozen_body(const DeviceSlot& slot) const noexcept;
-  // BodyStepEvents: counts each step's bits; on a fault marks the body frozen and records it
-  // (its state is already back at the last trusted one: step_body_arrays puts it there).
+  // TickEvents: counts each step's and device's status bits; on a body fault marks the body
+  // frozen (its state is already back at the last trusted one) and records it, as a device's.
   void stepped(size_t body, uint32_t bits, double time) noexcept override;
   void faulted(size_t body, uint32_t bits, const char* why, double time) noexcept override;
+  void device_raised(size_t device, uint32_t bit) noexcept override;
+  void device_stopped(size_t device, double time) noexcept override;
 
   World& world_;
   TripleBuffer<Snapshot>& snapshots_;
@@ -121,7 +120,6 @@ class HapticLoop final : public HapticTask, private BodyStepEvents {
   TickStatus last_status_;
   std::vector<StatusCounter> body_status_, device_status_;  // sized at construction
   StatusCounter collision_status_;
-  void raise_device(size_t device, uint32_t bit) noexcept;
   bool should_continue() const noexcept;
 };
 

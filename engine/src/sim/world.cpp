@@ -83,6 +83,7 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     setup.tick = 1.0 / scene_.clock.haptic_rate_hz;
     DeviceSlot slot;
     slot.name = desc.name;
+    slot.index = static_cast<uint32_t>(devices_.size());
     slot.desc = desc;
     slot.device = std::make_unique<DeviceInstance>(*found->descriptor, setup, desc.where);
     slot.device->connect(desc.where);
