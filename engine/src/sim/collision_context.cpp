@@ -13,7 +13,6 @@ namespace tacta {
 
 namespace {
 constexpr size_t kMessageCapacity = 1024;
-constexpr tacta_pose kIdentityPose{{0, 0, 0}, {1, 0, 0, 0}};
 constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x the mean surface edge
 }  // namespace
 
@@ -112,42 +111,6 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
 
 namespace {
 
-tacta_collision_shape make_shape(const ShapeDesc& d, uint32_t id,
-                                 std::vector<double>* hull_storage) {
-  tacta_collision_shape s{};
-  s.body_id = id;
-  s.radius = d.radius;
-  s.half_length = d.half_length;
-  for (int a = 0; a < 3; ++a) s.half_extents[a] = d.half_extents[static_cast<size_t>(a)];
-  s.pose_start = kIdentityPose;
-  for (int a = 0; a < 3; ++a) s.pose_start.position[a] = d.position[static_cast<size_t>(a)];
-  s.pose_end = s.pose_start;
-  switch (d.kind) {
-    case ShapeDesc::Kind::Sphere: s.type = TACTA_SHAPE_SPHERE; break;
-    case ShapeDesc::Kind::Capsule: s.type = TACTA_SHAPE_CAPSULE; break;
-    case ShapeDesc::Kind::Box: s.type = TACTA_SHAPE_BOX; break;
-    case ShapeDesc::Kind::Plane: {
-      s.type = TACTA_SHAPE_PLANE;
-      const double n = std::sqrt(d.normal[0] * d.normal[0] + d.normal[1] * d.normal[1] +
-                                 d.normal[2] * d.normal[2]);
-      for (int a = 0; a < 3; ++a)
-        s.plane_normal[a] = d.normal[static_cast<size_t>(a)] / (n > 0 ? n : 1);
-      s.plane_offset = d.offset;
-      break;
-    }
-    case ShapeDesc::Kind::Mesh: {
-      s.type = TACTA_SHAPE_HULL;
-      require_mesh_file(d.path, d.path_where);
-      *hull_storage = load_at(d.path_where, [&] { return load_surface(d.path).positions; });
-      s.points = hull_storage->data();
-      s.point_count = static_cast<uint32_t>(hull_storage->size() / 3);
-      s.radius = 0;
-      break;
-    }
-  }
-  return s;
-}
-
 // Mean length of a collision surface's triangle edges (each shared edge counted twice), m: the
 // tets' boundary, or the embedded surface a body is collided through.
 double mean_edge_length(const tacta_collision_surface& s) {
@@ -205,15 +168,12 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   if (c.enabled) check_thickness(c, world, surfaces_, body_of_surface_);
   // Shape ids follow every body slot (added bodies too): tools first, then obstacles, so contacts
   // name them uniquely.
-  uint32_t next_id = static_cast<uint32_t>(world.body_capacity());
-  for (size_t d = 0; d < world.device_count(); ++d)
-    tools_.push_back(make_shape(world.device(d).desc.tool, next_id++, nullptr));
-  std::vector<std::vector<double>> hulls(scene.obstacles.size());
-  for (size_t o = 0; o < scene.obstacles.size(); ++o)
-    obstacles_.push_back(make_shape(scene.obstacles[o].shape, next_id++, &hulls[o]));
-  hull_points_ = std::move(hulls);
-  for (size_t o = 0; o < obstacles_.size(); ++o)
-    if (obstacles_[o].type == TACTA_SHAPE_HULL) obstacles_[o].points = hull_points_[o].data();
+  // The plugins see the tools' and obstacles' shapes in two packed arrays (the C view), copied
+  // from their entities: obstacles once, tools each tick (their poses and any change of tool).
+  world.registry().view<Tool>().each(
+      [&](ecs::Entity, Tool& t) { tools_.push_back(t.rigid.shape); });
+  world.registry().view<Collider>().each(
+      [&](ecs::Entity, Collider& collider) { obstacles_.push_back(collider.rigid.shape); });
 
   view_.struct_size = sizeof view_;
   view_.shape_count = static_cast<uint32_t>(tools_.size());
@@ -384,7 +344,13 @@ const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept 
   return *query_;
 }
 
+void CollisionContext::sync_tools() noexcept {
+  world_.registry().view<Tool>().each(
+      [&](ecs::Entity, const Tool& t) { tools_[t.device] = t.rigid.shape; });
+}
+
 void CollisionContext::refit(double time, double dt) noexcept {
+  sync_tools();
   view_.time = time;
   view_.dt = dt;
   // Bodies on their own thread only move when a finished step is taken in: while none of the
@@ -410,6 +376,7 @@ void CollisionContext::refit(double time, double dt) noexcept {
 // those. Rounds stop when a round finds no surface-surface contact. Contacts of all rounds are
 // published (a resting contact found again has a force near zero: its velocity was corrected).
 uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
+  sync_tools();
   constexpr int kMaxRounds = 3;
   contact_count_ = 0;
   if (!response_enabled_) return TACTA_COLLIDE_OK;

@@ -40,8 +40,9 @@ class CollisionContext {
   CollisionContext(const CollisionContext&) = delete;
   CollisionContext& operator=(const CollisionContext&) = delete;
 
-  // Tool shapes (one per device): the host moves them each tick (pose at start and end).
-  tacta_collision_shape& tool(size_t device) { return tools_[device]; }
+  // Tool shapes (one per device, their Tool components): the host moves them each tick (pose at
+  // start and end); refit and detect_and_respond copy them into the plugins' view.
+  tacta_collision_shape& tool(size_t device) { return world_.tool(device).rigid.shape; }
   // Body index -> surface index in the view (-1 when the body does not collide).
   int surface_of(size_t body) const {
     return body < surface_of_body_.size() ? surface_of_body_[body] : -1;
@@ -82,6 +83,7 @@ class CollisionContext {
   bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
   void append(size_t body, const tacta_collision_surface& s);
   void prepare_plugins(const SourceLocation& where);
+  void sync_tools() noexcept;  // Tool components -> the packed view
   template <class Add>
   void pick_roles(const CollisionDesc& c, bool needed, Add& add);
   World& world_;
@@ -90,7 +92,6 @@ class CollisionContext {
   std::vector<std::vector<double>> inverse_masses_;
   std::vector<tacta_collision_shape> tools_;
   std::vector<tacta_collision_shape> obstacles_;
-  std::vector<std::vector<double>> hull_points_;  // obstacle hulls, 3 per point, m
   std::vector<int> surface_of_body_;
   std::vector<std::unique_ptr<EmbeddedCollisionSurface>>
       embedded_;                       // per body; null: its tets' boundary

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "plugin_instance.hpp"
+#include "tacta/ecs.hpp"
 #include "tacta/scene.hpp"
 
 namespace tacta {
@@ -28,6 +29,7 @@ struct DeviceStats {
 struct DeviceSlot {
   std::string name;
   uint32_t index = 0;  // in the scene's devices (trace, report, status counters)
+  ecs::Entity tool;    // the Tool entity it carries
   DeviceDesc desc;
   std::unique_ptr<DeviceInstance> device;
   tacta_device_sample sample{};

@@ -32,7 +32,10 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   descs_.reserve(capacity);
   generations_ = std::make_unique<std::atomic<uint32_t>[]>(capacity);
   reserve_body_components(capacity);
-  registry_.reserve<DeviceSlot>(capacity + scene_.devices.size());
+  const size_t entities = capacity + 2 * scene_.devices.size() + scene_.obstacles.size();
+  registry_.reserve<DeviceSlot>(entities);
+  registry_.reserve<Tool>(entities);
+  registry_.reserve<Collider>(entities);
   for (size_t i = 0; i < capacity; ++i) {
     const ecs::Entity e = registry_.create();
     emplace_body_components(e);
@@ -88,9 +91,18 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     slot.device = std::make_unique<DeviceInstance>(*found->descriptor, setup, desc.where);
     slot.device->connect(desc.where);
     slot.touched_body = desc.touches.empty() ? -1 : body_index(desc.touches);
+    // Collision ids follow every body slot: the tools, then the obstacles.
+    const auto tool_id = static_cast<uint32_t>(capacity + devices_.size());
+    slot.tool = registry_.create();
+    registry_.emplace<Tool>(slot.tool, build_rigid_shape(desc.tool, tool_id), slot.index);
     const ecs::Entity e = registry_.create();
     registry_.emplace<DeviceSlot>(e, std::move(slot));
     devices_.push_back(e);
+  }
+  for (const ObstacleDesc& obstacle : scene_.obstacles) {
+    const auto id = static_cast<uint32_t>(capacity + scene_.devices.size() + colliders_.size());
+    colliders_.push_back(registry_.create());
+    registry_.emplace<Collider>(colliders_.back(), build_rigid_shape(obstacle.shape, id));
   }
   for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
 }

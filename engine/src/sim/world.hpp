@@ -13,6 +13,7 @@
 
 #include "device_slot.hpp"
 #include "entity_commands.hpp"
+#include "shape_components.hpp"
 #include "soft_body.hpp"
 #include "tacta/ecs.hpp"
 #include "tacta/plugin_registry.hpp"
@@ -40,6 +41,8 @@ class World {
   DeviceSlot& device(size_t i) { return *device_slots_[i]; }
   const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
   int body_index(const std::string& name) const;
+  // The tool device i carries (its own entity; DeviceSlot::tool names it).
+  Tool& tool(size_t device) { return registry_.get<Tool>(device_slots_[device]->tool); }
   ecs::Registry& registry() noexcept { return registry_; }
   // Bodies in the running scene, with the components Ts (entity index = body slot).
   template <class... Ts>
@@ -100,6 +103,7 @@ class World {
   std::atomic<size_t> body_count_{0};
   std::vector<ecs::Entity> devices_;
   std::vector<DeviceSlot*> device_slots_;
+  std::vector<ecs::Entity> colliders_;  // the scene's obstacles, in order
   std::mutex requests_;  // serialises requesters only; the tick's thread never takes it
   EntityCommandRing commands_;
   std::vector<EntityCommand> timed_;  // the scene's events, by time

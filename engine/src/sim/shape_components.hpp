@@ -1,0 +1,37 @@
+// The components of the scene's rigid things: the tool each device carries and the static
+// obstacles (colliders). Each is an entity of the World's registry, made at load; the collision
+// plugins see their shapes through CollisionContext's packed view.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tacta/collision_api.h"
+#include "tacta/scene.hpp"
+
+namespace tacta {
+
+// A rigid shape as the collision plugins see it, and the hull points it points into (the vector's
+// buffer, which moves with the component without being reallocated).
+struct RigidShape {
+  tacta_collision_shape shape{};
+  std::vector<double> hull_points;  // m, 3 per point, local frame; empty unless a hull
+};
+
+// A static obstacle of the scene (`obstacles`): plane, box, sphere, capsule or convex hull.
+struct Collider {
+  RigidShape rigid;
+};
+
+// The shape a device carries into the scene (`devices[].tool`); its pose follows the device's
+// proxy each tick (HapticInteraction).
+struct Tool {
+  RigidShape rigid;
+  uint32_t device = 0;  // index in the scene's devices
+};
+
+// Builds the shape from its scene description with collision id `id` (a mesh becomes the hull
+// of its points). Throws InputError (missing or unreadable mesh file).
+RigidShape build_rigid_shape(const ShapeDesc& desc, uint32_t id);
+
+}  // namespace tacta
