@@ -14,6 +14,7 @@
 #include "boundary_motion.hpp"
 #include "plugin_instance.hpp"
 #include "probes.hpp"
+#include "tacta/ecs.hpp"
 #include "tacta/embedded_surface.hpp"
 #include "tacta/mesh.hpp"
 #include "tacta/mesh_io.hpp"
@@ -70,10 +71,17 @@ struct RestShape {
   const std::vector<double>& rest() const { return topology->mesh.positions; }
 };
 
-// The surface the body is drawn, touched and collided through when it came from a surface file
-// or was given `surface:`; null: the boundary triangles of its tets. Heap-held: views point in.
+// The embedded surface entity of a body slot (made at load, one per slot): the surface the body
+// is drawn, touched and collided through when it came from a surface file or was given
+// `surface:`. `mesh` null: the body is seen through its tets' boundary. Heap-held: views point in.
 struct BodySurface {
   std::unique_ptr<EmbeddedSurface> mesh;
+  uint32_t body = 0;  // the body slot it follows
+};
+
+// On a body entity: its embedded surface's entity.
+struct SurfaceLink {
+  ecs::Entity surface;
 };
 
 // A model change scheduled for a time, built at load time so the switch itself allocates nothing.

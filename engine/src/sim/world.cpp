@@ -28,11 +28,12 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
                          " but the scene's bodies and events need " + std::to_string(needed) +
                          " slots");
   // Every slot's entity and storage are made now, so taking a body in or out at a tick boundary
-  // allocates nothing. Entity index = body slot (bodies are created before devices).
+  // allocates nothing. Entity index = body slot (bodies first, then their surfaces, devices,
+  // tools and obstacles).
   descs_.reserve(capacity);
   generations_ = std::make_unique<std::atomic<uint32_t>[]>(capacity);
   reserve_body_components(capacity);
-  const size_t entities = capacity + 2 * scene_.devices.size() + scene_.obstacles.size();
+  const size_t entities = 2 * capacity + 2 * scene_.devices.size() + scene_.obstacles.size();
   registry_.reserve<DeviceSlot>(entities);
   registry_.reserve<Tool>(entities);
   registry_.reserve<Collider>(entities);
@@ -41,6 +42,12 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     emplace_body_components(e);
     body_entities_.push_back(e);
     generations_[i].store(e.generation, std::memory_order_relaxed);
+  }
+  // Then each slot's embedded surface entity (after the bodies: entity index = body slot).
+  for (size_t i = 0; i < capacity; ++i) {
+    const ecs::Entity surface = registry_.create();
+    registry_.emplace<BodySurface>(surface, nullptr, static_cast<uint32_t>(i));
+    registry_.emplace<SurfaceLink>(body_entities_[i], surface);
   }
   commands_.resize(2 * capacity);  // an add and a remove per slot at most
   for (const BodyDesc& desc : scene_.bodies) {
@@ -109,12 +116,14 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
 
 SoftBody World::body(size_t i) const noexcept {
   const uint32_t e = static_cast<uint32_t>(i);  // entity index = body slot
-  return SoftBody(registry_.pool<BodyInfo>().at(e), registry_.pool<BodyPresence>().at(e),
-                  registry_.pool<NodeState>().at(e), registry_.pool<NodeLoads>().at(e),
-                  registry_.pool<RestShape>().at(e), registry_.pool<BodySurface>().at(e),
-                  registry_.pool<ModelSlot>().at(e), registry_.pool<StepSchedule>().at(e),
-                  registry_.pool<BodyConstraints>().at(e), registry_.pool<FaultState>().at(e),
-                  registry_.pool<Recording>().at(e));
+  return SoftBody(
+      registry_.pool<BodyInfo>().at(e), registry_.pool<BodyPresence>().at(e),
+      registry_.pool<NodeState>().at(e), registry_.pool<NodeLoads>().at(e),
+      registry_.pool<RestShape>().at(e),
+      registry_.pool<BodySurface>().at(registry_.pool<SurfaceLink>().at(e).surface.index),
+      registry_.pool<ModelSlot>().at(e), registry_.pool<StepSchedule>().at(e),
+      registry_.pool<BodyConstraints>().at(e), registry_.pool<FaultState>().at(e),
+      registry_.pool<Recording>().at(e));
 }
 
 void World::install(size_t slot, BodyParts&& p) noexcept {
@@ -124,7 +133,7 @@ void World::install(size_t slot, BodyParts&& p) noexcept {
   b.nodes = std::move(p.nodes);
   b.loads = std::move(p.loads);
   b.shape = std::move(p.shape);
-  b.surface = std::move(p.surface);
+  b.surface.mesh = std::move(p.surface.mesh);
   b.model = std::move(p.model);
   b.schedule = p.schedule;
   b.constraints = std::move(p.constraints);
@@ -262,8 +271,9 @@ void World::leave(size_t slot, double time) noexcept {
 // Every body component's pool, made now for every slot: filling, entering and leaving a slot
 // later allocates nothing and never moves a component another thread holds.
 void World::reserve_body_components(size_t slots) {
-  reserve_each<InScene, BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, BodySurface,
+  reserve_each<InScene, BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, SurfaceLink,
                ModelSlot, StepSchedule, BodyConstraints, FaultState, Recording>(registry_, slots);
+  registry_.reserve<BodySurface>(2 * slots);  // on the surface entities, after the bodies
 }
 
 void World::emplace_body_components(ecs::Entity e) {
@@ -274,7 +284,6 @@ void World::emplace_body_components(ecs::Entity e) {
   registry_.emplace<NodeState>(e);
   registry_.emplace<NodeLoads>(e);
   registry_.emplace<RestShape>(e);
-  registry_.emplace<BodySurface>(e);
   registry_.emplace<ModelSlot>(e);
   registry_.emplace<StepSchedule>(e);
   registry_.emplace<BodyConstraints>(e);
