@@ -238,8 +238,7 @@ void register_bodies(py::module_& m) {
       },
       py::arg("body"),
       "Adds a body (a dict as a scene lists it under `bodies`, or that YAML text); it enters at "
-      "the "
-      "next tick. Raises tacta.SceneError for a bad description, a name in use or no free slot "
+      "the next tick. Raises tacta.SceneError for a bad description, a name in use or no free slot "
       "(scene key capacity.bodies). Returns its Body.");
   simulation.def(
       "remove_body",

@@ -118,10 +118,24 @@ void register_devices(py::module_& m) {
           },
           py::arg("device"), py::arg("rate_hz") = 100.0,
           "Drives this device from a Python object at rate_hz (default 100 Hz) of simulated time: "
-          "at every "
-          "1/rate_hz boundary step() calls device.write(force) then feeds device.read() to the "
-          "plugin's "
-          "input. Returns the haptic ticks between calls.")
+          "at every 1/rate_hz boundary step() calls device.write(force) then feeds device.read() "
+          "to the plugin's input. Returns the haptic ticks between calls.")
+      .def(
+          "change_tool",
+          [](Device& d, const py::object& tool) {
+            // A dict goes as JSON, which the YAML reader takes; a str is YAML as a scene gives
+            // a device's `tool`.
+            const std::string text =
+                py::isinstance<py::str>(tool)
+                    ? tool.cast<std::string>()
+                    : py::module_::import("json").attr("dumps")(tool).cast<std::string>();
+            d.sim().change_tool(d.index, text);
+          },
+          py::arg("tool"),
+          "Replaces the tool this device carries at the next tick: a shape as a scene gives "
+          "`tool` ({'sphere': {'radius': 0.004}}). The proxy takes its radius and starts afresh "
+          "where the device is. Raises tacta.SceneError for a bad shape or a change still "
+          "waiting for its tick.")
       .def(
           "detach",
           [](Device& d) {

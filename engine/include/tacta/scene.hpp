@@ -180,12 +180,19 @@ struct SwapDesc {
   ParamSet params;
 };
 
-// A body entering or leaving the scene while it runs (scene key `events`): exactly one of
-// `add` (a whole body, as under `bodies`) and `remove` (a body's name).
+// A device's tool replaced while the scene runs (an event's `change_tool`, or the stepping API).
+struct ToolChangeDesc {
+  std::string device;  // the device's name
+  ShapeDesc tool;
+};
+
+// Something that changes the scene while it runs (scene key `events`): exactly one of `add` (a
+// whole body, as under `bodies`), `remove` (a body's name) and `change_tool`.
 struct BodyEventDesc {
   double time = 0;  // s, simulated
   std::optional<BodyDesc> add;
   std::string remove;
+  std::optional<ToolChangeDesc> change_tool;
   SourceLocation where;
 };
 

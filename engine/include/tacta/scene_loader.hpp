@@ -69,6 +69,11 @@ SceneDesc load_scene_from_string(const std::string& text, const std::string& vir
 BodyDesc load_body_from_string(const std::string& text, const std::string& virtual_path,
                                const SchemaLookup& schemas);
 
+// One shape (a device's `tool` or an obstacle's `shape`: {sphere: {radius}}, ...), e.g. to change
+// a tool while a scene runs.
+ShapeDesc load_shape_from_string(const std::string& text, const std::string& virtual_path,
+                                 const SchemaLookup& schemas);
+
 // Isotropic elasticity conversions (both in Pa; nu dimensionless).
 struct LameParameters {
   double lambda;  // Pa

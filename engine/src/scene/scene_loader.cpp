@@ -115,20 +115,39 @@ void check_unique(const std::vector<Field>& items, const std::vector<std::string
                                       "' (first used by " + items[j].path() + ")");
 }
 
-// `events`: bodies entering ({time, add: {a body}}) or leaving ({time, remove: name}) while the
-// scene runs, kept in time order. Names stay unique across bodies and added ones.
+// `change_tool: {device, tool}`: the device must be one of the scene's.
+ToolChangeDesc read_tool_change(const Field& field, const std::vector<DeviceDesc>& devices) {
+  field.expect_map("a map {device: device name, tool: a shape}");
+  field.check_keys({"device", "tool"});
+  ToolChangeDesc change;
+  const Field device = field.require("device");
+  change.device = device.text();
+  if (std::none_of(devices.begin(), devices.end(),
+                   [&](const DeviceDesc& d) { return d.name == change.device; }))
+    device.fail("no device named '" + change.device + "' among the scene's devices");
+  change.tool = read_shape(field.require("tool"));
+  return change;
+}
+
+// `events`: bodies entering ({time, add: {a body}}) or leaving ({time, remove: name}) and tools
+// changed ({time, change_tool: {device, tool}}) while the scene runs, kept in time order. Names
+// stay unique across bodies and added ones.
 void read_events(const Field& field, const std::vector<Field>& body_items, SceneDesc& scene) {
   std::vector<Field> named = body_items;
   std::vector<std::string> names;
   for (const BodyDesc& b : scene.bodies) names.push_back(b.name);
-  for (const Field& item : field.items("a list of events {time, add | remove}")) {
-    item.expect_map("an event: a map {time, add: {a body}} or {time, remove: body name}");
-    item.check_keys({"time", "add", "remove"});
+  for (const Field& item : field.items("a list of events {time, add | remove | change_tool}")) {
+    item.expect_map(
+        "an event: a map {time, add: {a body}}, {time, remove: body name} or {time, change_tool: "
+        "{device, tool}}");
+    item.check_keys({"time", "add", "remove", "change_tool"});
     BodyEventDesc event;
     event.time = item.require("time").real(Range::non_negative());
     event.where = item.where();
-    const std::string what = exactly_one_of(item, {"add", "remove"});
-    if (what == "add") {
+    const std::string what = exactly_one_of(item, {"add", "remove", "change_tool"});
+    if (what == "change_tool") {
+      event.change_tool = read_tool_change(item.require("change_tool"), scene.devices);
+    } else if (what == "add") {
       event.add = read_body(item.require("add"));
       named.push_back(item.require("add"));
       names.push_back(event.add->name);
@@ -276,6 +295,14 @@ BodyDesc load_body_from_string(const std::string& text, const std::string& virtu
   using namespace scene_detail;
   return read_text(text, virtual_path, schemas, [](LoadContext& context, YAML::Node& root) {
     return read_body(Field(context, root, "", YAML::Mark::null_mark()));
+  });
+}
+
+ShapeDesc load_shape_from_string(const std::string& text, const std::string& virtual_path,
+                                 const SchemaLookup& schemas) {
+  using namespace scene_detail;
+  return read_text(text, virtual_path, schemas, [](LoadContext& context, YAML::Node& root) {
+    return read_shape(Field(context, root, "", YAML::Mark::null_mark()));
   });
 }
 

@@ -1,4 +1,4 @@
-// The command buffer between whoever adds or removes entities while a scene runs and the thread
+// The command buffer between whoever adds or removes entities (or changes a tool) while a scene runs and the thread
 // that owns the tick: a single-producer single-consumer ring of fixed capacity (requesters are
 // serialised among themselves), drained at a tick boundary. Neither side waits or allocates.
 #pragma once
@@ -10,10 +10,11 @@
 namespace tacta {
 
 struct EntityCommand {
-  enum Kind : uint8_t { kAddBody, kRemoveBody };
+  enum Kind : uint8_t { kAddBody, kRemoveBody, kChangeTool };
   Kind kind = kAddBody;
-  uint32_t slot = 0;  // the body slot
+  uint32_t slot = 0;  // the body slot; kChangeTool: the device
   double time_s = 0;  // s; for a scene's timed events, when it applies
+  uint32_t item = 0;  // kChangeTool from a scene event: its prebuilt tool
 };
 
 class EntityCommandRing {

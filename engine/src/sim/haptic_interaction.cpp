@@ -7,19 +7,29 @@
 
 namespace tacta {
 
+namespace {
+
+haptics::ContactRendererParams renderer_params(const DeviceSlot& slot, double proxy_radius) {
+  haptics::ContactRendererParams params;
+  params.proxy.radius = proxy_radius;
+  params.coupling.stiffness = slot.desc.coupling_stiffness;
+  params.coupling.damping = slot.desc.coupling_damping;
+  params.passivity.controller_enabled = slot.desc.coupling_passivity;
+  params.first_contact_enabled = slot.desc.coupling_first_contact;
+  params.peak_force = slot.device->capabilities().peak_force;
+  return params;
+}
+
+}  // namespace
+
 HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
     : collision_(collision) {
   channels_.reserve(world.device_count());
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot& slot = world.device(d);
-    haptics::ContactRendererParams params;
-    params.proxy.radius = slot.desc.tool.radius;
-    params.coupling.stiffness = slot.desc.coupling_stiffness;
-    params.coupling.damping = slot.desc.coupling_damping;
-    params.passivity.controller_enabled = slot.desc.coupling_passivity;
-    params.first_contact_enabled = slot.desc.coupling_first_contact;
-    params.peak_force = slot.device->capabilities().peak_force;
-    channels_.push_back(Channel{haptics::ContactRenderer(params), false, LocalModel{}});
+    const Tool& tool = world.tool(d);
+    channels_.push_back(
+        Channel{haptics::ContactRenderer(renderer_params(world.device(d), tool.proxy_radius)),
+                false, LocalModel{}, tool.revision});
   }
 }
 
@@ -28,6 +38,14 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
   for (size_t d = 0; d < world.device_count(); ++d) {
     DeviceSlot& slot = world.device(d);
     Channel& ch = channels_[d];
+    if (const Tool& t = world.tool(d); t.revision != ch.tool_revision) {
+      // A new tool: the proxy takes its radius and starts afresh where the device is, as after a
+      // reconnection (no stored stretch is carried across the change).
+      ch.renderer = haptics::ContactRenderer(renderer_params(slot, t.proxy_radius));
+      ch.started = false;
+      ch.tool_revision = t.revision;
+      ++slot.stats.tool_changes;
+    }
     const Vec3 device{slot.sample.position[0], slot.sample.position[1], slot.sample.position[2]};
     const Vec3 velocity{slot.sample.velocity[0], slot.sample.velocity[1], slot.sample.velocity[2]};
     if (!ch.started) {

@@ -45,6 +45,7 @@ class HapticInteraction final : public Interaction {
     haptics::ContactRenderer renderer;
     bool started = false;
     LocalModel local;
+    uint32_t tool_revision = 0;  // the device's Tool::revision this channel renders
   };
   void apply_reaction(World& world, const haptics::SurfaceHit& hit,
                       const Vec3& force_on_body) noexcept;

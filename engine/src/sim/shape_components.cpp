@@ -47,4 +47,8 @@ RigidShape build_rigid_shape(const ShapeDesc& d, uint32_t id) {
   return rigid;
 }
 
+Tool build_tool(const ShapeDesc& desc, uint32_t id, uint32_t device) {
+  return Tool{build_rigid_shape(desc, id), device, desc.radius, 0};
+}
+
 }  // namespace tacta

@@ -27,8 +27,13 @@ struct Collider {
 // proxy each tick (HapticInteraction).
 struct Tool {
   RigidShape rigid;
-  uint32_t device = 0;  // index in the scene's devices
+  uint32_t device = 0;      // index in the scene's devices
+  double proxy_radius = 0;  // m: the haptic proxy's sphere (the shape's `radius`)
+  uint32_t revision = 0;    // counts changes of tool while the scene runs
 };
+
+// A tool built to replace a device's while the scene runs (World::change_tool, a scene event).
+Tool build_tool(const ShapeDesc& desc, uint32_t id, uint32_t device);
 
 // Builds the shape from its scene description with collision id `id` (a mesh becomes the hull
 // of its points). Throws InputError (missing or unreadable mesh file).

@@ -72,6 +72,15 @@ BodyHandle Simulation::add_body(const std::string& yaml) {
       load_body_from_string(yaml, impl_->world.scene().path, RegistrySchemas(impl_->plugins)));
 }
 
+void Simulation::change_tool(size_t device, const ShapeDesc& tool) {
+  impl_->world.change_tool(device, tool);
+}
+
+void Simulation::change_tool(size_t device, const std::string& yaml) {
+  change_tool(device, load_shape_from_string(yaml, impl_->world.scene().path,
+                                             RegistrySchemas(impl_->plugins)));
+}
+
 void Simulation::remove_body(BodyHandle body) {
   impl_->world.remove_body({body.index, body.generation});
 }

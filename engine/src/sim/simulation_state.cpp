@@ -79,7 +79,7 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     const DeviceSlot& slot = world.device(d);
     result.devices.push_back({slot.name, slot.desc.plugin, slot.state, slot.stats.max_force_N,
                               slot.stats.contact_ticks, slot.stats.reconnections,
-                              slot.device->counters()});
+                              slot.device->counters(), slot.stats.tool_changes});
   }
   result.faults = loop.faults().rows().size();
   for (const FaultRecord& f : loop.faults().rows()) {

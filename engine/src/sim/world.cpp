@@ -49,7 +49,8 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     registry_.emplace<BodySurface>(surface, nullptr, static_cast<uint32_t>(i));
     registry_.emplace<SurfaceLink>(body_entities_[i], surface);
   }
-  commands_.resize(2 * capacity);  // an add and a remove per slot at most
+  // An add and a remove per slot at most, and one tool change per device.
+  commands_.resize(2 * capacity + scene_.devices.size());
   for (const BodyDesc& desc : scene_.bodies) {
     install(descs_.size(), build_body(desc));
     registry_.emplace<InScene>(body_entities_[descs_.size()]);
@@ -60,6 +61,11 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   for (const BodyDesc& b : scene_.bodies) names.push_back(b.name);
   for (const BodyEventDesc& e : scene_.events) {
     EntityCommand c{e.add ? EntityCommand::kAddBody : EntityCommand::kRemoveBody, 0, e.time};
+    if (e.change_tool) {  // built with the devices, below
+      timed_.push_back({EntityCommand::kChangeTool, 0, e.time,
+                        static_cast<uint32_t>(&e - scene_.events.data())});
+      continue;
+    }
     if (e.add) {
       if (std::find(names.begin(), names.end(), e.add->name) != names.end())
         throw InputError(e.where, "duplicate body name '" + e.add->name +
@@ -101,17 +107,27 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     // Collision ids follow every body slot: the tools, then the obstacles.
     const auto tool_id = static_cast<uint32_t>(capacity + devices_.size());
     slot.tool = registry_.create();
-    registry_.emplace<Tool>(slot.tool, build_rigid_shape(desc.tool, tool_id), slot.index);
+    registry_.emplace<Tool>(slot.tool, build_tool(desc.tool, tool_id, slot.index));
     const ecs::Entity e = registry_.create();
     registry_.emplace<DeviceSlot>(e, std::move(slot));
     devices_.push_back(e);
   }
+  for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
+  pending_tools_ = std::make_unique<PendingTool[]>(scene_.devices.size());
+  for (EntityCommand& c : timed_)  // the scene's tool changes, now that the devices exist
+    if (c.kind == EntityCommand::kChangeTool) {
+      const BodyEventDesc& e = scene_.events[c.item];
+      const int device = device_index(e.change_tool->device);
+      if (device < 0) throw InputError(e.where, "no device named '" + e.change_tool->device + "'");
+      c.slot = static_cast<uint32_t>(device);
+      c.item = static_cast<uint32_t>(timed_tools_.size());
+      timed_tools_.push_back(build_tool(e.change_tool->tool, 0, c.slot));
+    }
   for (const ObstacleDesc& obstacle : scene_.obstacles) {
     const auto id = static_cast<uint32_t>(capacity + scene_.devices.size() + colliders_.size());
     colliders_.push_back(registry_.create());
     registry_.emplace<Collider>(colliders_.back(), build_rigid_shape(obstacle.shape, id));
   }
-  for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
 }
 
 SoftBody World::body(size_t i) const noexcept {
@@ -196,6 +212,39 @@ void World::remove_body(ecs::Entity handle) {
   commands_.push({EntityCommand::kRemoveBody, static_cast<uint32_t>(slot), 0});
 }
 
+int World::device_index(const std::string& name) const {
+  for (size_t d = 0; d < device_slots_.size(); ++d)
+    if (device_slots_[d]->name == name) return static_cast<int>(d);
+  return -1;
+}
+
+void World::change_tool(size_t device, const ShapeDesc& shape) {
+  if (device >= device_count())
+    throw InputError({scene_.path, 0, 0, "devices"}, "no device with index " +
+                                                         std::to_string(device) + " (" +
+                                                         std::to_string(device_count()) + ")");
+  Tool built = build_tool(shape, 0, static_cast<uint32_t>(device));  // outside the lock
+  const std::lock_guard<std::mutex> lock(requests_);
+  PendingTool& p = pending_tools_[device];
+  if (p.waiting.load(std::memory_order_acquire))
+    throw InputError({scene_.path, 0, 0, "devices." + device_slots_[device]->name + ".tool"},
+                     "a tool change for device '" + device_slots_[device]->name +
+                         "' is still waiting for the next tick (one at a time per device)");
+  p.tool = std::move(built);  // frees the tool the last change took out, here
+  p.waiting.store(true, std::memory_order_release);
+  commands_.push({EntityCommand::kChangeTool, static_cast<uint32_t>(device), 0});
+}
+
+void World::swap_tool(size_t device, Tool& incoming) noexcept {
+  Tool& current = tool(device);
+  // The new shape takes over the old one's collision id and pose (the proxy moves it on).
+  incoming.rigid.shape.body_id = current.rigid.shape.body_id;
+  incoming.rigid.shape.pose_start = current.rigid.shape.pose_start;
+  incoming.rigid.shape.pose_end = current.rigid.shape.pose_end;
+  incoming.revision = current.revision + 1;
+  std::swap(current, incoming);
+}
+
 ecs::Entity World::body_handle(size_t body) const {
   if (body >= body_count())
     throw InputError({scene_.path, 0, 0, "bodies"}, "no body with index " + std::to_string(body));
@@ -227,13 +276,22 @@ size_t World::body_slot(ecs::Entity handle) const {
 void World::apply_entity_commands(double time) noexcept {
   EntityCommand c;
   while (commands_.pop(c)) {
-    if (c.kind == EntityCommand::kAddBody)
+    if (c.kind == EntityCommand::kChangeTool) {
+      PendingTool& p = pending_tools_[c.slot];
+      swap_tool(c.slot, p.tool);
+      p.waiting.store(false, std::memory_order_release);
+    } else if (c.kind == EntityCommand::kAddBody) {
       enter(c.slot, time);
-    else
+    } else {
       leave(c.slot, time);
+    }
   }
   for (; next_timed_ < timed_.size() && timed_[next_timed_].time_s <= time + 1e-12; ++next_timed_) {
     const EntityCommand& t = timed_[next_timed_];
+    if (t.kind == EntityCommand::kChangeTool) {
+      swap_tool(t.slot, timed_tools_[t.item]);
+      continue;
+    }
     if (t.kind == EntityCommand::kAddBody) {
       enter(t.slot, time);
       continue;

@@ -42,7 +42,10 @@ class World {
   const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
   int body_index(const std::string& name) const;
   // The tool device i carries (its own entity; DeviceSlot::tool names it).
-  Tool& tool(size_t device) { return registry_.get<Tool>(device_slots_[device]->tool); }
+  Tool& tool(size_t device) noexcept {
+    return registry_.pool<Tool>().at(device_slots_[device]->tool.index);
+  }
+  int device_index(const std::string& name) const;  // -1 when none
   ecs::Registry& registry() noexcept { return registry_; }
   // Bodies in the running scene, with the components Ts (entity index = body slot).
   template <class... Ts>
@@ -64,6 +67,9 @@ class World {
   // surface); when it throws, the add is undone.
   ecs::Entity add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare = {});
   void remove_body(ecs::Entity handle);
+  // Replaces device `device`'s tool at the next tick boundary (any thread but the tick's; builds
+  // the shape here: allocates, throws InputError). One change per device waits at a time.
+  void change_tool(size_t device, const ShapeDesc& tool);
   // Handles: entity index = body slot; the generation changes when the body is removed.
   ecs::Entity body_handle(size_t body) const;
   bool is_live(ecs::Entity handle) const noexcept;
@@ -104,6 +110,15 @@ class World {
   std::vector<ecs::Entity> devices_;
   std::vector<DeviceSlot*> device_slots_;
   std::vector<ecs::Entity> colliders_;  // the scene's obstacles, in order
+  // Per device: a tool waiting for the tick boundary. The tick swaps it with the device's Tool,
+  // so the outgoing tool stays here and is freed by the next request, not on the tick's thread.
+  struct PendingTool {
+    std::atomic<bool> waiting{false};
+    Tool tool;
+  };
+  std::unique_ptr<PendingTool[]> pending_tools_;
+  std::vector<Tool> timed_tools_;  // the scene's change_tool events, built at load
+  void swap_tool(size_t device, Tool& incoming) noexcept;
   std::mutex requests_;  // serialises requesters only; the tick's thread never takes it
   EntityCommandRing commands_;
   std::vector<EntityCommand> timed_;  // the scene's events, by time

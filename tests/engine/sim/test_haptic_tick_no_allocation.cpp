@@ -95,5 +95,35 @@ model: corotational_fem
   EXPECT_FALSE(h.world.body(0).present());
 }
 
+// A tool changed while the liver is pressed: the request builds the new shape (allocates, on
+// the requesting side); the tick that swaps it in and the proxy that restarts with its radius
+// allocate nothing, and the collision view carries the new shape from that tick.
+TEST(HapticTickAllocations, ToolChangeAtATickBoundary) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  LoopHarness h(scene, kWarmUpTicks + 700);
+  for (int i = 0; i < kWarmUpTicks + 500; ++i) h.tick();
+  const uint32_t id = h.collision.view().shapes[0].body_id;
+  ShapeDesc capsule;
+  capsule.kind = ShapeDesc::Kind::Capsule;
+  capsule.radius = 0.005;
+  capsule.half_length = 0.01;
+  h.world.change_tool(0, capsule);
+  g_allocations = 0;
+  g_counting = true;
+  for (int i = 0; i < 100; ++i) h.tick();
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0) << "heap allocations in the 100 ticks that took the new tool";
+  EXPECT_EQ(h.world.device(0).stats.tool_changes, 1u);
+  const tacta_collision_shape& seen = h.collision.view().shapes[0];
+  EXPECT_EQ(seen.type, TACTA_SHAPE_CAPSULE);
+  EXPECT_EQ(seen.radius, 0.005);
+  EXPECT_EQ(seen.body_id, id) << "the new tool keeps the collision id";
+  const tacta_pose& pose = h.world.tool(0).rigid.shape.pose_end;  // follows the proxy
+  for (int a = 0; a < 3; ++a)
+    EXPECT_EQ(pose.position[a], h.world.device(0).proxy[static_cast<size_t>(a)]);
+}
+
 }  // namespace
 }  // namespace tacta::simtest

@@ -65,6 +65,7 @@ struct DeviceResult {
   double max_force_N = 0;
   uint64_t contact_ticks = 0, reconnections = 0;
   std::vector<std::pair<std::string, double>> counters;  // the plugin's (device_api.h `counters`)
+  uint64_t tool_changes = 0;                             // tools changed while the scene ran
 };
 
 struct RunResult {
@@ -201,6 +202,13 @@ class Simulation {
   // scene's folder).
   BodyHandle add_body(const std::string& yaml);
   void remove_body(BodyHandle body);
+  // Device `device`'s tool becomes `tool` at the next tick boundary (any one thread at a time,
+  // like add_body): the collision shape the tool carries and the haptic proxy's radius change,
+  // and the proxy starts afresh at the device's position. Builds the shape here (allocates;
+  // InputError for a bad shape, an index past device_count() or a change still waiting).
+  void change_tool(size_t device, const ShapeDesc& tool);
+  // The same from YAML text: a shape as a device's `tool` gives it ({sphere: {radius: 0.004}}).
+  void change_tool(size_t device, const std::string& yaml);
   BodyHandle body_handle(size_t body) const;        // InputError for an index past body_count()
   bool body_alive(BodyHandle body) const noexcept;  // false once removal was requested
   size_t body_index(BodyHandle body) const;         // InputError when stale (names the body)
