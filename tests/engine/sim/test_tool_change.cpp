@@ -3,7 +3,10 @@
 // block it rests one radius above the top face), the report counts the change, and bad requests
 // are InputErrors naming the key. (The collision view's shape and the tick's allocations:
 // test_haptic_tick_no_allocation.cpp.)
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "sim_test_support.hpp"
 #include "tacta/scene_loader.hpp"
@@ -71,6 +74,34 @@ TEST(ToolChange, SteppingApiChangesTheToolAtTheNextTick) {
   simulation.step(300);
   EXPECT_NEAR(proxy_height(simulation), 0.003, 1e-4);
   EXPECT_EQ(simulation.report().devices[0].tool_changes, 2u);
+}
+
+// Realtime: the haptic thread runs on the wall clock while this thread changes the tool twice;
+// both are taken at tick boundaries (ThreadSanitizer: clean, ctest -L tsan).
+TEST(ToolChange, ChangedDuringARealtimeRun) {
+  Simulation simulation(scene_from_text(kPressedBlock, "tool_change_realtime"), plugins());
+  RunOptions options;
+  options.realtime = true;
+  options.duration_s = 0.4;
+  struct Progress final : FrameObserver {
+    std::atomic<double> time{0};
+    void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
+  } progress;
+  options.observers.push_back(&progress);
+  RunResult result;
+  std::thread runner([&] { result = simulation.run(options); });
+  const auto wait_until = [&](double t) {
+    while (progress.time.load() < t) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
+  wait_until(0.1);
+  simulation.change_tool(0, std::string("{sphere: {radius: 0.004}}"));
+  wait_until(0.25);  // 150 ticks later: the first change was taken long ago
+  simulation.change_tool(0, std::string("{capsule: {radius: 0.003, half_length: 0.01}}"));
+  runner.join();
+  EXPECT_EQ(result.schedule.ticks, 400u);
+  ASSERT_EQ(result.devices.size(), 1u);
+  EXPECT_EQ(result.devices[0].tool_changes, 2u);
+  EXPECT_NEAR(proxy_height(simulation), 0.003, 2e-4);
 }
 
 TEST(ToolChange, BadRequestsAreInputErrors) {
