@@ -67,13 +67,8 @@ namespace {
 std::vector<double> begin_models(World& world) {
   std::vector<double> energy;
   const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
-  for (size_t i = 0; i < world.body_count(); ++i) {
-    const SoftBody b = world.body(i);
-    energy.push_back(b.kinetic_energy() +
-                     b.model.instance->elastic_energy(b.nodes.positions.data()));
-    const tacta_body_state state = b.state_view(0.0);
-    b.model.instance->begin(state, b.step_dt(haptic_dt));
-  }
+  for (size_t i = 0; i < world.body_count(); ++i)
+    energy.push_back(begin_model(world.body(i), 0.0, haptic_dt));
   return energy;
 }
 

@@ -96,6 +96,13 @@ double SoftBody::kinetic_energy() const noexcept {
   return tacta::kinetic_energy(nodes, *shape.topology);
 }
 
+double begin_model(const SoftBody& b, double time, double haptic_dt) noexcept {
+  const double energy =
+      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
+  b.model.instance->begin(b.state_view(time), b.step_dt(haptic_dt));
+  return energy;
+}
+
 BodyParts build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
                           const ModelFactory& make_model) {
   BodyParts body;

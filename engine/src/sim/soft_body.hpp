@@ -77,6 +77,11 @@ struct SoftBody {
   }
 };
 
+// Starts the body's model at `time` (s) for steps of its own period or the haptic tick
+// (model.begin) and returns its mechanical energy just before, kinetic + elastic (J): the
+// reference the energy records compare with.
+double begin_model(const SoftBody& body, double time, double haptic_dt) noexcept;
+
 // J: ½ Σ m v² over the nodes (lumped masses).
 double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept;
 

@@ -309,10 +309,8 @@ void World::enter(size_t slot, double time) noexcept {
   if (b.presence.state != BodyPresence::kPending) return;
   b.presence.state = BodyPresence::kPresent;
   b.presence.added_s = time;
-  b.presence.initial_energy_J =
-      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
   b.schedule.next_step_s = time;
-  b.model.instance->begin(b.state_view(time), b.step_dt(1.0 / scene_.clock.haptic_rate_hz));
+  b.presence.initial_energy_J = begin_model(b, time, 1.0 / scene_.clock.haptic_rate_hz);
   ecs::Pool<InScene>& in_scene = registry_.pool<InScene>();  // reserved for every slot
   if (!in_scene.contains(body_entities_[slot].index)) in_scene.emplace(body_entities_[slot]);
 }
