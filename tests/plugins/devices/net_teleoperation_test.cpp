@@ -225,8 +225,13 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
 // The check above can fail: the same 250 ms loop with the force only limited to the peak (no
 // passivity filter) hands the operator energy the hand never put in.
 TEST(NetTeleoperation, WithoutTheFilterTheDelayedLoopCreatesEnergy) {
-  const TeleopRun run = teleoperate(250, 12.5, 0.01, false);
+  // A run in which the press never reached the liver says nothing about the filter (seen once in
+  // an ASan build with two compilers sharing its 2 cores): such a run is repeated, twice at most.
+  TeleopRun run = teleoperate(250, 12.5, 0.01, false);
+  for (int retry = 0; retry < 2 && run.peer.at("peak") == 0.0; ++retry)
+    run = teleoperate(250, 12.5, 0.01, false);
   ASSERT_GT(run.peer.at("ticks"), 0.5 * kPressSeconds * 1000) << "the peer did not run through";
+  ASSERT_GT(run.peer.at("peak"), 0.0) << "no run of three made contact";
   std::printf("unfiltered, 250 ms: min exact ledger %.2e J, peak %.3f N\n", run.min_exact_ledger,
               run.peer.at("peak"));
   EXPECT_LT(run.min_exact_ledger, -100 * kLedgerTolerance);
