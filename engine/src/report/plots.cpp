@@ -52,9 +52,9 @@ void write_plots(const std::string& dir, const World& world, RunResult& result,
       png = dir + "/force_vs_time.png";
       args.insert(args.end(), {scripts + "/force_vs_time.py", dir + "/trace.csv", png});
       if (world.device_count() > 0)
-        args.insert(
-            args.end(),
-            {"--peak-force", std::to_string(world.device(0).device->capabilities().peak_force)});
+        args.insert(args.end(),
+                    {"--peak-force",
+                     std::to_string(world.device(0).link.device->capabilities().peak_force)});
     } else if (plot == "energy" || plot == "displacement") {
       args.insert(args.end(), {scripts + "/energy.py", dir + "/energy.csv", png, "--quantity", plot,
                                "--title", world.scene().name});

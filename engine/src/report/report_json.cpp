@@ -174,8 +174,8 @@ void write_bodies(JsonWriter& j, const World& world, const RunResult& result) {
 void write_devices(JsonWriter& j, const World& world, const RunStatus& status) {
   j.key("devices").begin_array();
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot& s = world.device(d);
-    const DeviceStats& st = s.stats;
+    const DeviceLink& s = world.device(d).link;
+    const DeviceStats& st = world.device(d).stats;
     j.begin_object();
     j.field("name", s.name).field("plugin", s.desc.plugin);
     j.field("max_force_N", st.max_force_N);

@@ -1,5 +1,5 @@
-// The Device component: a device plugin instance, the tool it carries, its last sample and the
-// force it was last sent, plus the per-run statistics report.json gives for it.
+// The components of a device entity: its plugin link, the contact the haptic rendering made of
+// its last tick, and the per-run statistics report.json gives for it.
 #pragma once
 
 #include <array>
@@ -27,21 +27,33 @@ struct DeviceStats {
   uint64_t tool_changes = 0;      // tools changed while the scene ran (events, stepping API)
 };
 
-struct DeviceSlot {
+// The device plugin and what it last said: its instance, the last sample, the connection state
+// and why it stopped, and the tool it carries (an entity of its own).
+struct DeviceLink {
   std::string name;
   uint32_t index = 0;  // in the scene's devices (trace, report, status counters)
-  ecs::Entity tool;    // the Tool entity it carries
   DeviceDesc desc;
   std::unique_ptr<DeviceInstance> device;
   tacta_device_sample sample{};
   tacta_device_state state = TACTA_DEVICE_CONNECTED;
+  std::array<char, 200> status_reason{};  // why the device stopped, if it did
+  double status_time_s = -1;
+  ecs::Entity tool;  // the Tool entity it carries
+};
+
+// What the haptic rendering made of the device's last tick.
+struct DeviceContact {
   std::array<double, 3> force{};  // N, last sent
   std::array<double, 3> proxy{};  // m, proxy (god-object) position
   bool in_contact = false;
   int touched_body = -1;  // index into the world's bodies, -1 when none
-  DeviceStats stats;
-  std::array<char, 200> status_reason{};  // why the device stopped, if it did
-  double status_time_s = -1;
+};
+
+// One device's components by reference (World::device), for code that needs all of them.
+struct DeviceSlot {
+  DeviceLink& link;
+  DeviceContact& contact;
+  DeviceStats& stats;
 };
 
 }  // namespace tacta

@@ -29,7 +29,7 @@ class DeviceSurfaceFeed final : public FrameObserver {
           snapshot.time_s,  body.name.c_str(),
           positions.data(), static_cast<uint32_t>(positions.size() / 3),
           triangles.data(), static_cast<uint32_t>(triangles.size() / 3)};
-      world_.device(d).device->surface(surface);
+      world_.device(d).link.device->surface(surface);
     }
   }
 
@@ -44,7 +44,7 @@ class DeviceSurfaceFeed final : public FrameObserver {
 std::unique_ptr<FrameObserver> make_device_surface_feed(World& world) {
   std::vector<size_t> devices;
   for (size_t d = 0; d < world.device_count(); ++d)
-    if (world.device(d).device->wants_surface()) devices.push_back(d);
+    if (world.device(d).link.device->wants_surface()) devices.push_back(d);
   if (devices.empty()) return nullptr;
   return std::make_unique<DeviceSurfaceFeed>(world, std::move(devices));
 }

@@ -12,11 +12,11 @@ namespace {
 haptics::ContactRendererParams renderer_params(const DeviceSlot& slot, double proxy_radius) {
   haptics::ContactRendererParams params;
   params.proxy.radius = proxy_radius;
-  params.coupling.stiffness = slot.desc.coupling_stiffness;
-  params.coupling.damping = slot.desc.coupling_damping;
-  params.passivity.controller_enabled = slot.desc.coupling_passivity;
-  params.first_contact_enabled = slot.desc.coupling_first_contact;
-  params.peak_force = slot.device->capabilities().peak_force;
+  params.coupling.stiffness = slot.link.desc.coupling_stiffness;
+  params.coupling.damping = slot.link.desc.coupling_damping;
+  params.passivity.controller_enabled = slot.link.desc.coupling_passivity;
+  params.first_contact_enabled = slot.link.desc.coupling_first_contact;
+  params.peak_force = slot.link.device->capabilities().peak_force;
   return params;
 }
 
@@ -36,7 +36,7 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
 void HapticInteraction::before_step(World& world, double time, double dt) noexcept {
   collision_.refit(time, dt);
   for (size_t d = 0; d < world.device_count(); ++d) {
-    DeviceSlot& slot = world.device(d);
+    const DeviceSlot slot = world.device(d);
     Channel& ch = channels_[d];
     if (const Tool& t = world.tool(d); t.revision != ch.tool_revision) {
       // A new tool: the proxy takes its radius and starts afresh where the device is, as after a
@@ -46,36 +46,40 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
       ch.tool_revision = t.revision;
       ++slot.stats.tool_changes;
     }
-    const Vec3 device{slot.sample.position[0], slot.sample.position[1], slot.sample.position[2]};
-    const Vec3 velocity{slot.sample.velocity[0], slot.sample.velocity[1], slot.sample.velocity[2]};
+    const Vec3 device{slot.link.sample.position[0], slot.link.sample.position[1],
+                      slot.link.sample.position[2]};
+    const Vec3 velocity{slot.link.sample.velocity[0], slot.link.sample.velocity[1],
+                        slot.link.sample.velocity[2]};
     if (!ch.started) {
       ch.renderer.reset(device);
       ch.started = true;
       // The tool starts where the proxy does: from the default origin, its first sweep would cut
       // through whatever lies between (contacts tens of mm deep for the collision response).
-      slot.proxy = ch.renderer.proxy().position();
+      slot.contact.proxy = ch.renderer.proxy().position();
     }
     // A tool whose body was removed has nothing to touch: no force, and a fresh start if the
     // device goes on (its proxy would otherwise stay on a surface that is gone).
-    const bool body_gone =
-        slot.touched_body >= 0 && !world.body(static_cast<size_t>(slot.touched_body)).present();
-    if (slot.state != TACTA_DEVICE_CONNECTED || body_gone) {
-      slot.force = {0, 0, 0};
-      slot.in_contact = false;
+    const bool body_gone = slot.contact.touched_body >= 0 &&
+                           !world.body(static_cast<size_t>(slot.contact.touched_body)).present();
+    if (slot.link.state != TACTA_DEVICE_CONNECTED || body_gone) {
+      slot.contact.force = {0, 0, 0};
+      slot.contact.in_contact = false;
       ch.started =
           false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
       continue;
     }
     tacta_collision_shape& tool = collision_.tool(d);
-    for (int a = 0; a < 3; ++a) tool.pose_start.position[a] = slot.proxy[static_cast<size_t>(a)];
+    for (int a = 0; a < 3; ++a)
+      tool.pose_start.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
     prepare_local_model(world, ch, slot);
-    const haptics::ContactRendering out =
-        ch.renderer.tick(collision_.surface_query(slot.touched_body), time, device, velocity, dt);
+    const haptics::ContactRendering out = ch.renderer.tick(
+        collision_.surface_query(slot.contact.touched_body), time, device, velocity, dt);
     follow_local_model(world, ch, out, dt);
-    slot.proxy = ch.renderer.proxy().position();
-    for (int a = 0; a < 3; ++a) tool.pose_end.position[a] = slot.proxy[static_cast<size_t>(a)];
-    slot.force = out.device_force;
-    slot.in_contact = out.in_contact;
+    slot.contact.proxy = ch.renderer.proxy().position();
+    for (int a = 0; a < 3; ++a)
+      tool.pose_end.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
+    slot.contact.force = out.device_force;
+    slot.contact.in_contact = out.in_contact;
     const haptics::ContactStats& st = ch.renderer.stats();
     slot.stats.first_contact_peak_N = st.first_contact_peak;
     slot.stats.steady_contact_N = st.steady_contact;
@@ -140,7 +144,7 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
 void HapticInteraction::prepare_local_model(World& world, Channel& ch,
                                             const DeviceSlot& slot) noexcept {
   LocalModel& m = ch.local;
-  const int touched = m.body >= 0 ? m.body : slot.touched_body;
+  const int touched = m.body >= 0 ? m.body : slot.contact.touched_body;
   if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() ||
       !world.body(static_cast<size_t>(touched)).schedule.own_thread) {
     ch.renderer.set_local_compliance({});
@@ -224,8 +228,9 @@ void HapticInteraction::after_step(World&, double, double) noexcept {}
 
 void HapticInteraction::after_write(World& world) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot& slot = world.device(d);
-    channels_[d].renderer.override_sent({slot.force[0], slot.force[1], slot.force[2]});
+    const DeviceSlot slot = world.device(d);
+    channels_[d].renderer.override_sent(
+        {slot.contact.force[0], slot.contact.force[1], slot.contact.force[2]});
   }
 }
 

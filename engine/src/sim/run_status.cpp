@@ -30,7 +30,7 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
   }
   for (size_t d = 0; d < world.device_count(); ++d) {
     status.devices.push_back(describe(loop.device_status(d), StatusSource::Device));
-    summarise("device " + world.device(d).name, status.devices.back(), status);
+    summarise("device " + world.device(d).link.name, status.devices.back(), status);
   }
   status.collision = describe(loop.collision_status(), StatusSource::Collision);
   summarise("collision", status.collision, status);

@@ -125,12 +125,12 @@ bool Simulation::device_input(size_t device, const double* values, uint32_t coun
   if (device >= world.device_count())
     throw InputError({world.scene().path, 0, 0, "devices"},
                      "no device with index " + std::to_string(device));
-  return world.device(device).device->input(values, count);
+  return world.device(device).link.device->input(values, count);
 }
 
 size_t Simulation::device_count() const { return impl_->world.device_count(); }
 const std::string& Simulation::device_plugin(size_t device) const {
-  return impl_->world.device(device).desc.plugin;
+  return impl_->world.device(device).link.desc.plugin;
 }
 
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }

@@ -76,16 +76,17 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   }
   result.state_hash = hash_positions(arrays);
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot& slot = world.device(d);
-    result.devices.push_back({slot.name, slot.desc.plugin, slot.state, slot.stats.max_force_N,
-                              slot.stats.contact_ticks, slot.stats.reconnections,
-                              slot.device->counters(), slot.stats.tool_changes});
+    const DeviceSlot slot = world.device(d);
+    result.devices.push_back({slot.link.name, slot.link.desc.plugin, slot.link.state,
+                              slot.stats.max_force_N, slot.stats.contact_ticks,
+                              slot.stats.reconnections, slot.link.device->counters(),
+                              slot.stats.tool_changes});
   }
   result.faults = loop.faults().rows().size();
   for (const FaultRecord& f : loop.faults().rows()) {
     const std::string who =
         f.body >= 0     ? "body " + world.body(static_cast<size_t>(f.body)).info.name
-        : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).name
+        : f.device >= 0 ? "device " + world.device(static_cast<size_t>(f.device)).link.name
                         : std::string("run");
     char time[32];
     std::snprintf(time, sizeof time, "%.3f", f.time_s);
@@ -237,15 +238,15 @@ DeviceReading Simulation::device_reading(size_t device) const {
   if (device >= world.device_count())
     throw InputError({world.scene().path, 0, 0, "devices"},
                      "no device with index " + std::to_string(device));
-  const DeviceSlot& slot = world.device(device);
+  const DeviceSlot slot = world.device(device);
   DeviceReading r;
   for (size_t k = 0; k < 3; ++k) {
-    r.position[k] = slot.sample.position[k];
-    r.proxy[k] = slot.proxy[k];
-    r.force[k] = slot.force[k];
+    r.position[k] = slot.link.sample.position[k];
+    r.proxy[k] = slot.contact.proxy[k];
+    r.force[k] = slot.contact.force[k];
   }
-  r.state = slot.state;
-  r.in_contact = slot.in_contact;
+  r.state = slot.link.state;
+  r.in_contact = slot.contact.in_contact;
   return r;
 }
 
@@ -271,12 +272,12 @@ int Simulation::body_index(const std::string& name) const { return impl_->world.
 
 int Simulation::device_index(const std::string& name) const {
   for (size_t d = 0; d < impl_->world.device_count(); ++d)
-    if (impl_->world.device(d).name == name) return static_cast<int>(d);
+    if (impl_->world.device(d).link.name == name) return static_cast<int>(d);
   return -1;
 }
 
 const std::string& Simulation::device_name(size_t device) const {
-  return impl_->world.device(device).name;
+  return impl_->world.device(device).link.name;
 }
 const SceneDesc& Simulation::scene() const { return impl_->world.scene(); }
 

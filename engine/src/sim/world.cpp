@@ -34,9 +34,7 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   generations_ = std::make_unique<std::atomic<uint32_t>[]>(capacity);
   reserve_body_components(capacity);
   const size_t entities = 2 * capacity + 2 * scene_.devices.size() + scene_.obstacles.size();
-  registry_.reserve<DeviceSlot>(entities);
-  registry_.reserve<Tool>(entities);
-  registry_.reserve<Collider>(entities);
+  reserve_each<DeviceLink, DeviceContact, DeviceStats, Tool, Collider>(registry_, entities);
   for (size_t i = 0; i < capacity; ++i) {
     const ecs::Entity e = registry_.create();
     emplace_body_components(e);
@@ -97,22 +95,24 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     setup.base_directory = scene_.directory.c_str();
     setup.seed = scene_.seed;
     setup.tick = 1.0 / scene_.clock.haptic_rate_hz;
-    DeviceSlot slot;
-    slot.name = desc.name;
-    slot.index = static_cast<uint32_t>(devices_.size());
-    slot.desc = desc;
-    slot.device = std::make_unique<DeviceInstance>(*found->descriptor, setup, desc.where);
-    slot.device->connect(desc.where);
-    slot.touched_body = desc.touches.empty() ? -1 : body_index(desc.touches);
+    DeviceLink link;
+    link.name = desc.name;
+    link.index = static_cast<uint32_t>(devices_.size());
+    link.desc = desc;
+    link.device = std::make_unique<DeviceInstance>(*found->descriptor, setup, desc.where);
+    link.device->connect(desc.where);
+    DeviceContact contact;
+    contact.touched_body = desc.touches.empty() ? -1 : body_index(desc.touches);
     // Collision ids follow every body slot: the tools, then the obstacles.
     const auto tool_id = static_cast<uint32_t>(capacity + devices_.size());
-    slot.tool = registry_.create();
-    registry_.emplace<Tool>(slot.tool, build_tool(desc.tool, tool_id, slot.index));
+    link.tool = registry_.create();
+    registry_.emplace<Tool>(link.tool, build_tool(desc.tool, tool_id, link.index));
     const ecs::Entity e = registry_.create();
-    registry_.emplace<DeviceSlot>(e, std::move(slot));
+    registry_.emplace<DeviceLink>(e, std::move(link));
+    registry_.emplace<DeviceContact>(e, contact);
+    registry_.emplace<DeviceStats>(e);
     devices_.push_back(e);
   }
-  for (const ecs::Entity e : devices_) device_slots_.push_back(&registry_.get<DeviceSlot>(e));
   pending_tools_ = std::make_unique<PendingTool[]>(scene_.devices.size());
   for (EntityCommand& c : timed_)  // the scene's tool changes, now that the devices exist
     if (c.kind == EntityCommand::kChangeTool) {
@@ -128,6 +128,12 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
     colliders_.push_back(registry_.create());
     registry_.emplace<Collider>(colliders_.back(), build_rigid_shape(obstacle.shape, id));
   }
+}
+
+DeviceSlot World::device(size_t i) const noexcept {
+  const uint32_t e = devices_[i].index;
+  return {registry_.pool<DeviceLink>().at(e), registry_.pool<DeviceContact>().at(e),
+          registry_.pool<DeviceStats>().at(e)};
 }
 
 SoftBody World::body(size_t i) const noexcept {
@@ -213,8 +219,8 @@ void World::remove_body(ecs::Entity handle) {
 }
 
 int World::device_index(const std::string& name) const {
-  for (size_t d = 0; d < device_slots_.size(); ++d)
-    if (device_slots_[d]->name == name) return static_cast<int>(d);
+  for (size_t d = 0; d < devices_.size(); ++d)
+    if (device(d).link.name == name) return static_cast<int>(d);
   return -1;
 }
 
@@ -227,8 +233,8 @@ void World::change_tool(size_t device, const ShapeDesc& shape) {
   const std::lock_guard<std::mutex> lock(requests_);
   PendingTool& p = pending_tools_[device];
   if (p.waiting.load(std::memory_order_acquire))
-    throw InputError({scene_.path, 0, 0, "devices." + device_slots_[device]->name + ".tool"},
-                     "a tool change for device '" + device_slots_[device]->name +
+    throw InputError({scene_.path, 0, 0, "devices." + this->device(device).link.name + ".tool"},
+                     "a tool change for device '" + this->device(device).link.name +
                          "' is still waiting for the next tick (one at a time per device)");
   p.tool = std::move(built);  // frees the tool the last change took out, here
   p.waiting.store(true, std::memory_order_release);

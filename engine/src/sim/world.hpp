@@ -36,15 +36,12 @@ class World {
   // Slot i's components (entity index = body slot). A removed body's stay for the report.
   SoftBody body(size_t i) const noexcept;
   const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
-  // Through pointers taken at load (devices never come or go, so their pool never moves): other
-  // threads (device input) reach a device without reading the registry the tick's thread changes.
-  DeviceSlot& device(size_t i) { return *device_slots_[i]; }
-  const DeviceSlot& device(size_t i) const { return *device_slots_[i]; }
+  // Device i's components. Their pools are made at load and never change, so other threads
+  // (device input) reach a device without racing the tick's thread.
+  DeviceSlot device(size_t i) const noexcept;
   int body_index(const std::string& name) const;
-  // The tool device i carries (its own entity; DeviceSlot::tool names it).
-  Tool& tool(size_t device) noexcept {
-    return registry_.pool<Tool>().at(device_slots_[device]->tool.index);
-  }
+  // The tool device i carries (its own entity; DeviceLink::tool names it).
+  Tool& tool(size_t d) noexcept { return registry_.pool<Tool>().at(device(d).link.tool.index); }
   int device_index(const std::string& name) const;  // -1 when none
   ecs::Registry& registry() noexcept { return registry_; }
   // Bodies in the running scene, with the components Ts (entity index = body slot).
@@ -108,7 +105,6 @@ class World {
   std::unique_ptr<std::atomic<uint32_t>[]> generations_;  // per slot: the live handle's generation
   std::atomic<size_t> body_count_{0};
   std::vector<ecs::Entity> devices_;
-  std::vector<DeviceSlot*> device_slots_;
   std::vector<ecs::Entity> colliders_;  // the scene's obstacles, in order
   // Per device: a tool waiting for the tick boundary. The tick swaps it with the device's Tool,
   // so the outgoing tool stays here and is freed by the next request, not on the tick's thread.

@@ -326,17 +326,17 @@ TEST(EntityLifecycle, DeviceForceDropsWhenItsBodyIsRemoved) {
       load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
   LoopHarness h(scene, 1200);
   const auto force = [&] {
-    const auto& f = h.world.device(0).force;
+    const auto& f = h.world.device(0).contact.force;
     return std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
   };
-  while (h.next < 1200 && !(h.world.device(0).in_contact && force() > 0.05)) h.tick();
+  while (h.next < 1200 && !(h.world.device(0).contact.in_contact && force() > 0.05)) h.tick();
   ASSERT_GT(force(), 0.05) << "the stylus must be pressing when the liver goes";
   h.world.remove_body(h.world.body_handle(0));
   h.tick();
   EXPECT_EQ(force(), 0.0) << "zero force in the removing tick";
   for (int i = 0; i < 50; ++i) h.tick();
   EXPECT_EQ(force(), 0.0);
-  EXPECT_FALSE(h.world.device(0).in_contact) << "nothing left to touch";
+  EXPECT_FALSE(h.world.device(0).contact.in_contact) << "nothing left to touch";
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ TEST(HapticTickAllocations, ToolChangeAtATickBoundary) {
   EXPECT_EQ(seen.body_id, id) << "the new tool keeps the collision id";
   const tacta_pose& pose = h.world.tool(0).rigid.shape.pose_end;  // follows the proxy
   for (int a = 0; a < 3; ++a)
-    EXPECT_EQ(pose.position[a], h.world.device(0).proxy[static_cast<size_t>(a)]);
+    EXPECT_EQ(pose.position[a], h.world.device(0).contact.proxy[static_cast<size_t>(a)]);
 }
 
 }  // namespace
