@@ -36,7 +36,7 @@ class Interaction {
   virtual ~Interaction() = default;
   virtual void before_step(World& world, double time, double dt) noexcept = 0;
   virtual void after_step(World& world, double time, double dt) noexcept = 0;
-  // After the devices were written: DeviceSlot::force is what each device really got (zeroed on
+  // After the devices were written: DeviceContact::force is what each device really got (zeroed on
   // a fault, clamped to its peak), which may differ from what before_step asked for.
   virtual void after_write(World&) noexcept {}
   // TACTA_COLLIDE_* bits of this tick (collision response), 0 for the others.

@@ -16,7 +16,7 @@ class TickEvents {
   virtual void faulted(size_t body, uint32_t bits, const char* why, double time) noexcept = 0;
   // A device status bit (status_bits.hpp: kDevice*) raised this tick.
   virtual void device_raised(size_t device, uint32_t bit) noexcept = 0;
-  // A device stopped (fault or disconnection; DeviceSlot::status_reason says why).
+  // A device stopped (fault or disconnection; DeviceLink::status_reason says why).
   virtual void device_stopped(size_t device, double time) noexcept = 0;
 };
 
