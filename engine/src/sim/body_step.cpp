@@ -24,7 +24,7 @@ StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology,
     for (size_t k = 0; k < 3; ++k)
       a.external_forces[3 * n + k] = m[n] * gravity[k] + a.contact[3 * n + k];
   if (boundary != nullptr) boundary->before_step(a.positions, a.velocities, time);
-  std::copy(a.positions.begin(), a.positions.end(), a.saved_positions.begin());
+  std::copy(a.positions.begin(), a.positions.end(), a.step_start.begin());
   tacta_body_state state{static_cast<uint32_t>(m.size()), a.positions.data(), a.velocities.data(),
                          a.external_forces.data(), time};
   StepOutcome out;
@@ -51,7 +51,7 @@ StepOutcome step_body_arrays(ModelInstance& model, const BodyTopology& topology,
   }
   if (out.why != nullptr) {
     // Frozen at the start of the step: the last state that could be trusted.
-    std::copy(a.saved_positions.begin(), a.saved_positions.end(), a.positions.begin());
+    std::copy(a.step_start.begin(), a.step_start.end(), a.positions.begin());
     std::fill(a.velocities.begin(), a.velocities.end(), 0.0);
     out.max_displacement = 0;
   }

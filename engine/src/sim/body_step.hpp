@@ -21,7 +21,7 @@ struct StepArrays {
   std::span<double> positions;        // m
   std::span<double> velocities;       // m/s
   std::span<double> external_forces;  // N, rebuilt here: m g + contact
-  std::span<double> saved_positions;  // m, start of the step
+  std::span<double> step_start;       // m, start of the step
   std::span<const double> contact;    // N per node, what collision and haptics applied
 };
 

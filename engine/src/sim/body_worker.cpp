@@ -13,7 +13,7 @@ BodyWorker::BodyWorker(const SoftBody& body, const Vec3& gravity, bool wait_at_b
   positions_ = body.nodes.positions;
   velocities_ = body.nodes.velocities;
   external_forces_.assign(n3, 0.0);
-  saved_positions_ = body.nodes.positions;
+  step_start_ = body.nodes.positions;
   contact_mean_.assign(n3, 0.0);
   impulse_.assign(n3, 0.0);
   von_mises_.assign(body.node_count(), 0.0);
@@ -128,8 +128,7 @@ void BodyWorker::run() noexcept {
 
 void BodyWorker::step_job() noexcept {
   const auto start = std::chrono::steady_clock::now();
-  const StepArrays arrays{positions_, velocities_, external_forces_, saved_positions_,
-                          contact_mean_};
+  const StepArrays arrays{positions_, velocities_, external_forces_, step_start_, contact_mean_};
   job_outcome_ =
       step_body_arrays(*job_model_, *body_.shape.topology, gravity_, body_.fault.divergence_limit_m,
                        arrays, job_time_, job_dt_, body_.constraints.boundary.get());

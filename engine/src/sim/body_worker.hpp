@@ -77,7 +77,7 @@ class BodyWorker {
   Vec3 gravity_;
   bool wait_at_boundaries_;
   // Private state, touched by the worker only while a step is in flight.
-  std::vector<double> positions_, velocities_, external_forces_, saved_positions_, contact_mean_;
+  std::vector<double> positions_, velocities_, external_forces_, step_start_, contact_mean_;
   std::vector<double> von_mises_;
   ModelInstance* job_model_ = nullptr;
   double job_time_ = 0, job_dt_ = 0;

@@ -166,7 +166,7 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
     m.impulse_time = 0;
     if (m.pressing) {
       // The refresh moved the touched point (collect() kept the previous state in
-      // saved_positions): the proxy moves with it.
+      // step_start): the proxy moves with it.
       const Vec3 before = point_on_triangle(body, body.nodes.step_start, m.triangle, m.barycentric);
       const Vec3 after = point_on_triangle(body, body.nodes.positions, m.triangle, m.barycentric);
       ch.renderer.carry_proxy(sub(after, before));
