@@ -10,6 +10,20 @@
 
 namespace tacta::models {
 
+tacta_model_setup TestMesh::setup(const tacta_mesh_view& view, const tacta_material& material,
+                                  const tacta_param_value* params, uint32_t param_count,
+                                  double dt) const {
+  return {sizeof(tacta_model_setup),
+          &view,
+          &material,
+          masses.data(),
+          fixed.data(),
+          params,
+          param_count,
+          dt,
+          nullptr};
+}
+
 tacta_mesh_view TestMesh::view() const {
   tacta_mesh_view v{};
   v.node_count = node_count();

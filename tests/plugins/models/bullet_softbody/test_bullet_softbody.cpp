@@ -25,15 +25,8 @@ struct PluginRun {
   tacta_material material = tacta::models::make_material(1e5, 0.3, 1000.0);
 
   void* create(const TestMesh& mesh, const tacta_mesh_view& view, char* message, size_t size) {
-    tacta_model_setup setup{sizeof(tacta_model_setup),
-                            &view,
-                            &material,
-                            mesh.masses.data(),
-                            mesh.fixed.data(),
-                            params.data(),
-                            descriptor.param_count,
-                            1e-3,
-                            nullptr};
+    tacta_model_setup setup =
+        mesh.setup(view, material, params.data(), descriptor.param_count, 1e-3);
     void* instance = nullptr;
     const tacta_status status = api.create(&setup, &instance, message, size);
     return status == TACTA_OK ? instance : nullptr;

@@ -23,15 +23,7 @@ long allocations_in_steps(const Options& options, bool with_begin) {
   mesh.fix_plane(0, 0.0);
   const tacta_mesh_view view = mesh.view();
   const tacta_material material = make_material(1e5, 0.3, 1000.0);
-  tacta_model_setup setup{sizeof(tacta_model_setup),
-                          &view,
-                          &material,
-                          mesh.masses.data(),
-                          mesh.fixed.data(),
-                          nullptr,
-                          0,
-                          1e-4,
-                          nullptr};
+  tacta_model_setup setup = mesh.setup(view, material, nullptr, 0, 1e-4);
   Model model(setup, options);
   checks::StateBuffers s(mesh.positions);
   for (size_t i = 2; i < s.f_ext.size(); i += 3) s.f_ext[i] = -9.81 * mesh.masses[i / 3];

@@ -20,15 +20,7 @@ struct Cantilever {
         view(mesh.view()),
         material(tacta::models::make_material(2e6, 0.45, 1100)),
         params(tacta::testing::default_params(d)),
-        setup{sizeof(tacta_model_setup),
-              &view,
-              &material,
-              mesh.masses.data(),
-              mesh.fixed.data(),
-              params.data(),
-              d.param_count,
-              1e-3,
-              nullptr} {}
+        setup(mesh.setup(view, material, params.data(), d.param_count, 1e-3)) {}
   Cantilever(const Cantilever&) = delete;
   Cantilever& operator=(const Cantilever&) = delete;
   static tacta::models::TestMesh fixed_root(tacta::models::TestMesh m) {

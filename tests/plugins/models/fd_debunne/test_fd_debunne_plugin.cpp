@@ -24,15 +24,7 @@ TEST(FdDebunnePlugin, LoadsCreatesAndSteps) {
   const tacta_mesh_view view = mesh.view();
   const tacta_material material = make_material_lame(1.0, 0.01, 1.0);
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup),
-                          &view,
-                          &material,
-                          mesh.masses.data(),
-                          mesh.fixed.data(),
-                          params.data(),
-                          d.param_count,
-                          0.01,
-                          nullptr};
+  tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, 0.01);
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

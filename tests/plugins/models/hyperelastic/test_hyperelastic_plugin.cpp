@@ -42,15 +42,7 @@ TEST(HyperelasticPlugin, EveryMaterialStepsABeamUnderGravity) {
     params[choice].number = std::string(material) == "neo_hookean" ? 0
                             : std::string(material) == "stvk"      ? 1
                                                                    : 2;
-    const tacta_model_setup setup{sizeof(tacta_model_setup),
-                                  &view,
-                                  &elastic,
-                                  mesh.masses.data(),
-                                  mesh.fixed.data(),
-                                  params.data(),
-                                  d.param_count,
-                                  1e-3,
-                                  nullptr};
+    const tacta_model_setup setup = mesh.setup(view, elastic, params.data(), d.param_count, 1e-3);
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -84,15 +76,7 @@ TEST(HyperelasticPlugin, RefusesBadInputWithAMessage) {
   const tacta_mesh_view view = mesh.view();
   const tacta_material elastic = tacta::models::make_material(2e6, 0.45, 1100);
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup),
-                          &view,
-                          &elastic,
-                          mesh.masses.data(),
-                          mesh.fixed.data(),
-                          params.data(),
-                          d.param_count,
-                          1e-3,
-                          nullptr};
+  tacta_model_setup setup = mesh.setup(view, elastic, params.data(), d.param_count, 1e-3);
   void* instance = nullptr;
   char message[256] = {0};
   // A static solve with nothing held has no equilibrium under a net load.

@@ -20,15 +20,7 @@ TEST(MassSpringPlugin, LoadsCreatesAndStepsEachIntegrator) {
   for (double integrator : {0.0, 1.0, 2.0}) {
     auto params = tacta::testing::default_params(d);
     params[0].number = integrator;
-    tacta_model_setup setup{sizeof(tacta_model_setup),
-                            &view,
-                            &material,
-                            mesh.masses.data(),
-                            mesh.fixed.data(),
-                            params.data(),
-                            d.param_count,
-                            1e-4,
-                            nullptr};
+    tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, 1e-4);
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -44,15 +36,7 @@ TEST(MassSpringPlugin, LoadsCreatesAndStepsEachIntegrator) {
   TestMesh edges_only = grid_edge_mesh({2, 1, 1}, {0.2, 0.1, 0.1}, 1000.0);
   const tacta_mesh_view bad = edges_only.view();
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup),
-                          &bad,
-                          &material,
-                          edges_only.masses.data(),
-                          edges_only.fixed.data(),
-                          params.data(),
-                          d.param_count,
-                          1e-4,
-                          nullptr};
+  tacta_model_setup setup = edges_only.setup(bad, material, params.data(), d.param_count, 1e-4);
   void* instance = nullptr;
   char message[256] = {0};
   EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);

@@ -23,15 +23,7 @@ TEST(TensorMassPlugin, LoadsCreatesAndStepsBothIntegrators) {
   for (double integrator : {0.0, 1.0}) {
     auto params = tacta::testing::default_params(d);
     params[0].number = integrator;
-    tacta_model_setup setup{sizeof(tacta_model_setup),
-                            &view,
-                            &material,
-                            mesh.masses.data(),
-                            mesh.fixed.data(),
-                            params.data(),
-                            d.param_count,
-                            1e-4,
-                            nullptr};
+    tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, 1e-4);
     void* instance = nullptr;
     char message[256] = {0};
     ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -63,15 +55,7 @@ TEST(TensorMassPlugin, AutoIntegratorIsStableAtTheTickAndSaysWhy) {
   const auto run = [&](double integrator, double dt, std::string& note) {
     auto params = defaults;
     params[0].number = integrator;
-    tacta_model_setup setup{sizeof(tacta_model_setup),
-                            &view,
-                            &material,
-                            mesh.masses.data(),
-                            mesh.fixed.data(),
-                            params.data(),
-                            d.param_count,
-                            dt,
-                            nullptr};
+    tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, dt);
     void* instance = nullptr;
     char message[256] = {0};
     EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
@@ -108,15 +92,7 @@ TEST(TensorMassPlugin, NaNInStateIsReportedNotThrown) {
   const tacta_mesh_view view = mesh.view();
   const tacta_material material = make_material(1e5, 0.3, 1000.0);
   auto params = tacta::testing::default_params(d);
-  tacta_model_setup setup{sizeof(tacta_model_setup),
-                          &view,
-                          &material,
-                          mesh.masses.data(),
-                          mesh.fixed.data(),
-                          params.data(),
-                          d.param_count,
-                          1e-4,
-                          nullptr};
+  tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, 1e-4);
   void* instance = nullptr;
   char message[256] = {0};
   ASSERT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;

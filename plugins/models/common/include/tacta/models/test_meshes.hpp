@@ -24,6 +24,10 @@ struct TestMesh {
 
   uint32_t node_count() const { return static_cast<uint32_t>(positions.size() / 3); }
   tacta_mesh_view view() const;  // points into this object: keep it alive and unchanged
+  // What the engine hands a model for this mesh (no host services); `view` (this mesh's) and
+  // `material` must outlive the instance. dt in s.
+  tacta_model_setup setup(const tacta_mesh_view& view, const tacta_material& material,
+                          const tacta_param_value* params, uint32_t param_count, double dt) const;
   // Marks every node whose coordinate `axis` (0 x, 1 y, 2 z) is within tolerance of value.
   void fix_plane(int axis, double value, double tolerance = 1e-9);
   // Mean displacement along `component` of the nodes whose rest coordinate `axis` is within
@@ -70,14 +74,7 @@ struct ModelOnMesh {
 
   ModelOnMesh(TestMesh m, const tacta_material& mat, const Options& options = {}, double dt = 1e-3)
       : mesh(std::move(m)), view(mesh.view()), material(mat) {
-    tacta_model_setup setup{};
-    setup.struct_size = sizeof setup;
-    setup.mesh = &view;
-    setup.material = &material;
-    setup.masses = mesh.masses.data();
-    setup.fixed = mesh.fixed.data();
-    setup.dt = dt;
-    model = std::make_unique<Model>(setup, options);
+    model = std::make_unique<Model>(mesh.setup(view, material, nullptr, 0, dt), options);
   }
 };
 
