@@ -3,6 +3,8 @@
 // World + HapticLoop harness that drives the 1 kHz task tick by tick as Simulation::run does.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "sim/collision_context.hpp"
@@ -99,6 +102,16 @@ inline Csv read_csv(const std::string& path) {
   }
   return csv;
 }
+
+// Follows a realtime run from another thread: the simulated time of the last frame the render
+// task handed over, and a wait for it to pass a time (requests posted while the run goes on).
+struct RunProgress final : FrameObserver {
+  std::atomic<double> time{0};
+  void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
+  void wait_until(double t) const {
+    while (time.load() < t) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+};
 
 // A 0.3 m beam clamped at x = 0, sagging under gravity (corotational FEM, 0.2 s).
 inline const char* const kSaggingBeamScene = R"(

@@ -5,8 +5,6 @@
 // InputErrors naming the key.
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -119,16 +117,13 @@ TEST(EntityLifecycle, AddAndRemoveDuringARealtimeRun) {
   RunOptions options;
   options.realtime = true;
   options.duration_s = 0.4;
-  struct Progress final : FrameObserver {
-    std::atomic<double> time{0};
-    void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
-  } progress;
+  RunProgress progress;
   options.observers.push_back(&progress);
   RunResult result;
   std::thread runner([&] { result = simulation.run(options); });
-  while (progress.time.load() < 0.05) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  progress.wait_until(0.05);
   const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
-  while (progress.time.load() < 0.15) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  progress.wait_until(0.15);
   simulation.remove_body(simulation.body_handle(0));
   runner.join();
   ASSERT_EQ(result.bodies.size(), 2u);

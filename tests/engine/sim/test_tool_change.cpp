@@ -3,8 +3,6 @@
 // block it rests one radius above the top face), the report counts the change, and bad requests
 // are InputErrors naming the key. (The collision view's shape and the tick's allocations:
 // test_haptic_tick_no_allocation.cpp.)
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -83,19 +81,13 @@ TEST(ToolChange, ChangedDuringARealtimeRun) {
   RunOptions options;
   options.realtime = true;
   options.duration_s = 0.4;
-  struct Progress final : FrameObserver {
-    std::atomic<double> time{0};
-    void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
-  } progress;
+  RunProgress progress;
   options.observers.push_back(&progress);
   RunResult result;
   std::thread runner([&] { result = simulation.run(options); });
-  const auto wait_until = [&](double t) {
-    while (progress.time.load() < t) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  };
-  wait_until(0.1);
+  progress.wait_until(0.1);
   simulation.change_tool(0, std::string("{sphere: {radius: 0.004}}"));
-  wait_until(0.25);  // 150 ticks later: the first change was taken long ago
+  progress.wait_until(0.25);  // 150 ticks later: the first change was taken long ago
   simulation.change_tool(0, std::string("{capsule: {radius: 0.003, half_length: 0.01}}"));
   runner.join();
   EXPECT_EQ(result.schedule.ticks, 400u);
