@@ -21,7 +21,6 @@ namespace {
 
 using Point = std::array<double, 3>;
 
-constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
 constexpr double kTeleportGap = 1.0;  // s; a longer gap (or time going back) restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
@@ -121,20 +120,9 @@ class MouseDevice {
         const double hand = stiffness_ * (target[i] - position_[i]) - damping_ * velocity_[i];
         velocity_[i] += (hand + force_[i]) / mass_ * h;
         position_[i] += velocity_[i] * h;
-        if (limit_to_workspace_) stop_at_workspace(i);
+        if (limit_to_workspace_)
+          devices::stop_at_workspace(origin_, static_cast<size_t>(i), position_, velocity_);
       }
-  }
-
-  void stop_at_workspace(int i) noexcept {
-    const double low = origin_[i] - kWorkspaceHalf[i], high = origin_[i] + kWorkspaceHalf[i];
-    if (position_[i] < low) {
-      position_[i] = low;
-      velocity_[i] = std::max(velocity_[i], 0.0);
-    }
-    if (position_[i] > high) {
-      position_[i] = high;
-      velocity_[i] = std::min(velocity_[i], 0.0);
-    }
   }
 
   devices::SeqlockSlot<3> target_;  // host thread -> haptic thread

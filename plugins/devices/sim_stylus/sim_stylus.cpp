@@ -22,7 +22,6 @@
 namespace tacta::sim_stylus {
 namespace {
 
-constexpr Point kWorkspaceHalf = devices::kOmniWorkspaceHalf;  // m
 constexpr double kTeleportGap = 1.0;  // s; a longer gap between reads restarts at the target
 constexpr int kMaxSubsteps = 100000;
 
@@ -141,7 +140,8 @@ class SimStylus {
       position_ = script_.target(time);
       velocity_ = {0.0, 0.0, 0.0};
       if (limit_to_workspace_)
-        for (int i = 0; i < 3; ++i) stop_at_workspace(i);
+        for (int i = 0; i < 3; ++i)
+          devices::stop_at_workspace(origin_, static_cast<size_t>(i), position_, velocity_);
       started_ = true;
       last_time_ = time;
     } else if (time > last_time_) {
@@ -203,22 +203,10 @@ class SimStylus {
             stiffness_ * (target[i] - position_[i]) + damping_ * (target_velocity - velocity_[i]);
         velocity_[i] += (hand + force_[i]) / mass_ * h;  // semi-implicit: velocity first
         position_[i] += velocity_[i] * h;
-        if (limit_to_workspace_) stop_at_workspace(i);
+        if (limit_to_workspace_)
+          devices::stop_at_workspace(origin_, static_cast<size_t>(i), position_, velocity_);
       }
       previous_target = target;
-    }
-  }
-
-  void stop_at_workspace(int i) noexcept {
-    const double low = origin_[i] - kWorkspaceHalf[i];
-    const double high = origin_[i] + kWorkspaceHalf[i];
-    if (position_[i] < low) {
-      position_[i] = low;
-      velocity_[i] = std::max(velocity_[i], 0.0);
-    }
-    if (position_[i] > high) {
-      position_[i] = high;
-      velocity_[i] = std::min(velocity_[i], 0.0);
     }
   }
 

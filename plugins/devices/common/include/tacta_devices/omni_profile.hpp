@@ -4,6 +4,7 @@
 // its capabilities record.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -26,6 +27,22 @@ inline Point saturate_force(const double command[3]) noexcept {
   if (!std::isfinite(magnitude)) return {0.0, 0.0, 0.0};
   const double scale = magnitude > kOmniPeakForce ? kOmniPeakForce / magnitude : 1.0;
   return {command[0] * scale, command[1] * scale, command[2] * scale};
+}
+
+// Holds a simulated stylus inside the workspace centred on `origin` along `axis` (0 x, 1 y,
+// 2 z): at a wall the position (m) stays on it and the velocity (m/s) into it is dropped.
+inline void stop_at_workspace(const Point& origin, size_t axis, Point& position,
+                              Point& velocity) noexcept {
+  const double low = origin[axis] - kOmniWorkspaceHalf[axis];
+  const double high = origin[axis] + kOmniWorkspaceHalf[axis];
+  if (position[axis] < low) {
+    position[axis] = low;
+    velocity[axis] = std::max(velocity[axis], 0.0);
+  }
+  if (position[axis] > high) {
+    position[axis] = high;
+    velocity[axis] = std::min(velocity[axis], 0.0);
+  }
 }
 
 // Capabilities of an Omni whose workspace is centred on `origin` (m, world frame), at 1 kHz.
