@@ -8,11 +8,6 @@ namespace {
 
 constexpr double kTimeSlack_s = 1e-12;  // s: a boundary due "now" despite rounding
 
-tacta_body_state state_view(NodeState& nodes, NodeLoads& loads, double time) noexcept {
-  return {static_cast<uint32_t>(nodes.node_count()), nodes.positions.data(),
-          nodes.velocities.data(), loads.external_forces.data(), time};
-}
-
 void swap_models(ModelSlot& slot, const StepSchedule& schedule, NodeState& nodes, NodeLoads& loads,
                  double time, double haptic_dt) noexcept {
   const double dt = schedule.step_dt(haptic_dt);

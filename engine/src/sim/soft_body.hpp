@@ -27,6 +27,12 @@ struct BodyParts {
   Recording recording;
 };
 
+// What a model's begin and step see of a body at `time` (s): its node arrays, in place.
+inline tacta_body_state state_view(NodeState& nodes, NodeLoads& loads, double time) noexcept {
+  return {static_cast<uint32_t>(nodes.node_count()), nodes.positions.data(),
+          nodes.velocities.data(), loads.external_forces.data(), time};
+}
+
 struct SoftBody {
   BodyInfo& info;
   BodyPresence& presence;
@@ -40,40 +46,13 @@ struct SoftBody {
   FaultState& fault;
   Recording& recording;
 
-  explicit SoftBody(BodyParts& p)
-      : info(p.info),
-        presence(p.presence),
-        nodes(p.nodes),
-        loads(p.loads),
-        shape(p.shape),
-        surface(p.surface),
-        model(p.model),
-        schedule(p.schedule),
-        constraints(p.constraints),
-        fault(p.fault),
-        recording(p.recording) {}
-  SoftBody(BodyInfo& i, BodyPresence& pr, NodeState& n, NodeLoads& l, RestShape& s, BodySurface& su,
-           ModelSlot& m, StepSchedule& sc, BodyConstraints& c, FaultState& f, Recording& r)
-      : info(i),
-        presence(pr),
-        nodes(n),
-        loads(l),
-        shape(s),
-        surface(su),
-        model(m),
-        schedule(sc),
-        constraints(c),
-        fault(f),
-        recording(r) {}
-
   bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
   size_t node_count() const noexcept { return nodes.node_count(); }
   double step_dt(double haptic_dt) const noexcept { return schedule.step_dt(haptic_dt); }
   const std::vector<double>& rest() const { return shape.rest(); }
   double kinetic_energy() const noexcept;
   tacta_body_state state_view(double time) const noexcept {
-    return {static_cast<uint32_t>(node_count()), nodes.positions.data(), nodes.velocities.data(),
-            loads.external_forces.data(), time};
+    return tacta::state_view(nodes, loads, time);
   }
 };
 

@@ -138,14 +138,18 @@ DeviceSlot World::device(size_t i) const noexcept {
 
 SoftBody World::body(size_t i) const noexcept {
   const uint32_t e = static_cast<uint32_t>(i);  // entity index = body slot
-  return SoftBody(
-      registry_.pool<BodyInfo>().at(e), registry_.pool<BodyPresence>().at(e),
-      registry_.pool<NodeState>().at(e), registry_.pool<NodeLoads>().at(e),
+  return SoftBody{
+      registry_.pool<BodyInfo>().at(e),
+      registry_.pool<BodyPresence>().at(e),
+      registry_.pool<NodeState>().at(e),
+      registry_.pool<NodeLoads>().at(e),
       registry_.pool<RestShape>().at(e),
       registry_.pool<BodySurface>().at(registry_.pool<SurfaceLink>().at(e).surface.index),
-      registry_.pool<ModelSlot>().at(e), registry_.pool<StepSchedule>().at(e),
-      registry_.pool<BodyConstraints>().at(e), registry_.pool<FaultState>().at(e),
-      registry_.pool<Recording>().at(e));
+      registry_.pool<ModelSlot>().at(e),
+      registry_.pool<StepSchedule>().at(e),
+      registry_.pool<BodyConstraints>().at(e),
+      registry_.pool<FaultState>().at(e),
+      registry_.pool<Recording>().at(e)};
 }
 
 void World::install(size_t slot, BodyParts&& p) noexcept {
