@@ -193,7 +193,7 @@ void write_devices(JsonWriter& j, const World& world, const RunStatus& status) {
     if (s.status_time_s >= 0)
       j.field("status_time_s", s.status_time_s).field("status_reason", s.status_reason.data());
     j.field("reconnections", st.reconnections);
-    j.field("tool_changes", st.tool_changes);
+    j.field("tool_changes", world.tool(d).revision);
     if (d < status.devices.size()) write_status_bits(j, status.devices[d]);
     // The plugin's own figures (network devices: packets, drops, watchdog trips, round trip).
     const auto counters = s.device->counters();

@@ -24,7 +24,6 @@ struct DeviceStats {
   uint64_t zero_force_ticks = 0;  // ticks forced to zero force by a fault or disconnection
   uint64_t clamped_ticks = 0;     // ticks whose force was clamped to the peak
   uint64_t reconnections = 0;     // times a disconnected device came back (a network link)
-  uint64_t tool_changes = 0;      // tools changed while the scene ran (events, stepping API)
 };
 
 // The device plugin and what it last said: its instance, the last sample, the connection state

@@ -44,7 +44,6 @@ void HapticInteraction::before_step(World& world, double time, double dt) noexce
       ch.renderer = haptics::ContactRenderer(renderer_params(slot, t.proxy_radius));
       ch.started = false;
       ch.tool_revision = t.revision;
-      ++slot.stats.tool_changes;
     }
     const Vec3 device{slot.link.sample.position[0], slot.link.sample.position[1],
                       slot.link.sample.position[2]};

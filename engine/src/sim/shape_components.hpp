@@ -29,7 +29,7 @@ struct Tool {
   RigidShape rigid;
   uint32_t device = 0;      // index in the scene's devices
   double proxy_radius = 0;  // m: the haptic proxy's sphere (the shape's `radius`)
-  uint32_t revision = 0;    // counts changes of tool while the scene runs
+  uint32_t revision = 0;    // tools changed while the scene ran (report: tool_changes)
 };
 
 // A tool built to replace a device's while the scene runs (World::change_tool, a scene event).

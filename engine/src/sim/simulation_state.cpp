@@ -80,7 +80,7 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     result.devices.push_back({slot.link.name, slot.link.desc.plugin, slot.link.state,
                               slot.stats.max_force_N, slot.stats.contact_ticks,
                               slot.stats.reconnections, slot.link.device->counters(),
-                              slot.stats.tool_changes});
+                              world.tool(d).revision});
   }
   result.faults = loop.faults().rows().size();
   for (const FaultRecord& f : loop.faults().rows()) {

@@ -41,7 +41,9 @@ class World {
   DeviceSlot device(size_t i) const noexcept;
   int body_index(const std::string& name) const;
   // The tool device i carries (its own entity; DeviceLink::tool names it).
-  Tool& tool(size_t d) noexcept { return registry_.pool<Tool>().at(device(d).link.tool.index); }
+  Tool& tool(size_t d) const noexcept {
+    return registry_.pool<Tool>().at(device(d).link.tool.index);
+  }
   int device_index(const std::string& name) const;  // -1 when none
   ecs::Registry& registry() noexcept { return registry_; }
   // Bodies in the running scene, with the components Ts (entity index = body slot).

@@ -115,7 +115,7 @@ TEST(HapticTickAllocations, ToolChangeAtATickBoundary) {
   for (int i = 0; i < 100; ++i) h.tick();
   g_counting = false;
   EXPECT_EQ(g_allocations, 0) << "heap allocations in the 100 ticks that took the new tool";
-  EXPECT_EQ(h.world.device(0).stats.tool_changes, 1u);
+  EXPECT_EQ(h.world.tool(0).revision, 1u);
   const tacta_collision_shape& seen = h.collision.view().shapes[0];
   EXPECT_EQ(seen.type, TACTA_SHAPE_CAPSULE);
   EXPECT_EQ(seen.radius, 0.005);
