@@ -228,25 +228,26 @@ int World::device_index(const std::string& name) const {
   return -1;
 }
 
-void World::change_tool(size_t device, const ShapeDesc& shape) {
-  if (device >= device_count())
-    throw InputError({scene_.path, 0, 0, "devices"}, "no device with index " +
-                                                         std::to_string(device) + " (" +
-                                                         std::to_string(device_count()) + ")");
-  Tool built = build_tool(shape, 0, static_cast<uint32_t>(device));  // outside the lock
+void World::change_tool(size_t d, const ShapeDesc& shape) {
+  if (d >= device_count())
+    throw InputError(
+        {scene_.path, 0, 0, "devices"},
+        "no device with index " + std::to_string(d) + " (" + std::to_string(device_count()) + ")");
+  Tool built = build_tool(shape, 0, static_cast<uint32_t>(d));  // outside the lock
   const std::lock_guard<std::mutex> lock(requests_);
-  PendingTool& p = pending_tools_[device];
+  PendingTool& p = pending_tools_[d];
+  const std::string& name = device(d).link.name;
   if (p.waiting.load(std::memory_order_acquire))
-    throw InputError({scene_.path, 0, 0, "devices." + this->device(device).link.name + ".tool"},
-                     "a tool change for device '" + this->device(device).link.name +
+    throw InputError({scene_.path, 0, 0, "devices." + name + ".tool"},
+                     "a tool change for device '" + name +
                          "' is still waiting for the next tick (one at a time per device)");
   p.tool = std::move(built);  // frees the tool the last change took out, here
   p.waiting.store(true, std::memory_order_release);
-  commands_.push({EntityCommand::kChangeTool, static_cast<uint32_t>(device), 0});
+  commands_.push({EntityCommand::kChangeTool, static_cast<uint32_t>(d), 0});
 }
 
-void World::swap_tool(size_t device, Tool& incoming) noexcept {
-  Tool& current = tool(device);
+void World::swap_tool(size_t d, Tool& incoming) noexcept {
+  Tool& current = tool(d);
   // The new shape takes over the old one's collision id and pose (the proxy moves it on).
   incoming.rigid.shape.body_id = current.rigid.shape.body_id;
   incoming.rigid.shape.pose_start = current.rigid.shape.pose_start;

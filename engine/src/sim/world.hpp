@@ -66,9 +66,9 @@ class World {
   // surface); when it throws, the add is undone.
   ecs::Entity add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare = {});
   void remove_body(ecs::Entity handle);
-  // Replaces device `device`'s tool at the next tick boundary (any thread but the tick's; builds
+  // Replaces device `d`'s tool at the next tick boundary (any thread but the tick's; builds
   // the shape here: allocates, throws InputError). One change per device waits at a time.
-  void change_tool(size_t device, const ShapeDesc& tool);
+  void change_tool(size_t d, const ShapeDesc& tool);
   // Handles: entity index = body slot; the generation changes when the body is removed.
   ecs::Entity body_handle(size_t body) const;
   bool is_live(ecs::Entity handle) const noexcept;
@@ -116,7 +116,7 @@ class World {
   };
   std::unique_ptr<PendingTool[]> pending_tools_;
   std::vector<Tool> timed_tools_;  // the scene's change_tool events, built at load
-  void swap_tool(size_t device, Tool& incoming) noexcept;
+  void swap_tool(size_t d, Tool& incoming) noexcept;
   std::mutex requests_;  // serialises requesters only; the tick's thread never takes it
   EntityCommandRing commands_;
   std::vector<EntityCommand> timed_;  // the scene's events, by time
