@@ -56,6 +56,9 @@ uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks);
 // {"bodies.*.model": "tensor_mass"} (or a list of "key=value") -> the command line's --set strings.
 std::vector<std::string> override_strings(const py::object& overrides);
 
+// Text for the scene reader: a str as it is (YAML), a dict or list as JSON (YAML reads JSON).
+std::string yaml_text(const py::object& value);
+
 // A JSON file the engine writes, `write(dir)` returning its path, read back as Python objects:
 // written with the GIL released into a private temporary folder, removed afterwards. How the
 // report and the comparison table reach Python with exactly the numbers of their files.

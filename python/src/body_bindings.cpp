@@ -228,12 +228,7 @@ void register_bodies(py::module_& m) {
   simulation.def(
       "add_body",
       [](const SimPtr& h, const py::object& body) {
-        // A dict goes as JSON, which the YAML reader takes; a str is YAML as a scene lists a body.
-        const std::string text =
-            py::isinstance<py::str>(body)
-                ? body.cast<std::string>()
-                : py::module_::import("json").attr("dumps")(body).cast<std::string>();
-        const BodyHandle handle = h->sim->add_body(text);
+        const BodyHandle handle = h->sim->add_body(yaml_text(body));
         return Body{{h, handle.index}, handle};
       },
       py::arg("body"),

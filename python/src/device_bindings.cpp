@@ -122,15 +122,7 @@ void register_devices(py::module_& m) {
           "to the plugin's input. Returns the haptic ticks between calls.")
       .def(
           "change_tool",
-          [](Device& d, const py::object& tool) {
-            // A dict goes as JSON, which the YAML reader takes; a str is YAML as a scene gives
-            // a device's `tool`.
-            const std::string text =
-                py::isinstance<py::str>(tool)
-                    ? tool.cast<std::string>()
-                    : py::module_::import("json").attr("dumps")(tool).cast<std::string>();
-            d.sim().change_tool(d.index, text);
-          },
+          [](Device& d, const py::object& tool) { d.sim().change_tool(d.index, yaml_text(tool)); },
           py::arg("tool"),
           "Replaces the tool this device carries at the next tick: a shape as a scene gives "
           "`tool` ({'sphere': {'radius': 0.004}}). The proxy takes its radius and starts afresh "

@@ -34,6 +34,11 @@ std::vector<std::string> override_strings(const py::object& overrides) {
   return out;
 }
 
+std::string yaml_text(const py::object& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+}
+
 namespace {
 
 SimPtr open_scene(const std::function<SceneDesc(const SchemaLookup&)>& load) {
@@ -51,7 +56,7 @@ SimPtr from_file(const std::string& path, const py::object& overrides) {
 }
 
 SimPtr from_dict(const py::dict& scene, const std::string& base_dir, const py::object& overrides) {
-  const std::string text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+  const std::string text = yaml_text(scene);
   const std::vector<std::string> sets = override_strings(overrides);
   // The virtual file's folder anchors relative mesh paths; its name is what messages show.
   const std::string virtual_path = (std::filesystem::path(base_dir) / "<dict>.yaml").string();
