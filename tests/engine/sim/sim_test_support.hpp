@@ -103,14 +103,34 @@ inline Csv read_csv(const std::string& path) {
   return csv;
 }
 
-// Follows a realtime run from another thread: the simulated time of the last frame the render
-// task handed over, and a wait for it to pass a time (requests posted while the run goes on).
-struct RunProgress final : FrameObserver {
-  std::atomic<double> time{0};
-  void on_frame(const SceneStatic&, const Snapshot& s) override { time.store(s.time_s); }
-  void wait_until(double t) const {
-    while (time.load() < t) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+// A realtime run of `duration_s` on its own thread, followed from the test's thread: the
+// simulated time of the last frame the render task handed over, and a wait for it to pass a
+// time (requests posted while the run goes on).
+class RealtimeRun final : public FrameObserver {
+ public:
+  RealtimeRun(Simulation& simulation, double duration_s) {
+    RunOptions options;
+    options.realtime = true;
+    options.duration_s = duration_s;
+    options.observers.push_back(this);
+    runner_ = std::thread([this, &simulation, options] { result_ = simulation.run(options); });
   }
+  ~RealtimeRun() override {
+    if (runner_.joinable()) runner_.join();
+  }
+  void on_frame(const SceneStatic&, const Snapshot& s) override { time_.store(s.time_s); }
+  void wait_until(double t) const {
+    while (time_.load() < t) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  const RunResult& join() {
+    runner_.join();
+    return result_;
+  }
+
+ private:
+  std::atomic<double> time_{0};
+  RunResult result_;
+  std::thread runner_;
 };
 
 // A 0.3 m beam clamped at x = 0, sagging under gravity (corotational FEM, 0.2 s).

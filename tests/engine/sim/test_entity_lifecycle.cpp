@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "sim_test_support.hpp"
 
@@ -114,18 +113,12 @@ TEST(EntityLifecycle, BadAddsAreInputErrors) {
 // the scene's; both are taken at tick boundaries by the haptic thread (ThreadSanitizer: clean).
 TEST(EntityLifecycle, AddAndRemoveDuringARealtimeRun) {
   Simulation simulation(beam(), plugins());
-  RunOptions options;
-  options.realtime = true;
-  options.duration_s = 0.4;
-  RunProgress progress;
-  options.observers.push_back(&progress);
-  RunResult result;
-  std::thread runner([&] { result = simulation.run(options); });
-  progress.wait_until(0.05);
+  RealtimeRun run(simulation, 0.4);
+  run.wait_until(0.05);
   const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
-  progress.wait_until(0.15);
+  run.wait_until(0.15);
   simulation.remove_body(simulation.body_handle(0));
-  runner.join();
+  const RunResult& result = run.join();
   ASSERT_EQ(result.bodies.size(), 2u);
   EXPECT_EQ(result.schedule.ticks, 400u);
   EXPECT_GT(result.bodies[1].added_s, 0.04);

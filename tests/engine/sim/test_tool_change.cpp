@@ -4,7 +4,6 @@
 // are InputErrors naming the key. (The collision view's shape and the tick's allocations:
 // test_haptic_tick_no_allocation.cpp.)
 #include <cmath>
-#include <thread>
 
 #include "sim_test_support.hpp"
 #include "tacta/scene_loader.hpp"
@@ -78,18 +77,12 @@ TEST(ToolChange, SteppingApiChangesTheToolAtTheNextTick) {
 // both are taken at tick boundaries (ThreadSanitizer: clean, ctest -L tsan).
 TEST(ToolChange, ChangedDuringARealtimeRun) {
   Simulation simulation(scene_from_text(kPressedBlock, "tool_change_realtime"), plugins());
-  RunOptions options;
-  options.realtime = true;
-  options.duration_s = 0.4;
-  RunProgress progress;
-  options.observers.push_back(&progress);
-  RunResult result;
-  std::thread runner([&] { result = simulation.run(options); });
-  progress.wait_until(0.1);
+  RealtimeRun run(simulation, 0.4);
+  run.wait_until(0.1);
   simulation.change_tool(0, std::string("{sphere: {radius: 0.004}}"));
-  progress.wait_until(0.25);  // 150 ticks later: the first change was taken long ago
+  run.wait_until(0.25);  // 150 ticks later: the first change was taken long ago
   simulation.change_tool(0, std::string("{capsule: {radius: 0.003, half_length: 0.01}}"));
-  runner.join();
+  const RunResult& result = run.join();
   EXPECT_EQ(result.schedule.ticks, 400u);
   ASSERT_EQ(result.devices.size(), 1u);
   EXPECT_EQ(result.devices[0].tool_changes, 2u);
