@@ -11,6 +11,7 @@
 #include "tacta/models/model_checks.hpp"
 #include "tacta/models/test_meshes.hpp"
 #include "tensor_mass_model.hpp"
+#include "vbd_model.hpp"
 
 using namespace tacta::models;
 
@@ -66,7 +67,29 @@ struct Hyperelastic {
   tacta::models::hyperelastic::HyperelasticModel model;
 };
 
+// The vbd core built the way allocations_in_steps builds the others (serial: no host).
+struct Vbd {
+  Vbd(const tacta_model_setup& setup, const tacta::models::vbd::Options& options)
+      : model(*setup.mesh, *setup.material,
+              std::span<const double>(setup.masses, setup.mesh->node_count),
+              std::span<const uint8_t>(setup.fixed, setup.mesh->node_count), options) {}
+  uint32_t step(tacta_body_state& state, double dt) noexcept { return model.step(state, dt); }
+  void begin(const tacta_body_state& state, double dt) noexcept { model.begin(state, dt); }
+  void internal_forces(const double* x, double* f) noexcept { model.internal_forces(x, f); }
+  tacta::models::vbd::VbdModel model;
+};
+
 }  // namespace
+
+TEST(ModelsNoAllocation, VbdStepsWithoutAllocating) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "malloc belongs to the sanitizer here";
+  using tacta::models::vbd::Energy;
+  for (const Energy energy : {Energy::kCorotational, Energy::kNeoHookean}) {
+    tacta::models::vbd::Options o;
+    o.energy = energy;
+    EXPECT_EQ((allocations_in_steps<Vbd>(o, true)), 0) << "vbd " << static_cast<int>(energy);
+  }
+}
 
 TEST(ModelsNoAllocation, HyperelasticStepsWithoutAllocating) {
   if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "malloc belongs to the sanitizer here";
