@@ -1,6 +1,7 @@
 #include "job_pool.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -10,8 +11,19 @@
 namespace tacta {
 
 namespace {
-constexpr int kSpinsBeforeWait = 2000;  // the caller's spins (~µs) before it sleeps on done_
+// After its own chunks the caller waits for the workers' last chunks: it spins this long, then
+// parks on done_ (a chunk is tens of microseconds; parking only guards against a worker that
+// was preempted).
+constexpr std::chrono::microseconds kCallerSpin{200};
+
+inline void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
 }
+}  // namespace
 
 JobPool::JobPool(uint32_t threads) {
   const uint32_t workers = threads > 1 ? threads - 1 : 0;
@@ -25,8 +37,8 @@ JobPool::JobPool(uint32_t threads) {
 }
 
 JobPool::~JobPool() {
-  quit_.store(true, std::memory_order_release);
-  generation_.fetch_add(1, std::memory_order_acq_rel);
+  quit_.store(true);
+  generation_.fetch_add(1);
   generation_.notify_all();
   for (std::thread& t : workers_) t.join();
 }
@@ -48,12 +60,26 @@ void JobPool::run_chunks(uint32_t job, uint32_t worker) noexcept {
 }
 
 void JobPool::work(uint32_t worker) noexcept {
-  uint64_t seen = 0;
+  using Clock = std::chrono::steady_clock;
+  uint32_t seen = 0;
   for (;;) {
-    generation_.wait(seen);
-    seen = generation_.load();
+    uint32_t now = generation_.load();
+    if (now == seen) {  // idle: spin, then park
+      const Clock::time_point start = Clock::now();
+      for (uint32_t spin = 1; (now = generation_.load()) == seen; ++spin) {
+        cpu_relax();
+        if (spin % 256 != 0 || Clock::now() - start < kSpinBeforePark) continue;
+        // Announce the park before the last look (seq_cst both): a caller that bumps the
+        // generation after that look sees parked_ and wakes us.
+        parked_.fetch_add(1);
+        while ((now = generation_.load()) == seen) generation_.wait(seen);
+        parked_.fetch_sub(1);
+        break;
+      }
+    }
+    seen = now;
     if (quit_.load()) return;
-    run_chunks(static_cast<uint32_t>(seen), worker);
+    run_chunks(seen, worker);
   }
 }
 
@@ -65,7 +91,7 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
     body(user, 0, count, 0);
     return;
   }
-  const auto job = static_cast<uint32_t>(generation_.load() + 1);
+  const uint32_t job = generation_.load() + 1;
   // The ticket first: from here no late worker can take a chunk of the last job's numbering.
   ticket_.store(uint64_t{job} << 32);
   body_.store(body);
@@ -74,12 +100,16 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
   grain_.store(grain);
   done_.store(0);
   generation_.fetch_add(1);
-  generation_.notify_all();
+  if (parked_.load() != 0) generation_.notify_all();  // spinning workers see the bump alone
   run_chunks(job, 0);
-  for (int spin = 0; done_.load() != count; ++spin) {
-    if (spin < kSpinsBeforeWait) continue;
-    const uint32_t seen = done_.load();
-    if (seen != count) done_.wait(seen);
+  using Clock = std::chrono::steady_clock;
+  if (done_.load() != count) {
+    const Clock::time_point start = Clock::now();
+    for (uint32_t spin = 1; done_.load() != count; ++spin) {
+      cpu_relax();
+      if (spin % 256 != 0 || Clock::now() - start < kCallerSpin) continue;
+      for (uint32_t seen = done_.load(); seen != count; seen = done_.load()) done_.wait(seen);
+    }
   }
   busy_.store(false);
 }

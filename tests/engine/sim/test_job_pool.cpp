@@ -1,8 +1,10 @@
 // The engine's job pool (host services' parallel_for): every index runs exactly once on any
 // thread count and grain, the chunks really spread over workers, a second caller while a job
-// runs is served serially on its own thread, and the scratch arena hands out aligned zeroed
-// blocks up to its limit. Runs under ThreadSanitizer (label tsan).
+// runs is served serially on its own thread, idle workers park after their spin and wake for
+// the next job, and the scratch arena hands out aligned zeroed blocks up to its limit. Runs
+// under ThreadSanitizer (label tsan).
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <gtest/gtest.h>
 #include <set>
@@ -64,6 +66,26 @@ TEST(JobPool, TwoCallersAtOnceBothFinish) {
     ASSERT_EQ(a.hits[i].load(), 20);
     ASSERT_EQ(b.hits[i].load(), 20);
   }
+}
+
+TEST(JobPool, IdleWorkersSpinThenParkAndWakeForTheNextJob) {
+  tacta::JobPool pool(3);
+  Counts first(2000);
+  pool.parallel_for(2000, 8, &count_body, &first);
+  // Idle past the spin window: both workers park (futex) and stop burning their cores.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (pool.parked() != 2 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(tacta::JobPool::kSpinBeforePark);
+  EXPECT_EQ(pool.parked(), 2u);
+  // A job wakes them: every index still runs once, and the workers take chunks again.
+  uint32_t seen = 0;
+  for (int job = 0; job < 50 && seen != 7u; ++job) {
+    Counts counts(4000);
+    pool.parallel_for(4000, 8, &count_body, &counts);
+    for (size_t i = 0; i < counts.hits.size(); ++i) ASSERT_EQ(counts.hits[i].load(), 1) << i;
+    seen |= counts.workers_seen.load();
+  }
+  EXPECT_EQ(seen, 7u) << "a parked worker never woke for a job";
 }
 
 TEST(ScratchArena, AlignedZeroedAndBounded) {
