@@ -85,7 +85,8 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
       matrix_,
       sparse::SolverOptions{options_.solver, options_.preconditioner, options_.max_iterations,
                             options_.tolerance, options_.refactor_interval, options_.fallback,
-                            options_.restart_factor});
+                            options_.restart_factor, options_.host});
+  rows_ = sparse::RowTeam(options_.host, node_count_, kMinThreadedNodes);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 
@@ -165,8 +166,16 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   const double h = dt;
   uint32_t result = TACTA_STEP_OK;
   polar_iterations_ = 0;
-  matrix_.set_zero();
-  std::fill(forces_.begin(), forces_.end(), 0.0);
+  if (rows_.threaded()) {
+    rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+      matrix_.zero_rows(begin, end);
+      std::fill(forces_.begin() + 3 * std::ptrdiff_t{begin}, forces_.begin() + 3 * std::ptrdiff_t{end},
+                0.0);
+    });
+  } else {
+    matrix_.set_zero();
+    std::fill(forces_.begin(), forces_.end(), 0.0);
+  }
   const double stiffness_scale = h * beta_ + h * h;
   uint32_t e = 0;
   if (options_.batch_elements && options_.rotation == RotationMethod::kPolar) {
@@ -183,37 +192,45 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
     if (frame.inverted) result |= TACTA_STEP_INVERTED_ELEMENT;
     accumulate(e, frame, stiffness_scale, forces_.data());
   }
-  // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
-  // damping term, one pass over the blocks instead of a K_e v per element.
-  matrix_.multiply(state.velocities, stiffness_velocity_.data());
-  matrix_.add_to_diagonal(masses_, 1.0 + h * alpha_);
-  matrix_.apply_fixed(fixed_);
-  for (size_t k = 0; k < n; ++k) {
-    const double m = masses_[k / 3];
-    rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
-              stiffness_velocity_[k];
-  }
-  if (!fixed_.empty())
-    for (uint32_t i = 0; i < node_count_; ++i)
-      if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
-  if (solver_->iterative()) {
-    // CG starts from dv extrapolated linearly over the last two steps (a smooth motion changes
-    // its velocity increment slowly): a smaller first residual, fewer iterations. The solver
-    // drops the guess when it is worse than zero.
+  if (rows_.threaded()) {
+    finish_system_threaded(state, h);
+  } else {
+    // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
+    // damping term, one pass over the blocks instead of a K_e v per element.
+    matrix_.multiply(state.velocities, stiffness_velocity_.data());
+    matrix_.add_to_diagonal(masses_, 1.0 + h * alpha_);
+    matrix_.apply_fixed(fixed_);
     for (size_t k = 0; k < n; ++k) {
-      const double last = delta_v_[k];
-      delta_v_[k] = 2.0 * last - previous_delta_v_[k];
-      previous_delta_v_[k] = last;
+      const double m = masses_[k / 3];
+      rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
+                stiffness_velocity_[k];
+    }
+    if (!fixed_.empty())
+      for (uint32_t i = 0; i < node_count_; ++i)
+        if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
+    if (solver_->iterative()) {
+      // CG starts from dv extrapolated linearly over the last two steps (a smooth motion changes
+      // its velocity increment slowly): a smaller first residual, fewer iterations. The solver
+      // drops the guess when it is worse than zero.
+      for (size_t k = 0; k < n; ++k) {
+        const double last = delta_v_[k];
+        delta_v_[k] = 2.0 * last - previous_delta_v_[k];
+        previous_delta_v_[k] = last;
+      }
     }
   }
   last_solve_ = solver_->solve(matrix_, rhs_.data(), delta_v_.data());
   if (!last_solve_.converged) result |= TACTA_STEP_SOLVER_NOT_CONVERGED;
-  for (uint32_t i = 0; i < node_count_; ++i) {
-    const bool held = !fixed_.empty() && fixed_[i];
-    for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
-      double& v = state.velocities[k];
-      v = held ? 0.0 : v + delta_v_[k];
-      state.positions[k] += h * v;
+  if (rows_.threaded()) {
+    advance_threaded(state, h);
+  } else {
+    for (uint32_t i = 0; i < node_count_; ++i) {
+      const bool held = !fixed_.empty() && fixed_[i];
+      for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
+        double& v = state.velocities[k];
+        v = held ? 0.0 : v + delta_v_[k];
+        state.positions[k] += h * v;
+      }
     }
   }
   result |= guard_.check(state.positions, state.velocities);

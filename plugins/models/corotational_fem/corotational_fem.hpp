@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "block_sparse.hpp"
+#include "row_team.hpp"
 #include "safe_solver.hpp"
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
@@ -56,7 +57,10 @@ struct Options {
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
-  // colour by colour (no two batches of a colour share a node), each colour in parallel.
+  // colour by colour (no two batches of a colour share a node), each colour in parallel, and
+  // from kMinThreadedNodes nodes the rest of the step too: the matrix's zeroing, its product
+  // with v, the mass and the held nodes, the rhs, the CG solve (block Jacobi or Jacobi) and the
+  // update of the state, on fixed row chunks (sparse::RowTeam).
   const tacta_host_services* host = nullptr;
 };
 
@@ -68,6 +72,8 @@ struct StaticCounters {
 class CorotationalFem {
  public:
   static constexpr int kBatchLanes = 4;  // elements per batch in step()'s element pass
+  // Nodes from which step()'s row passes and its solve run on the host's workers.
+  static constexpr uint32_t kMinThreadedNodes = 384;
 
   // Throws std::invalid_argument naming the element or node at fault.
   CorotationalFem(const tacta_mesh_view& mesh, const tacta_material& material,
@@ -93,6 +99,8 @@ class CorotationalFem {
   long last_polar_iterations() const { return polar_iterations_; }
   uint32_t node_count() const { return node_count_; }
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
+  // Whether step()'s row passes and solve run on the host's workers.
+  bool threaded() const { return rows_.threaded(); }
   // CG limits, and the incomplete Cholesky's steps between refactorisations.
   void set_solver_limits(int max_iterations, double tolerance, int refactor_interval);
   const Options& options() const { return options_; }
@@ -126,6 +134,11 @@ class CorotationalFem {
   void colour_batches();
   // The batched pass over every batch: in order, or colour by colour on the host's workers.
   uint32_t batched_pass(const double* positions, double scale) noexcept;
+  // step() between the element pass and the solve, on the host's workers (rows_): the rhs's
+  // h (beta + h) K v, the mass and the held nodes into the matrix, the rhs, the CG guess.
+  void finish_system_threaded(const tacta_body_state& state, double h) noexcept;
+  // step() after the solve, on the workers: v += dv (0 on held nodes), x += h v.
+  void advance_threaded(tacta_body_state& state, double h) noexcept;
   // Static solve (corotational_static.cpp): Newton to equilibrium, load stepping.
   uint32_t solve_static(tacta_body_state& state) noexcept;
   // One increment's Newton iterations toward f_int(x) + loads_ = 0; true when converged.
@@ -164,6 +177,7 @@ class CorotationalFem {
     long polar_iterations = 0;
   };
   std::vector<WorkerTally> tallies_;
+  sparse::RowTeam rows_;  // threaded row passes (none below kMinThreadedNodes or one worker)
 };
 
 }  // namespace tacta::models::corotational

@@ -1,7 +1,10 @@
-// step()'s batched element pass on the engine's workers. Batches scatter into the forces and
-// the matrix blocks of their nodes, so batches that share a node must not run at once: they are
-// coloured greedily, and each colour is one parallel_for. With one worker (or no host) the pass
-// runs in batch order, as it always has: results then match earlier builds bit for bit.
+// step() on the engine's workers. The batched element pass: batches scatter into the forces
+// and the matrix blocks of their nodes, so batches that share a node must not run at once: they
+// are coloured greedily, and each colour is one parallel_for. The row passes around the solve
+// (sparse::RowTeam): each chunk of nodes writes only its own rows. With one worker (or no host)
+// everything runs in order, as it always has: results then match earlier builds bit for bit.
+// With two or more, one result on any thread count (the colouring and the row chunks do not
+// depend on it), equal to the serial one to rounding.
 #include <algorithm>
 
 #include "corotational_fem.hpp"
@@ -9,9 +12,10 @@
 namespace tacta::models::corotational {
 
 namespace {
-// A colour with fewer batches than this runs serially: waking workers costs more (~10 us).
-constexpr uint32_t kMinParallelBatches = 64;
-constexpr uint32_t kGrain = 16;  // batches per chunk a worker takes
+// A colour with fewer batches than this runs serially: handing it to the workers costs more
+// (~1 us while they spin between jobs, ~10-50 us to wake a parked one).
+constexpr uint32_t kMinParallelBatches = 16;
+constexpr uint32_t kGrain = 8;  // batches per chunk a worker takes
 
 struct PassJob {
   CorotationalFem* model;
@@ -54,6 +58,7 @@ void CorotationalFem::colour_batches() {
   }
   colour_start_.push_back(static_cast<uint32_t>(colour_batches_.size()));
   tallies_.assign(host->worker_count, WorkerTally{});
+
 }
 
 uint32_t CorotationalFem::batched_pass(const double* positions, double scale) noexcept {
@@ -85,6 +90,45 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
     polar_iterations_ += t.polar_iterations;
   }
   return result;
+}
+
+void CorotationalFem::finish_system_threaded(const tacta_body_state& state, double h) noexcept {
+  // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and damping
+  // term. Every row reads blocks of other rows, so the mass and the held nodes go in after.
+  rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+    matrix_.multiply_rows(state.velocities, stiffness_velocity_.data(), begin, end);
+  });
+  const bool extrapolate = solver_->iterative();
+  rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+    matrix_.finish_rows(begin, end, masses_, 1.0 + h * alpha_, fixed_);
+    for (size_t k = 3 * size_t{begin}; k < 3 * size_t{end}; ++k) {
+      const double m = masses_[k / 3];
+      rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
+                stiffness_velocity_[k];
+    }
+    if (!fixed_.empty())
+      for (uint32_t i = begin; i < end; ++i)
+        if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
+    if (extrapolate)  // CG's guess: dv extrapolated over the last two steps (see step())
+      for (size_t k = 3 * size_t{begin}; k < 3 * size_t{end}; ++k) {
+        const double last = delta_v_[k];
+        delta_v_[k] = 2.0 * last - previous_delta_v_[k];
+        previous_delta_v_[k] = last;
+      }
+  });
+}
+
+void CorotationalFem::advance_threaded(tacta_body_state& state, double h) noexcept {
+  rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+      const bool held = !fixed_.empty() && fixed_[i];
+      for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
+        double& v = state.velocities[k];
+        v = held ? 0.0 : v + delta_v_[k];
+        state.positions[k] += h * v;
+      }
+    }
+  });
 }
 
 }  // namespace tacta::models::corotational

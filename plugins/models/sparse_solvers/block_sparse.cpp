@@ -40,6 +40,20 @@ BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32
       element_slots_[10 * e + p] = block_index(std::min(i, j), std::max(i, j));
     }
   values_.assign(9 * static_cast<size_t>(columns_.size()), 0.0);
+  // The transposed view: for each column i, the off-diagonal blocks (j, i), j ascending.
+  lower_starts_.assign(node_count + 1, 0);
+  for (uint32_t k = 0; k < columns_.size(); ++k) ++lower_starts_[columns_[k] + 1];
+  for (uint32_t i = 0; i < node_count; ++i)
+    lower_starts_[i + 1] += lower_starts_[i] - 1;  // less the diagonal block
+  lower_blocks_.resize(lower_starts_.back());
+  lower_rows_.resize(lower_starts_.back());
+  std::vector<uint32_t> next(lower_starts_.begin(), lower_starts_.end() - 1);
+  for (uint32_t j = 0; j < node_count; ++j)
+    for (uint32_t k = row_starts_[j] + 1; k < row_starts_[j + 1]; ++k) {
+      const uint32_t at = next[columns_[k]]++;
+      lower_blocks_[at] = k;
+      lower_rows_[at] = j;
+    }
 }
 
 uint32_t BlockSparseMatrix::block_index(uint32_t row, uint32_t col) const {
@@ -89,6 +103,60 @@ TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y, si
     x_dot_y += x0 * y0 + x1 * y1 + x2 * y2;
   }
   return x_dot_y;
+}
+
+TACTA_HOT_PATH double BlockSparseMatrix::multiply_rows(const double* x, double* y, uint32_t begin,
+                                                      uint32_t end, size_t stride) const {
+  const double* v = values_.data();
+  double x_dot_y = 0.0;
+  for (uint32_t i = begin; i < end; ++i) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (uint32_t m = lower_starts_[i]; m < lower_starts_[i + 1]; ++m) {  // B^T x_j
+      const double* b = v + 9 * size_t{lower_blocks_[m]};
+      const double* xj = x + stride * lower_rows_[m];
+      y0 += b[0] * xj[0] + b[3] * xj[1] + b[6] * xj[2];
+      y1 += b[1] * xj[0] + b[4] * xj[1] + b[7] * xj[2];
+      y2 += b[2] * xj[0] + b[5] * xj[1] + b[8] * xj[2];
+    }
+    for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {  // B x_j, diagonal first
+      const double* b = v + 9 * size_t{k};
+      const double* xj = x + stride * columns_[k];
+      y0 += b[0] * xj[0] + b[1] * xj[1] + b[2] * xj[2];
+      y1 += b[3] * xj[0] + b[4] * xj[1] + b[5] * xj[2];
+      y2 += b[6] * xj[0] + b[7] * xj[1] + b[8] * xj[2];
+    }
+    double* yi = y + stride * i;
+    yi[0] = y0;
+    yi[1] = y1;
+    yi[2] = y2;
+    for (size_t c = 3; c < stride; ++c) yi[c] = 0.0;
+    const double* xi = x + stride * i;
+    x_dot_y += xi[0] * y0 + xi[1] * y1 + xi[2] * y2;
+  }
+  return x_dot_y;
+}
+
+void BlockSparseMatrix::zero_rows(uint32_t begin, uint32_t end) {
+  std::fill(values_.begin() + 9 * std::ptrdiff_t{row_starts_[begin]},
+            values_.begin() + 9 * std::ptrdiff_t{row_starts_[end]}, 0.0);
+}
+
+void BlockSparseMatrix::finish_rows(uint32_t begin, uint32_t end, std::span<const double> values,
+                                    double scale, std::span<const uint8_t> fixed) {
+  for (uint32_t i = begin; i < end; ++i) {
+    double* d = block(diagonal_block(i));
+    if (!fixed.empty() && fixed[i]) {
+      std::fill_n(d, 9, 0.0);
+      d[0] = d[4] = d[8] = 1.0;
+    } else {
+      d[0] += scale * values[i];
+      d[4] += scale * values[i];
+      d[8] += scale * values[i];
+    }
+    if (fixed.empty()) continue;
+    for (uint32_t k = row_starts_[i] + 1; k < row_starts_[i + 1]; ++k)
+      if (fixed[i] || fixed[columns_[k]]) std::fill_n(block(k), 9, 0.0);
+  }
 }
 
 void BlockSparseMatrix::apply_fixed(std::span<const uint8_t> fixed) {

@@ -33,12 +33,28 @@ class BlockSparseMatrix {
   std::span<const double> values() const { return values_; }
   std::span<const uint32_t> row_starts() const { return row_starts_; }
   std::span<const uint32_t> columns() const { return columns_; }
+  // The lower triangle of row i, read from the upper storage: blocks (j, i), j < i, by j
+  // (stored as (j, i); the row's block is its transpose). lower_starts() has node_count + 1.
+  std::span<const uint32_t> lower_starts() const { return lower_starts_; }
+  std::span<const uint32_t> lower_blocks() const { return lower_blocks_; }
+  std::span<const uint32_t> lower_rows() const { return lower_rows_; }
 
   void set_zero();
   // y = A x (the lower triangle applied as the transpose of the upper), x and y with `stride`
   // values per node of which the first 3 count (y's others set to 0). Returns x . y, summed as
   // each row completes (CG's p . Ap without another pass).
   double multiply(const double* x, double* y, size_t stride = 3) const;
+  // Rows [begin, end) of y = A x, reading both triangles (the lower one through lower_*), so
+  // nothing outside those rows is written and row ranges can run on different threads. Equal to
+  // multiply() to rounding. Returns the rows' x . y.
+  double multiply_rows(const double* x, double* y, uint32_t begin, uint32_t end,
+                       size_t stride = 3) const;
+  // The blocks of rows [begin, end) (blocks (i, j), j >= i) set to zero.
+  void zero_rows(uint32_t begin, uint32_t end);
+  // add_to_diagonal then apply_fixed (after a first apply_fixed has run), for the blocks of
+  // rows [begin, end) only; the same values, bit for bit.
+  void finish_rows(uint32_t begin, uint32_t end, std::span<const double> values, double scale,
+                   std::span<const uint8_t> fixed);
   // Adds scale * values[i] * I to each node's diagonal block (a lumped mass matrix).
   void add_to_diagonal(std::span<const double> values, double scale);
   // Makes fixed nodes' rows and columns identity (zero off-diagonal, I on the diagonal).
@@ -49,6 +65,7 @@ class BlockSparseMatrix {
   std::vector<uint32_t> row_starts_;  // node_count + 1
   std::vector<uint32_t> columns_;     // block column per block, sorted, diagonal first
   std::vector<uint32_t> element_slots_;
+  std::vector<uint32_t> lower_starts_, lower_blocks_, lower_rows_;
   std::vector<double> values_;               // 9 per block, row-major
   std::vector<uint32_t> fixed_offdiagonal_;  // blocks touching a fixed node, off the diagonal
   bool fixed_built_ = false;

@@ -21,7 +21,8 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 
 ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& pattern,
                                                  Preconditioner preconditioner, int max_iterations,
-                                                 double tolerance, int refactor_interval)
+                                                 double tolerance, int refactor_interval,
+                                                 const tacta_host_services* host)
     : preconditioner_(preconditioner),
       max_iterations_(max_iterations),
       tolerance_(tolerance),
@@ -35,6 +36,9 @@ ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& patter
       padded_(pattern) {
   if (preconditioner_ == Preconditioner::kIncompleteCholesky)
     incomplete_cholesky_ = std::make_unique<BlockIncompleteCholesky>(pattern);
+  else
+    team_ = RowTeam(host, pattern.node_count(), kMinThreadedNodes);
+  if (team_.threaded()) p_next_.assign(x_.size(), 0.0);
 }
 
 void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
@@ -43,8 +47,20 @@ void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {
     solves_since_factor_ = (solves_since_factor_ + 1) % refactor_interval_;
     return;
   }
+  if (team_.threaded()) {
+    team_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+      padded_.assign_rows(a.values(), begin, end);
+      invert_diagonal(a, begin, end);
+    });
+    return;
+  }
   padded_.assign(a.values());
-  for (uint32_t i = 0; i < a.node_count(); ++i) {
+  invert_diagonal(a, 0, a.node_count());
+}
+
+void ConjugateGradientSolver::invert_diagonal(const BlockSparseMatrix& a, uint32_t begin,
+                                              uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) {
     const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> block(
         a.block(a.diagonal_block(i)));
     Eigen::Matrix3d inverse = Eigen::Matrix3d::Zero();
@@ -72,34 +88,38 @@ void ConjugateGradientSolver::apply_preconditioner(const double* r, double* z) c
   }
 }
 
+TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update_rows(double alpha,
+                                                                              size_t begin,
+                                                                              size_t end) {
+  const Lanes4 a4 = TACTA_SPLAT4(alpha);
+  Lanes4 r_norm2 = TACTA_SPLAT4(0.0), rz = r_norm2;
+  for (size_t i = begin; i < end; ++i) {
+    Lanes4 x, p, r, ap, c0, c1, c2;
+    std::memcpy(&x, &x_[4 * i], sizeof x);
+    std::memcpy(&p, &p_[4 * i], sizeof p);
+    std::memcpy(&r, &r_[4 * i], sizeof r);
+    std::memcpy(&ap, &ap_[4 * i], sizeof ap);
+    x += a4 * p;
+    r -= a4 * ap;
+    std::memcpy(&x_[4 * i], &x, sizeof x);
+    std::memcpy(&r_[4 * i], &r, sizeof r);
+    const double* m = &inverse_columns_[12 * i];
+    std::memcpy(&c0, m, sizeof c0);
+    std::memcpy(&c1, m + 4, sizeof c1);
+    std::memcpy(&c2, m + 8, sizeof c2);
+    const Lanes4 z = TACTA_SPLAT4(r[0]) * c0 + TACTA_SPLAT4(r[1]) * c1 + TACTA_SPLAT4(r[2]) * c2;
+    std::memcpy(&z_[4 * i], &z, sizeof z);
+    r_norm2 += r * r;
+    rz += r * z;
+  }
+  return {(r_norm2[0] + r_norm2[1]) + (r_norm2[2] + r_norm2[3]), (rz[0] + rz[1]) + (rz[2] + rz[3])};
+}
+
 TACTA_HOT_PATH std::pair<double, double> ConjugateGradientSolver::update(double alpha,
                                                                          double converged_norm2) {
   const size_t nodes = r_.size() / 4;
-  if (!incomplete_cholesky_) {  // one pass, 4-wide: the (block) Jacobi inverse is local
-    const Lanes4 a4 = TACTA_SPLAT4(alpha);
-    Lanes4 r_norm2 = TACTA_SPLAT4(0.0), rz = r_norm2;
-    for (size_t i = 0; i < nodes; ++i) {
-      Lanes4 x, p, r, ap, c0, c1, c2;
-      std::memcpy(&x, &x_[4 * i], sizeof x);
-      std::memcpy(&p, &p_[4 * i], sizeof p);
-      std::memcpy(&r, &r_[4 * i], sizeof r);
-      std::memcpy(&ap, &ap_[4 * i], sizeof ap);
-      x += a4 * p;
-      r -= a4 * ap;
-      std::memcpy(&x_[4 * i], &x, sizeof x);
-      std::memcpy(&r_[4 * i], &r, sizeof r);
-      const double* m = &inverse_columns_[12 * i];
-      std::memcpy(&c0, m, sizeof c0);
-      std::memcpy(&c1, m + 4, sizeof c1);
-      std::memcpy(&c2, m + 8, sizeof c2);
-      const Lanes4 z = TACTA_SPLAT4(r[0]) * c0 + TACTA_SPLAT4(r[1]) * c1 + TACTA_SPLAT4(r[2]) * c2;
-      std::memcpy(&z_[4 * i], &z, sizeof z);
-      r_norm2 += r * r;
-      rz += r * z;
-    }
-    return {(r_norm2[0] + r_norm2[1]) + (r_norm2[2] + r_norm2[3]),
-            (rz[0] + rz[1]) + (rz[2] + rz[3])};
-  }
+  if (!incomplete_cholesky_)  // one pass, 4-wide: the (block) Jacobi inverse is local
+    return update_rows(alpha, 0, nodes);
   double r_norm2 = 0.0;
   for (size_t i = 0; i < r_.size(); ++i) {  // the fourth entries stay 0
     x_[i] += alpha * p_[i];
@@ -125,6 +145,7 @@ SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const dou
 
 SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const double* b, double* x,
                                              int max_iterations) {
+  if (team_.threaded()) return iterate_threaded(b, x, max_iterations);
   const size_t nodes = r_.size() / 4;
   double b_norm2 = 0.0;
   for (size_t i = 0; i < 3 * nodes; ++i) b_norm2 += b[i] * b[i];
@@ -174,6 +195,111 @@ SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const d
     const double beta = rz_next / rz;
     rz = rz_next;
     for (size_t i = 0; i < p_.size(); ++i) p_[i] = z_[i] + beta * p_[i];
+  }
+  write_back();
+  report.converged = false;
+  return report;
+}
+
+SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x,
+                                                      int max_iterations) {
+  const RowTeam& team = team_;
+  SolveReport report;
+  report.replaced_pivots = replaced_pivots_;
+  // z = M^-1 r and p = z for rows [begin, end); returns their r . z.
+  const auto precondition_rows = [&](size_t begin, size_t end) {
+    double rz = 0.0;
+    for (size_t i = begin; i < end; ++i) {
+      const double* m = &inverse_columns_[12 * i];
+      for (int l = 0; l < 4; ++l)
+        z_[4 * i + l] = r_[4 * i] * m[l] + r_[4 * i + 1] * m[4 + l] + r_[4 * i + 2] * m[8 + l];
+      for (int l = 0; l < 4; ++l) p_[4 * i + l] = z_[4 * i + l];
+      rz += r_[4 * i] * z_[4 * i] + r_[4 * i + 1] * z_[4 * i + 1] + r_[4 * i + 2] * z_[4 * i + 2];
+    }
+    return rz;
+  };
+  const auto write_back = [&] {
+    team.run([&](uint32_t, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i)
+        for (size_t c = 0; c < 3; ++c) x[3 * i + c] = x_[4 * i + c];
+    });
+  };
+  // x in the 4-per-node layout, and |b|^2.
+  team.run([&](uint32_t chunk, size_t begin, size_t end) {
+    double b_norm2 = 0.0;
+    for (size_t i = begin; i < end; ++i)
+      for (size_t c = 0; c < 3; ++c) {
+        x_[4 * i + c] = x[3 * i + c];
+        b_norm2 += b[3 * i + c] * b[3 * i + c];
+      }
+    team.sums(chunk).s[0] = b_norm2;
+  });
+  const double b_norm2 = team.total(0);
+  if (b_norm2 == 0.0) {
+    std::fill_n(x, 3 * (r_.size() / 4), 0.0);
+    return report;
+  }
+  const double threshold2 = tolerance_ * tolerance_ * b_norm2;
+  // r = b - A x, z = M^-1 r, p = z.
+  team.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    padded_.multiply_rows(x_.data(), ap_.data(), begin, end);
+    double r_norm2 = 0.0;
+    for (size_t i = begin; i < end; ++i)
+      for (size_t c = 0; c < 3; ++c) {
+        r_[4 * i + c] = b[3 * i + c] - ap_[4 * i + c];
+        r_norm2 += r_[4 * i + c] * r_[4 * i + c];
+      }
+    team.sums(chunk).s[0] = r_norm2;
+    team.sums(chunk).s[1] = precondition_rows(begin, end);
+  });
+  double r_norm2 = team.total(0), rz = team.total(1);
+  if (!(r_norm2 <= b_norm2)) {  // the guess is worse than none (or not finite): start from zero
+    report.warm_start_rejected = true;
+    team.run([&](uint32_t chunk, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i)
+        for (size_t c = 0; c < 3; ++c) {
+          x_[4 * i + c] = 0.0;
+          r_[4 * i + c] = b[3 * i + c];
+        }
+      team.sums(chunk).s[1] = precondition_rows(begin, end);
+    });
+    r_norm2 = b_norm2;
+    rz = team.total(1);
+  }
+  report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+  if (r_norm2 <= threshold2) {
+    write_back();
+    return report;
+  }
+  double beta = 0.0;
+  bool fused = false;  // from the second iteration: p = z + beta p formed inside the product
+  for (int k = 0; k < max_iterations; ++k) {
+    team.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
+      team.sums(chunk).s[0] =
+          fused ? padded_.multiply_rows(p_.data(), ap_.data(), begin, end, z_.data(), beta,
+                                        p_next_.data())
+                : padded_.multiply_rows(p_.data(), ap_.data(), begin, end);
+    });
+    if (fused) std::swap(p_, p_next_);
+    const double p_ap = team.total(0);
+    if (!(p_ap > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
+    const double alpha = rz / p_ap;
+    team.run([&](uint32_t chunk, size_t begin, size_t end) {
+      const auto [rr, rzc] = update_rows(alpha, begin, end);
+      team.sums(chunk).s[0] = rr;
+      team.sums(chunk).s[1] = rzc;
+    });
+    r_norm2 = team.total(0);
+    const double rz_next = team.total(1);
+    report.iterations = k + 1;
+    report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+    if (r_norm2 <= threshold2) {
+      write_back();
+      return report;
+    }
+    beta = rz_next / rz;
+    rz = rz_next;
+    fused = true;
   }
   write_back();
   report.converged = false;

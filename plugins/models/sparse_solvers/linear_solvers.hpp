@@ -14,6 +14,7 @@
 #include "block_sparse.hpp"
 #include "incomplete_cholesky.hpp"
 #include "padded_blocks.hpp"
+#include "row_team.hpp"
 
 namespace tacta::models::sparse {
 
@@ -29,10 +30,17 @@ struct SolveReport {
 
 class ConjugateGradientSolver {
  public:
+  // Nodes from which a solve runs on the host's workers (when it offers two or more).
+  static constexpr uint32_t kMinThreadedNodes = 384;
+
   // refactor_interval: with incomplete Cholesky, solves between refactorisations (1: every
-  // solve); the first solve always factorises.
+  // solve); the first solve always factorises. host: with two or more workers and
+  // kMinThreadedNodes nodes, a (block) Jacobi solve runs on them (row chunks, RowTeam): the
+  // preconditioner's build, the products, the updates and the dot products; IC(0) stays serial
+  // (its triangular solves are a chain from the first row to the last).
   ConjugateGradientSolver(const BlockSparseMatrix& pattern, Preconditioner preconditioner,
-                          int max_iterations, double tolerance, int refactor_interval = 1);
+                          int max_iterations, double tolerance, int refactor_interval = 1,
+                          const tacta_host_services* host = nullptr);
   // x holds the initial guess (the previous step's solution) and receives the solution.
   // Convergence: ||b - A x|| <= tolerance ||b||.
   // keep_preconditioner: a is the last solve's matrix, unchanged (no refactorisation, no copy).
@@ -43,6 +51,7 @@ class ConjugateGradientSolver {
   SolveReport resolve(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations) {
     return iterate(a, b, x, max_iterations);
   }
+  bool threaded() const { return team_.threaded(); }
   void set_limits(int max_iterations, double tolerance, int refactor_interval) {
     max_iterations_ = max_iterations;
     tolerance_ = tolerance;
@@ -52,13 +61,20 @@ class ConjugateGradientSolver {
 
  private:
   void build_preconditioner(const BlockSparseMatrix& a);
+  // The (block) Jacobi inverse of the diagonal blocks of nodes [begin, end).
+  void invert_diagonal(const BlockSparseMatrix& a, uint32_t begin, uint32_t end);
   SolveReport iterate(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations);
+  // iterate() on the host's workers: two waits per iteration (the product with p . Ap, then
+  // the update with r . r and r . z), the direction update fused into the next product.
+  SolveReport iterate_threaded(const double* b, double* x, int max_iterations);
   void apply_preconditioner(const double* r, double* z) const;
   // y = A x on 4-per-node vectors, returns x . y.
   double multiply(const BlockSparseMatrix& a, const double* x, double* y) const;
   // x += alpha p, r -= alpha Ap, z = M^-1 r; returns (r.r, r.z) in one pass where M allows.
   // z is skipped (r.z returned as 0) when r.r <= converged_norm2 and M is not fused.
   std::pair<double, double> update(double alpha, double converged_norm2);
+  // update()'s (block) Jacobi pass over nodes [begin, end): x, r and z, returns (r.r, r.z).
+  std::pair<double, double> update_rows(double alpha, size_t begin, size_t end);
   Preconditioner preconditioner_;
   int max_iterations_;
   double tolerance_;
@@ -71,7 +87,9 @@ class ConjugateGradientSolver {
   // CG's vectors hold 4 values per node (the fourth 0), the layout PaddedBlocks works in;
   // b and x arrive with 3 and are converted at the solve's start and end.
   std::vector<double> x_, r_, z_, p_, ap_;
-  PaddedBlocks padded_;  // A for the products, refreshed at each solve
+  std::vector<double> p_next_;  // threaded: the direction the fused product writes
+  PaddedBlocks padded_;         // A for the products, refreshed at each solve
+  RowTeam team_;
 };
 
 // Eigen's LDL^T with an AMD ordering computed here once, so the matrix handed to the numeric

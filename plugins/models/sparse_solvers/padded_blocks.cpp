@@ -12,6 +12,9 @@ PaddedBlocks::PaddedBlocks(const BlockSparseMatrix& pattern)
     : node_count_(pattern.node_count()),
       row_starts_(pattern.row_starts().begin(), pattern.row_starts().end()),
       columns_(pattern.columns().begin(), pattern.columns().end()),
+      lower_starts_(pattern.lower_starts().begin(), pattern.lower_starts().end()),
+      lower_blocks_(pattern.lower_blocks().begin(), pattern.lower_blocks().end()),
+      lower_rows_(pattern.lower_rows().begin(), pattern.lower_rows().end()),
       values_(12 * size_t{pattern.block_count()}, 0.0) {}
 
 TACTA_HOT_PATH void PaddedBlocks::assign(std::span<const double> values) {
@@ -19,6 +22,75 @@ TACTA_HOT_PATH void PaddedBlocks::assign(std::span<const double> values) {
   for (size_t k = 0; k < blocks; ++k)
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) values_[12 * k + 4 * r + c] = values[9 * k + 3 * r + c];
+}
+
+TACTA_HOT_PATH void PaddedBlocks::assign_rows(std::span<const double> values, uint32_t begin,
+                                              uint32_t end) {
+  for (size_t k = row_starts_[begin]; k < row_starts_[end]; ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) values_[12 * k + 4 * r + c] = values[9 * k + 3 * r + c];
+}
+
+TACTA_HOT_PATH double PaddedBlocks::multiply_rows(const double* __restrict x, double* __restrict y,
+                                                  uint32_t begin, uint32_t end,
+                                                  const double* __restrict z, double beta,
+                                                  double* __restrict q_out) const {
+  const double* v = values_.data();
+  const Lanes4 beta4 = TACTA_SPLAT4(beta);
+  double q_dot_y = 0.0;
+  for (uint32_t i = begin; i < end; ++i) {
+    // The lower blocks (j, i) of row i are stored as (j, i): their transposes times q_j, 4-wide.
+    Lanes4 lower = TACTA_SPLAT4(0.0);
+    for (uint32_t m = lower_starts_[i]; m < lower_starts_[i + 1]; ++m) {
+      const double* b = v + 12 * size_t{lower_blocks_[m]};
+      const size_t j = 4 * size_t{lower_rows_[m]};
+      Lanes4 b0, b1, b2, qj;
+      std::memcpy(&b0, b, sizeof b0);
+      std::memcpy(&b1, b + 4, sizeof b1);
+      std::memcpy(&b2, b + 8, sizeof b2);
+      std::memcpy(&qj, x + j, sizeof qj);
+      if (z != nullptr) {
+        Lanes4 zj;
+        std::memcpy(&zj, z + j, sizeof zj);
+        qj = zj + beta4 * qj;
+      }
+      lower += TACTA_SPLAT4(qj[0]) * b0 + TACTA_SPLAT4(qj[1]) * b1 + TACTA_SPLAT4(qj[2]) * b2;
+    }
+    // The upper blocks, diagonal first: acc_r holds row r of each block times q_j, by lane.
+    Lanes4 acc0 = TACTA_SPLAT4(0.0), acc1 = acc0, acc2 = acc0;
+    for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {
+      const double* b = v + 12 * size_t{k};
+      const size_t j = 4 * size_t{columns_[k]};
+      Lanes4 b0, b1, b2, qj;
+      std::memcpy(&b0, b, sizeof b0);
+      std::memcpy(&b1, b + 4, sizeof b1);
+      std::memcpy(&b2, b + 8, sizeof b2);
+      std::memcpy(&qj, x + j, sizeof qj);
+      if (z != nullptr) {
+        Lanes4 zj;
+        std::memcpy(&zj, z + j, sizeof zj);
+        qj = zj + beta4 * qj;
+      }
+      acc0 += b0 * qj;
+      acc1 += b1 * qj;
+      acc2 += b2 * qj;
+    }
+    double* yi = y + 4 * size_t{i};
+    yi[0] = lower[0] + ((acc0[0] + acc0[1]) + (acc0[2] + acc0[3]));
+    yi[1] = lower[1] + ((acc1[0] + acc1[1]) + (acc1[2] + acc1[3]));
+    yi[2] = lower[2] + ((acc2[0] + acc2[1]) + (acc2[2] + acc2[3]));
+    yi[3] = 0.0;
+    Lanes4 qi;
+    std::memcpy(&qi, x + 4 * size_t{i}, sizeof qi);
+    if (z != nullptr) {
+      Lanes4 zi;
+      std::memcpy(&zi, z + 4 * size_t{i}, sizeof zi);
+      qi = zi + beta4 * qi;
+      std::memcpy(q_out + 4 * size_t{i}, &qi, sizeof qi);
+    }
+    q_dot_y += qi[0] * yi[0] + qi[1] * yi[1] + qi[2] * yi[2];
+  }
+  return q_dot_y;
 }
 
 TACTA_HOT_PATH double PaddedBlocks::multiply_symmetric(const double* __restrict x,

@@ -27,7 +27,7 @@ SafeSolver::SafeSolver(const BlockSparseMatrix& pattern, const SolverOptions& op
   if (options_.solver == LinearSolver::kConjugateGradient)
     cg_ = std::make_unique<ConjugateGradientSolver>(pattern, options_.preconditioner,
                                                     options_.max_iterations, options_.tolerance,
-                                                    options_.refactor_interval);
+                                                    options_.refactor_interval, options_.host);
 }
 
 SafeSolver::~SafeSolver() = default;

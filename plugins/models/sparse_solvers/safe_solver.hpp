@@ -26,6 +26,9 @@ struct SolverOptions {
   int refactor_interval = 1;  // incomplete Cholesky: solves between refactorisations
   SolverFallback fallback = SolverFallback::kDirect;
   int restart_factor = 8;  // the restart's cap, in units of max_iterations
+  // The engine's workers (model_api.h), or null: a (block) Jacobi CG on a body of
+  // ConjugateGradientSolver::kMinThreadedNodes or more runs on them when there are two or more.
+  const tacta_host_services* host = nullptr;
 };
 
 // Counts since creation.
