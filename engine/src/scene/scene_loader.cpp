@@ -2,9 +2,12 @@
 #include "tacta/scene_loader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <fmt/format.h>
 #include <fstream>
+#include <sched.h>
 #include <sstream>
+#include <thread>
 #include <unistd.h>
 
 #include "scene/did_you_mean.hpp"
@@ -166,6 +169,27 @@ void read_events(const Field& field, const std::vector<Field>& body_items, Scene
   }
 }
 
+namespace {
+// 64: past any core count a workstation running a haptic loop has. `auto`: the CPUs this
+// process may run on (its affinity mask, so taskset and cgroup cpusets count), less the one the
+// haptic thread uses; at least 1.
+uint32_t read_threads(const Field& f) {
+  constexpr int64_t kMaxThreads = 64;
+  if (!f.is_scalar() || f.yaml().Scalar() != "auto") {
+    if (f.is_scalar() && !f.yaml().Scalar().empty() &&
+        std::isalpha(static_cast<unsigned char>(f.yaml().Scalar()[0])))
+      f.fail_expected("an integer in [1, 64] or auto");
+    return static_cast<uint32_t>(f.integer(1, kMaxThreads));
+  }
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  const int64_t count = sched_getaffinity(0, sizeof cpus, &cpus) == 0
+                            ? CPU_COUNT(&cpus)
+                            : static_cast<int64_t>(std::thread::hardware_concurrency());
+  return static_cast<uint32_t>(std::clamp<int64_t>(count - 1, 1, kMaxThreads));
+}
+}  // namespace
+
 SceneDesc read_scene(const Field& root) {
   root.expect_map("a scene: a map with keys name, gravity, clock, bodies, ...");
   root.check_keys({"name", "gravity", "seed", "threads", "clock", "bodies", "devices", "obstacles",
@@ -175,8 +199,7 @@ SceneDesc read_scene(const Field& root) {
   if (auto f = root.get("name")) scene.name = f->text();
   if (auto f = root.get("gravity")) scene.gravity = f->vec3();
   if (auto f = root.get("seed")) scene.seed = static_cast<uint64_t>(f->integer(0, INT64_MAX));
-  // 64: past any core count a workstation running a haptic loop has.
-  if (auto f = root.get("threads")) scene.threads = static_cast<uint32_t>(f->integer(1, 64));
+  if (auto f = root.get("threads")) scene.threads = read_threads(*f);
   if (auto f = root.get("clock")) scene.clock = read_clock(*f);
 
   const Field bodies = root.require("bodies");

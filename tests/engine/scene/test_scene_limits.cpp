@@ -1,6 +1,8 @@
 // Sizes and values a run cannot honour are refused at load, before anything is allocated, each
 // message naming the file, line and key, the limit and why (issue 15).
+#include <algorithm>
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <string>
 
 #include "fake_schemas.hpp"
@@ -97,6 +99,21 @@ TEST(SceneLimits, RealtimeKeys) {
             "clock.haptic_cpu", {"[-1, "});
   expect_at(load_error(yaml(kMinimalScene) + "clock: {spin_us: 5000}\n"), 6, "clock.spin_us",
             {"[0, 1000]"});
+}
+
+TEST(SceneLimits, ThreadsCountOrAuto) {
+  EXPECT_EQ(load(yaml(kMinimalScene)).threads, 1u);
+  EXPECT_EQ(load(yaml(kMinimalScene) + "threads: 3\n").threads, 3u);
+  // auto: the CPUs this process may run on, less the haptic thread's, at least 1.
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  ASSERT_EQ(sched_getaffinity(0, sizeof cpus, &cpus), 0);
+  const uint32_t expected = static_cast<uint32_t>(std::clamp(CPU_COUNT(&cpus) - 1, 1, 64));
+  EXPECT_EQ(load(yaml(kMinimalScene) + "threads: auto\n").threads, expected);
+  EXPECT_EQ(load(yaml(kMinimalScene), {"threads=auto"}).threads, expected);
+  expect_at(load_error(yaml(kMinimalScene) + "threads: 0\n"), 6, "threads", {"[1, 64]"});
+  expect_at(load_error(yaml(kMinimalScene) + "threads: many\n"), 6, "threads",
+            {"an integer in [1, 64] or auto", "'many'"});
 }
 
 }  // namespace
