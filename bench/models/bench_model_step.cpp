@@ -2,14 +2,26 @@
 // all driven through the C ABI, on a clamped box under gravity at the haptic tick (dt = 1 ms).
 // The 1 kHz budget is 1 ms per tick for everything (collision, haptics, every body), so a
 // model's step should stay well below it. Models whose plugin is not built are skipped.
+//
+// Sweep/<model>/tets:N/threads:T: the size sweep (docs/BENCHMARKS.md, bench/models/size_sweep.py)
+// over box size x engine threads x model, the models given the host's parallel_for on an engine
+// JobPool of T threads as the engine gives it (threads 1: a pool of one, serial). T is 1, 2 and
+// `auto` (the CPUs less one, as the scene key). With TACTA_BASELINE_PLUGIN_DIR set, the same
+// cases with the plugins of that folder (an earlier build) as Sweep/baseline_<model>/..., so a
+// baseline and this build can be timed in one interleaved run.
 #include <algorithm>
 #include <benchmark/benchmark.h>
+#include <cstdlib>
 #include <ctime>
+#include <memory>
+#include <sched.h>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "bench_meshes.hpp"
 #include "plugin_body.hpp"
+#include "services/job_pool.hpp"
 
 namespace tacta::bench {
 namespace {
@@ -65,15 +77,33 @@ const std::vector<ModelCase>& model_cases() {
   return cases;
 }
 
-void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells, uint32_t extra) {
+// The engine's host services over a JobPool of `threads` (as plugin_instance.cpp fills them).
+struct BenchHost {
+  explicit BenchHost(uint32_t threads) : pool(threads) {
+    services.struct_size = sizeof services;
+    services.worker_count = pool.threads();
+    services.parallel_for = &JobPool::parallel_for_entry;
+    services.jobs = &pool;
+    services.scratch = &ScratchArena::allocate_entry;
+    services.arena = &arena;
+  }
+  JobPool pool;
+  ScratchArena arena;
+  tacta_host_services services{};
+};
+
+void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells, uint32_t extra,
+                  uint32_t threads = 0) {
   const models::TestMesh mesh = clamped_box(cells, extra);
+  // threads 0: no host services (StepBySize, as before the sweep); else an engine pool.
+  const std::unique_ptr<BenchHost> host = threads > 0 ? std::make_unique<BenchHost>(threads) : nullptr;
   // Soft tissue-like, and soft enough (c_p = 4.6 m/s, dt_crit about 2 ms on 1 cm cells) that
   // the explicit models are stable at the 1 ms tick too, so every model is timed doing work.
   tacta_material material = models::make_material(1e4, 0.4, 1000.0);
   material.rayleigh_mass = 0.1;
   material.rayleigh_stiffness = 0.01;
   PluginBody body(model.file, model.model, mesh, material, {0.0, -9.81, 0.0}, 1e-3,
-                  model.overrides);
+                  model.overrides, host ? &host->services : nullptr);
   for (int i = 0; i < 20; ++i) body.step();  // warm-up: solver history, caches
   uint32_t bits = 0;
   // Each step's thread CPU time as well: its 99th percentile is the slow steps' cost (a
@@ -95,6 +125,47 @@ void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cell
   state.counters["nodes"] = mesh.node_count();
   state.counters["budget_ms"] = 1.0;
   state.counters["fault"] = (bits & TACTA_STEP_FAULT_MASK) ? 1 : 0;
+  if (threads > 0) state.counters["threads"] = threads;
+}
+
+// `threads: auto` as the scene loader reads it: the CPUs this process may use, less one.
+uint32_t auto_threads() {
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  const int count = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 2;
+  return static_cast<uint32_t>(std::clamp(count - 1, 1, 64));
+}
+
+// The sweep's models: each at its plugin defaults, here and (when given) in the baseline folder.
+const std::vector<ModelCase>& sweep_cases() {
+  static const std::vector<ModelCase> cases = [] {
+    std::vector<ModelCase> list = {
+        {"corotational_fem", "tacta_corotational_fem.so", "corotational_fem", {}, 20},
+        {"hyperelastic", "tacta_hyperelastic.so", "hyperelastic", {}, 20},
+        {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
+        {"vbd", "tacta_vbd.so", "vbd", {}, 20},
+    };
+    static std::vector<std::string> storage;  // labels and paths of the baseline cases
+    storage.reserve(2 * list.size());
+    if (const char* dir = std::getenv("TACTA_BASELINE_PLUGIN_DIR"); dir && *dir) {
+      const size_t n = list.size();
+      for (size_t i = 0; i < n; ++i) {
+        const std::string path = std::string(dir) + "/" + list[i].file;
+        if (!std::filesystem::exists(path)) continue;
+        storage.push_back("baseline_" + std::string(list[i].label));
+        const char* label = storage.back().c_str();
+        storage.push_back(path);
+        list.push_back({label, storage.back().c_str(), list[i].model, {}, 20});
+      }
+    }
+    return list;
+  }();
+  return cases;
+}
+
+bool case_built(const ModelCase& model) {
+  const std::string file = model.file;
+  return file.find('/') != std::string::npos ? std::filesystem::exists(file) : plugin_built(file);
 }
 
 const bool registered = [] {
@@ -110,6 +181,24 @@ const bool registered = [] {
           ->Unit(benchmark::kMillisecond)
           ->MinWarmUpTime(0.2);
     }
+  }
+  // The sweep: ~500 to ~50k tets (cells per side, extra cells in z).
+  const std::pair<uint32_t, uint32_t> sweep_sizes[] = {{4, 1}, {7, 0}, {9, 0}, {12, 0}, {15, 0}, {20, 1}};
+  std::set<uint32_t> thread_counts = {1, 2, auto_threads()};
+  for (const ModelCase& model : sweep_cases()) {
+    if (!case_built(model)) continue;
+    for (auto [cells, extra] : sweep_sizes)
+      for (uint32_t threads : thread_counts) {
+        const uint32_t tets = 6 * cells * cells * (cells + extra);
+        benchmark::RegisterBenchmark(("Sweep/" + std::string(model.label) + "/tets:" +
+                                      std::to_string(tets) + "/threads:" + std::to_string(threads))
+                                         .c_str(),
+                                     [&model, cells, extra, threads](benchmark::State& s) {
+                                       step_by_size(s, model, cells, extra, threads);
+                                     })
+            ->Unit(benchmark::kMillisecond)
+            ->MinWarmUpTime(0.2);
+      }
   }
   return true;
 }();

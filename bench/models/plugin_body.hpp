@@ -31,7 +31,8 @@ class PluginBody {
  public:
   PluginBody(const std::string& file, const std::string& model, const models::TestMesh& mesh,
              const tacta_material& material, std::array<double, 3> gravity, double dt,
-             const std::vector<ParamOverride>& overrides)
+             const std::vector<ParamOverride>& overrides,
+             const tacta_host_services* host = nullptr)
       : plugin_(std::make_unique<testing::LoadedPlugin>(file)),
         api_(plugin_->api<tacta_model_api>(model)),
         mesh_(mesh),
@@ -63,7 +64,7 @@ class PluginBody {
                                   params_.data(),
                                   d.param_count,
                                   dt,
-                                  nullptr};
+                                  host};
     char message[512] = {0};
     if (api_.create(&setup, &instance_, message, sizeof message) != TACTA_OK)
       throw std::runtime_error(model + ": create failed: " + message);
