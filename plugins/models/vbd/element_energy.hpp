@@ -1,10 +1,14 @@
 // The two tet energies of the vbd model, per element and per corner: what a vertex's Newton
-// step needs (the force on one corner and its 3x3 Hessian block) and what queries need (energy,
-// the stress whose product with a shape gradient gives a corner's force). F is the deformation
-// gradient (dimensionless), stresses are first Piola-Kirchhoff (Pa), energies densities (J/m^3).
+// step needs (the force on one corner and its 3x3 Hessian block; inline, the sweeps' inner
+// loop) and what queries need (energy, the stress whose product with a shape gradient gives a
+// corner's force). F is the deformation gradient (dimensionless), stresses are first
+// Piola-Kirchhoff (Pa), energies densities (J/m^3), forces N, Hessian blocks N/m.
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 #include "tacta/models/lame.hpp"
 #include "tacta/models/tet_geometry.hpp"
@@ -25,28 +29,78 @@ Eigen::Matrix3d corotational_stress(const Eigen::Matrix3d& f, const Eigen::Matri
                                     const Lame& lame) noexcept;
 double corotational_energy_density(const Eigen::Matrix3d& f, const Eigen::Matrix3d& r,
                                    const Lame& lame) noexcept;
-// One corner's force -V R (2 mu eps + lambda tr(eps) I) g: the stress product above, cheaper.
-Eigen::Vector3d corotational_corner_force(const TetRest& tet, int corner, const Eigen::Matrix3d& f,
-                                          const Eigen::Matrix3d& r, const Lame& lame) noexcept;
+
+// One corner's force -V R (2 mu eps + lambda tr(eps) I) g: the stress product above, with
+// eps g = (R^T (F g) + F^T (R g)) / 2 - g and tr(eps) = R : F - 3, no 3x3 product.
+inline Eigen::Vector3d corotational_corner_force(const TetRest& tet, int corner,
+                                                 const Eigen::Matrix3d& f,
+                                                 const Eigen::Matrix3d& r,
+                                                 const Lame& lame) noexcept {
+  const Eigen::Vector3d g = corner_gradient(tet, corner);
+  const Eigen::Vector3d eps_g =
+      0.5 * (r.transpose() * (f * g) + f.transpose() * (r * g)) - g;
+  const double trace = r.cwiseProduct(f).sum() - 3.0;
+  return -tet.volume * (r * (2.0 * lame.mu * eps_g + lame.lambda * trace * g));
+}
+
 // Corner block of R K0 R^T (fixed R): V R [mu |g|^2 I + (lambda + mu) g g^T] R^T, SPD.
-Eigen::Matrix3d corotational_corner_hessian(const TetRest& tet, int corner,
-                                            const Eigen::Matrix3d& r, const Lame& lame) noexcept;
+inline Eigen::Matrix3d corotational_corner_hessian(const TetRest& tet, int corner,
+                                                   const Eigen::Matrix3d& r,
+                                                   const Lame& lame) noexcept {
+  const Eigen::Vector3d rg = r * corner_gradient(tet, corner);  // R g: |R g| = |g|
+  Eigen::Matrix3d k = (lame.lambda + lame.mu) * rg * rg.transpose();
+  k.diagonal().array() += lame.mu * rg.squaredNorm();
+  return tet.volume * k;
+}
 
 // Neo-Hookean: psi = mu/2 (I1 - 3) + U(J), U(J) = -mu ln J + lambda/2 ln^2 J for
 // J >= min_ratio, its second-order Taylor expansion about min_ratio below.
 struct VolumeTerm {
   double energy, slope, curvature;  // U (Pa), dU/dJ (Pa), d2U/dJ2 (Pa)
 };
-VolumeTerm neo_hookean_volume_term(double j, const Lame& lame, double min_ratio) noexcept;
-// P = mu F + U'(J) cof(F), cof(F) = dJ/dF.
+inline VolumeTerm neo_hookean_volume_term(double j, const Lame& lame, double min_ratio) noexcept {
+  const double lambda = lame.lambda, mu = lame.mu;
+  const double jc = std::max(j, min_ratio), ln = std::log(jc);
+  const VolumeTerm at{-mu * ln + 0.5 * lambda * ln * ln, (lambda * ln - mu) / jc,
+                      (mu + lambda - lambda * ln) / (jc * jc)};
+  if (j >= min_ratio) return at;
+  const double d = j - min_ratio;
+  return {at.energy + at.slope * d + 0.5 * at.curvature * d * d, at.slope + at.curvature * d,
+          at.curvature};
+}
+
+// cof(F) = dJ/dF: column c is the cross product of the other two columns of F.
+inline Eigen::Matrix3d cofactor(const Eigen::Matrix3d& f) noexcept {
+  Eigen::Matrix3d c;
+  c.col(0) = f.col(1).cross(f.col(2));
+  c.col(1) = f.col(2).cross(f.col(0));
+  c.col(2) = f.col(0).cross(f.col(1));
+  return c;
+}
+
+// P = mu F + U'(J) cof(F).
 Eigen::Matrix3d neo_hookean_stress(const Eigen::Matrix3d& f, const Lame& lame,
                                    double min_ratio) noexcept;
 double neo_hookean_energy_density(const Eigen::Matrix3d& f, const Lame& lame,
                                   double min_ratio) noexcept;
+
 // One corner's force -V P g and exact Hessian block V (mu |g|^2 I + U''(J) b b^T), b = cof(F) g
 // = dJ/dx (J is linear in one vertex's position, so no other term), with U'' clamped at 0.
-void neo_hookean_corner(const TetRest& tet, int corner, const Eigen::Matrix3d& f, const Lame& lame,
-                        double min_ratio, Eigen::Vector3d& force,
-                        Eigen::Matrix3d* hessian) noexcept;
+inline void neo_hookean_corner(const TetRest& tet, int corner, const Eigen::Matrix3d& f,
+                               const Lame& lame, double min_ratio, Eigen::Vector3d& force,
+                               Eigen::Matrix3d* hessian) noexcept {
+  const Eigen::Vector3d g = corner_gradient(tet, corner);
+  const Eigen::Matrix3d cof = cofactor(f);
+  const double j = f.col(0).dot(cof.col(0));
+  const Eigen::Vector3d b = cof * g;  // dJ/dx of this corner, 1/m
+  const VolumeTerm u = neo_hookean_volume_term(j, lame, min_ratio);
+  force = -tet.volume * (lame.mu * (f * g) + u.slope * b);
+  if (hessian == nullptr) return;
+  // U'' < 0 only where lambda ln J > mu + lambda (J > e^(1 + mu/lambda), a 2.7x stretch):
+  // dropping it keeps the block positive definite (the paper's SPD projection).
+  *hessian = std::max(u.curvature, 0.0) * b * b.transpose();
+  hessian->diagonal().array() += lame.mu * g.squaredNorm();
+  *hessian *= tet.volume;
+}
 
 }  // namespace tacta::models::vbd

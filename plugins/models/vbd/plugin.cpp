@@ -33,9 +33,9 @@ class VbdPlugin {
       sdk::int_param("iterations", 10, 1, 1000,
                      "VBD iterations per step (each one Newton step per vertex, colour by "
                      "colour); more: closer to the exact implicit Euler step"),
-      sdk::real_param("chebyshev_rho", "", 0.95, 0.0, 0.999,
+      sdk::real_param("chebyshev_rho", "", 0.85, 0.0, 0.999,
                       "spectral radius estimate of the Chebyshev acceleration over the "
-                      "iterations; 0: none"),
+                      "iterations; 0: none (0.9 and above can gain energy)"),
       sdk::choice_param("initial_guess", "adaptive|inertia|previous", 0,
                         "first iterate: adaptive (x + h v + h^2 times the part of the last "
                         "acceleration along the external one), inertia (x + h v + h^2 f_ext / m) "

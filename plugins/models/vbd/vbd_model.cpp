@@ -128,16 +128,27 @@ Eigen::Matrix3d VbdModel::deformation(uint32_t tet, const double* positions) con
   return tet_deformation(tets_[tet], positions);
 }
 
-VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, const double* positions,
+VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, const double* positions, double blend,
                                              bool with_hessian) const noexcept {
   VertexBlock out;
   const Lame lame{lambda_, mu_};
   const bool corotational = options_.energy == Energy::kCorotational;
+  const double* start = start_.data();
   for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
     const Incidence inc = incidence_[k];
     const TetRest& t = tets_[inc.tet];
     const int corner = static_cast<int>(inc.corner);
-    const Eigen::Matrix3d f = tet_deformation(t, positions);
+    // F at p = x + blend (x - x_t): the edge vectors from node 0, times the rest gradients.
+    const size_t n0 = 3 * size_t{t.nodes[0]};
+    Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
+    for (int a = 1; a < 4; ++a) {
+      const size_t na = 3 * size_t{t.nodes[a]};
+      for (int r = 0; r < 3; ++r) {
+        double edge = positions[na + r] - positions[n0 + r];
+        if (blend != 0.0) edge += blend * (edge - (start[na + r] - start[n0 + r]));
+        for (int c = 0; c < 3; ++c) f(r, c) += edge * t.gradients[a][c];
+      }
+    }
     if (corotational) {
       const Eigen::Matrix3d& r = rotation_[inc.tet];
       out.force += corotational_corner_force(t, corner, f, r, lame);
@@ -154,21 +165,33 @@ VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, const double* positions
   return out;
 }
 
-void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker) noexcept {
+void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
+                             bool first_iteration) noexcept {
   const double h = h_, m = masses_[i];
-  const double inertia = m / (h * h);     // N/m: M / h^2
-  const double mass_damping = alpha_ * m / h;  // N/m: alpha M / h
+  const double inertia = m / (h * h);               // N/m: M / h^2
+  const double mass_damping = alpha_ * m / h;       // N/m: alpha M / h
   const double stiffness_factor = 1.0 + beta_ / h;  // elastic + Rayleigh stiffness damping
   const bool corotational = options_.energy == Energy::kCorotational;
-  // The corotational Hessian is fixed over the step (R at x_t): summed once in step().
-  const VertexBlock elastic = vertex_block(i, positions, !corotational);
-  Eigen::Matrix3d hessian = stiffness_factor * (corotational ? elastic_hessian_[i] : elastic.hessian);
+  Eigen::Vector3d force;
+  Eigen::Matrix3d hessian;
+  if (corotational) {
+    // With R held over the step the forces are affine in x, so (1 + beta/h) f(x) -
+    // (beta/h) f(x_t) is f at x + (beta/h)(x - x_t): one pass. The Hessian is constant over the
+    // step: summed in the first iteration, kept for the others.
+    const VertexBlock elastic = vertex_block(i, positions, beta_ / h, first_iteration);
+    if (first_iteration) elastic_hessian_[i] = elastic.hessian;
+    force = elastic.force;
+    hessian = stiffness_factor * elastic_hessian_[i];
+  } else {
+    const VertexBlock elastic = vertex_block(i, positions, 0.0, true);
+    force = stiffness_factor * elastic.force;
+    if (beta_ > 0.0) force -= (beta_ / h) * vec_at(start_force_.data(), i);
+    hessian = stiffness_factor * elastic.hessian;
+  }
   hessian.diagonal().array() += inertia + mass_damping;
   const Eigen::Vector3d x = vec_at(positions, i);
-  Eigen::Vector3d force = -inertia * (x - vec_at(inertia_target_.data(), i)) -
-                          mass_damping * (x - vec_at(start_.data(), i)) +
-                          stiffness_factor * elastic.force;
-  if (beta_ > 0.0) force -= (beta_ / h) * vec_at(start_force_.data(), i);
+  force -= inertia * (x - vec_at(inertia_target_.data(), i)) +
+           mass_damping * (x - vec_at(start_.data(), i));
   const double det = hessian.determinant();
   const double scale = hessian.trace() / 3.0;
   if (!(det > kSingularRatio * scale * scale * scale)) {  // also NaN
@@ -218,17 +241,18 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
     }
   }
   history_ = true;
-  // Per step: the rotations at x_t, each free vertex's (fixed) corotational Hessian block and,
-  // for Rayleigh stiffness damping, its elastic force at x_t.
-  if (corotational) update_rotations(start_.data());
-  if (corotational || beta_ > 0.0)
+  // Per step: the rotations at x_t (corotational), or, for Neo-Hookean's Rayleigh stiffness
+  // damping, each free vertex's elastic force at x_t.
+  if (corotational) {
+    update_rotations(start_.data());
+  } else if (beta_ > 0.0) {
     for_each(static_cast<uint32_t>(colour_vertices_.size()), kVertexGrain,
              [&](uint32_t k, uint32_t) {
                const uint32_t i = colour_vertices_[k];
-               const VertexBlock b = vertex_block(i, start_.data(), corotational);
-               if (corotational) elastic_hessian_[i] = b.hessian;
-               for (int c = 0; c < 3; ++c) start_force_[3 * size_t{i} + c] = b.force[c];
+               const Eigen::Vector3d f = vertex_block(i, start_.data(), 0.0, false).force;
+               for (int c = 0; c < 3; ++c) start_force_[3 * size_t{i} + c] = f[c];
              });
+  }
 
   const int iterations = options_.iterations;
   const double rho = options_.chebyshev_rho;
@@ -239,7 +263,7 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
     for (uint32_t c = 0; c + 1 < colour_start_.size(); ++c) {
       const uint32_t* vertices = colour_vertices_.data() + colour_start_[c];
       for_each(colour_start_[c + 1] - colour_start_[c], kVertexGrain,
-               [&](uint32_t k, uint32_t worker) { update_vertex(vertices[k], x, worker); });
+               [&](uint32_t k, uint32_t worker) { update_vertex(vertices[k], x, worker, it == 1); });
     }
     if (!chebyshev) continue;
     // Chebyshev semi-iterative acceleration (Wang 2015, as the paper uses it):
