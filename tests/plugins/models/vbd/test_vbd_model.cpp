@@ -216,6 +216,7 @@ TEST(VbdDynamics, InvertedStartRecovers) {
     BodyState body(mesh);
     body.positions[3 * (1 + 3 * (1 + 3 * 1))] += 0.15;
     ASSERT_LT(min_volume(mesh, body.positions), 0.0);
+    const double start = model->elastic_energy(body.positions.data());
     model->begin(body.state, 1e-3);
     uint32_t flags = 0;
     for (int n = 0; n < 1000; ++n) flags |= model->step(body.state, 1e-3);
@@ -223,7 +224,9 @@ TEST(VbdDynamics, InvertedStartRecovers) {
     const double rest_volume = 0.1 * 0.1 * 0.1 / 6.0;
     EXPECT_GT(min_volume(mesh, body.positions), 0.9 * rest_volume)
         << "energy " << static_cast<int>(energy);
-    EXPECT_LT(model->elastic_energy(body.positions.data()), 1e-6);
+    // alpha = 5/s alone leaves e^-10 = 4.5e-5 of the energy after 1 s; implicit Euler damps
+    // the fast modes further.
+    EXPECT_LT(model->elastic_energy(body.positions.data()), 4.5e-5 * start);
   }
 }
 
