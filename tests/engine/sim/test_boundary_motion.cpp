@@ -137,7 +137,7 @@ Vec3 table_at(double t) {  // the table above, m
 TEST(BoundaryMotion, PrescribedNodesFollowTheirTableUnderEveryModel) {
   // tensor_mass's central differences are unstable on this mesh at 1 kHz, with or without motion.
   for (const char* model : {"corotational_fem", "{name: tensor_mass, integrator: implicit_euler}",
-                            "mass_spring", "fd_debunne"}) {
+                            "mass_spring", "fd_debunne", "vbd"}) {
     SCOPED_TRACE(model);
     std::string text = kTableColumn;
     text.replace(text.find("MODEL"), 5, model);
