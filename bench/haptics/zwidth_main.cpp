@@ -24,6 +24,8 @@ const std::map<std::string, std::string> kModels = {
     {"mass_spring", "{name: mass_spring, integrator: implicit_euler}"},
     {"fd_debunne", "fd_debunne"},
     {"bullet_softbody", "bullet_softbody"},
+    {"vbd", "vbd"},
+    {"vbd_neo_hookean", "{name: vbd, energy: neo_hookean}"},
 };
 // Hand label -> sim_stylus overrides. firm: the plugin's defaults (critically damped);
 // light: the same hand with a tenth of the damping, a loose grip.
@@ -57,7 +59,7 @@ std::string cell(const ZwidthResult& r, const tacta::bench::ZwidthSearch& search
 int main(int argc, char** argv) {
   CLI::App app{"Largest stable coupling stiffness at 1 kHz per model (Z-width table)"};
   std::string scene = std::string(TACTA_SOURCE_DIR) + "/scenes/bench/zwidth.yaml";
-  std::string models = "corotational_fem,tensor_mass,mass_spring,fd_debunne,bullet_softbody";
+  std::string models = "corotational_fem,tensor_mass,mass_spring,fd_debunne,bullet_softbody,vbd";
   std::string hands = "firm,light", dampings = "0,1", csv_path;
   std::string work = std::string(TACTA_BINARY_DIR) + "/zwidth_runs";
   tacta::bench::ZwidthSearch search;

@@ -68,6 +68,7 @@ VbdModel::VbdModel(const tacta_mesh_view& mesh, const tacta_material& material,
   step_rotation_.assign(tets_.size(), Eigen::Quaterniond::Identity());
   query_rotation_ = step_rotation_;
   rotation_.assign(tets_.size(), Eigen::Matrix3d::Identity());
+  tet_deformation_.assign(tets_.size(), Eigen::Matrix3d::Identity());
   const tacta_host_services* host = options_.host;
   tallies_.assign(host != nullptr && host->worker_count > 1 ? host->worker_count : 1u,
                   WorkerTally{});
@@ -128,17 +129,11 @@ Eigen::Matrix3d VbdModel::deformation(uint32_t tet, const double* positions) con
   return tet_deformation(tets_[tet], positions);
 }
 
-VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, const double* positions, double blend,
-                                             bool with_hessian) const noexcept {
-  VertexBlock out;
-  const Lame lame{lambda_, mu_};
-  const bool corotational = options_.energy == Energy::kCorotational;
+void VbdModel::refresh_deformations(const double* positions, double blend) noexcept {
   const double* start = start_.data();
-  for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
-    const Incidence inc = incidence_[k];
-    const TetRest& t = tets_[inc.tet];
-    const int corner = static_cast<int>(inc.corner);
+  for_each(static_cast<uint32_t>(tets_.size()), kTetGrain, [&](uint32_t e, uint32_t) {
     // F at p = x + blend (x - x_t): the edge vectors from node 0, times the rest gradients.
+    const TetRest& t = tets_[e];
     const size_t n0 = 3 * size_t{t.nodes[0]};
     Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
     for (int a = 1; a < 4; ++a) {
@@ -149,6 +144,19 @@ VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, const double* positions
         for (int c = 0; c < 3; ++c) f(r, c) += edge * t.gradients[a][c];
       }
     }
+    tet_deformation_[e] = f;
+  });
+}
+
+VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, bool with_hessian) const noexcept {
+  VertexBlock out;
+  const Lame lame{lambda_, mu_};
+  const bool corotational = options_.energy == Energy::kCorotational;
+  for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+    const Incidence inc = incidence_[k];
+    const TetRest& t = tets_[inc.tet];
+    const int corner = static_cast<int>(inc.corner);
+    const Eigen::Matrix3d& f = tet_deformation_[inc.tet];
     if (corotational) {
       const Eigen::Matrix3d& r = rotation_[inc.tet];
       out.force += corotational_corner_force(t, corner, f, r, lame);
@@ -178,12 +186,12 @@ void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
     // With R held over the step the forces are affine in x, so (1 + beta/h) f(x) -
     // (beta/h) f(x_t) is f at x + (beta/h)(x - x_t): one pass. The Hessian is constant over the
     // step: summed in the first iteration, kept for the others.
-    const VertexBlock elastic = vertex_block(i, positions, beta_ / h, first_iteration);
+    const VertexBlock elastic = vertex_block(i, first_iteration);
     if (first_iteration) elastic_hessian_[i] = elastic.hessian;
     force = elastic.force;
     hessian = stiffness_factor * elastic_hessian_[i];
   } else {
-    const VertexBlock elastic = vertex_block(i, positions, 0.0, true);
+    const VertexBlock elastic = vertex_block(i, true);
     force = stiffness_factor * elastic.force;
     if (beta_ > 0.0) force -= (beta_ / h) * vec_at(start_force_.data(), i);
     hessian = stiffness_factor * elastic.hessian;
@@ -200,6 +208,14 @@ void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
   }
   const Eigen::Vector3d dx = hessian.inverse() * force;  // closed-form 3x3 inverse
   for (int k = 0; k < 3; ++k) positions[3 * size_t{i} + k] += dx[k];
+  // Each tet's F follows its corner by a rank-one change (scaled as the cache is blended): no
+  // other vertex of this colour is in these tets, so no other update writes them now.
+  const Eigen::Vector3d change = (corotational ? stiffness_factor : 1.0) * dx;
+  for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+    const Incidence inc = incidence_[k];
+    tet_deformation_[inc.tet] +=
+        change * corner_gradient(tets_[inc.tet], static_cast<int>(inc.corner)).transpose();
+  }
 }
 
 void VbdModel::update_rotations(const double* positions) noexcept {
@@ -246,10 +262,11 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
   if (corotational) {
     update_rotations(start_.data());
   } else if (beta_ > 0.0) {
+    refresh_deformations(start_.data(), 0.0);
     for_each(static_cast<uint32_t>(colour_vertices_.size()), kVertexGrain,
              [&](uint32_t k, uint32_t) {
                const uint32_t i = colour_vertices_[k];
-               const Eigen::Vector3d f = vertex_block(i, start_.data(), 0.0, false).force;
+               const Eigen::Vector3d f = vertex_block(i, false).force;
                for (int c = 0; c < 3; ++c) start_force_[3 * size_t{i} + c] = f[c];
              });
   }
@@ -259,7 +276,11 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
   const bool chebyshev = rho > 0.0 && iterations > 1;
   if (chebyshev) std::copy(x, x + 3 * size_t{node_count_}, chebyshev_prev_.begin());
   double omega = 1.0;
+  // Corotational: the forces at x + (beta/h)(x - x_t) (see update_vertex), so the cache holds F
+  // there. Taken afresh each iteration: Chebyshev moves every node, and rounding cannot pile up.
+  const double blend = corotational ? beta_ / h : 0.0;
   for (int it = 1; it <= iterations; ++it) {
+    refresh_deformations(x, blend);
     for (uint32_t c = 0; c + 1 < colour_start_.size(); ++c) {
       const uint32_t* vertices = colour_vertices_.data() + colour_start_[c];
       for_each(colour_start_[c + 1] - colour_start_[c], kVertexGrain,

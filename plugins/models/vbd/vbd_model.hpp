@@ -78,10 +78,11 @@ class VbdModel {
     Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, -dE/dx_i
     Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  // N/m, d2E/dx_i^2 (PSD)
   };
-  // Sums vertex i's elastic force (and, when with_hessian, its Hessian block) at
-  // positions + blend (positions - x_t) (blend 0: at positions).
-  VertexBlock vertex_block(uint32_t i, const double* positions, double blend,
-                           bool with_hessian) const noexcept;
+  // Sums vertex i's elastic force (and, when with_hessian, its Hessian block) at the cached
+  // deformation gradients of its tets.
+  VertexBlock vertex_block(uint32_t i, bool with_hessian) const noexcept;
+  // Every tet's F at positions + blend (positions - x_t) into the cache (blend 0: at positions).
+  void refresh_deformations(const double* positions, double blend) noexcept;
   // The Newton step of vertex i on G, applied to positions; skipped (and counted on the
   // worker's tally) when its block is singular.
   void update_vertex(uint32_t i, double* positions, uint32_t worker, bool first_iteration) noexcept;
@@ -110,6 +111,9 @@ class VbdModel {
   std::vector<Eigen::Quaterniond> step_rotation_;           // per tet, warm start across steps
   std::vector<Eigen::Quaterniond> query_rotation_;          // per tet, for energy/force queries
   std::vector<Eigen::Matrix3d> rotation_;                   // per tet, R at x_t
+  // Per tet, F where the sweep evaluates forces, kept up to date by rank-one changes as the
+  // tet's corners move: a vertex step reads its tets' F instead of gathering four nodes.
+  std::vector<Eigen::Matrix3d> tet_deformation_;
   std::vector<double> start_, inertia_target_;              // x_t, y: 3 per node, m
   std::vector<double> start_force_;                         // Neo-Hookean: f_el(x_t), N
 
