@@ -73,6 +73,7 @@ const std::vector<ModelCase>& model_cases() {
       {"mass_spring", "tacta_mass_spring.so", "mass_spring", {}, 20},
       {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
       {"fd_debunne", "tacta_fd_debunne.so", "fd_debunne", {}, 20},
+      {"vbd", "tacta_vbd.so", "vbd", {}, 20},
   };
   return cases;
 }
