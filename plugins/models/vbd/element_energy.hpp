@@ -38,27 +38,28 @@ Eigen::Matrix3d corotational_stress(const Eigen::Matrix3d& f, const Eigen::Matri
 double corotational_energy_density(const Eigen::Matrix3d& f, const Eigen::Matrix3d& r,
                                    const Lame& lame) noexcept;
 
+// The corner terms take the corner's shape gradient g = grad N_a (1/m) and the tet's rest
+// volume V (m^3).
 // One corner's force -V R (2 mu eps + lambda tr(eps) I) g: the stress product above, with
 // eps g = (R^T (F g) + F^T (R g)) / 2 - g and tr(eps) = R : F - 3, no 3x3 product.
-TACTA_VBD_INLINE Eigen::Vector3d corotational_corner_force(const TetRest& tet, int corner,
-                                                 const Eigen::Matrix3d& f,
-                                                 const Eigen::Matrix3d& r,
-                                                 const Lame& lame) noexcept {
-  const Eigen::Vector3d g = corner_gradient(tet, corner);
-  const Eigen::Vector3d eps_g =
-      0.5 * (r.transpose() * (f * g) + f.transpose() * (r * g)) - g;
+TACTA_VBD_INLINE Eigen::Vector3d corotational_corner_force(const Eigen::Vector3d& g, double volume,
+                                                           const Eigen::Matrix3d& f,
+                                                           const Eigen::Matrix3d& r,
+                                                           const Lame& lame) noexcept {
+  const Eigen::Vector3d eps_g = 0.5 * (r.transpose() * (f * g) + f.transpose() * (r * g)) - g;
   const double trace = r.cwiseProduct(f).sum() - 3.0;
-  return -tet.volume * (r * (2.0 * lame.mu * eps_g + lame.lambda * trace * g));
+  return -volume * (r * (2.0 * lame.mu * eps_g + lame.lambda * trace * g));
 }
 
 // Corner block of R K0 R^T (fixed R): V R [mu |g|^2 I + (lambda + mu) g g^T] R^T, SPD.
-TACTA_VBD_INLINE Eigen::Matrix3d corotational_corner_hessian(const TetRest& tet, int corner,
-                                                   const Eigen::Matrix3d& r,
-                                                   const Lame& lame) noexcept {
-  const Eigen::Vector3d rg = r * corner_gradient(tet, corner);  // R g: |R g| = |g|
+TACTA_VBD_INLINE Eigen::Matrix3d corotational_corner_hessian(const Eigen::Vector3d& g,
+                                                             double volume,
+                                                             const Eigen::Matrix3d& r,
+                                                             const Lame& lame) noexcept {
+  const Eigen::Vector3d rg = r * g;  // |R g| = |g|
   Eigen::Matrix3d k = (lame.lambda + lame.mu) * rg * rg.transpose();
   k.diagonal().array() += lame.mu * rg.squaredNorm();
-  return tet.volume * k;
+  return volume * k;
 }
 
 // Neo-Hookean: psi = mu/2 (I1 - 3) + U(J), U(J) = -mu ln J + lambda/2 ln^2 J for
@@ -94,21 +95,21 @@ double neo_hookean_energy_density(const Eigen::Matrix3d& f, const Lame& lame,
 
 // One corner's force -V P g and exact Hessian block V (mu |g|^2 I + U''(J) b b^T), b = cof(F) g
 // = dJ/dx (J is linear in one vertex's position, so no other term), with U'' clamped at 0.
-TACTA_VBD_INLINE void neo_hookean_corner(const TetRest& tet, int corner, const Eigen::Matrix3d& f,
-                               const Lame& lame, double min_ratio, Eigen::Vector3d& force,
-                               Eigen::Matrix3d* hessian) noexcept {
-  const Eigen::Vector3d g = corner_gradient(tet, corner);
+TACTA_VBD_INLINE void neo_hookean_corner(const Eigen::Vector3d& g, double volume,
+                                         const Eigen::Matrix3d& f, const Lame& lame,
+                                         double min_ratio, Eigen::Vector3d& force,
+                                         Eigen::Matrix3d* hessian) noexcept {
   const Eigen::Matrix3d cof = cofactor(f);
   const double j = f.col(0).dot(cof.col(0));
   const Eigen::Vector3d b = cof * g;  // dJ/dx of this corner, 1/m
   const VolumeTerm u = neo_hookean_volume_term(j, lame, min_ratio);
-  force = -tet.volume * (lame.mu * (f * g) + u.slope * b);
+  force = -volume * (lame.mu * (f * g) + u.slope * b);
   if (hessian == nullptr) return;
   // U'' < 0 only where lambda ln J > mu + lambda (J > e^(1 + mu/lambda), a 2.7x stretch):
   // dropping it keeps the block positive definite (the paper's SPD projection).
   *hessian = std::max(u.curvature, 0.0) * b * b.transpose();
   hessian->diagonal().array() += lame.mu * g.squaredNorm();
-  *hessian *= tet.volume;
+  *hessian *= volume;
 }
 
 }  // namespace tacta::models::vbd

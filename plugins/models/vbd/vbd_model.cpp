@@ -67,8 +67,7 @@ VbdModel::VbdModel(const tacta_mesh_view& mesh, const tacta_material& material,
   elastic_hessian_.assign(node_count_, Eigen::Matrix3d::Zero());
   step_rotation_.assign(tets_.size(), Eigen::Quaterniond::Identity());
   query_rotation_ = step_rotation_;
-  rotation_.assign(tets_.size(), Eigen::Matrix3d::Identity());
-  tet_deformation_.assign(tets_.size(), Eigen::Matrix3d::Identity());
+  frames_.assign(tets_.size(), TetFrame{});
   const tacta_host_services* host = options_.host;
   tallies_.assign(host != nullptr && host->worker_count > 1 ? host->worker_count : 1u,
                   WorkerTally{});
@@ -83,7 +82,11 @@ void VbdModel::build_incidence_and_colours(std::span<const uint8_t> fixed) {
   incidence_.resize(incidence_start_[n]);
   std::vector<uint32_t> cursor(incidence_start_.begin(), incidence_start_.end() - 1);
   for (uint32_t e = 0; e < tets_.size(); ++e)
-    for (uint32_t c = 0; c < 4; ++c) incidence_[cursor[tets_[e].nodes[c]]++] = {e, c};
+    for (uint32_t c = 0; c < 4; ++c) {
+      const TetRest& t = tets_[e];
+      incidence_[cursor[t.nodes[c]]++] = {
+          {t.gradients[c][0], t.gradients[c][1], t.gradients[c][2]}, t.volume, e, c};
+    }
 
   // Greedy colouring in node order: the smallest colour no free tet-neighbour holds yet. Fixed
   // vertices never move, so they neither need a colour nor constrain one.
@@ -144,7 +147,7 @@ void VbdModel::refresh_deformations(const double* positions, double blend) noexc
         for (int c = 0; c < 3; ++c) f(r, c) += edge * t.gradients[a][c];
       }
     }
-    tet_deformation_[e] = f;
+    frames_[e].deformation = f;
   });
 }
 
@@ -153,18 +156,17 @@ VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, bool with_hessian) cons
   const Lame lame{lambda_, mu_};
   const bool corotational = options_.energy == Energy::kCorotational;
   for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
-    const Incidence inc = incidence_[k];
-    const TetRest& t = tets_[inc.tet];
-    const int corner = static_cast<int>(inc.corner);
-    const Eigen::Matrix3d& f = tet_deformation_[inc.tet];
+    const Incidence& inc = incidence_[k];
+    const Eigen::Vector3d g(inc.gradient[0], inc.gradient[1], inc.gradient[2]);
+    const TetFrame& frame = frames_[inc.tet];
     if (corotational) {
-      const Eigen::Matrix3d& r = rotation_[inc.tet];
-      out.force += corotational_corner_force(t, corner, f, r, lame);
-      if (with_hessian) out.hessian += corotational_corner_hessian(t, corner, r, lame);
+      out.force += corotational_corner_force(g, inc.volume, frame.deformation, frame.rotation, lame);
+      if (with_hessian)
+        out.hessian += corotational_corner_hessian(g, inc.volume, frame.rotation, lame);
     } else {
       Eigen::Vector3d force;
       Eigen::Matrix3d hessian;
-      neo_hookean_corner(t, corner, f, lame, kMinVolumeRatio, force,
+      neo_hookean_corner(g, inc.volume, frame.deformation, lame, kMinVolumeRatio, force,
                          with_hessian ? &hessian : nullptr);
       out.force += force;
       if (with_hessian) out.hessian += hessian;
@@ -212,9 +214,9 @@ void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
   // other vertex of this colour is in these tets, so no other update writes them now.
   const Eigen::Vector3d change = (corotational ? stiffness_factor : 1.0) * dx;
   for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
-    const Incidence inc = incidence_[k];
-    tet_deformation_[inc.tet] +=
-        change * corner_gradient(tets_[inc.tet], static_cast<int>(inc.corner)).transpose();
+    const Incidence& inc = incidence_[k];
+    frames_[inc.tet].deformation +=
+        change * Eigen::RowVector3d(inc.gradient[0], inc.gradient[1], inc.gradient[2]);
   }
 }
 
@@ -223,7 +225,7 @@ void VbdModel::update_rotations(const double* positions) noexcept {
     Eigen::Quaterniond q = step_rotation_[e];
     corotational::polar_rotation(deformation(e, positions), q, kPolarIterations);
     step_rotation_[e] = q;
-    rotation_[e] = q.toRotationMatrix();
+    frames_[e].rotation = q.toRotationMatrix();
   });
 }
 

@@ -69,10 +69,19 @@ class VbdModel {
   static constexpr double kMinVolumeRatio = 0.1;
 
  private:
-  // One incident tet of a vertex: the tet and the vertex's corner (0..3) in it.
+  // One incident tet of a vertex, with what the vertex's step needs of it at rest: laid out in
+  // the vertex's CSR row, so a step reads its tets' rest data in one stream.
   struct Incidence {
+    double gradient[3];  // grad N of the vertex's corner, 1/m
+    double volume;       // m^3
     uint32_t tet;
-    uint32_t corner;
+    uint32_t corner;  // 0..3
+  };
+  // A tet's state over a step: R at x_t and F where the sweep evaluates forces, together so a
+  // corner's evaluation touches one place.
+  struct TetFrame {
+    Eigen::Matrix3d deformation = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   };
   struct VertexBlock {  // what one vertex's incident tets add to its force and Hessian
     Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, -dE/dx_i
@@ -110,10 +119,9 @@ class VbdModel {
   double h_ = 0.0;                                          // s
   std::vector<Eigen::Quaterniond> step_rotation_;           // per tet, warm start across steps
   std::vector<Eigen::Quaterniond> query_rotation_;          // per tet, for energy/force queries
-  std::vector<Eigen::Matrix3d> rotation_;                   // per tet, R at x_t
-  // Per tet, F where the sweep evaluates forces, kept up to date by rank-one changes as the
-  // tet's corners move: a vertex step reads its tets' F instead of gathering four nodes.
-  std::vector<Eigen::Matrix3d> tet_deformation_;
+  // Per tet: R at x_t, and F kept up to date by rank-one changes as the tet's corners move, so
+  // a vertex step reads its tets' F instead of gathering four nodes.
+  std::vector<TetFrame> frames_;
   std::vector<double> start_, inertia_target_;              // x_t, y: 3 per node, m
   std::vector<double> start_force_;                         // Neo-Hookean: f_el(x_t), N
 

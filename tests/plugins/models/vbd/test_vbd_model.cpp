@@ -88,12 +88,14 @@ TEST(VbdElementEnergy, CornerForcesAndHessiansMatchDifferences) {
       const auto corner_terms = [&](const std::vector<double>& x, Energy which,
                                     Eigen::Matrix3d* hessian) {
         const Eigen::Matrix3d f = tet_deformation(t.rest, x.data());
+        const Eigen::Vector3d g = corner_gradient(t.rest, corner);
+        const double volume = t.rest.volume;
         Eigen::Vector3d force;
         if (which == Energy::kCorotational) {
-          force = corotational_corner_force(t.rest, corner, f, r, lame);
-          if (hessian) *hessian = corotational_corner_hessian(t.rest, corner, r, lame);
+          force = corotational_corner_force(g, volume, f, r, lame);
+          if (hessian) *hessian = corotational_corner_hessian(g, volume, r, lame);
         } else {
-          neo_hookean_corner(t.rest, corner, f, lame, 0.1, force, hessian);
+          neo_hookean_corner(g, volume, f, lame, 0.1, force, hessian);
         }
         return force;
       };
