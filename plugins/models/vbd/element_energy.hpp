@@ -67,7 +67,8 @@ TACTA_VBD_INLINE Eigen::Matrix3d corotational_corner_hessian(const Eigen::Vector
 struct VolumeTerm {
   double energy, slope, curvature;  // U (Pa), dU/dJ (Pa), d2U/dJ2 (Pa)
 };
-TACTA_VBD_INLINE VolumeTerm neo_hookean_volume_term(double j, const Lame& lame, double min_ratio) noexcept {
+TACTA_VBD_INLINE VolumeTerm neo_hookean_volume_term(double j, const Lame& lame,
+                                                    double min_ratio) noexcept {
   const double lambda = lame.lambda, mu = lame.mu;
   const double jc = std::max(j, min_ratio), ln = std::log(jc);
   const VolumeTerm at{-mu * ln + 0.5 * lambda * ln * ln, (lambda * ln - mu) / jc,

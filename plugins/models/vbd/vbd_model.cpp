@@ -47,9 +47,8 @@ VbdModel::VbdModel(const tacta_mesh_view& mesh, const tacta_material& material,
                                 std::to_string(node_count_) + " nodes");
   check_free_node_masses("vbd", masses, fixed);
   if (!(mu_ > 0.0) || !(lambda_ >= 0.0))
-    throw std::invalid_argument("vbd: needs mu > 0 and lambda >= 0 (got mu " +
-                                std::to_string(mu_) + " Pa, lambda " + std::to_string(lambda_) +
-                                " Pa)");
+    throw std::invalid_argument("vbd: needs mu > 0 and lambda >= 0 (got mu " + std::to_string(mu_) +
+                                " Pa, lambda " + std::to_string(lambda_) + " Pa)");
   fixed_.assign(node_count_, 0);
   std::copy(fixed.begin(), fixed.end(), fixed_.begin());
   tets_.reserve(mesh.tet_count);
@@ -160,7 +159,8 @@ VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, bool with_hessian) cons
     const Eigen::Vector3d g(inc.gradient[0], inc.gradient[1], inc.gradient[2]);
     const TetFrame& frame = frames_[inc.tet];
     if (corotational) {
-      out.force += corotational_corner_force(g, inc.volume, frame.deformation, frame.rotation, lame);
+      out.force +=
+          corotational_corner_force(g, inc.volume, frame.deformation, frame.rotation, lame);
       if (with_hessian)
         out.hessian += corotational_corner_hessian(g, inc.volume, frame.rotation, lame);
     } else {
@@ -285,8 +285,9 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
     refresh_deformations(x, blend);
     for (uint32_t c = 0; c + 1 < colour_start_.size(); ++c) {
       const uint32_t* vertices = colour_vertices_.data() + colour_start_[c];
-      for_each(colour_start_[c + 1] - colour_start_[c], kVertexGrain,
-               [&](uint32_t k, uint32_t worker) { update_vertex(vertices[k], x, worker, it == 1); });
+      for_each(
+          colour_start_[c + 1] - colour_start_[c], kVertexGrain,
+          [&](uint32_t k, uint32_t worker) { update_vertex(vertices[k], x, worker, it == 1); });
     }
     if (!chebyshev) continue;
     // Chebyshev semi-iterative acceleration (Wang 2015, as the paper uses it):

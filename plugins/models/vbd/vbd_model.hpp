@@ -24,12 +24,12 @@
 
 namespace tacta::models::vbd {
 
-enum class Energy { kCorotational = 0, kNeoHookean = 1 };              // scene choice order
+enum class Energy { kCorotational = 0, kNeoHookean = 1 };                // scene choice order
 enum class InitialGuess { kAdaptive = 0, kInertia = 1, kPrevious = 2 };  // scene choice order
 
 struct Options {
   Energy energy = Energy::kCorotational;
-  int iterations = 10;          // VBD iterations (sweeps over every colour) per step
+  int iterations = 10;  // VBD iterations (sweeps over every colour) per step
   // Chebyshev acceleration's spectral radius estimate; 0: off. 0.85: the most accurate of
   // 0.7-0.95 at 10 iterations on a soft swinging beam with no energy gained in any step; 0.9 and
   // above gained energy there (VALIDATION.md, vbd).
@@ -84,7 +84,7 @@ class VbdModel {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   };
   struct VertexBlock {  // what one vertex's incident tets add to its force and Hessian
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, -dE/dx_i
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();    // N, -dE/dx_i
     Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();  // N/m, d2E/dx_i^2 (PSD)
   };
   // Sums vertex i's elastic force (and, when with_hessian, its Hessian block) at the cached
@@ -116,19 +116,19 @@ class VbdModel {
   DivergenceGuard guard_;
 
   // Per step (sized at create; step() only writes into them).
-  double h_ = 0.0;                                          // s
-  std::vector<Eigen::Quaterniond> step_rotation_;           // per tet, warm start across steps
-  std::vector<Eigen::Quaterniond> query_rotation_;          // per tet, for energy/force queries
+  double h_ = 0.0;                                  // s
+  std::vector<Eigen::Quaterniond> step_rotation_;   // per tet, warm start across steps
+  std::vector<Eigen::Quaterniond> query_rotation_;  // per tet, for energy/force queries
   // Per tet: R at x_t, and F kept up to date by rank-one changes as the tet's corners move, so
   // a vertex step reads its tets' F instead of gathering four nodes.
   std::vector<TetFrame> frames_;
-  std::vector<double> start_, inertia_target_;              // x_t, y: 3 per node, m
-  std::vector<double> start_force_;                         // Neo-Hookean: f_el(x_t), N
+  std::vector<double> start_, inertia_target_;  // x_t, y: 3 per node, m
+  std::vector<double> start_force_;             // Neo-Hookean: f_el(x_t), N
 
-  std::vector<Eigen::Matrix3d> elastic_hessian_;            // corotational: per node, N/m
-  std::vector<double> previous_velocity_;                   // v_{t-1}, m/s (adaptive guess)
-  std::vector<double> chebyshev_prev_, chebyshev_prev2_;    // x^(k-1), x^(k-2), m
-  struct alignas(64) WorkerTally {                          // one cache line per worker
+  std::vector<Eigen::Matrix3d> elastic_hessian_;          // corotational: per node, N/m
+  std::vector<double> previous_velocity_;                 // v_{t-1}, m/s (adaptive guess)
+  std::vector<double> chebyshev_prev_, chebyshev_prev2_;  // x^(k-1), x^(k-2), m
+  struct alignas(64) WorkerTally {                        // one cache line per worker
     uint64_t skipped = 0;
   };
   std::vector<WorkerTally> tallies_;

@@ -77,7 +77,8 @@ TEST(VbdElementEnergy, CornerForcesAndHessiansMatchDifferences) {
   for (double strain : {0.05, 0.3}) {
     OneTet t(strain, 7);
     // A rotation that is not F's polar one: the corotational corner terms hold R fixed.
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
     for (int corner = 0; corner < 4; ++corner) {
       const auto energy = [&](const std::vector<double>& x, Energy which) {
         const Eigen::Matrix3d f = tet_deformation(t.rest, x.data());
@@ -252,8 +253,7 @@ TEST(VbdDynamics, DampedMotionDiesOut) {
     model->begin(body.state, 1e-3);
     for (int n = 0; n < 500; ++n)
       ASSERT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
-    const double end =
-        model->elastic_energy(body.positions.data()) + body.kinetic_energy(mesh);
+    const double end = model->elastic_energy(body.positions.data()) + body.kinetic_energy(mesh);
     EXPECT_LT(end, 0.05 * start) << "energy " << static_cast<int>(energy);
   }
 }
@@ -320,8 +320,8 @@ TEST(VbdAllocation, StepAllocatesNothing) {
         g_counting = true;
         for (int n = 0; n < 20; ++n) model->step(body.state, 1e-3);
         g_counting = false;
-        EXPECT_EQ(g_allocations, 0) << "energy " << static_cast<int>(energy) << " host "
-                                    << (host != nullptr);
+        EXPECT_EQ(g_allocations, 0)
+            << "energy " << static_cast<int>(energy) << " host " << (host != nullptr);
       }
 }
 

@@ -78,8 +78,8 @@ TEST(VbdValidation, ErrorAgainstTheConvergedImplicitStepPerIteration) {
       options.iterations = iterations;
       options.chebyshev_rho = plain ? 0.0 : Options{}.chebyshev_rho;
       auto model = make_vbd(swing.mesh, swing.material, options);
-      errors[plain] = relative_error(trajectory(*model, swing.mesh, steps), reference,
-                                     swing.mesh.positions);
+      errors[plain] =
+          relative_error(trajectory(*model, swing.mesh, steps), reference, swing.mesh.positions);
     }
     std::printf("%10d | %21.3e | %22.3e\n", iterations, errors[0], errors[1]);
     // More iterations never move further from the converged step (plain Gauss-Seidel).
@@ -158,9 +158,10 @@ TEST(VbdValidation, CantileverSettlesOnTheCorotationalEquilibrium) {
       std::printf(
           "cantilever %ux%ux%u nodes, %s: tip %.5f m after %.2f s; corotational_fem static "
           "%.5f m (%+.3f%%); Euler-Bernoulli + shear %.5f m (%.1f%%)\n",
-          nodes[0], nodes[1], nodes[2], energy == Energy::kCorotational ? "corotational" : "neo_hookean",
-          now, steps * dt, reference, 100.0 * (now / reference - 1.0),
-          kEulerBernoulli + kShear, 100.0 * now / (kEulerBernoulli + kShear));
+          nodes[0], nodes[1], nodes[2],
+          energy == Energy::kCorotational ? "corotational" : "neo_hookean", now, steps * dt,
+          reference, 100.0 * (now / reference - 1.0), kEulerBernoulli + kShear,
+          100.0 * now / (kEulerBernoulli + kShear));
       // Same energy: the same equilibrium, to what is left of the settling (measured +0.03 %).
       // Neo-Hookean agrees with the corotational energy to the small-strain order (strains of
       // ~1e-2 here): within 1 %.
@@ -241,11 +242,12 @@ TEST(VbdValidation, UndampedSwingLosesEnergyAsImplicitEulerDoes) {
   double largest_rise = 0.0;
   for (size_t n = 1; n < path.size(); ++n)
     largest_rise = std::max(largest_rise, path[n] - path[n - 1]);
-  const double lost = path.front() - path.back(), reference_lost = reference.front() -
-                                                                   reference.back();
-  std::printf("undamped swing, 0.3 s: energy lost %.4e J (implicit Euler exact: %.4e J), largest "
-              "rise in one step %.2e J\n",
-              lost, reference_lost, largest_rise);
+  const double lost = path.front() - path.back(),
+               reference_lost = reference.front() - reference.back();
+  std::printf(
+      "undamped swing, 0.3 s: energy lost %.4e J (implicit Euler exact: %.4e J), largest "
+      "rise in one step %.2e J\n",
+      lost, reference_lost, largest_rise);
   EXPECT_LE(largest_rise, 1e-9 * std::abs(path.front()) + 1e-12);
   // Regression guard: the default kept 84 % of the exact step's loss (3.33e-3 of 3.99e-3 J).
   EXPECT_GT(lost, 0.5 * reference_lost);
