@@ -84,6 +84,11 @@ typedef struct tacta_collision_world {
   const tacta_collision_shape* obstacles;
   double dt;   /* s, the tick */
   double time; /* s, at the start of the tick */
+  /* appended (read only when struct_size reaches it): m. The proxy queries (overlap_shape,
+   * sphere_cast, closest_point) widen their search by it: the host has refit only part of a
+   * surface's hierarchy since its vertices last moved (update_elements), and no vertex has moved
+   * further than this from where its elements' boxes were computed. 0: every box is current. */
+  double query_margin;
 } tacta_collision_world;
 
 /* ---- results ---------------------------------------------------------------------------------- */
@@ -231,6 +236,20 @@ typedef struct tacta_collision_api {
    * roles from the non-NULL entries (find_pairs: broad phase; sphere_cast and closest_point:
    * proxy; detect: narrow phase; respond: response), as it did before roles existed. */
   uint32_t roles;
+
+  /* -- appended after roles (present when api_size reaches it) -------------------------------- */
+  /* optional, broad phase (both or neither): a refit spread over several ticks. element_order
+   * gives one surface's elements as its hierarchy keeps them (leaves in order), valid until the
+   * next update() or prepare(); update_elements refits the elements order[first, first + count)
+   * from the current positions and every ancestor from its children, so a run of that order is
+   * a few whole subtrees and the paths above them. The host refits a run per tick, round-robin,
+   * and sets query_margin to what the others may have moved since their boxes were computed.
+   * Neither rebuilds; both return UNPREPARED before a first update() or for a hierarchy over
+   * other elements than the surface's triangles. */
+  uint32_t (*element_order)(void* instance, uint32_t surface, const uint32_t** order,
+                            uint32_t* count);
+  uint32_t (*update_elements)(void* instance, const tacta_collision_world* world, uint32_t surface,
+                              uint32_t first, uint32_t count);
 } tacta_collision_api;
 
 #define TACTA_COLLISION_API_FIELD(member, required) \
@@ -243,7 +262,8 @@ static const tacta_api_field tacta_collision_api_fields[] = {
     TACTA_COLLISION_API_FIELD(sphere_cast, 0), TACTA_COLLISION_API_FIELD(closest_point, 0),
     TACTA_COLLISION_API_FIELD(detect, 0),      TACTA_COLLISION_API_FIELD(vertex_face, 0),
     TACTA_COLLISION_API_FIELD(edge_edge, 0),   TACTA_COLLISION_API_FIELD(shape_query, 0),
-    TACTA_COLLISION_API_FIELD(respond, 0),
+    TACTA_COLLISION_API_FIELD(respond, 0),     TACTA_COLLISION_API_FIELD(update_elements, 0),
+    TACTA_COLLISION_API_FIELD(element_order, 0),
 };
 
 static inline const char* tacta_collision_role_name(uint32_t role) {

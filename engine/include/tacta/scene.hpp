@@ -169,6 +169,10 @@ struct CollisionDesc {
   double friction = 0.3;  // Coulomb coefficient, body-body and body-obstacle
   bool self_collision = false;
   double thickness = 1e-4;  // m, contact margin
+  // collision.proxy_refit: how the hierarchies the haptic proxy queries follow the bodies each
+  // tick: a slice of elements refit per tick with the queries widened by what the rest may have
+  // moved (true, `sliced`), or every element refit every tick (`every_tick`). Same answers.
+  bool proxy_refit_sliced = true;
   SourceLocation
       thickness_where;  // the scene's `thickness` key, for the bound checked on the meshes
 };

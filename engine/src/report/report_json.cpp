@@ -82,6 +82,9 @@ void write_collision(JsonWriter& j, const RunStatus& s) {
   j.field("contacts", static_cast<uint64_t>(s.contacts_capacity));
   j.field("contacts_max_used", static_cast<uint64_t>(s.contacts_high_water));
   j.end_object();
+  j.key("proxy_refits").begin_object();
+  j.field("slices", s.proxy_slices).field("whole", s.proxy_whole_refits);
+  j.end_object();
   write_status_bits(j, s.collision);
   j.end_object();
 }
@@ -245,10 +248,22 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   // Where the tick's time goes: device read (and swaps), haptics (proxy, coupling, refit for its
   // queries), model steps, collision response, device write and records.
   j.key("tick_breakdown_ms").begin_object();
-  for (int s = 0; s < HapticLoop::kStageCount; ++s) {
-    const TickSummary t = loop.stage(s).summary();
-    j.key(HapticLoop::stage_name(s)).begin_object();
+  const auto summary = [&](const TickRecorder& r) {
+    const TickSummary t = r.summary();
     j.field("mean", t.mean_ms).field("p50", t.p50_ms).field("p99", t.p99_ms).field("max", t.max_ms);
+  };
+  for (int s = 0; s < HapticLoop::kStageCount; ++s) {
+    j.key(HapticLoop::stage_name(s)).begin_object();
+    summary(loop.stage(s));
+    if (s == HapticLoop::kHaptics) {  // where the haptics stage goes: surfaces, queries, coupling
+      j.key("parts").begin_object();
+      for (int p = 0; p < HapticLoop::kHapticPartCount; ++p) {
+        j.key(HapticLoop::haptic_part_name(p)).begin_object();
+        summary(loop.haptic_part(p));
+        j.end_object();
+      }
+      j.end_object();
+    }
     j.end_object();
   }
   j.end_object();

@@ -117,7 +117,7 @@ ObstacleDesc read_obstacle(const Field& field) {
 CollisionDesc read_collision(const Field& field) {
   field.expect_map("a map {enabled, broad_phase, narrow_phase, convex, friction, ...}");
   field.check_keys({"enabled", "broad_phase", "narrow_phase", "convex", "plugins", "friction",
-                    "self_collision", "thickness"});
+                    "self_collision", "thickness", "proxy_refit"});
   CollisionDesc collision;
   collision.enabled = true;  // writing the section turns collision on unless it says otherwise
   if (auto f = field.get("enabled")) collision.enabled = f->boolean();
@@ -154,6 +154,8 @@ CollisionDesc read_collision(const Field& field) {
   }
   if (auto f = field.get("friction")) collision.friction = f->real(Range::non_negative());
   if (auto f = field.get("self_collision")) collision.self_collision = f->boolean();
+  if (auto f = field.get("proxy_refit"))
+    collision.proxy_refit_sliced = f->choice({"sliced", "every_tick"}) == "sliced";
   collision.thickness_where = field.where();
   collision.thickness_where.key_path = child_path(field.path(), "thickness");
   if (auto f = field.get("thickness")) {

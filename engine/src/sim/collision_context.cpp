@@ -1,6 +1,9 @@
 #include "collision_context.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <limits>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -14,6 +17,8 @@ namespace tacta {
 namespace {
 constexpr size_t kMessageCapacity = 1024;
 constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x the mean surface edge
+constexpr double kMarginTargetPerEdge = 0.25;  // proxy query margin kept below this x mean edge,
+constexpr double kMarginCapPerEdge = 3.0;      // and never past this (whole refit)
 }  // namespace
 
 // RAII owner of one collision plugin instance.
@@ -28,6 +33,12 @@ class CollisionInstance {
     int guessed = 0;
     roles = tacta_collision_roles(&descriptor, &guessed);
     roles_guessed = guessed != 0;
+    // Appended after roles: absent from a table built against an older header.
+    if (descriptor.api_size >= offsetof(tacta_collision_api, update_elements) + sizeof(void*) &&
+        api.element_order != nullptr && api.update_elements != nullptr) {
+      element_order = api.element_order;
+      update_elements = api.update_elements;
+    }
     if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK || instance == nullptr)
       throw InputError(where, std::string("collision plugin '") + descriptor.name +
                                   "' could not be created: " + message);
@@ -42,6 +53,9 @@ class CollisionInstance {
   void* instance = nullptr;
   uint32_t roles = 0;          // TACTA_COLLISION_ROLE_* it serves
   bool roles_guessed = false;  // from its entries: built against a header without `roles`
+  // Both or neither (a refit spread over ticks).
+  decltype(tacta_collision_api::element_order) element_order = nullptr;
+  decltype(tacta_collision_api::update_elements) update_elements = nullptr;
 };
 
 // The proxy's view of the surfaces: the first instance that answers sphere casts and closest
@@ -55,10 +69,17 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   bool first_hit(const Vec3& from, const Vec3& to, double radius,
                  haptics::SurfaceHit& hit) const noexcept override {
     if (answerer_ == nullptr || answerer_->api.sphere_cast == nullptr) return false;
+    const Timed timed(context_);
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
       if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
         continue;
+      Vec3 lo, hi;
+      for (size_t a = 0; a < 3; ++a) {
+        lo[a] = std::min(from[a], to[a]) - radius;
+        hi[a] = std::max(from[a], to[a]) + radius;
+      }
+      context_.prepare_query(s, lo, hi);
       tacta_surface_hit h{};
       if (answerer_->api.sphere_cast(answerer_->instance, &context_.view_, s, from.data(),
                                      to.data(), radius, &h) &&
@@ -74,14 +95,31 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   bool closest_point(const Vec3& point, double max_distance, haptics::SurfaceHit& hit,
                      double& signed_distance) const noexcept override {
     if (answerer_ == nullptr || answerer_->api.closest_point == nullptr) return false;
+    const Timed timed(context_);
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
       if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
         continue;
+      // A surface brought up to date only where queries look is searched in growing balls, the
+      // first a little past the distance the last query on it found (the surface and the tool
+      // move little in a tick): the patch made current is about that ball's. A point found
+      // within a ball is the closest: anything nearer was in it.
+      double reach = max_distance;
+      if (context_.patched(s))
+        reach = std::clamp(1.25 * context_.last_distance_[s], 0.05 * max_distance, max_distance);
       tacta_surface_hit h{};
-      if (!answerer_->api.closest_point(answerer_->instance, &context_.view_, s, point.data(),
-                                        max_distance, &h))
-        continue;
+      bool hit_here = false;
+      for (;;) {
+        const Vec3 lo{point[0] - reach, point[1] - reach, point[2] - reach};
+        const Vec3 hi{point[0] + reach, point[1] + reach, point[2] + reach};
+        context_.prepare_query(s, lo, hi);
+        hit_here = answerer_->api.closest_point(answerer_->instance, &context_.view_, s,
+                                                point.data(), reach, &h) != 0;
+        if (hit_here || reach >= max_distance) break;
+        reach = std::min(2.0 * reach, max_distance);
+      }
+      context_.last_distance_[s] = hit_here ? h.distance : max_distance;
+      if (!hit_here) continue;
       if (found && h.distance >= std::fabs(signed_distance)) continue;
       fill(hit, h, s);
       hit.fraction = 0;
@@ -95,6 +133,18 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   }
 
  private:
+  // Adds a query's wall time to the context's query_ms and leaves the view's margin at 0.
+  struct Timed {
+    explicit Timed(CollisionContext& c) : context(c), start(std::chrono::steady_clock::now()) {}
+    ~Timed() {
+      context.view_.query_margin = 0.0;
+      context.query_ms_ += std::chrono::duration<double, std::milli>(
+                               std::chrono::steady_clock::now() - start)
+                               .count();
+    }
+    CollisionContext& context;
+    std::chrono::steady_clock::time_point start;
+  };
   void fill(haptics::SurfaceHit& out, const tacta_surface_hit& h, uint32_t surface) const noexcept {
     for (int a = 0; a < 3; ++a) {
       out.point[static_cast<size_t>(a)] = h.point[a];
@@ -201,7 +251,18 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
     add(c.convex, c.convex_params, where);
   pick_roles(c, needed, add);
   prepare_plugins(where);
-  query_ = std::make_unique<Query>(*this, served_[role_index(TACTA_COLLISION_ROLE_PROXY)]);
+  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  query_ = std::make_unique<Query>(*this, proxy);
+  // Slices need one plugin keeping hierarchies (the slices follow its order), refittable a run
+  // at a time, and the proxy's plugin to say which triangles a box reaches (the embedded patch).
+  size_t keepers = 0;
+  for (auto& inst : instances_)
+    if (inst->api.update != nullptr) {
+      ++keepers;
+      slicer_ = inst->update_elements != nullptr ? inst.get() : nullptr;
+    }
+  sliced_ = c.proxy_refit_sliced && keepers == 1 && slicer_ != nullptr && proxy != nullptr &&
+            proxy->api.overlap_shape != nullptr;
 }
 
 bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
@@ -240,6 +301,17 @@ void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
   surface_of_body_[body] = static_cast<int>(surfaces_.size());
   body_of_surface_.push_back(static_cast<int>(body));
   surfaces_.push_back(s);
+  // A margin of a fraction of a mean edge adds few triangles to a query; one of a few mean edges
+  // adds many: cheaper to refit the whole surface then.
+  const SoftBody b = world_.body(body);
+  const double weight_bound = embedded_[body] ? embedded_[body]->weight_bound() : 1.0;
+  const double edge = mean_edge_length(s);
+  freshness_.emplace_back(b.node_count(), s.triangle_count, weight_bound,
+                          kMarginTargetPerEdge * edge, kMarginCapPerEdge * edge);
+  freshness_.back().reset(b.nodes.positions.data());
+  covered_.push_back({});
+  last_distance_.push_back(0.0);
+  patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
 }
 
 void CollisionContext::prepare_plugins(const SourceLocation& where) {
@@ -366,9 +438,88 @@ void CollisionContext::refit(double time, double dt) noexcept {
   if (!moved) return;
   refitted_once_ = true;
   for (auto& e : embedded_)
-    if (e) e->refresh();
+    if (e) e->refresh(proxy_pass_);
   for (auto& inst : instances_)
     if (inst->api.update != nullptr) inst->api.update(inst->instance, &view_);
+  for (size_t k = 0; k < freshness_.size(); ++k)
+    freshness_[k].reset(world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data());
+}
+
+void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
+  ++proxy_pass_;  // every embedded vertex is stale until made current in this pass
+  query_ms_ = patch_ms_ = 0;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (auto& c : covered_) c = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
+  if (!sliced_) {
+    refit(time, dt);
+    return;
+  }
+  bool whole = !refitted_once_;
+  for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
+    if (surface_present(k) &&
+        !freshness_[k].advance(world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data()))
+      whole = true;
+  if (!whole) {
+    sync_tools();
+    view_.time = time;
+    view_.dt = dt;
+    for (uint32_t k = 0; k < view_.surface_count && !whole; ++k) {
+      if (!surface_present(k)) continue;
+      uint32_t first = 0, count = 0, total = 0;
+      const uint32_t* order = nullptr;
+      if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
+          total != surfaces_[k].triangle_count) {
+        whole = true;  // no hierarchy yet, or one over other elements than triangles (tets)
+        break;
+      }
+      freshness_[k].next_slice(first, count);
+      if (count == 0) continue;
+      if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
+        e->refresh_triangles(order + first, count, proxy_pass_);
+      if (slicer_->update_elements(slicer_->instance, &view_, k, first, count) &
+          TACTA_COLLIDE_UNPREPARED)
+        whole = true;
+      ++proxy_slices_;
+    }
+    if (!whole) return;
+  }
+  ++proxy_whole_refits_;
+  refitted_once_ = false;  // a whole refit, whatever moved (the margin restarts from it)
+  refit(time, dt);
+}
+
+void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept {
+  // The query widens its search by how far any vertex may be from its element's box.
+  view_.query_margin = sliced_ ? freshness_[surface].margin() : 0.0;
+  EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get();
+  if (!sliced_ || e == nullptr) return;
+  std::array<double, 6>& c = covered_[surface];
+  if (c[0] <= lo[0] && c[1] <= lo[1] && c[2] <= lo[2] && hi[0] <= c[3] && hi[1] <= c[4] &&
+      hi[2] <= c[5])
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  // An embedded surface's vertices are current only where a query looked this tick: those of
+  // every triangle the widened box reaches (the hull of this box and what was covered) are
+  // brought up to date, so the query reads where they are now.
+  for (size_t a = 0; a < 3; ++a) {
+    c[a] = std::min(c[a], lo[a]);
+    c[a + 3] = std::max(c[a + 3], hi[a]);
+  }
+  tacta_collision_shape box{};
+  box.type = TACTA_SHAPE_BOX;
+  for (size_t a = 0; a < 3; ++a) {
+    box.half_extents[a] = 0.5 * (c[a + 3] - c[a]);
+    box.pose_start.position[a] = 0.5 * (c[a + 3] + c[a]);
+  }
+  box.pose_start.rotation[0] = 1.0;
+  box.pose_end = box.pose_start;
+  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  uint32_t count = 0;
+  proxy->api.overlap_shape(proxy->instance, &view_, &box, surface, patch_triangles_.data(),
+                           static_cast<uint32_t>(patch_triangles_.size()), &count);
+  e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
+  patch_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count();
 }
 
 // Rounds of detect + respond: the response's corrections are motions too, and can cross a

@@ -11,6 +11,7 @@
 
 #include "tacta/collision_api.h"
 #include "tacta/haptics/surface_query.hpp"
+#include "proxy_freshness.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "world.hpp"
 
@@ -59,6 +60,19 @@ class CollisionContext {
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;
+  // Before the haptic proxy's queries: with collision.proxy_refit sliced (and a broad phase that
+  // offers update_elements) one slice of each surface is refit and the queries are widened by
+  // what the rest may have moved (SurfaceFreshness); an embedded surface's vertices are brought
+  // up to date only where a query looks (the patch near the tool). Otherwise a whole refit.
+  void refit_for_proxy(double time, double dt) noexcept;
+  // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
+  // that brought embedded vertices up to date for them; for the tick breakdown.
+  double query_ms() const noexcept { return query_ms_; }
+  double patch_ms() const noexcept { return patch_ms_; }
+  // Whole refits the proxy path asked for (a margin past its cap, or no sliced refit offered),
+  // and slices refit, since load.
+  uint64_t proxy_whole_refits() const noexcept { return proxy_whole_refits_; }
+  uint64_t proxy_slices() const noexcept { return proxy_slices_; }
   // Contacts over the tick and the response (positions and velocities corrected in place).
   // Returns TACTA_COLLIDE_* bits.
   uint32_t detect_and_respond(double time, double dt) noexcept;
@@ -78,6 +92,13 @@ class CollisionContext {
 
  private:
   class Query;
+  // Before a proxy query on `surface` over the box lo..hi (m): the view's margin is the surface's,
+  // and an embedded surface's vertices the query can reach are made current.
+  void prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept;
+  // True when `surface` has vertices that are current only where a query looked (prepare_query).
+  bool patched(uint32_t surface) const noexcept {
+    return sliced_ && embedded_[static_cast<size_t>(body_of_surface_[surface])] != nullptr;
+  }
   // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
   uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
   bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
@@ -97,6 +118,15 @@ class CollisionContext {
       embedded_;                       // per body; null: its tets' boundary
   std::vector<uint64_t> refits_seen_;  // per body: its StepSchedule::refreshes at the last refit
   bool refitted_once_ = false;
+  std::vector<SurfaceFreshness> freshness_;  // per surface
+  std::vector<std::array<double, 6>> covered_;  // per surface: box made current this pass, m
+  std::vector<double> last_distance_;  // per surface: the last closest point's distance, m
+  std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
+  bool sliced_ = false;                         // refit_for_proxy refits slices
+  const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
+  uint32_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
+  double query_ms_ = 0, patch_ms_ = 0;
+  uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;
   std::vector<int> body_of_surface_;
   std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)
   std::vector<tacta_collision_pair> pairs_;

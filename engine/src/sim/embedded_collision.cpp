@@ -1,6 +1,7 @@
 #include "embedded_collision.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tacta {
 
@@ -26,6 +27,12 @@ EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
   node_position_change_.assign(3 * nodes, 0.0);
   node_velocity_change_.assign(3 * nodes, 0.0);
   node_reached_.assign(nodes, 0);
+  fresh_at_.assign(vertices, 0);
+  for (size_t v = 0; v < vertices; ++v) {
+    double sum = 0;
+    for (size_t k = 0; k < 4; ++k) sum += std::fabs(s.weights[4 * v + k]);
+    weight_bound_ = std::max(weight_bound_, sum);
+  }
   refresh();
 }
 
@@ -42,11 +49,34 @@ void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept 
   view.tets = nullptr;
 }
 
-void EmbeddedCollisionSurface::refresh() noexcept {
+void EmbeddedCollisionSurface::refresh(uint32_t pass) noexcept {
   const SoftBody b = body();
   interpolate_to_surface(*b.surface.mesh, b.nodes.step_start.data(), start_.data());
   update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
   interpolate_to_surface(*b.surface.mesh, b.nodes.velocities.data(), velocities_.data());
+  std::fill(fresh_at_.begin(), fresh_at_.end(), pass);
+}
+
+void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint32_t count,
+                                                 uint32_t pass) noexcept {
+  const SoftBody b = body();
+  const EmbeddedSurface& s = *b.surface.mesh;
+  for (uint32_t i = 0; i < count; ++i)
+    for (size_t k = 0; k < 3; ++k) {
+      const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
+      if (fresh_at_[v] == pass) continue;
+      fresh_at_[v] = pass;
+      const uint32_t* n = &s.nodes[4 * size_t{v}];
+      const double* w = &s.weights[4 * size_t{v}];
+      const auto at = [&](const std::vector<double>& values, size_t a) {
+        return w[0] * values[3 * n[0] + a] + w[1] * values[3 * n[1] + a] +
+               w[2] * values[3 * n[2] + a] + w[3] * values[3 * n[3] + a];
+      };
+      for (size_t a = 0; a < 3; ++a) {
+        b.surface.mesh->positions[3 * size_t{v} + a] = at(b.nodes.positions, a);
+        start_[3 * size_t{v} + a] = at(b.nodes.step_start, a);
+      }
+    }
 }
 
 void EmbeddedCollisionSurface::remember() noexcept {

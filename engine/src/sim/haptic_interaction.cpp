@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 
 #include "tacta/vec3.hpp"
 
@@ -34,7 +35,21 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
 }
 
 void HapticInteraction::before_step(World& world, double time, double dt) noexcept {
-  collision_.refit(time, dt);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  collision_.refit_for_proxy(time, dt);
+  const auto refitted = Clock::now();
+  render_devices(world, time, dt);
+  // The queries' time includes the embedded vertices they brought up to date (the patch).
+  const double refit_ms = std::chrono::duration<double, std::milli>(refitted - start).count();
+  const double render_ms =
+      std::chrono::duration<double, std::milli>(Clock::now() - refitted).count();
+  parts_.surface_update = refit_ms + collision_.patch_ms();
+  parts_.proxy_query = collision_.query_ms() - collision_.patch_ms();
+  parts_.coupling = render_ms - collision_.query_ms();
+}
+
+void HapticInteraction::render_devices(World& world, double time, double dt) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot slot = world.device(d);
     Channel& ch = channels_[d];

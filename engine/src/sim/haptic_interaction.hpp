@@ -20,6 +20,7 @@ class HapticInteraction final : public Interaction {
   void after_step(World& world, double time, double dt) noexcept override;
   // The renderer's energy observers integrate the force each device really held.
   void after_write(World& world) noexcept override;
+  const HapticParts* haptic_parts() const noexcept override { return &parts_; }
 
  private:
   // What a channel keeps to render a body on its own thread through its local contact model
@@ -47,6 +48,8 @@ class HapticInteraction final : public Interaction {
     LocalModel local;
     uint32_t tool_revision = 0;  // the device's Tool::revision this channel renders
   };
+  // Each device's proxy, coupling and reaction for this tick.
+  void render_devices(World& world, double time, double dt) noexcept;
   void apply_reaction(World& world, const haptics::SurfaceHit& hit,
                       const Vec3& force_on_body) noexcept;
   // Before the renderer's tick: take in a refresh of the worker body, set the local model.
@@ -56,6 +59,7 @@ class HapticInteraction final : public Interaction {
                           double dt) noexcept;
   CollisionContext& collision_;
   std::vector<Channel> channels_;
+  HapticParts parts_;
 };
 
 // Contact response after the bodies step (bodies against obstacles, the tool, each other).

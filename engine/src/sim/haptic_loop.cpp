@@ -49,12 +49,18 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
   const size_t frames = static_cast<size_t>(duration_s * scene.clock.render_rate_hz) + 4;
   energy_.grow(frames * world_.body_capacity() + 16, kRecordBytes / sizeof(EnergyRow));
   for (TickRecorder& r : stages_) r.grow(expected_ticks, kTickDurations);
+  for (TickRecorder& r : haptic_parts_) r.grow(expected_ticks, kTickDurations);
 }
 
 const char* HapticLoop::stage_name(int stage) noexcept {
   static const char* const names[kStageCount] = {"device_read", "haptics", "models",
                                                  "collision_response", "device_write"};
   return stage >= 0 && stage < kStageCount ? names[stage] : "?";
+}
+
+const char* HapticLoop::haptic_part_name(int part) noexcept {
+  static const char* const names[kHapticPartCount] = {"surface_update", "proxy_query", "coupling"};
+  return part >= 0 && part < kHapticPartCount ? names[part] : "?";
 }
 
 BodySnapshot HapticLoop::body_prototype(const SoftBody& b) {
@@ -91,7 +97,14 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   read_devices(world_, *this, time);
   const auto read_done = Clock::now();
   start_contact_sums(world_);
-  for (Interaction* interaction : interactions_) interaction->before_step(world_, time, dt);
+  for (Interaction* interaction : interactions_) {
+    interaction->before_step(world_, time, dt);
+    if (const HapticParts* parts = interaction->haptic_parts()) {
+      haptic_parts_[kSurfaceUpdate].record(parts->surface_update);
+      haptic_parts_[kProxyQuery].record(parts->proxy_query);
+      haptic_parts_[kCoupling].record(parts->coupling);
+    }
+  }
   const auto haptics_done = Clock::now();
   const bool healthy = step_bodies(world_, workers_, *this, time, dt);
   const auto models_done = Clock::now();

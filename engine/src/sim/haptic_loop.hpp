@@ -31,6 +31,13 @@ struct FaultRecord {
 // Something that acts between ticks' device read and body step: haptic rendering, collision.
 // update() runs before the bodies step (writes body.loads.contact_forces and device forces);
 // after_step() runs after they step (e.g. contact projection).
+// The haptic stage's parts in one tick, ms: bringing the touched surfaces up to date for the
+// proxy (hierarchy refit, embedded vertices), the proxy's queries, and the rest (coupling,
+// passivity, limits, the reaction on the body).
+struct HapticParts {
+  double surface_update = 0, proxy_query = 0, coupling = 0;
+};
+
 class Interaction {
  public:
   virtual ~Interaction() = default;
@@ -41,6 +48,8 @@ class Interaction {
   virtual void after_write(World&) noexcept {}
   // TACTA_COLLIDE_* bits of this tick (collision response), 0 for the others.
   virtual uint32_t collision_bits() const noexcept { return 0; }
+  // The parts of this tick's before_step, for the interaction that renders the devices.
+  virtual const HapticParts* haptic_parts() const noexcept { return nullptr; }
 };
 
 class HapticLoop final : public HapticTask, private TickEvents {
@@ -91,6 +100,10 @@ class HapticLoop final : public HapticTask, private TickEvents {
   enum Stage { kDeviceRead, kHaptics, kModels, kResponse, kDeviceWrite, kStageCount };
   static const char* stage_name(int stage) noexcept;
   const TickRecorder& stage(int s) const { return stages_[s]; }
+  // The haptics stage's parts (HapticParts, in that order), each tick.
+  enum HapticPart { kSurfaceUpdate, kProxyQuery, kCoupling, kHapticPartCount };
+  static const char* haptic_part_name(int part) noexcept;
+  const TickRecorder& haptic_part(int p) const { return haptic_parts_[p]; }
 
  private:
   void record(double time) noexcept;
@@ -116,6 +129,7 @@ class HapticLoop final : public HapticTask, private TickEvents {
   uint64_t tick_index_ = 0;
   std::unique_ptr<DeviceLogRecorder> device_log_;
   TickRecorder stages_[kStageCount];
+  TickRecorder haptic_parts_[kHapticPartCount];
   double tick_time_ = 0;  // s, start of the current tick (when devices were read)
   TickStatus last_status_;
   std::vector<StatusCounter> body_status_, device_status_;  // sized at construction

@@ -41,6 +41,8 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
     status.contacts_capacity = collision->contacts_capacity();
     status.pairs_high_water = collision->pairs_high_water();
     status.contacts_high_water = collision->contacts_high_water();
+    status.proxy_slices = collision->proxy_slices();
+    status.proxy_whole_refits = collision->proxy_whole_refits();
   }
   return status;
 }

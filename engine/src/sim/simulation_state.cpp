@@ -149,7 +149,11 @@ const std::vector<uint32_t>& Simulation::surface_triangles(size_t body) const {
 
 std::vector<double> Simulation::surface_positions(size_t body) const {
   const SoftBody b = impl_->world.body(impl_->check_body(body));
-  return b.surface.mesh ? b.surface.mesh->positions : b.nodes.positions;
+  if (!b.surface.mesh) return b.nodes.positions;
+  // From the nodes: the surface's own positions are current only where the proxy last looked.
+  std::vector<double> positions(b.surface.mesh->positions.size());
+  interpolate_to_surface(*b.surface.mesh, b.nodes.positions.data(), positions.data());
+  return positions;
 }
 
 void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,

@@ -74,6 +74,7 @@ bool overlaps(const Obb& a, const Obb& b) noexcept {
 void BoundingTree::reserve(uint32_t element_count) {
   const uint32_t nodes = element_count == 0 ? 0 : 2 * element_count - 1;
   nodes_.assign(nodes, Node{});
+  volumes_.assign(nodes, Obb{});
   order_.assign(element_count, 0);
   element_boxes_.assign(element_count, Aabb{});
   centroids_.assign(element_count, {});
@@ -83,23 +84,35 @@ void BoundingTree::reserve(uint32_t element_count) {
 }
 
 Aabb BoundingTree::swept_box(const ElementView& view, uint32_t element, bool& ok) const noexcept {
-  Aabb b = empty_box();
+  const uint32_t n = view.vertices_per_element;
+  const uint32_t* vertices = view.elements + size_t{n} * element;
   ok = true;
-  for (uint32_t i = 0; i < view.vertices_per_element; ++i) {
-    const uint32_t v = view.elements[view.vertices_per_element * element + i];
-    if (v >= view.vertex_count) {
+  for (uint32_t i = 0; i < n; ++i)
+    if (vertices[i] >= view.vertex_count) {
       ok = false;
       return empty_box();
     }
-    const double* s = view.start + 3 * v;
-    const double* e = view.end + 3 * v;
-    for (int k = 0; k < 3; ++k)
-      if (!std::isfinite(s[k]) || !std::isfinite(e[k])) {
-        ok = false;
-        return empty_box();
-      }
-    grow(b, s);
-    grow(b, e);
+  Aabb b;
+  const double* s0 = view.start + 3 * size_t{vertices[0]};
+  const double* e0 = view.end + 3 * size_t{vertices[0]};
+  double finite = 0.0;  // 0 * x is NaN for a NaN or infinite x: one test for every coordinate
+  for (int k = 0; k < 3; ++k) {
+    b.lo[k] = std::min(s0[k], e0[k]);
+    b.hi[k] = std::max(s0[k], e0[k]);
+    finite += 0.0 * s0[k] + 0.0 * e0[k];
+  }
+  for (uint32_t i = 1; i < n; ++i) {
+    const double* s = view.start + 3 * size_t{vertices[i]};
+    const double* e = view.end + 3 * size_t{vertices[i]};
+    for (int k = 0; k < 3; ++k) {
+      finite += 0.0 * s[k] + 0.0 * e[k];
+      b.lo[k] = std::min(b.lo[k], std::min(s[k], e[k]));
+      b.hi[k] = std::max(b.hi[k], std::max(s[k], e[k]));
+    }
+  }
+  if (finite != 0.0) {
+    ok = false;
+    return empty_box();
   }
   for (int k = 0; k < 3; ++k) {
     b.lo[k] -= view.margin;
@@ -108,13 +121,17 @@ Aabb BoundingTree::swept_box(const ElementView& view, uint32_t element, bool& ok
   return b;
 }
 
-bool BoundingTree::node_overlap(const Node& a, const Node& b) const noexcept {
+bool BoundingTree::node_overlap(uint32_t ia, const BoundingTree& other,
+                                uint32_t ib) const noexcept {
+  const Node& a = nodes_[ia];
+  const Node& b = other.nodes_[ib];
   if (!a.box.overlaps(b.box)) return false;
   if (volume_ == Volume::kAabb || (a.count == 1 && b.count == 1)) return true;
-  return overlaps(a.volume, b.volume);
+  return overlaps(volumes_[ia], other.volumes_[ib]);
 }
 
-void BoundingTree::fit_axes(Node& node, const ElementView& view) const noexcept {
+void BoundingTree::fit_axes(uint32_t index) noexcept {
+  const Node& node = nodes_[index];
   // Principal axes of the element centroids in this node (covariance eigenvectors).
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (uint32_t i = 0; i < node.count; ++i) {
@@ -132,8 +149,7 @@ void BoundingTree::fit_axes(Node& node, const ElementView& view) const noexcept 
   Eigen::Matrix3d axes = solver.eigenvectors();
   if (!axes.allFinite()) axes.setIdentity();
   for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j) node.volume.axes[k][j] = axes(j, k);
-  (void)view;
+    for (int j = 0; j < 3; ++j) volumes_[index].axes[k][j] = axes(j, k);
 }
 
 uint32_t BoundingTree::build(uint32_t first, uint32_t count, const ElementView& view) noexcept {
@@ -151,7 +167,7 @@ uint32_t BoundingTree::build(uint32_t first, uint32_t count, const ElementView& 
   std::nth_element(
       order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
       [&](uint32_t a, uint32_t b) { return centroids_[a][axis] < centroids_[b][axis]; });
-  if (volume_ == Volume::kObb) fit_axes(nodes_[index], view);
+  if (volume_ == Volume::kObb) fit_axes(index);
   const uint32_t left = build(first, half, view);
   const uint32_t right = build(first + half, count - half, view);
   nodes_[index].left = left;
@@ -161,46 +177,50 @@ uint32_t BoundingTree::build(uint32_t first, uint32_t count, const ElementView& 
 
 void BoundingTree::refit(const ElementView& /*view*/) noexcept {
   // Children always have larger indices than their parent (pre-order build): one reverse pass.
-  for (uint32_t i = node_count_; i-- > 0;) {
-    Node& n = nodes_[i];
-    if (n.count == 1) {
-      n.box = element_boxes_[order_[n.first]];
-      n.volume = as_obb(n.box);
-      continue;
-    }
-    const Node& l = nodes_[n.left];
-    const Node& r = nodes_[n.right];
-    for (int k = 0; k < 3; ++k) {
-      n.box.lo[k] = std::min(l.box.lo[k], r.box.lo[k]);
-      n.box.hi[k] = std::max(l.box.hi[k], r.box.hi[k]);
-    }
-    if (volume_ == Volume::kAabb) continue;
-    // Extents along the node's fixed axes, from the children's 8 corners each.
-    std::array<double, 3> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
-    for (const Node* child : {&l, &r}) {
-      if (child->box.empty()) continue;
-      for (int c = 0; c < 8; ++c) {
-        std::array<double, 3> p = child->volume.center;
-        for (int k = 0; k < 3; ++k) {
-          const double s = (c >> k) & 1 ? child->volume.half[k] : -child->volume.half[k];
-          for (int j = 0; j < 3; ++j) p[j] += s * child->volume.axes[k][j];
-        }
-        for (int k = 0; k < 3; ++k) {
-          const double q = dot(p, n.volume.axes[k]);
-          lo[k] = std::min(lo[k], q);
-          hi[k] = std::max(hi[k], q);
-        }
+  for (uint32_t i = node_count_; i-- > 0;) refit_node(i);
+}
+
+void BoundingTree::refit_node(uint32_t index) noexcept {
+  Node& n = nodes_[index];
+  if (n.count == 1) {
+    n.box = element_boxes_[order_[n.first]];
+    if (volume_ == Volume::kObb) volumes_[index] = as_obb(n.box);
+    return;
+  }
+  const Node& l = nodes_[n.left];
+  const Node& r = nodes_[n.right];
+  for (int k = 0; k < 3; ++k) {
+    n.box.lo[k] = std::min(l.box.lo[k], r.box.lo[k]);
+    n.box.hi[k] = std::max(l.box.hi[k], r.box.hi[k]);
+  }
+  if (volume_ == Volume::kAabb) return;
+  // Extents along the node's fixed axes, from the children's 8 corners each.
+  Obb& volume = volumes_[index];
+  std::array<double, 3> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+  for (const uint32_t c : {n.left, n.right}) {
+    if (nodes_[c].box.empty()) continue;
+    const Obb& child = volumes_[c];
+    for (int corner = 0; corner < 8; ++corner) {
+      std::array<double, 3> p = child.center;
+      for (int k = 0; k < 3; ++k) {
+        const double s = (corner >> k) & 1 ? child.half[k] : -child.half[k];
+        for (int j = 0; j < 3; ++j) p[j] += s * child.axes[k][j];
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double q = dot(p, volume.axes[k]);
+        lo[k] = std::min(lo[k], q);
+        hi[k] = std::max(hi[k], q);
       }
     }
-    if (lo[0] > hi[0]) {
-      n.volume = as_obb(n.box);
-      continue;
-    }
-    n.volume.center = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) {
-      n.volume.half[k] = 0.5 * (hi[k] - lo[k]);
-      for (int j = 0; j < 3; ++j) n.volume.center[j] += 0.5 * (hi[k] + lo[k]) * n.volume.axes[k][j];
-    }
+  }
+  if (lo[0] > hi[0]) {
+    volume = as_obb(n.box);
+    return;
+  }
+  volume.center = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    volume.half[k] = 0.5 * (hi[k] - lo[k]);
+    for (int j = 0; j < 3; ++j) volume.center[j] += 0.5 * (hi[k] + lo[k]) * volume.axes[k][j];
   }
 }
 
@@ -211,16 +231,44 @@ double BoundingTree::total_area() const noexcept {
   return sum;
 }
 
+void BoundingTree::element_box(const ElementView& view, uint32_t e) noexcept {
+  bool ok = true;
+  element_boxes_[e] = swept_box(view, e, ok);
+  if (!ok) ++bad_elements_;
+  for (int k = 0; k < 3; ++k)
+    centroids_[e][k] = ok ? 0.5 * (element_boxes_[e].lo[k] + element_boxes_[e].hi[k]) : 0.0;
+}
+
+bool BoundingTree::refit_range(const ElementView& view, uint32_t first, uint32_t count) noexcept {
+  bad_elements_ = 0;
+  if (!built_ || node_count_ == 0) return false;
+  const uint32_t end = std::min(first + count, nodes_[0].count);
+  if (first < end) refit_leaves(0, view, first, end);
+  return true;
+}
+
+// Post-order over the nodes whose leaves meet order_[first, end): a run of leaves is a few whole
+// subtrees and the paths above them.
+void BoundingTree::refit_leaves(uint32_t index, const ElementView& view, uint32_t first,
+                                uint32_t end) noexcept {
+  const Node& n = nodes_[index];
+  if (n.first >= end || n.first + n.count <= first) return;
+  if (n.count == 1) {
+    bool ok = true;  // the centroids are for builds, which never happen here
+    const uint32_t e = order_[n.first];
+    element_boxes_[e] = swept_box(view, e, ok);
+    if (!ok) ++bad_elements_;
+  } else {
+    refit_leaves(n.left, view, first, end);
+    refit_leaves(n.right, view, first, end);
+  }
+  refit_node(index);
+}
+
 bool BoundingTree::update(const ElementView& view, Volume volume, double rebuild_ratio) noexcept {
   bad_elements_ = 0;
   const uint32_t n = std::min(view.element_count, element_count_);
-  for (uint32_t e = 0; e < n; ++e) {
-    bool ok = true;
-    element_boxes_[e] = swept_box(view, e, ok);
-    if (!ok) ++bad_elements_;
-    for (int k = 0; k < 3; ++k)
-      centroids_[e][k] = ok ? 0.5 * (element_boxes_[e].lo[k] + element_boxes_[e].hi[k]) : 0.0;
-  }
+  for (uint32_t e = 0; e < n; ++e) element_box(view, e);
   if (n == 0) {
     node_count_ = 0;
     return false;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -51,9 +52,17 @@ class BoundingTree {
   // Returns true when rebuilt. Elements with non-finite or out-of-range vertices get an empty
   // box (never reported) and raise bad_elements.
   bool update(const ElementView& view, Volume volume, double rebuild_ratio) noexcept;
+  // The elements as the leaves keep them, left to right (valid until the next update).
+  const uint32_t* order() const noexcept { return order_.data(); }
+  // After a first update: the boxes of the elements order()[first, first + count) from the
+  // view's current positions, and every ancestor's from its children (the others keep the boxes
+  // they had). For a refit spread over several ticks; never rebuilds. False before an update.
+  bool refit_range(const ElementView& view, uint32_t first, uint32_t count) noexcept;
 
   uint32_t bad_elements() const noexcept { return bad_elements_; }
   uint32_t node_count() const noexcept { return node_count_; }
+  uint32_t element_count() const noexcept { return node_count_ == 0 ? 0 : nodes_[0].count; }
+  bool built() const noexcept { return built_; }
   const Aabb& element_box(uint32_t element) const noexcept { return element_boxes_[element]; }
 
   // Calls visit(element_a, element_b) for every element pair of (this, other) whose boxes
@@ -64,23 +73,33 @@ class BoundingTree {
   // Calls visit(element) for every element whose box overlaps box.
   template <class Visit>
   bool query(const Aabb& box, Visit&& visit) const noexcept;
+  // Nearest first: calls visit(element) for the elements whose box, grown by margin (m), may hold
+  // a point within `best` (m) of p, nearer subtrees first; visit lowers best as it finds closer
+  // ones, which prunes the rest.
+  template <class Visit>
+  bool nearest(const std::array<double, 3>& p, double margin, double& best,
+               Visit&& visit) const noexcept;
 
  private:
+  // One 64-byte cache line: the oriented volumes, only read with Volume::kObb, live apart.
   struct Node {
-    Obb volume;
     Aabb box;                       // axis-aligned bound, kept for every node (cheap first test)
     uint32_t first = 0, count = 0;  // range in order_
     uint32_t left = 0, right = 0;   // children; leaf when count == 1
   };
-  bool node_overlap(const Node& a, const Node& b) const noexcept;
+  bool node_overlap(uint32_t a, const BoundingTree& other, uint32_t b) const noexcept;
   uint32_t build(uint32_t first, uint32_t count, const ElementView& view) noexcept;
-  void fit_axes(Node& node, const ElementView& view) const noexcept;
+  void fit_axes(uint32_t index) noexcept;
   void refit(const ElementView& view) noexcept;
+  void refit_node(uint32_t index) noexcept;  // its box (and oriented volume) from its children
+  void element_box(const ElementView& view, uint32_t element) noexcept;
+  void refit_leaves(uint32_t index, const ElementView& view, uint32_t first, uint32_t end) noexcept;
   double total_area() const noexcept;
   Aabb swept_box(const ElementView& view, uint32_t element, bool& ok) const noexcept;
 
   Volume volume_ = Volume::kAabb;
   std::vector<Node> nodes_;
+  std::vector<Obb> volumes_;  // per node
   std::vector<uint32_t> order_;
   std::vector<Aabb> element_boxes_;
   std::vector<std::array<double, 3>> centroids_;
@@ -102,7 +121,7 @@ bool BoundingTree::pairs(const BoundingTree& other, Visit&& visit) const noexcep
     const auto [ia, ib] = stack[--size];
     const Node& a = nodes_[ia];
     const Node& b = other.nodes_[ib];
-    if (!(self && ia == ib) && !node_overlap(a, b)) continue;
+    if (!(self && ia == ib) && !node_overlap(ia, other, ib)) continue;
     const bool leaf_a = a.count == 1, leaf_b = b.count == 1;
     if (leaf_a && leaf_b) {
       if (self && ia == ib) continue;
@@ -147,6 +166,40 @@ bool BoundingTree::query(const Aabb& box, Visit&& visit) const noexcept {
     if (size + 2 > stack.size()) return false;
     stack[size++] = n.left;
     stack[size++] = n.right;
+  }
+  return true;
+}
+
+// Distance (m) from p to box; 0 inside.
+inline double distance(const Aabb& box, const std::array<double, 3>& p) noexcept {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double below = box.lo[k] - p[k], above = p[k] - box.hi[k];
+    const double out = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    d2 += out * out;
+  }
+  return std::sqrt(d2);
+}
+
+template <class Visit>
+bool BoundingTree::nearest(const std::array<double, 3>& p, double margin, double& best,
+                           Visit&& visit) const noexcept {
+  if (node_count_ == 0) return true;
+  std::array<uint32_t, 256> stack;
+  uint32_t size = 0;
+  stack[size++] = 0;
+  while (size > 0) {
+    const Node& n = nodes_[stack[--size]];
+    if (n.box.empty() || distance(n.box, p) - margin > best) continue;
+    if (n.count == 1) {
+      visit(order_[n.first]);
+      continue;
+    }
+    if (size + 2 > stack.size()) return false;
+    const double left = distance(nodes_[n.left].box, p), right = distance(nodes_[n.right].box, p);
+    // The nearer child is popped first.
+    stack[size++] = left <= right ? n.right : n.left;
+    stack[size++] = left <= right ? n.left : n.right;
   }
   return true;
 }

@@ -4,6 +4,7 @@
 // and the haptic proxy's sphere cast and closest point.
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,23 @@ class BvhBroadPhase {
     return bits;
   }
 
+  uint32_t element_order(uint32_t surface, const uint32_t*& order, uint32_t& count) noexcept {
+    if (surface >= trees_.size() || tets_ || !trees_[surface].built())
+      return TACTA_COLLIDE_UNPREPARED;
+    order = trees_[surface].order();
+    count = trees_[surface].element_count();
+    return TACTA_COLLIDE_OK;
+  }
+
+  uint32_t update_elements(const tacta_collision_world& world, uint32_t surface, uint32_t first,
+                           uint32_t count) noexcept {
+    if (world.surface_count != trees_.size() || surface >= trees_.size() || tets_)
+      return TACTA_COLLIDE_UNPREPARED;
+    if (!trees_[surface].refit_range(element_view(world.surfaces[surface]), first, count))
+      return TACTA_COLLIDE_UNPREPARED;
+    return trees_[surface].bad_elements() > 0 ? TACTA_COLLIDE_NOT_FINITE : TACTA_COLLIDE_OK;
+  }
+
   uint32_t find_pairs(const tacta_collision_world& world, tacta_collision_pair* pairs,
                       uint32_t capacity, uint32_t& count) noexcept {
     count = 0;
@@ -96,10 +114,10 @@ class BvhBroadPhase {
                          uint32_t& count) noexcept {
     count = 0;
     if (surface >= trees_.size()) return TACTA_COLLIDE_UNPREPARED;
-    (void)world;
     uint32_t bits = 0;
-    const Aabb box = shape_box(shape);
-    if (box.empty()) return TACTA_COLLIDE_NOT_FINITE;
+    const Aabb swept = shape_box(shape);
+    if (swept.empty()) return TACTA_COLLIDE_NOT_FINITE;
+    const Aabb box = widened(swept, query_margin(world));
     if (!trees_[surface].query(box, [&](uint32_t e) {
           if (count >= capacity) {
             bits |= TACTA_COLLIDE_OVERFLOW;
@@ -116,21 +134,17 @@ class BvhBroadPhase {
     if (surface >= world.surface_count || surface >= trees_.size() || tets_) return false;
     const tacta_collision_surface& s = world.surfaces[surface];
     const Vec3 p{point[0], point[1], point[2]};
-    Aabb box;
-    for (int k = 0; k < 3; ++k) {
-      box.lo[k] = p[k] - max_distance;
-      box.hi[k] = p[k] + max_distance;
-    }
     double best = max_distance;
     bool found = false;
-    trees_[surface].query(box, [&](uint32_t t) {
+    trees_[surface].nearest(p, query_margin(world), best, [&](uint32_t t) {
       Vec3 x[3];
       corners(s, t, x);
       std::array<double, 3> w;
       const Vec3 q = closest_on_triangle(p, x[0], x[1], x[2], w);
       const Vec3 d = sub(p, q);
       const double dist = std::sqrt(dot(d, d));
-      if (!(dist <= best)) return;
+      // Ties keep the first found: the nearest-first order decides, as the box order did.
+      if (!(dist <= best) || (found && dist == best)) return;
       best = dist;
       found = true;
       fill_hit(hit, t, w, q, x);
@@ -150,6 +164,7 @@ class BvhBroadPhase {
       box.lo[k] = std::min(a[k], b[k]) - radius;
       box.hi[k] = std::max(a[k], b[k]) + radius;
     }
+    box = widened(box, query_margin(world));
     double best = 2.0;
     trees_[surface].query(box, [&](uint32_t t) {
       Vec3 x[3];
@@ -169,6 +184,21 @@ class BvhBroadPhase {
   }
 
  private:
+  // m: how far the host says vertices may be from where their boxes were computed (0 from a
+  // host whose world view predates the field).
+  static double query_margin(const tacta_collision_world& world) noexcept {
+    const bool has = world.struct_size >= offsetof(tacta_collision_world, query_margin) +
+                                              sizeof(world.query_margin);
+    return has && world.query_margin > 0.0 ? world.query_margin : 0.0;
+  }
+  static Aabb widened(Aabb box, double margin) noexcept {
+    for (int k = 0; k < 3; ++k) {
+      box.lo[k] -= margin;
+      box.hi[k] += margin;
+    }
+    return box;
+  }
+
   ElementView element_view(const tacta_collision_surface& s) const noexcept {
     ElementView v;
     v.start = s.positions_start;

@@ -25,6 +25,9 @@
 //   uint32_t shape_query(const tacta_collision_shape& a, const tacta_collision_shape* b,
 //                        const double* triangle, tacta_shape_result&) noexcept
 //   uint32_t respond(tacta_collision_world&, tacta_contact*, uint32_t count) noexcept
+//   uint32_t element_order(uint32_t surface, const uint32_t*& order, uint32_t& count) noexcept
+//   uint32_t update_elements(const tacta_collision_world&, uint32_t surface, uint32_t first,
+//                            uint32_t count) noexcept
 #pragma once
 
 #include "tacta/collision_api.h"
@@ -89,6 +92,15 @@ struct CollisionAdapter {
     return self(instance).respond(*world, contacts, contact_count);
   }
 
+  static uint32_t element_order(void* instance, uint32_t surface, const uint32_t** order,
+                                uint32_t* count) noexcept {
+    return self(instance).element_order(surface, *order, *count);
+  }
+  static uint32_t update_elements(void* instance, const tacta_collision_world* world,
+                                  uint32_t surface, uint32_t first, uint32_t count) noexcept {
+    return self(instance).update_elements(*world, surface, first, count);
+  }
+
   static tacta_collision_api table() {
     using World = const tacta_collision_world&;
     tacta_collision_api api{};
@@ -126,6 +138,13 @@ struct CollisionAdapter {
                   })
       api.respond = &respond;
     if constexpr (requires { T::kRoles; }) api.roles = T::kRoles;  // TACTA_COLLISION_ROLE_* bits
+    if constexpr (requires(T & t, World w, const uint32_t*& o, uint32_t& n) {
+                    t.element_order(0u, o, n);
+                    t.update_elements(w, 0u, 0u, 0u);
+                  }) {
+      api.element_order = &element_order;
+      api.update_elements = &update_elements;
+    }
     return api;
   }
 };

@@ -35,6 +35,8 @@ struct RunStatus {
   std::vector<CollisionPluginResult> collision_plugins;
   uint32_t pairs_capacity = 0, contacts_capacity = 0;  // collision buffers, sized at load
   uint32_t pairs_high_water = 0, contacts_high_water = 0;
+  // The proxy's hierarchies: slices refit, whole refits (a margin past its cap, or not sliced).
+  uint64_t proxy_slices = 0, proxy_whole_refits = 0;
   size_t errors = 0, warnings = 0;  // kinds (who x bit) seen
   std::vector<std::string> lines;   // one per warning or error kind, for the console
 };
