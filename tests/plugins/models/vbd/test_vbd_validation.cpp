@@ -255,3 +255,48 @@ TEST(VbdValidation, UndampedSwingLosesEnergyAsImplicitEulerDoes) {
 
 }  // namespace
 }  // namespace tacta::models::vbd
+
+namespace tacta::models::vbd {
+namespace {
+
+// Measured once for VALIDATION.md (run with --gtest_also_run_disabled_tests): one step of
+// SOFA's 5x5x30 cantilever (E 2 MPa) at SOFA's dt of 0.01 s from rest under gravity, against
+// corotational_fem's direct step, per iteration count: how slowly Gauss-Seidel converges when
+// stiffness dominates inertia (c_p dt ~ 80 cells).
+TEST(VbdValidation, DISABLED_StiffBeamAtLargeStepsConvergesSlowly) {
+  const TestMesh mesh = sofa_cantilever({5, 5, 30});
+  tacta_material material = make_material(2e6, 0.45, 1100.0);
+  material.rayleigh_mass = material.rayleigh_stiffness = 0.1;
+  const double dt = 0.01;
+  corotational::Options direct;
+  direct.solver = sparse::LinearSolver::kCholesky;
+  auto reference_model = corotational::testing::make_model(mesh, material, direct);
+  BodyState reference(mesh);
+  reference.add_gravity(mesh, {0.0, -9.81, 0.0});
+  reference_model->begin(reference.state, dt);
+  reference_model->step(reference.state, dt);
+  for (double rho : {0.0, 0.85})
+    for (int iterations : {10, 100, 1000, 10000}) {
+      Options options;
+      options.iterations = iterations;
+      options.chebyshev_rho = rho;
+      auto model = make_vbd(mesh, material, options);
+      BodyState body(mesh);
+      body.add_gravity(mesh, {0.0, -9.81, 0.0});
+      model->begin(body.state, dt);
+      model->step(body.state, dt);
+      double diff = 0.0, disp = 0.0;
+      for (size_t k = 0; k < body.positions.size(); ++k) {
+        diff += std::pow(body.positions[k] - reference.positions[k], 2);
+        disp += std::pow(reference.positions[k] - mesh.positions[k], 2);
+      }
+      std::printf(
+          "rho %.2f, %5d iterations: one step's error %.3e of its motion (tip %.3e m, "
+          "reference %.3e m)\n",
+          rho, iterations, std::sqrt(diff / disp), tip(mesh, body.positions),
+          tip(mesh, reference.positions));
+    }
+}
+
+}  // namespace
+}  // namespace tacta::models::vbd
