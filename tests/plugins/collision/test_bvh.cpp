@@ -1,9 +1,12 @@
 // BVH plugin: candidate pairs equal brute force on random deforming meshes (AABB and OBB
-// nodes, body-body and self), haptic queries against brute force, bad input reported.
+// nodes, body-body and self), haptic queries against brute force, a refit spread over slices and
+// queries widened by a margin against a whole refit, bad input reported.
 #include <algorithm>
 #include <array>
 #include <gtest/gtest.h>
+#include <cmath>
 #include <limits>
+#include <random>
 #include <set>
 #include <tuple>
 
@@ -75,7 +78,7 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
   TestSurface b = tacta::testing::grid(9, 0.8, 0.2, 0.1, 0.05);
   const double margin = 0.002;
   std::vector<tacta_collision_surface> views{a.view(1, margin), b.view(2, margin)};
-  tacta_collision_world world{sizeof world, 2, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  tacta_collision_world world{sizeof world, 2, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK) << message;
@@ -107,7 +110,7 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
 TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
   TestSurface a = tacta::testing::grid(10, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
@@ -140,13 +143,85 @@ TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
   api().destroy(bvh);
 }
 
+// The proxy's queries on a tree refit a run of its element order at a time, or not refit at all
+// but widened by how far the vertices moved, answer as a tree refit whole does.
+TEST_P(BvhPlugin, SlicedRefitAndWidenedQueriesAnswerAsAWholeRefit) {
+  std::mt19937 rng(99);
+  TestSurface a = tacta::testing::grid(20, 1.0, 0.0, 0.0, 0.0);
+  std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
+  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
+  void* sliced = make(GetParam());
+  void* whole = make(GetParam());
+  char message[256] = {0};
+  ASSERT_EQ(api().prepare(sliced, &world, message, sizeof message), TACTA_OK);
+  ASSERT_EQ(api().prepare(whole, &world, message, sizeof message), TACTA_OK);
+  ASSERT_NE(api().element_order, nullptr);
+  ASSERT_NE(api().update_elements, nullptr);
+  const uint32_t* order = nullptr;
+  uint32_t total = 0;
+  EXPECT_EQ(api().element_order(sliced, 0, &order, &total), TACTA_COLLIDE_UNPREPARED);
+  EXPECT_EQ(api().update_elements(sliced, &world, 0, 0, 10), TACTA_COLLIDE_UNPREPARED);
+  api().update(sliced, &world);
+  ASSERT_EQ(api().element_order(sliced, 0, &order, &total), TACTA_COLLIDE_OK);
+  ASSERT_EQ(total, 800u);
+  std::vector<uint32_t> sorted(order, order + total);
+  std::sort(sorted.begin(), sorted.end());
+  for (uint32_t i = 0; i < total; ++i) ASSERT_EQ(sorted[i], i) << "not a permutation";
+
+  std::uniform_real_distribution<double> in_box(-0.6, 0.6), height(-0.3, 0.3);
+  const auto same_answers = [&](const char* when) {
+    for (int q = 0; q < 40; ++q) {
+      const double p[3] = {in_box(rng), in_box(rng), height(rng)};
+      tacta_surface_hit hs{}, hw{};
+      const int fs = api().closest_point(sliced, &world, 0, p, 0.2, &hs);
+      const int fw = api().closest_point(whole, &world, 0, p, 0.2, &hw);
+      ASSERT_EQ(fs, fw) << when << ": closest point " << q;
+      if (fw) {  // the same point (at a shared edge either triangle may report it)
+        EXPECT_NEAR(hs.distance, hw.distance, 1e-12) << when;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(hs.point[k], hw.point[k], 1e-12) << when;
+      }
+      const double to[3] = {p[0] + 0.1, p[1] - 0.05, -p[2]};
+      const int cs = api().sphere_cast(sliced, &world, 0, p, to, 0.02, &hs);
+      const int cw = api().sphere_cast(whole, &world, 0, p, to, 0.02, &hw);
+      ASSERT_EQ(cs, cw) << when << ": sphere cast " << q;
+      if (cw) {
+        EXPECT_NEAR(hs.toi, hw.toi, 1e-9) << when;
+      }
+    }
+  };
+  // Refit in runs of 64 of the order, as the engine's slices do.
+  for (int tick = 0; tick < 4; ++tick) {
+    tacta::testing::deform(a, rng, 0.02, 0.4 * tick);
+    for (uint32_t first = 0; first < total; first += 64) {
+      ASSERT_EQ(api().element_order(sliced, 0, &order, &total), TACTA_COLLIDE_OK);
+      EXPECT_EQ(api().update_elements(sliced, &world, 0, first, 64), TACTA_COLLIDE_OK);
+    }
+    api().update(whole, &world);
+    same_answers("sliced refit");
+  }
+  // No refit: every vertex moves by at most 5 mm, the queries widen by 5 mm.
+  const double margin = 0.005;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (size_t v = 0; v < a.end.size(); v += 3) {
+    double d[3] = {unit(rng), unit(rng), unit(rng)};
+    const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 1e-12;
+    for (int k = 0; k < 3; ++k) a.end[v + k] += margin * 0.999 * d[k] / n;
+  }
+  a.start = a.end;
+  api().update(whole, &world);
+  world.query_margin = margin;
+  same_answers("stale tree, widened queries");
+  api().destroy(sliced);
+  api().destroy(whole);
+}
+
 TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   void* bvh = make(GetParam());
   char message[256] = {0};
   TestSurface a = tacta::testing::grid(3, 1.0, 0.0, 0.0, 0.0);
   a.triangles[4] = 999;  // out of range
   std::vector<tacta_collision_surface> views{a.view(7, 0.0)};
-  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0};
+  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
   EXPECT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(message).find("999"), std::string::npos) << message;
   // NaN positions: flagged, those elements skipped.
@@ -157,8 +232,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   // Empty mesh.
   TestSurface empty;
   std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
-  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0, nullptr, 0,
-                                    nullptr,      1e-3, 0.0};
+  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0,  nullptr, 0,
+                                    nullptr,      1e-3, 0.0,         0.0};
   ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
   api().update(bvh, &empty_world);
   uint32_t count = 5;
