@@ -16,6 +16,7 @@ struct Counted {
   long allocations = 0;
   uint64_t contact_ticks = 0;
   bool frozen = false;
+  uint64_t proxy_slices = 0, proxy_whole_refits = 0;  // the proxy's hierarchy refits counted
 };
 
 Counted count_ticks(const std::vector<std::string>& overrides) {
@@ -24,12 +25,15 @@ Counted count_ticks(const std::vector<std::string>& overrides) {
   LoopHarness h(scene, kWarmUpTicks + kCountedTicks);
   for (int i = 0; i < kWarmUpTicks; ++i) h.tick();
   const uint64_t contacts_before = h.world.device(0).stats.contact_ticks;
+  const uint64_t slices_before = h.collision.proxy_slices();
+  const uint64_t wholes_before = h.collision.proxy_whole_refits();
   g_allocations = 0;
   g_counting = true;
   for (int i = 0; i < kCountedTicks; ++i) h.tick();
   g_counting = false;
   return {g_allocations, h.world.device(0).stats.contact_ticks - contacts_before,
-          h.world.body(0).fault.frozen};
+          h.world.body(0).fault.frozen, h.collision.proxy_slices() - slices_before,
+          h.collision.proxy_whole_refits() - wholes_before};
 }
 
 // The counter sees an allocation made through operator new (so a zero below means something).
@@ -48,6 +52,11 @@ TEST(HapticTickAllocations, LiverPalpationAsShipped) {
   EXPECT_EQ(run.allocations, 0) << "heap allocations in " << kCountedTicks << " ticks";
   EXPECT_GT(run.contact_ticks, 100u) << "the counted ticks must include the stylus pressing";
   EXPECT_FALSE(run.frozen);
+  // The counted ticks went through the sliced refit and the embedded patch (the default).
+  EXPECT_GT(run.proxy_slices, 0u);
+  std::printf("%llu slices, %llu whole refits\n",
+              static_cast<unsigned long long>(run.proxy_slices),
+              static_cast<unsigned long long>(run.proxy_whole_refits));
 }
 
 TEST(HapticTickAllocations, LiverPalpationWithCollisionResponse) {
