@@ -40,15 +40,26 @@ double corotational_energy_density(const Eigen::Matrix3d& f, const Eigen::Matrix
 
 // The corner terms take the corner's shape gradient g = grad N_a (1/m) and the tet's rest
 // volume V (m^3).
-// One corner's force -V R (2 mu eps + lambda tr(eps) I) g: the stress product above, with
-// eps g = (R^T (F g) + F^T (R g)) / 2 - g and tr(eps) = R : F - 3, no 3x3 product.
+// One corner's force -V R (2 mu eps + lambda tr(eps) I) g, from G = R^T F (the deformation
+// in the tet's rotated frame, which the sweep keeps): eps g = (G g + G^T g) / 2 - g and
+// tr(eps) = tr(G) - 3, no 3x3 product. Written out on the column-major arrays: the sweep's
+// innermost work, where Eigen's temporaries cost twice the instructions.
 TACTA_VBD_INLINE Eigen::Vector3d corotational_corner_force(const Eigen::Vector3d& g, double volume,
-                                                           const Eigen::Matrix3d& f,
+                                                           const Eigen::Matrix3d& rotated,
                                                            const Eigen::Matrix3d& r,
                                                            const Lame& lame) noexcept {
-  const Eigen::Vector3d eps_g = 0.5 * (r.transpose() * (f * g) + f.transpose() * (r * g)) - g;
-  const double trace = r.cwiseProduct(f).sum() - 3.0;
-  return -volume * (r * (2.0 * lame.mu * eps_g + lame.lambda * trace * g));
+  const double* m = rotated.data();  // G(i, j) = m[i + 3 j]
+  const double trace = m[0] + m[4] + m[8] - 3.0;
+  double s[3];
+  for (int i = 0; i < 3; ++i) {
+    const double gg = m[i] * g[0] + m[i + 3] * g[1] + m[i + 6] * g[2];               // (G g)_i
+    const double gtg = m[3 * i] * g[0] + m[3 * i + 1] * g[1] + m[3 * i + 2] * g[2];  // (G^T g)_i
+    s[i] = lame.mu * (gg + gtg - 2.0 * g[i]) + lame.lambda * trace * g[i];
+  }
+  const double* q = r.data();  // R(i, j) = q[i + 3 j]
+  return {-volume * (q[0] * s[0] + q[3] * s[1] + q[6] * s[2]),
+          -volume * (q[1] * s[0] + q[4] * s[1] + q[7] * s[2]),
+          -volume * (q[2] * s[0] + q[5] * s[1] + q[8] * s[2])};
 }
 
 // Corner block of R K0 R^T (fixed R): V R [mu |g|^2 I + (lambda + mu) g g^T] R^T, SPD.

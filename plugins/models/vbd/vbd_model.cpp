@@ -8,6 +8,7 @@
 
 #include "element_energy.hpp"
 #include "element_rotation.hpp"  // corotational_fem's warm-started polar rotation
+#include "hot_path.hpp"          // the sweep built for AVX2 + FMA too, picked at load
 
 namespace tacta::models::vbd {
 
@@ -131,26 +132,42 @@ Eigen::Matrix3d VbdModel::deformation(uint32_t tet, const double* positions) con
   return tet_deformation(tets_[tet], positions);
 }
 
-void VbdModel::refresh_deformations(const double* positions, double blend) noexcept {
+TACTA_HOT_PATH void VbdModel::refresh_deformation(uint32_t e, const double* positions,
+                                                  double blend) noexcept {
+  // F at p = x + blend (x - x_t): the edge vectors from node 0 times the rest gradients,
+  // F(r, c) = sum_a edge_a[r] grad N_a[c]; corotational: R^T F.
+  const TetRest& t = tets_[e];
   const double* start = start_.data();
-  for_each(static_cast<uint32_t>(tets_.size()), kTetGrain, [&](uint32_t e, uint32_t) {
-    // F at p = x + blend (x - x_t): the edge vectors from node 0, times the rest gradients.
-    const TetRest& t = tets_[e];
-    const size_t n0 = 3 * size_t{t.nodes[0]};
-    Eigen::Matrix3d f = Eigen::Matrix3d::Zero();
-    for (int a = 1; a < 4; ++a) {
-      const size_t na = 3 * size_t{t.nodes[a]};
-      for (int r = 0; r < 3; ++r) {
-        double edge = positions[na + r] - positions[n0 + r];
-        if (blend != 0.0) edge += blend * (edge - (start[na + r] - start[n0 + r]));
-        for (int c = 0; c < 3; ++c) f(r, c) += edge * t.gradients[a][c];
-      }
+  const double* p0 = positions + 3 * size_t{t.nodes[0]};
+  const double* s0 = start + 3 * size_t{t.nodes[0]};
+  double edge[3][3];
+  for (int a = 0; a < 3; ++a) {
+    const double* pa = positions + 3 * size_t{t.nodes[a + 1]};
+    const double* sa = start + 3 * size_t{t.nodes[a + 1]};
+    for (int r = 0; r < 3; ++r) {
+      const double d = pa[r] - p0[r];
+      edge[a][r] = d + blend * (d - (sa[r] - s0[r]));
     }
-    frames_[e].deformation = f;
-  });
+  }
+  Eigen::Matrix3d f;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      f(r, c) = edge[0][r] * t.gradients[1][c] + edge[1][r] * t.gradients[2][c] +
+                edge[2][r] * t.gradients[3][c];
+  TetFrame& frame = frames_[e];
+  if (options_.energy == Energy::kCorotational)
+    frame.deformation.noalias() = frame.rotation.transpose() * f;
+  else
+    frame.deformation = f;
 }
 
-VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, bool with_hessian) const noexcept {
+void VbdModel::refresh_deformations(const double* positions, double blend) noexcept {
+  for_each(static_cast<uint32_t>(tets_.size()), kTetGrain,
+           [&](uint32_t e, uint32_t) { refresh_deformation(e, positions, blend); });
+}
+
+TACTA_HOT_PATH VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i,
+                                                            bool with_hessian) const noexcept {
   VertexBlock out;
   const Lame lame{lambda_, mu_};
   const bool corotational = options_.energy == Energy::kCorotational;
@@ -175,8 +192,8 @@ VbdModel::VertexBlock VbdModel::vertex_block(uint32_t i, bool with_hessian) cons
   return out;
 }
 
-void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
-                             bool first_iteration) noexcept {
+TACTA_HOT_PATH void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
+                                            bool first_iteration) noexcept {
   const double h = h_, m = masses_[i];
   const double inertia = m / (h * h);               // N/m: M / h^2
   const double mass_damping = alpha_ * m / h;       // N/m: alpha M / h
@@ -215,8 +232,12 @@ void VbdModel::update_vertex(uint32_t i, double* positions, uint32_t worker,
   const Eigen::Vector3d change = (corotational ? stiffness_factor : 1.0) * dx;
   for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
     const Incidence& inc = incidence_[k];
-    frames_[inc.tet].deformation +=
-        change * Eigen::RowVector3d(inc.gradient[0], inc.gradient[1], inc.gradient[2]);
+    TetFrame& frame = frames_[inc.tet];
+    const Eigen::Vector3d w =
+        corotational ? Eigen::Vector3d(frame.rotation.transpose() * change) : change;
+    double* cached = frame.deformation.data();  // column-major: (r, c) at r + 3 c
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) cached[r + 3 * c] += w[r] * inc.gradient[c];
   }
 }
 
@@ -278,8 +299,9 @@ uint32_t VbdModel::step(tacta_body_state& state, double dt) noexcept {
   const bool chebyshev = rho > 0.0 && iterations > 1;
   if (chebyshev) std::copy(x, x + 3 * size_t{node_count_}, chebyshev_prev_.begin());
   double omega = 1.0;
-  // Corotational: the forces at x + (beta/h)(x - x_t) (see update_vertex), so the cache holds F
-  // there. Taken afresh each iteration: Chebyshev moves every node, and rounding cannot pile up.
+  // Corotational: the forces at x + (beta/h)(x - x_t) (see update_vertex), so the cache holds
+  // R^T F there. Taken afresh each iteration: Chebyshev moves every node, and rounding cannot
+  // pile up.
   const double blend = corotational ? beta_ / h : 0.0;
   for (int it = 1; it <= iterations; ++it) {
     refresh_deformations(x, blend);

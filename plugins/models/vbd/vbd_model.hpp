@@ -77,8 +77,8 @@ class VbdModel {
     uint32_t tet;
     uint32_t corner;  // 0..3
   };
-  // A tet's state over a step: R at x_t and F where the sweep evaluates forces, together so a
-  // corner's evaluation touches one place.
+  // A tet's state over a step: R at x_t and F where the sweep evaluates forces (corotational:
+  // R^T F, the strain's frame), together so a corner's evaluation touches one place.
   struct TetFrame {
     Eigen::Matrix3d deformation = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
@@ -90,8 +90,10 @@ class VbdModel {
   // Sums vertex i's elastic force (and, when with_hessian, its Hessian block) at the cached
   // deformation gradients of its tets.
   VertexBlock vertex_block(uint32_t i, bool with_hessian) const noexcept;
-  // Every tet's F at positions + blend (positions - x_t) into the cache (blend 0: at positions).
+  // Every tet's F at positions + blend (positions - x_t) into the cache (blend 0: at positions);
+  // refresh_deformation: tet e's.
   void refresh_deformations(const double* positions, double blend) noexcept;
+  void refresh_deformation(uint32_t e, const double* positions, double blend) noexcept;
   // The Newton step of vertex i on G, applied to positions; skipped (and counted on the
   // worker's tally) when its block is singular.
   void update_vertex(uint32_t i, double* positions, uint32_t worker, bool first_iteration) noexcept;

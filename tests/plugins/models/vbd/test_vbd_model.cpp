@@ -93,7 +93,7 @@ TEST(VbdElementEnergy, CornerForcesAndHessiansMatchDifferences) {
         const double volume = t.rest.volume;
         Eigen::Vector3d force;
         if (which == Energy::kCorotational) {
-          force = corotational_corner_force(g, volume, f, r, lame);
+          force = corotational_corner_force(g, volume, r.transpose() * f, r, lame);
           if (hessian) *hessian = corotational_corner_hessian(g, volume, r, lame);
         } else {
           neo_hookean_corner(g, volume, f, lame, 0.1, force, hessian);
