@@ -15,6 +15,10 @@ namespace {
 // parks on done_ (a chunk is tens of microseconds; parking only guards against a worker that
 // was preempted).
 constexpr std::chrono::microseconds kCallerSpin{200};
+// Spinning starts with pause only, for the quickest hand-over; past this it yields the CPU at
+// each turn, so that on an oversubscribed machine a spinning thread does not hold the core the
+// thread it waits for (the caller, or a worker holding a chunk) needs.
+constexpr std::chrono::microseconds kPauseOnly{20};
 
 inline void cpu_relax() noexcept {
 #if defined(__x86_64__) || defined(__i386__)
@@ -66,9 +70,16 @@ void JobPool::work(uint32_t worker) noexcept {
     uint32_t now = generation_.load();
     if (now == seen) {  // idle: spin, then park
       const Clock::time_point start = Clock::now();
+      bool yielding = false;
       for (uint32_t spin = 1; (now = generation_.load()) == seen; ++spin) {
-        cpu_relax();
-        if (spin % 256 != 0 || Clock::now() - start < kSpinBeforePark) continue;
+        if (yielding)
+          std::this_thread::yield();
+        else
+          cpu_relax();
+        if (spin % 64 != 0) continue;
+        const Clock::duration idle = Clock::now() - start;
+        yielding = idle >= kPauseOnly;
+        if (idle < kSpinBeforePark) continue;
         // Announce the park before the last look (seq_cst both): a caller that bumps the
         // generation after that look sees parked_ and wakes us.
         parked_.fetch_add(1);
@@ -105,9 +116,16 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
   using Clock = std::chrono::steady_clock;
   if (done_.load() != count) {
     const Clock::time_point start = Clock::now();
+    bool yielding = false;
     for (uint32_t spin = 1; done_.load() != count; ++spin) {
-      cpu_relax();
-      if (spin % 256 != 0 || Clock::now() - start < kCallerSpin) continue;
+      if (yielding)
+        std::this_thread::yield();
+      else
+        cpu_relax();
+      if (spin % 64 != 0) continue;
+      const Clock::duration waited = Clock::now() - start;
+      yielding = waited >= kPauseOnly;
+      if (waited < kCallerSpin) continue;
       for (uint32_t seen = done_.load(); seen != count; seen = done_.load()) done_.wait(seen);
     }
   }
