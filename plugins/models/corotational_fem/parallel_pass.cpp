@@ -15,7 +15,9 @@ namespace {
 // A colour with fewer batches than this runs serially: handing it to the workers costs more
 // (~1 us while they spin between jobs, ~10-50 us to wake a parked one).
 constexpr uint32_t kMinParallelBatches = 16;
-constexpr uint32_t kGrain = 8;  // batches per chunk a worker takes
+// Batches per chunk a worker takes: at least kGrain, at most about four chunks per thread (a
+// chunk taken is an atomic on a shared cache line).
+constexpr uint32_t kGrain = 8;
 
 struct PassJob {
   CorotationalFem* model;
@@ -83,7 +85,8 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
     if (count < kMinParallelBatches)
       body(&job, 0, count, 0);
     else
-      host.parallel_for(host.jobs, count, kGrain, body, &job);
+      host.parallel_for(host.jobs, count, std::max(kGrain, count / (4 * host.worker_count)), body,
+                        &job);
   }
   for (const WorkerTally& t : tallies_) {
     result |= t.bits;

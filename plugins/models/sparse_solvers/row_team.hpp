@@ -55,7 +55,10 @@ class RowTeam {
       const Call& c = *static_cast<const Call*>(user);
       for (uint32_t k = begin; k < end; ++k) (*c.f)(k, c.team->bounds_[k], c.team->bounds_[k + 1]);
     };
-    host_->parallel_for(host_->jobs, chunks(), 1, body, &call);
+    // About four pickups per thread: each is an atomic on a shared line (~0.1 us between
+    // cores). Which chunks a pickup holds never changes a result (sums stay per chunk).
+    const uint32_t grain = std::max<uint32_t>(1, chunks() / (4 * host_->worker_count));
+    host_->parallel_for(host_->jobs, chunks(), grain, body, &call);
   }
   ChunkSums& sums(uint32_t chunk) const { return sums_[chunk]; }
   // Sum number `which` of every chunk, in chunk order.
