@@ -47,8 +47,9 @@ def load_average():
 
 
 def run_bench(args, json_path):
-    models = "|".join(re.escape(m) for m in args.models.split(",")) if args.models else "[^/]+"
-    sizes = "|".join(args.sizes.split(",")) if args.sizes else r"\d+"
+    # Google Benchmark's regex (POSIX extended): no \d, no escapes.
+    models = "|".join(args.models.split(",")) if args.models else "[^/]+"
+    sizes = "|".join(args.sizes.split(",")) if args.sizes else "[0-9]+"
     command = [
         args.bench,
         f"--benchmark_filter=^Sweep/({models})/tets:({sizes})/",
@@ -88,6 +89,7 @@ def read_rows(json_path):
             "wall_ms": b["real_time"] * scale,
             "cpu_ms": b["cpu_time"] * scale,
             "cpu_p99_ms": b.get("cpu_p99_ms", float("nan")),
+            "wall_p10_ms": b.get("wall_p10_ms", float("nan")),
             "fault": int(b.get("fault", 0)),
         }
     return data.get("context", {}), [rows[k] for k in sorted(rows)]
