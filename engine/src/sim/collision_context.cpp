@@ -19,6 +19,7 @@ constexpr size_t kMessageCapacity = 1024;
 constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x the mean surface edge
 constexpr double kMarginTargetPerEdge = 0.25;  // proxy query margin kept below this x mean edge,
 constexpr double kMarginCapPerEdge = 3.0;      // and never past this (whole refit)
+constexpr int kMaxSlicesPerTick = 4;           // while the margin is past half its cap
 }  // namespace
 
 // RAII owner of one collision plugin instance.
@@ -472,14 +473,20 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
         whole = true;  // no hierarchy yet, or one over other elements than triangles (tets)
         break;
       }
-      freshness_[k].next_slice(first, count);
-      if (count == 0) continue;
-      if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
-        e->refresh_triangles(order + first, count, proxy_pass_);
-      if (slicer_->update_elements(slicer_->instance, &view_, k, first, count) &
-          TACTA_COLLIDE_UNPREPARED)
-        whole = true;
-      ++proxy_slices_;
+      // One slice a tick while the margin is past its target, up to kMaxSlicesPerTick while a
+      // fast body keeps it there: the cost follows the motion, and a whole refit (a spike of
+      // the whole surface's cost) waits for motion faster than that.
+      for (int n = 0; n < kMaxSlicesPerTick && !whole; ++n) {
+        freshness_[k].next_slice(first, count);
+        if (count == 0) break;
+        if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
+          e->refresh_triangles(order + first, count, proxy_pass_);
+        if (slicer_->update_elements(slicer_->instance, &view_, k, first, count) &
+            TACTA_COLLIDE_UNPREPARED)
+          whole = true;
+        ++proxy_slices_;
+        if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
+      }
     }
     if (!whole) return;
   }
