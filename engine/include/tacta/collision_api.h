@@ -245,7 +245,10 @@ typedef struct tacta_collision_api {
    * a few whole subtrees and the paths above them. The host refits a run per tick, round-robin,
    * and sets query_margin to what the others may have moved since their boxes were computed.
    * Neither rebuilds; both return UNPREPARED before a first update() or for a hierarchy over
-   * other elements than the surface's triangles. */
+   * other elements than the surface's triangles. The host slices only a plugin that also
+   * serves the proxy; then, for the proxy's queries, a surface's positions_end may be current
+   * only for the triangles this plugin's overlap_shape (widened by query_margin) reports for the
+   * query's box: the host brings those up to date before each query. */
   uint32_t (*element_order)(void* instance, uint32_t surface, const uint32_t** order,
                             uint32_t* count);
   uint32_t (*update_elements)(void* instance, const tacta_collision_world* world, uint32_t surface,

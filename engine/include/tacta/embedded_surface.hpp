@@ -23,8 +23,11 @@ struct EmbeddedSurface {
   std::vector<uint32_t> tet;           // 1 per vertex: the tet it follows
   std::vector<uint32_t> nodes;         // 4 per vertex: that tet's nodes
   std::vector<double> weights;    // 4 per vertex: barycentric in that tet (sum 1; some < 0 outside)
-  std::vector<double> positions;  // 3 per vertex, m: deformed, as of the last update
-  std::vector<double> normals;    // 3 per vertex: unit, area-weighted, of the deformed surface
+  // 3 per vertex, m: deformed, as of the last update_embedded_surface; while a run's haptic
+  // proxy keeps it (collision.proxy_refit: sliced) only the vertices near its queries are current
+  // between frames: interpolate from the nodes (interpolate_to_surface) for the whole surface.
+  std::vector<double> positions;
+  std::vector<double> normals;  // 3 per vertex: unit, area-weighted, at the last update_embedded_surface
   size_t extrapolated_vertices = 0;  // vertices outside every tet, bound to the nearest one
   std::string source;                // file it came from, for messages
   size_t vertex_count() const { return rest_positions.size() / 3; }

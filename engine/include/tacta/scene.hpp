@@ -213,6 +213,7 @@ struct ClockDesc {
   int haptic_priority = 80;  // SCHED_FIFO priority 1..99; 0: stay SCHED_OTHER
   int haptic_cpu = -1;       // pin the haptic thread to this CPU, others off it; -1: no pinning
   bool lock_memory = true;   // mlockall for the run
+  bool shallow_idle = true;  // realtime: PM QoS keeps the CPUs out of deep idle states
   double spin_us = 50;       // us before each deadline spun instead of slept
 };
 

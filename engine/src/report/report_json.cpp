@@ -83,6 +83,7 @@ void write_collision(JsonWriter& j, const RunStatus& s) {
   j.field("contacts_max_used", static_cast<uint64_t>(s.contacts_high_water));
   j.end_object();
   j.key("proxy_refits").begin_object();
+  j.field("mode", s.proxy_sliced ? "sliced" : "every_tick");
   j.field("slices", s.proxy_slices).field("whole", s.proxy_whole_refits);
   j.end_object();
   write_status_bits(j, s.collision);
@@ -225,6 +226,7 @@ void write_realtime(JsonWriter& j, const RunResult& result) {
   // A starving SCHED_FIFO thread is demoted mid-run (kStarvingTicks misses in a row).
   j.field("demoted_at_tick", g.demoted_at_tick);
   j.field("memory_locked", g.memory_locked).field("memory_note", g.memory_note);
+  j.field("shallow_idle", g.shallow_idle).field("idle_note", g.idle_note);
   j.field("haptic_cpu", g.cpu).field("cpu_note", g.cpu_note);
   j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered))
       .field("spin_us", g.spin_us);

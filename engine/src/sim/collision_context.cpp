@@ -106,7 +106,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
       // move little in a tick): the patch made current is about that ball's. A point found
       // within a ball is the closest: anything nearer was in it.
       double reach = max_distance;
-      if (context_.patched(s))
+      if (context_.patched(s) && max_distance > 0 && std::isfinite(context_.last_distance_[s]))
         reach = std::clamp(1.25 * context_.last_distance_[s], 0.05 * max_distance, max_distance);
       tacta_surface_hit h{};
       bool hit_here = false;
@@ -116,10 +116,10 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
         context_.prepare_query(s, lo, hi);
         hit_here = answerer_->api.closest_point(answerer_->instance, &context_.view_, s,
                                                 point.data(), reach, &h) != 0;
-        if (hit_here || reach >= max_distance) break;
+        if (hit_here || !(reach < max_distance)) break;
         reach = std::min(2.0 * reach, max_distance);
       }
-      context_.last_distance_[s] = hit_here ? h.distance : max_distance;
+      context_.last_distance_[s] = hit_here && std::isfinite(h.distance) ? h.distance : max_distance;
       if (!hit_here) continue;
       if (found && h.distance >= std::fabs(signed_distance)) continue;
       fill(hit, h, s);
@@ -255,14 +255,16 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
   query_ = std::make_unique<Query>(*this, proxy);
   // Slices need one plugin keeping hierarchies (the slices follow its order), refittable a run
-  // at a time, and the proxy's plugin to say which triangles a box reaches (the embedded patch).
+  // at a time, serving the proxy and saying which triangles a box reaches (the embedded patch).
   size_t keepers = 0;
   for (auto& inst : instances_)
     if (inst->api.update != nullptr) {
       ++keepers;
       slicer_ = inst->update_elements != nullptr ? inst.get() : nullptr;
     }
-  sliced_ = c.proxy_refit_sliced && keepers == 1 && slicer_ != nullptr && proxy != nullptr &&
+  // The proxy's own plugin is the one sliced: its overlap_shape and queries then honour the
+  // margin (a proxy built against an older header would ignore it).
+  sliced_ = c.proxy_refit_sliced && keepers == 1 && slicer_ != nullptr && slicer_ == proxy &&
             proxy->api.overlap_shape != nullptr;
 }
 
@@ -310,7 +312,8 @@ void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
   freshness_.emplace_back(b.node_count(), s.triangle_count, weight_bound,
                           kMarginTargetPerEdge * edge, kMarginCapPerEdge * edge);
   freshness_.back().reset(b.nodes.positions.data());
-  covered_.push_back({});
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  covered_.push_back({kInf, kInf, kInf, -kInf, -kInf, -kInf});
   last_distance_.push_back(0.0);
   patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
 }
@@ -452,6 +455,7 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   for (auto& c : covered_) c = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   if (!sliced_) {
+    ++proxy_whole_refits_;
     refit(time, dt);
     return;
   }

@@ -64,15 +64,22 @@ class CollisionContext {
   // offers update_elements) one slice of each surface is refit and the queries are widened by
   // what the rest may have moved (SurfaceFreshness); an embedded surface's vertices are brought
   // up to date only where a query looks (the patch near the tool). Otherwise a whole refit.
+  // The vertices made current stay so for the rest of this pass only because nothing moves a
+  // node between this call and the proxy's last query of the tick (the reaction only adds
+  // contact forces; the step and the response come after): a query made later in the tick must
+  // call this again first.
   void refit_for_proxy(double time, double dt) noexcept;
   // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
   // that brought embedded vertices up to date for them; for the tick breakdown.
   double query_ms() const noexcept { return query_ms_; }
   double patch_ms() const noexcept { return patch_ms_; }
-  // Whole refits the proxy path asked for (a margin past its cap, or no sliced refit offered),
-  // and slices refit, since load.
+  // Whole refits the proxy path made (every tick when not sliced; when sliced, the first and
+  // any whose margin passed its cap), and slices refit, since load.
   uint64_t proxy_whole_refits() const noexcept { return proxy_whole_refits_; }
   uint64_t proxy_slices() const noexcept { return proxy_slices_; }
+  // The proxy's hierarchies are refit by slices (collision.proxy_refit sliced, and a broad phase
+  // serving the proxy that offers it); false: whole, every tick.
+  bool proxy_sliced() const noexcept { return sliced_; }
   // Contacts over the tick and the response (positions and velocities corrected in place).
   // Returns TACTA_COLLIDE_* bits.
   uint32_t detect_and_respond(double time, double dt) noexcept;
@@ -124,7 +131,7 @@ class CollisionContext {
   std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
   bool sliced_ = false;                         // refit_for_proxy refits slices
   const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
-  uint32_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
+  uint64_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
   double query_ms_ = 0, patch_ms_ = 0;
   uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;
   std::vector<int> body_of_surface_;

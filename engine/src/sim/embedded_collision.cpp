@@ -49,7 +49,7 @@ void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept 
   view.tets = nullptr;
 }
 
-void EmbeddedCollisionSurface::refresh(uint32_t pass) noexcept {
+void EmbeddedCollisionSurface::refresh(uint64_t pass) noexcept {
   const SoftBody b = body();
   interpolate_to_surface(*b.surface.mesh, b.nodes.step_start.data(), start_.data());
   update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
@@ -58,7 +58,7 @@ void EmbeddedCollisionSurface::refresh(uint32_t pass) noexcept {
 }
 
 void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint32_t count,
-                                                 uint32_t pass) noexcept {
+                                                 uint64_t pass) noexcept {
   const SoftBody b = body();
   const EmbeddedSurface& s = *b.surface.mesh;
   for (uint32_t i = 0; i < count; ++i)

@@ -21,11 +21,11 @@ class EmbeddedCollisionSurface {
   void describe(tacta_collision_surface& view) noexcept;
   // Start positions from the body's saved (start of tick) state, end positions, normals and
   // velocities from its current one; every vertex is then current as of proxy pass `pass`.
-  void refresh(uint32_t pass = 0) noexcept;
+  void refresh(uint64_t pass = 0) noexcept;
   // Start and end positions of the listed triangles' vertices only, skipping those already
   // current as of `pass`: the slices a hierarchy is refit by and the patch the proxy's queries
   // read. Velocities are left to refresh(), which runs before a contact response.
-  void refresh_triangles(const uint32_t* triangles, uint32_t count, uint32_t pass) noexcept;
+  void refresh_triangles(const uint32_t* triangles, uint32_t count, uint64_t pass) noexcept;
   // Largest sum of |weight| over the vertices: no vertex moves further than this times the
   // furthest-moving node (1 inside the tets, more for extrapolated vertices).
   double weight_bound() const noexcept { return weight_bound_; }
@@ -55,7 +55,7 @@ class EmbeddedCollisionSurface {
   std::vector<double> node_position_change_;  // 3 per node, m
   std::vector<double> node_velocity_change_;  // 3 per node, m/s
   std::vector<uint32_t> node_reached_;        // 1 per node: corrected vertices that reach it
-  std::vector<uint32_t> fresh_at_;            // 1 per vertex: the proxy pass it was last made current
+  std::vector<uint64_t> fresh_at_;            // 1 per vertex: the proxy pass it was last made current
   double weight_bound_ = 1.0;
 };
 

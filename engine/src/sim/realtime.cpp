@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
+#include <fcntl.h>
 #include <fstream>
 #include <pthread.h>
 #include <sched.h>
@@ -105,6 +106,22 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
                            "); raise RLIMIT_MEMLOCK (ulimit -l) or grant CAP_IPC_LOCK";
   } else {
     grant_.memory_note = "not requested (clock.lock_memory: false)";
+  }
+
+  if (options.shallow_idle) {
+    // The request holds while the file stays open (kernel PM QoS); closing it drops it.
+    latency_fd_ = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
+    const int32_t zero_us = 0;
+    if (latency_fd_ >= 0 && write(latency_fd_, &zero_us, sizeof zero_us) == sizeof zero_us) {
+      grant_.shallow_idle = true;
+    } else {
+      grant_.idle_note = "/dev/cpu_dma_latency refused (" + errno_text(errno) +
+                         "); deep idle states stay allowed (needs root, or write access to it)";
+      if (latency_fd_ >= 0) close(latency_fd_);
+      latency_fd_ = -1;
+    }
+  } else {
+    grant_.idle_note = "not requested (clock.shallow_idle: false)";
   }
 
   sched_param old{};
@@ -224,6 +241,7 @@ RealtimeSession::~RealtimeSession() {
     for (const pid_t tid : other_threads()) sched_setaffinity(tid, sizeof all, &all);
   }
   if (grant_.memory_locked) munlockall();
+  if (latency_fd_ >= 0) close(latency_fd_);
 }
 
 }  // namespace tacta

@@ -43,6 +43,7 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
     status.contacts_high_water = collision->contacts_high_water();
     status.proxy_slices = collision->proxy_slices();
     status.proxy_whole_refits = collision->proxy_whole_refits();
+    status.proxy_sliced = collision->proxy_sliced();
   }
   return status;
 }

@@ -83,6 +83,9 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   }
   EXPECT_LT(sliced.collision->proxy_whole_refits(), ticks / 20);
   EXPECT_EQ(whole.collision->proxy_slices(), 0u);
+  EXPECT_TRUE(sliced.collision->proxy_sliced());
+  EXPECT_FALSE(whole.collision->proxy_sliced());
+  EXPECT_EQ(whole.collision->proxy_whole_refits(), ticks);
 }
 
 TEST(ProxyRefit, SlicedTouchesTheEmbeddedLiverAsAWholeRefitDoes) {

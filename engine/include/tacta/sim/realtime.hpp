@@ -16,6 +16,10 @@ struct RealtimeOptions {
   int priority = 80;        // SCHED_FIFO priority, 1..99; 0: do not ask for SCHED_FIFO
   int cpu = -1;             // CPU the haptic thread is pinned to; -1: no pinning
   bool lock_memory = true;  // mlockall(MCL_CURRENT | MCL_FUTURE) for the run
+  // Hold the CPUs in shallow idle states for the run (a 0 us PM QoS request on
+  // /dev/cpu_dma_latency, as cyclictest makes): between ticks a deep idle state flushes the
+  // core's caches and wakes late, and the next tick's step pays for both.
+  bool shallow_idle = true;
   double spin_us = 50;      // the last microseconds before a deadline are spun, not slept
 };
 
@@ -27,6 +31,8 @@ struct RealtimeGrant {
   std::string scheduler_note;             // why SCHED_FIFO was not granted, and the fallback
   bool memory_locked = false;
   std::string memory_note;              // why mlockall failed, when it did
+  bool shallow_idle = false;            // the PM QoS request is held for the run
+  std::string idle_note;                // why it is not, when it is not
   int cpu = -1;                         // the haptic thread's CPU; -1: not pinned
   std::string cpu_note;                 // why pinning failed, when it did
   uint32_t helper_threads_lowered = 0;  // other threads moved to a lower priority (and off `cpu`)
@@ -72,6 +78,7 @@ class RealtimeSession {
     int tid, nice;  // a helper thread and its nice value before the run
   };
   std::vector<LoweredThread> lowered_;
+  int latency_fd_ = -1;  // /dev/cpu_dma_latency, open while the request holds
 };
 
 }  // namespace tacta

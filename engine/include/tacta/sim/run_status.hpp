@@ -37,6 +37,7 @@ struct RunStatus {
   uint32_t pairs_high_water = 0, contacts_high_water = 0;
   // The proxy's hierarchies: slices refit, whole refits (a margin past its cap, or not sliced).
   uint64_t proxy_slices = 0, proxy_whole_refits = 0;
+  bool proxy_sliced = false;  // the mode that ran: sliced, or every_tick (asked, or fallen back)
   size_t errors = 0, warnings = 0;  // kinds (who x bit) seen
   std::vector<std::string> lines;   // one per warning or error kind, for the console
 };
