@@ -121,6 +121,41 @@ TEST(RealtimeSession, PriorityZeroStaysOrdinary) {
   EXPECT_FALSE(session.grant().memory_locked);
 }
 
+// The PM QoS request: while the session holds it the kernel's effective CPU latency limit
+// (what reading /dev/cpu_dma_latency returns) is 0 us; after, the request is gone.
+TEST(RealtimeSession, HoldsCpusInShallowIdleStatesForTheRun) {
+  const auto effective_us = []() -> long {
+    std::ifstream in("/dev/cpu_dma_latency", std::ios::binary);
+    int32_t value = -1;
+    if (!in.read(reinterpret_cast<char*>(&value), sizeof value)) return -1;
+    return value;
+  };
+  RealtimeOptions options;
+  options.priority = 0;
+  options.lock_memory = false;
+  long before = -1;
+  {
+    RealtimeSession session(options);
+    const tacta::RealtimeGrant& g = session.grant();
+    if (!g.shallow_idle) {
+      EXPECT_NE(g.idle_note.find("/dev/cpu_dma_latency"), std::string::npos) << g.idle_note;
+      GTEST_SKIP() << g.idle_note;
+    }
+    EXPECT_TRUE(g.idle_note.empty());
+    before = effective_us();
+    if (before >= 0) {
+      EXPECT_EQ(before, 0);
+    }
+  }
+  if (before >= 0) {
+    EXPECT_GT(effective_us(), 0) << "the request outlived the session";
+  }
+  options.shallow_idle = false;
+  RealtimeSession off(options);
+  EXPECT_FALSE(off.grant().shallow_idle);
+  EXPECT_EQ(off.grant().idle_note, "not requested (clock.shallow_idle: false)");
+}
+
 TEST(RealtimeSession, ResidentMemoryIsRead) {
   const tacta::ResidentMemory m = tacta::resident_memory();
   EXPECT_GT(m.rss_kb, 0u);
