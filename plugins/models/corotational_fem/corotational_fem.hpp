@@ -177,6 +177,7 @@ class CorotationalFem {
     long polar_iterations = 0;
   };
   std::vector<WorkerTally> tallies_;
+  sparse::OwnedSplit colour_split_;  // a colour's batches, each worker its own share first
   sparse::RowTeam rows_;  // threaded row passes (none below kMinThreadedNodes or one worker)
 };
 

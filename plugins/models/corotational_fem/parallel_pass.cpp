@@ -19,12 +19,6 @@ constexpr uint32_t kMinParallelBatches = 16;
 // chunk taken is an atomic on a shared cache line).
 constexpr uint32_t kGrain = 8;
 
-struct PassJob {
-  CorotationalFem* model;
-  const uint32_t* batches;
-  const double* positions;
-  double scale;
-};
 }  // namespace
 
 void CorotationalFem::colour_batches() {
@@ -60,7 +54,7 @@ void CorotationalFem::colour_batches() {
   }
   colour_start_.push_back(static_cast<uint32_t>(colour_batches_.size()));
   tallies_.assign(host->worker_count, WorkerTally{});
-
+  colour_split_ = sparse::OwnedSplit(host);
 }
 
 uint32_t CorotationalFem::batched_pass(const double* positions, double scale) noexcept {
@@ -74,19 +68,16 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
   const tacta_host_services& host = *options_.host;
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
     const uint32_t count = colour_start_[c + 1] - colour_start_[c];
-    PassJob job{this, colour_batches_.data() + colour_start_[c], positions, scale};
-    const auto body = [](void* user, uint32_t begin, uint32_t end, uint32_t worker) {
-      const PassJob& j = *static_cast<const PassJob*>(user);
-      WorkerTally& tally = j.model->tallies_[worker];
+    const uint32_t* batches = colour_batches_.data() + colour_start_[c];
+    const auto run = [&](uint32_t begin, uint32_t end, uint32_t worker) {
+      WorkerTally& tally = tallies_[worker];
       for (uint32_t i = begin; i < end; ++i)
-        tally.bits |=
-            j.model->step_batch(j.batches[i], j.positions, j.scale, tally.polar_iterations);
+        tally.bits |= step_batch(batches[i], positions, scale, tally.polar_iterations);
     };
     if (count < kMinParallelBatches)
-      body(&job, 0, count, 0);
-    else
-      host.parallel_for(host.jobs, count, std::max(kGrain, count / (4 * host.worker_count)), body,
-                        &job);
+      run(0, count, 0);
+    else  // each worker its own share of the colour first: the same batches step after step
+      colour_split_.run(count, std::max(kGrain, count / (4 * host.worker_count)), run);
   }
   for (const WorkerTally& t : tallies_) {
     result |= t.bits;
