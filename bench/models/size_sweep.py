@@ -73,8 +73,12 @@ def read_rows(json_path):
     with open(json_path) as f:
         data = json.load(f)
     rows = {}
+    # The medians of the repetitions; with one repetition, the run itself.
+    medians = {b["run_name"] for b in data["benchmarks"] if b.get("aggregate_name") == "median"}
     for b in data["benchmarks"]:
-        if b.get("aggregate_name") != "median":
+        if b.get("aggregate_name") != "median" and (
+            b["run_name"] in medians or b.get("run_type") != "iteration"
+        ):
             continue
         m = NAME.match(b["run_name"])
         if not m:
