@@ -85,8 +85,10 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
       matrix_,
       sparse::SolverOptions{options_.solver, options_.preconditioner, options_.max_iterations,
                             options_.tolerance, options_.refactor_interval, options_.fallback,
-                            options_.restart_factor, options_.host});
-  rows_ = sparse::RowTeam(options_.host, node_count_, kMinThreadedNodes);
+                            options_.restart_factor,
+                            options_.threaded_solve ? options_.host : nullptr});
+  rows_ = sparse::RowTeam(options_.threaded_solve ? options_.host : nullptr, node_count_,
+                          kMinThreadedNodes);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 

@@ -58,10 +58,13 @@ struct Options {
   bool batch_elements = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
   // colour by colour (no two batches of a colour share a node), each colour in parallel, and
-  // from kMinThreadedNodes nodes the rest of the step too: the matrix's zeroing, its product
-  // with v, the mass and the held nodes, the rhs, the CG solve (block Jacobi or Jacobi) and the
-  // update of the state, on fixed row chunks (sparse::RowTeam).
+  // with threaded_solve, from kMinThreadedNodes nodes, the rest of the step too: the matrix's
+  // zeroing, its product with v, the mass and the held nodes, the rhs, the CG solve (block
+  // Jacobi or Jacobi) and the update of the state, on fixed row chunks (sparse::RowTeam).
   const tacta_host_services* host = nullptr;
+  // Off by default: on the 2-CPU VM it was measured on, it made a threaded step slower
+  // (docs/BENCHMARKS.md, threads).
+  bool threaded_solve = false;
 };
 
 struct StaticCounters {

@@ -34,7 +34,12 @@ class CorotationalFemPlugin {
       sparse::solver_param_specs({.max_iterations = 25, .tolerance = 1e-5}),
       sparse::static_param_specs("dynamic: implicit Euler steps; static: each step finds "
                                  "equilibrium under the current loads and held nodes (velocities "
-                                 "0)"));
+                                 "0)"),
+      std::array{sdk::bool_param("threaded_solve", false,
+                                 "with scene threads >= 2 and 384+ nodes: the row passes and the "
+                                 "(block) Jacobi CG on the engine's workers too, not only the "
+                                 "element pass (off: not yet faster on the 2-CPU VM measured, "
+                                 "docs/BENCHMARKS.md)")});
 
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);
@@ -45,6 +50,7 @@ class CorotationalFemPlugin {
     options.rotation = static_cast<RotationMethod>(params.choice("rotation"));
     sparse::read_solver_params(params, options);
     options.static_solve = sparse::read_static_params(params, options);
+    options.threaded_solve = params.flag("threaded_solve");
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),

@@ -1,6 +1,5 @@
 // hyperelastic plugin: descriptor, parameter schema and the SDK glue around HyperelasticModel.
 #include <array>
-#include <cstddef>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -109,9 +108,6 @@ class HyperelasticPlugin {
     options.mode =
         sparse::read_static_params(params, options) ? SolveMode::kStatic : SolveMode::kDynamic;
     sparse::read_solver_params(params, options.solver);
-    // The engine's workers for the CG solve (an older engine passes a shorter setup: none).
-    if (setup.struct_size >= offsetof(tacta_model_setup, host) + sizeof setup.host)
-      options.solver.host = setup.host;
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<HyperelasticModel>(
         *setup.mesh, material, std::span<const double>(setup.masses, n),

@@ -43,7 +43,7 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
                                              "max_iterations", "tolerance", "refactor_interval",
                                              "fallback", "restart_factor", "solve", "load_steps",
-                                             "static_iterations", "static_tolerance"}));
+                                             "static_iterations", "static_tolerance", "threaded_solve"}));
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
   ASSERT_NE(api.internal_forces, nullptr);

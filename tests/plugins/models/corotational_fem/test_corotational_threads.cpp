@@ -55,6 +55,7 @@ struct KickedBox {
                           bool* threaded = nullptr) const {
     Options options;
     options.host = host;
+    options.threaded_solve = true;
     auto model = make_model(mesh, material, options);
     if (threaded) *threaded = model->threaded();
     BodyState body(mesh);
@@ -227,6 +228,10 @@ TEST(ThreadedCorotational, EqualsSerialToRoundingAndRepeatsBitForBit) {
   EXPECT_LT(difference, 1e-8 * displacement) << difference << " of " << displacement;
   EXPECT_EQ(box.run(&two.services), on_two) << "two threads, twice";
   EXPECT_EQ(box.run(&three.services), on_two) << "two and three threads";
+  // Without threaded_solve (the default) only the element pass goes to the workers.
+  Options colours_only;
+  colours_only.host = &two.services;
+  EXPECT_FALSE(make_model(box.mesh, box.material, colours_only)->threaded());
 }
 
 TEST(ThreadedCorotational, StepsWithoutAllocating) {
@@ -235,6 +240,7 @@ TEST(ThreadedCorotational, StepsWithoutAllocating) {
   Host two(2);
   Options options;
   options.host = &two.services;
+  options.threaded_solve = true;
   auto model = make_model(box.mesh, box.material, options);
   ASSERT_TRUE(model->threaded());
   BodyState body(box.mesh);
