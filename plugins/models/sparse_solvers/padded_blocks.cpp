@@ -8,6 +8,28 @@
 
 namespace tacta::models::sparse {
 
+namespace {
+
+// A stored block's three rows, each padded to 4 lanes.
+inline void load_block(const double* b, Lanes4& b0, Lanes4& b1, Lanes4& b2) {
+  std::memcpy(&b0, b, sizeof b0);
+  std::memcpy(&b1, b + 4, sizeof b1);
+  std::memcpy(&b2, b + 8, sizeof b2);
+}
+
+// The direction at padded offset j: x_j, or with CG's update fused in, z_j + beta x_j.
+// (Vectors by reference: by value they would change the calling convention without AVX.)
+inline void direction_at(const double* x, const double* z, const Lanes4& beta4, size_t j,
+                         Lanes4& out) {
+  std::memcpy(&out, x + j, sizeof out);
+  if (z == nullptr) return;
+  Lanes4 zj;
+  std::memcpy(&zj, z + j, sizeof zj);
+  out = zj + beta4 * out;
+}
+
+}  // namespace
+
 PaddedBlocks::PaddedBlocks(const BlockSparseMatrix& pattern)
     : node_count_(pattern.node_count()),
       row_starts_(pattern.row_starts().begin(), pattern.row_starts().end()),
@@ -42,35 +64,17 @@ TACTA_HOT_PATH double PaddedBlocks::multiply_rows(const double* __restrict x, do
     // The lower blocks (j, i) of row i are stored as (j, i): their transposes times q_j, 4-wide.
     Lanes4 lower = TACTA_SPLAT4(0.0);
     for (uint32_t m = lower_starts_[i]; m < lower_starts_[i + 1]; ++m) {
-      const double* b = v + 12 * size_t{lower_blocks_[m]};
-      const size_t j = 4 * size_t{lower_rows_[m]};
       Lanes4 b0, b1, b2, qj;
-      std::memcpy(&b0, b, sizeof b0);
-      std::memcpy(&b1, b + 4, sizeof b1);
-      std::memcpy(&b2, b + 8, sizeof b2);
-      std::memcpy(&qj, x + j, sizeof qj);
-      if (z != nullptr) {
-        Lanes4 zj;
-        std::memcpy(&zj, z + j, sizeof zj);
-        qj = zj + beta4 * qj;
-      }
+      load_block(v + 12 * size_t{lower_blocks_[m]}, b0, b1, b2);
+      direction_at(x, z, beta4, 4 * size_t{lower_rows_[m]}, qj);
       lower += TACTA_SPLAT4(qj[0]) * b0 + TACTA_SPLAT4(qj[1]) * b1 + TACTA_SPLAT4(qj[2]) * b2;
     }
     // The upper blocks, diagonal first: acc_r holds row r of each block times q_j, by lane.
     Lanes4 acc0 = TACTA_SPLAT4(0.0), acc1 = acc0, acc2 = acc0;
     for (uint32_t k = row_starts_[i]; k < row_starts_[i + 1]; ++k) {
-      const double* b = v + 12 * size_t{k};
-      const size_t j = 4 * size_t{columns_[k]};
       Lanes4 b0, b1, b2, qj;
-      std::memcpy(&b0, b, sizeof b0);
-      std::memcpy(&b1, b + 4, sizeof b1);
-      std::memcpy(&b2, b + 8, sizeof b2);
-      std::memcpy(&qj, x + j, sizeof qj);
-      if (z != nullptr) {
-        Lanes4 zj;
-        std::memcpy(&zj, z + j, sizeof zj);
-        qj = zj + beta4 * qj;
-      }
+      load_block(v + 12 * size_t{k}, b0, b1, b2);
+      direction_at(x, z, beta4, 4 * size_t{columns_[k]}, qj);
       acc0 += b0 * qj;
       acc1 += b1 * qj;
       acc2 += b2 * qj;
