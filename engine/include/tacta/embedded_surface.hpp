@@ -22,12 +22,13 @@ struct EmbeddedSurface {
   std::vector<double> rest_positions;  // 3 per vertex, m (as given, after scale and translate)
   std::vector<uint32_t> tet;           // 1 per vertex: the tet it follows
   std::vector<uint32_t> nodes;         // 4 per vertex: that tet's nodes
-  std::vector<double> weights;    // 4 per vertex: barycentric in that tet (sum 1; some < 0 outside)
+  std::vector<double> weights;  // 4 per vertex: barycentric in that tet (sum 1; some < 0 outside)
   // 3 per vertex, m: deformed, as of the last update_embedded_surface; while a run's haptic
   // proxy keeps it (collision.proxy_refit: sliced) only the vertices near its queries are current
   // between frames: interpolate from the nodes (interpolate_to_surface) for the whole surface.
   std::vector<double> positions;
-  std::vector<double> normals;  // 3 per vertex: unit, area-weighted, at the last update_embedded_surface
+  std::vector<double>
+      normals;  // 3 per vertex: unit, area-weighted, at the last update_embedded_surface
   size_t extrapolated_vertices = 0;  // vertices outside every tet, bound to the nearest one
   std::string source;                // file it came from, for messages
   size_t vertex_count() const { return rest_positions.size() / 3; }
@@ -43,6 +44,16 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
 // The runtime surface of a mesh that carries an Embedding (voxelised or given `surface:`), at
 // rest: positions and normals filled. Throws InputError when the embedding does not fit the mesh.
 EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh);
+
+// Vertex v's value interpolated from node values (3 per node) into out[0..2].
+inline void interpolate_vertex(const EmbeddedSurface& s, size_t v, const double* node_values,
+                               double* out) noexcept {
+  const uint32_t* n = &s.nodes[4 * v];
+  const double* w = &s.weights[4 * v];
+  for (size_t a = 0; a < 3; ++a)
+    out[a] = w[0] * node_values[3 * n[0] + a] + w[1] * node_values[3 * n[1] + a] +
+             w[2] * node_values[3 * n[2] + a] + w[3] * node_values[3 * n[3] + a];
+}
 
 // Surface values interpolated from node values (3 per node, e.g. positions or velocities) into
 // `out` (3 per surface vertex). No allocation.

@@ -225,13 +225,7 @@ EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh) {
 void interpolate_to_surface(const EmbeddedSurface& s, const double* node_values,
                             double* out) noexcept {
   const size_t count = s.vertex_count();
-  for (size_t v = 0; v < count; ++v) {
-    const uint32_t* n = &s.nodes[4 * v];
-    const double* w = &s.weights[4 * v];
-    for (size_t a = 0; a < 3; ++a)
-      out[3 * v + a] = w[0] * node_values[3 * n[0] + a] + w[1] * node_values[3 * n[1] + a] +
-                       w[2] * node_values[3 * n[2] + a] + w[3] * node_values[3 * n[3] + a];
-  }
+  for (size_t v = 0; v < count; ++v) interpolate_vertex(s, v, node_values, out + 3 * v);
 }
 
 void update_embedded_surface(EmbeddedSurface& s, const double* node_positions) noexcept {

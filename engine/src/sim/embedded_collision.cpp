@@ -66,16 +66,8 @@ void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint
       const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
       if (fresh_at_[v] == pass) continue;
       fresh_at_[v] = pass;
-      const uint32_t* n = &s.nodes[4 * size_t{v}];
-      const double* w = &s.weights[4 * size_t{v}];
-      const auto at = [&](const std::vector<double>& values, size_t a) {
-        return w[0] * values[3 * n[0] + a] + w[1] * values[3 * n[1] + a] +
-               w[2] * values[3 * n[2] + a] + w[3] * values[3 * n[3] + a];
-      };
-      for (size_t a = 0; a < 3; ++a) {
-        b.surface.mesh->positions[3 * size_t{v} + a] = at(b.nodes.positions, a);
-        start_[3 * size_t{v} + a] = at(b.nodes.step_start, a);
-      }
+      interpolate_vertex(s, v, b.nodes.positions.data(), &b.surface.mesh->positions[3 * size_t{v}]);
+      interpolate_vertex(s, v, b.nodes.step_start.data(), &start_[3 * size_t{v}]);
     }
 }
 
