@@ -11,8 +11,11 @@ Usage: sofa_cantilever_check.py --tacta BIN --scene SCENE --out DIR [--model YAM
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
+
+from validation_row import row as validation_row
 
 ANALYTIC_SAG = 0.03237 + 0.00038  # m
 DIRECT = "{name: corotational_fem, solver: cholesky}"
@@ -44,13 +47,23 @@ def main():
     fraction = reference / ANALYTIC_SAG
     print(f"direct solve ({DIRECT}): tip sag {reference:.6f} m = {100 * fraction:.1f}% of the analytic static "
           f"{ANALYTIC_SAG:.5f} m (band {a.min_fraction}-{a.max_fraction})")
-    ok = ok and code == 0 and a.min_fraction <= fraction <= a.max_fraction
+    passed = code == 0 and a.min_fraction <= fraction <= a.max_fraction
+    validation_row("sofa_cantilever.direct_vs_analytic",
+                   f"analytic static tip sag {ANALYTIC_SAG:.5f} m (Euler-Bernoulli + Timoshenko shear)",
+                   f"{100 * a.min_fraction:.0f} to {100 * a.max_fraction:.0f} % of it (linear tets lock)",
+                   f"{reference:.6f} m = {100 * fraction:.1f} %", passed, "regression")
+    ok = ok and passed
     for i, model in enumerate(a.model):
         sag, code = tip_sag(a.tacta, a.scene, os.path.join(a.out, f"model_{i}"), model)
         off = abs(sag - reference) / reference
         print(f"{model}: tip sag {sag:.6f} m, {100 * off:.3f}% from the direct solve (limit {100 * a.tolerance}%)"
               f"{'' if code == 0 else ', the run faulted'}")
-        ok = ok and code == 0 and off <= a.tolerance
+        passed = code == 0 and off <= a.tolerance
+        label = re.sub(r"[^A-Za-z0-9_.+-]+", "_", re.sub(r"\w+:\s*", "", model)).strip("_")
+        validation_row(f"sofa_cantilever.{label}_vs_direct", f"direct solve tip sag {reference:.6f} m",
+                       f"<= {100 * a.tolerance:g} %", f"{sag:.6f} m ({100 * off:.3f} %)"
+                       f"{'' if code == 0 else ', faulted'}", passed)
+        ok = ok and passed
     return 0 if ok else 1
 
 
