@@ -33,7 +33,7 @@ const std::map<std::string, std::vector<std::string>> kHands = {
     {"firm", {"devices.*.params.hand_damping=11"}},
     {"light", {"devices.*.params.hand_damping=1"}},
 };
-constexpr double kOmniUsableStiffness = 1000.0;  // N/m at 1 kHz (/work/shared/data/README.md)
+constexpr double kOmniUsableStiffness = 1000.0;  // N/m at 1 kHz (docs/REFERENCES.md)
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;

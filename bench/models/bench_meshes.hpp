@@ -1,5 +1,5 @@
 // Meshes for the model benchmarks: clamped boxes of about 500 to 50k tets, and SOFA's beams
-// scene (four 5x5x20-node beams, 7,296 tets, 2,000 nodes; data in /work/shared/data/README.md).
+// scene (four 5x5x20-node beams, 7,296 tets, 2,000 nodes; numbers in docs/REFERENCES.md).
 #pragma once
 
 #include <array>

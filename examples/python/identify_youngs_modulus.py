@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Identify a beam's Young's modulus from a measured tip deflection.
 
-The "measurement" is SOFA's cantilever validation reference (/work/shared/data/README.md): a
+The "measurement" is SOFA's cantilever validation reference (docs/REFERENCES.md): a
 0.02 x 0.02 x 0.2 m beam, rho 1100 kg/m^3, nu 0.45, clamped at z = 0 and sagging under gravity,
 with a static tip deflection of 0.03237 m (Euler-Bernoulli) + 0.00038 m (shear) = 0.03275 m for
 E = 2 MPa. We search the E for which Tacta's static corotational FEM sags by that much: SciPy's

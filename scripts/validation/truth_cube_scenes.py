@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes scenes/validation/truth_cube_<strain>.yaml from the Truth Cube bead data.
 
-The setup of OpenSurgSim's comparison (/work/shared/data/README.md): an 80 mm cube, E 15.3 kPa,
+The setup of OpenSurgSim's comparison (docs/REFERENCES.md): an 80 mm cube, E 15.3 kPa,
 nu 0.499, rho 980 kg/m^3, no gravity, bottom face held, top face moved down by 4 mm (5 %) or
 10 mm (12.5 %), static equilibrium. Coordinates are the data's (metres here), +z down; the cube
 is centred on the centroid of the beads at rest. One probe per bead at its rest position.

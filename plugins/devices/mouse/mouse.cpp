@@ -4,7 +4,7 @@
 // force written to the device acts on the same mass, so the rendered force pushes back on the
 // motion (closed loop): pressing into a body, the stylus stops near its surface like a hand
 // that meets resistance. Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
-// about 1 N/mm usable stiffness at 1 kHz; numbers from /work/shared/data/README.md).
+// about 1 N/mm usable stiffness at 1 kHz; numbers in docs/REFERENCES.md).
 //
 // Each instance keeps its own target: the host feeds it through Simulation::device_input, which
 // calls input() with the instance the simulation owns. input() with a NULL instance is ignored.

@@ -143,7 +143,7 @@ class ReplayDevice {
 
   tacta_device_capabilities compute_capabilities() const {
     // A replay has no hardware: it reports the box its samples span and the Omni-class force
-    // numbers (peak 3.3 N, /work/shared/data/README.md) so the engine limits forces the same way.
+    // numbers (peak 3.3 N, docs/REFERENCES.md) so the engine limits forces the same way.
     tacta_device_capabilities c{};
     for (int i = 0; i < 3; ++i) {
       c.workspace_min[i] = c.workspace_max[i] = samples_.front().position[i];

@@ -7,7 +7,7 @@
 // written force held (zero-order hold, as a real amplifier), semi-implicit Euler in sub-steps
 // short enough for the hand spring. Device numbers (workspace about 160 x 120 x 70 mm, peak
 // 3.3 N, continuous about 0.88 N, usable stiffness about 1 N/mm at 1 kHz) from
-// /work/shared/data/README.md; hand mass, stiffness and damping defaults are modelling
+// docs/REFERENCES.md; hand mass, stiffness and damping defaults are modelling
 // assumptions (the damping is critical for the default mass and stiffness).
 #include <algorithm>
 #include <array>

@@ -2,7 +2,7 @@
 // out views. Every access through a handle checks its generation first: a destroyed entity, or an
 // old handle to a recycled slot, is reported (valid() false, get() throws std::out_of_range
 // naming the index and both generations, try_get() returns nullptr) instead of reaching another
-// entity's data. Not thread-safe: the haptic task owns the registry (DESIGN.md).
+// entity's data. Not thread-safe: the haptic task owns the registry (docs/ARCHITECTURE.md).
 #pragma once
 
 #include <atomic>

@@ -1,5 +1,5 @@
 // The Phantom Omni class device that the simulated devices (sim_stylus, mouse) stand in for:
-// its numbers (../shared/data/README.md: workspace about 160 x 120 x 70 mm, peak force 3.3 N,
+// its numbers (docs/REFERENCES.md: workspace about 160 x 120 x 70 mm, peak force 3.3 N,
 // continuous about 0.88 N, usable stiffness about 1 N/mm at 1 kHz), its force saturation and
 // its capabilities record.
 #pragma once
