@@ -116,6 +116,12 @@ BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material
   body_->m_cfg.piterations = options.position_iterations;
   body_->m_cfg.kDP = std::clamp(1.0 - std::exp(-alpha_ * dt), 0.0, 1.0);
   body_->m_cfg.collisions = 0;  // no colliders here: contact reaches us as external forces
+  // Bullet computes its runtime constants, the links' rest lengths among them, at the first
+  // predictMotion from the nodes' positions *then*, which step() has just overwritten with the
+  // state's: a body whose first step started deformed took that shape as its rest (a 1 % stretch
+  // gave 0 N, `tacta check-plugin`). Computed here, from the rest positions, and not again.
+  body_->updateConstants();
+  body_->m_bUpdateRtCst = false;
   w.world.addSoftBody(body_);
 }
 

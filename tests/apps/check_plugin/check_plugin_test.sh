@@ -2,6 +2,10 @@
 # `tacta check-plugin` as a plugin author runs it. Usage:
 #   check_plugin_test.sh TACTA passes PLUGIN            every check passes or is skipped (exit 0)
 #   check_plugin_test.sh TACTA broken BROKEN_SO         exit 1, the broken checks named
+#   check_plugin_test.sh TACTA fails_exactly PLUGIN 'CHECK|CHECK...'
+#                                                       exit 1, and the failing checks are exactly
+#                                                       these (a check a sanitizer build skips is
+#                                                       dropped from the set)
 #   check_plugin_test.sh TACTA bad_input DEVICE_NAME    exit 2 for an unknown name, a missing file,
 #                                                       a plugin of another kind
 set -u
@@ -39,6 +43,18 @@ case $mode in
       expect '^  FAIL  no allocation in step: [1-9][0-9]* heap allocations'
     fi
     expect '^  PASS  parameter schema'
+    ;;
+  fails_exactly)
+    expected=$(printf '%s\n' "${4:-}" | tr '|' '\n' | sed '/^$/d' | sort)
+    "$tacta" check-plugin "$plugin" >"$out" 2>&1
+    rc=$?
+    skipped=$(sed -n 's/^  SKIP  \([^:]*\):.*/\1/p' "$out" | sort)
+    expected=$(comm -23 <(printf '%s\n' "$expected") <(printf '%s\n' "$skipped") | sed '/^$/d')
+    failed=$(sed -n 's/^  FAIL  \([^:]*\):.*/\1/p' "$out" | sort)
+    [ "$failed" = "$expected" ] || fail "failing checks: [${failed//$'\n'/, }], expected [${expected//$'\n'/, }]"
+    want_rc=1
+    [ -z "$expected" ] && want_rc=0
+    [ "$rc" -eq "$want_rc" ] || fail "tacta check-plugin $plugin exited $rc, expected $want_rc"
     ;;
   bad_input)
     run 2 "${plugin}_typo"
