@@ -63,14 +63,14 @@ uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks) {
       if (phase == 0) exchange(holder, pd);
       chunk = std::min(chunk, pd.every_ticks - phase);
     }
-    uint64_t ran = 0;
+    StepResult ran;
     {
       py::gil_scoped_release released;
       ran = sim.step(chunk);
     }
-    holder.last_status.merge(sim.step_status());
-    done += ran;
-    if (ran < chunk) break;  // the run ended (every device finished)
+    holder.last_status.merge(ran.status);
+    done += ran.ticks;
+    if (ran.ticks < chunk) break;  // the run ended (every device finished)
   }
   return done;
 }

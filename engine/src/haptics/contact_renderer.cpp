@@ -46,15 +46,26 @@ double ContactRenderer::onset_budget(const Vec3& stretch) noexcept {
 ContactRendering ContactRenderer::tick(const SurfaceQuery& world, double time,
                                        const Vec3& device_position, const Vec3& device_velocity,
                                        double dt) noexcept {
+  move_proxy(world, device_position, device_velocity);
+  return couple(time, device_position, device_velocity, dt);
+}
+
+void ContactRenderer::move_proxy(const SurfaceQuery& world, const Vec3& device_position,
+                                 const Vec3& device_velocity) noexcept {
+  sample_finite_ = is_finite(device_position) && is_finite(device_velocity);
+  if (sample_finite_) proxy_.update(world, device_position, device_velocity);
+}
+
+ContactRendering ContactRenderer::couple(double time, const Vec3& device_position,
+                                         const Vec3& device_velocity, double dt) noexcept {
   ContactRendering out;
-  if (!is_finite(device_position) || !is_finite(device_velocity)) {
+  if (!sample_finite_) {
     ++stats_.non_finite_forces;  // a bad sample: zero force this tick
     passivity_.record_sent(out.device_force);
     last_sent_ = out.device_force;
     update_stats(time, 0.0);
     return out;
   }
-  proxy_.update(world, device_position, device_velocity);
   out.in_contact = proxy_.in_contact();
   Vec3 desired{0.0, 0.0, 0.0};
   if (out.in_contact) {

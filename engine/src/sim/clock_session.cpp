@@ -85,8 +85,8 @@ ClockSession::ClockSession(World& world, HapticInteraction* haptics, CollisionRe
       loop_(world, snapshots_, 0, 0.0),
       render_(snapshots_, scene_static_),
       surface_feed_(make_device_surface_feed(world)) {
-  if (haptics != nullptr) loop_.add_interaction(haptics);
-  if (response != nullptr) loop_.add_interaction(response);
+  loop_.set_haptics(haptics);
+  loop_.set_response(response);
   if (surface_feed_) attach(surface_feed_.get());
 }
 

@@ -407,7 +407,7 @@ void CollisionContext::refit(double time, double dt) noexcept {
   for (auto& e : embedded_)
     if (e) e->refresh(proxy_pass_);
   for (auto& inst : instances_)
-    if (inst->api.update != nullptr) inst->api.update(inst->instance, &view_);
+    if (inst->api.update != nullptr) raised_bits_ |= inst->api.update(inst->instance, &view_);
   for (size_t k = 0; k < freshness_.size(); ++k)
     freshness_[k].reset(
         world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data());

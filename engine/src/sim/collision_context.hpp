@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tacta/collision_api.h"
@@ -73,6 +74,9 @@ class CollisionContext {
   // that brought embedded vertices up to date for them; for the tick breakdown.
   double query_ms() const noexcept { return query_ms_; }
   double patch_ms() const noexcept { return patch_ms_; }
+  // TACTA_COLLIDE_* bits the plugins returned outside detect_and_respond (hierarchy updates,
+  // slice refits, the proxy's patch queries) since the last call; clears them.
+  uint32_t take_bits() noexcept { return std::exchange(raised_bits_, 0u); }
   // Whole refits the proxy path made (every tick when not sliced; when sliced, the first and
   // any whose margin passed its cap), and slices refit, since load.
   uint64_t proxy_whole_refits() const noexcept { return proxy_whole_refits_; }
@@ -133,6 +137,7 @@ class CollisionContext {
   const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
   uint64_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
   double query_ms_ = 0, patch_ms_ = 0;
+  uint32_t raised_bits_ = 0;  // see take_bits()
   uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;
   std::vector<int> body_of_surface_;
   std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)

@@ -52,9 +52,10 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
         if (count == 0) break;
         if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
           e->refresh_triangles(order + first, count, proxy_pass_);
-        if (slicer_->update_elements(slicer_->instance, &view_, k, first, count) &
-            TACTA_COLLIDE_UNPREPARED)
-          whole = true;
+        // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
+        const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
+        raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};
+        if (bits & TACTA_COLLIDE_UNPREPARED) whole = true;
         ++proxy_slices_;
         if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
       }
@@ -93,8 +94,9 @@ void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec
   box.pose_end = box.pose_start;
   const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
   uint32_t count = 0;
-  proxy->api.overlap_shape(proxy->instance, &view_, &box, surface, patch_triangles_.data(),
-                           static_cast<uint32_t>(patch_triangles_.size()), &count);
+  raised_bits_ |=
+      proxy->api.overlap_shape(proxy->instance, &view_, &box, surface, patch_triangles_.data(),
+                               static_cast<uint32_t>(patch_triangles_.size()), &count);
   e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
   patch_ms_ +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -34,25 +34,12 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
   }
 }
 
-void HapticInteraction::before_step(World& world, double time, double dt) noexcept {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  collision_.refit_for_proxy(time, dt);
-  const auto refitted = Clock::now();
-  render_devices(world, time, dt);
-  // The queries' time includes the embedded vertices they brought up to date (the patch).
-  const double refit_ms = std::chrono::duration<double, std::milli>(refitted - start).count();
-  const double render_ms =
-      std::chrono::duration<double, std::milli>(Clock::now() - refitted).count();
-  parts_.surface_update = refit_ms + collision_.patch_ms();
-  parts_.proxy_query = collision_.query_ms() - collision_.patch_ms();
-  parts_.coupling = render_ms - collision_.query_ms();
-}
-
-void HapticInteraction::render_devices(World& world, double time, double dt) noexcept {
+void HapticInteraction::update_tools(World& world) noexcept {
+  tools_start_ = std::chrono::steady_clock::now();
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot slot = world.device(d);
     Channel& ch = channels_[d];
+    ch.rendering = false;
     if (const Tool& t = world.tool(d); t.revision != ch.tool_revision) {
       // A new tool: the proxy takes its radius and starts afresh where the device is, as after a
       // reconnection (no stored stretch is carried across the change).
@@ -60,12 +47,12 @@ void HapticInteraction::render_devices(World& world, double time, double dt) noe
       ch.started = false;
       ch.tool_revision = t.revision;
     }
-    const Vec3 device{slot.link.sample.position[0], slot.link.sample.position[1],
-                      slot.link.sample.position[2]};
-    const Vec3 velocity{slot.link.sample.velocity[0], slot.link.sample.velocity[1],
-                        slot.link.sample.velocity[2]};
+    ch.device = {slot.link.sample.position[0], slot.link.sample.position[1],
+                 slot.link.sample.position[2]};
+    ch.velocity = {slot.link.sample.velocity[0], slot.link.sample.velocity[1],
+                   slot.link.sample.velocity[2]};
     if (!ch.started) {
-      ch.renderer.reset(device);
+      ch.renderer.reset(ch.device);
       ch.started = true;
       // The tool starts where the proxy does: from the default origin, its first sweep would cut
       // through whatever lies between (contacts tens of mm deep for the collision response).
@@ -82,14 +69,38 @@ void HapticInteraction::render_devices(World& world, double time, double dt) noe
           false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
       continue;
     }
+    ch.rendering = true;
     tacta_collision_shape& tool = collision_.tool(d);
     for (int a = 0; a < 3; ++a)
       tool.pose_start.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
     prepare_local_model(world, ch, slot);
-    const haptics::ContactRendering out = ch.renderer.tick(
-        collision_.surface_query(slot.contact.touched_body), time, device, velocity, dt);
+  }
+}
+
+void HapticInteraction::refit_surfaces(double time, double dt) noexcept {
+  refit_start_ = std::chrono::steady_clock::now();
+  collision_.refit_for_proxy(time, dt);
+  refit_end_ = std::chrono::steady_clock::now();
+}
+
+void HapticInteraction::move_proxies(World& world) noexcept {
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    Channel& ch = channels_[d];
+    if (!ch.rendering) continue;
+    ch.renderer.move_proxy(collision_.surface_query(world.device(d).contact.touched_body),
+                           ch.device, ch.velocity);
+  }
+}
+
+void HapticInteraction::couple(World& world, double time, double dt) noexcept {
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    Channel& ch = channels_[d];
+    if (!ch.rendering) continue;
+    const DeviceSlot slot = world.device(d);
+    const haptics::ContactRendering out = ch.renderer.couple(time, ch.device, ch.velocity, dt);
     follow_local_model(world, ch, out, dt);
     slot.contact.proxy = ch.renderer.proxy().position();
+    tacta_collision_shape& tool = collision_.tool(d);
     for (int a = 0; a < 3; ++a)
       tool.pose_end.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
     slot.contact.force = out.device_force;
@@ -101,6 +112,16 @@ void HapticInteraction::render_devices(World& world, double time, double dt) noe
     slot.stats.first_contact_time_s = st.first_contact_time;
     if (out.in_contact) apply_reaction(world, out.contact, out.body_reaction);
   }
+  collision_bits_ = collision_.take_bits();
+  // The queries' time includes the embedded vertices they brought up to date (the patch).
+  const auto ms = [](auto a, auto b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const double render_ms =
+      ms(tools_start_, refit_start_) + ms(refit_end_, std::chrono::steady_clock::now());
+  parts_.surface_update = ms(refit_start_, refit_end_) + collision_.patch_ms();
+  parts_.proxy_query = collision_.query_ms() - collision_.patch_ms();
+  parts_.coupling = render_ms - collision_.query_ms();
 }
 
 namespace {
@@ -238,8 +259,6 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch,
   }
 }
 
-void HapticInteraction::after_step(World&, double, double) noexcept {}
-
 void HapticInteraction::after_write(World& world) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceSlot slot = world.device(d);
@@ -248,10 +267,11 @@ void HapticInteraction::after_write(World& world) noexcept {
   }
 }
 
-void CollisionResponse::after_step(World&, double time, double dt) noexcept {
-  tick_bits_ = collision_.detect_and_respond(time, dt);
-  bits_ |= tick_bits_;
+uint32_t CollisionResponse::respond(double time, double dt) noexcept {
+  const uint32_t bits = collision_.detect_and_respond(time, dt) | collision_.take_bits();
+  bits_ |= bits;
   contacts_total_ += collision_.contact_count();
+  return bits;
 }
 
 }  // namespace tacta

@@ -1,26 +1,45 @@
-// Haptic rendering between each device and the bodies, run before the bodies step:
-// proxy (god-object) on the touched surface -> first-contact shaping -> virtual coupling ->
-// passivity controller -> force limit. The device gets F; the body gets -F on the touched
-// triangle's nodes by barycentric weights (Newton's third law), and the collision layer sees the
-// tool as a sphere at the proxy.
+// Haptic rendering between each device and the bodies, run before the bodies step, as four
+// named stages of the tick (HapticLoop::tick calls them in this order): tool update, refit of
+// the touched surfaces' hierarchies, proxy (god-object) query, coupling (first-contact shaping ->
+// virtual coupling -> passivity controller -> force limit). The device gets F; the body gets -F
+// on the touched triangle's nodes by barycentric weights (Newton's third law), and the collision
+// layer sees the tool as a sphere at the proxy.
 #pragma once
 
+#include <chrono>
 #include <vector>
 
 #include "collision_context.hpp"
-#include "haptic_loop.hpp"
 #include "tacta/haptics/contact_renderer.hpp"
+#include "world.hpp"
 
 namespace tacta {
 
-class HapticInteraction final : public Interaction {
+// The haptic stage's parts in one tick, ms: bringing the touched surfaces up to date for the
+// proxy (hierarchy refit, embedded vertices), the proxy's queries, and the rest (tool update,
+// coupling, passivity, limits, the reaction on the body).
+struct HapticParts {
+  double surface_update = 0, proxy_query = 0, coupling = 0;
+};
+
+class HapticInteraction {
  public:
   HapticInteraction(World& world, CollisionContext& collision);
-  void before_step(World& world, double time, double dt) noexcept override;
-  void after_step(World& world, double time, double dt) noexcept override;
+  // Tool update: a changed tool restarts its proxy; a device gone (or whose body went) renders
+  // nothing; the tool's swept shape starts at the proxy; a body on its own thread hands its
+  // latest state to the channel's local contact model.
+  void update_tools(World& world) noexcept;
+  // Refit: the touched surfaces' hierarchies brought up to date for the proxies' queries.
+  void refit_surfaces(double time, double dt) noexcept;
+  // Proxy: each rendering device's proxy follows it against the surfaces.
+  void move_proxies(World& world) noexcept;
+  // Coupling: each device's force, and its reaction on the touched body's nodes.
+  void couple(World& world, double time, double dt) noexcept;
   // The renderer's energy observers integrate the force each device really held.
-  void after_write(World& world) noexcept override;
-  const HapticParts* haptic_parts() const noexcept override { return &parts_; }
+  void after_write(World& world) noexcept;
+  const HapticParts& parts() const noexcept { return parts_; }
+  // TACTA_COLLIDE_* bits the collision plugins returned to this tick's refit and queries.
+  uint32_t collision_bits() const noexcept { return collision_bits_; }
 
  private:
   // What a channel keeps to render a body on its own thread through its local contact model
@@ -47,9 +66,10 @@ class HapticInteraction final : public Interaction {
     bool started = false;
     LocalModel local;
     uint32_t tool_revision = 0;  // the device's Tool::revision this channel renders
+    bool rendering = false;      // this tick: connected, with a body to touch
+    Vec3 device{0, 0, 0};        // m, this tick's sample
+    Vec3 velocity{0, 0, 0};      // m/s
   };
-  // Each device's proxy, coupling and reaction for this tick.
-  void render_devices(World& world, double time, double dt) noexcept;
   void apply_reaction(World& world, const haptics::SurfaceHit& hit,
                       const Vec3& force_on_body) noexcept;
   // Before the renderer's tick: take in a refresh of the worker body, set the local model.
@@ -60,22 +80,23 @@ class HapticInteraction final : public Interaction {
   CollisionContext& collision_;
   std::vector<Channel> channels_;
   HapticParts parts_;
+  uint32_t collision_bits_ = 0;
+  std::chrono::steady_clock::time_point tools_start_, refit_start_, refit_end_;
 };
 
 // Contact response after the bodies step (bodies against obstacles, the tool, each other).
-class CollisionResponse final : public Interaction {
+class CollisionResponse final {
  public:
   explicit CollisionResponse(CollisionContext& collision) : collision_(collision) {}
-  void before_step(World&, double, double) noexcept override { tick_bits_ = 0; }
-  void after_step(World& world, double time, double dt) noexcept override;
-  uint32_t collision_bits() const noexcept override { return tick_bits_; }
+  // Contact response: detection and response rounds over the stepped bodies; returns this
+  // tick's TACTA_COLLIDE_* bits (those of the hierarchies' updates included).
+  uint32_t respond(double time, double dt) noexcept;
   uint32_t bits() const noexcept { return bits_; }  // every tick's, ORed
   uint64_t contacts_total() const noexcept { return contacts_total_; }
 
  private:
   CollisionContext& collision_;
   uint32_t bits_ = 0;
-  uint32_t tick_bits_ = 0;
   uint64_t contacts_total_ = 0;
 };
 

@@ -97,27 +97,26 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   read_devices(world_, *this, time);
   const auto read_done = Clock::now();
   start_contact_sums(world_);
-  for (Interaction* interaction : interactions_) {
-    interaction->before_step(world_, time, dt);
-    if (const HapticParts* parts = interaction->haptic_parts()) {
-      haptic_parts_[kSurfaceUpdate].record(parts->surface_update);
-      haptic_parts_[kProxyQuery].record(parts->proxy_query);
-      haptic_parts_[kCoupling].record(parts->coupling);
-    }
+  if (haptics_ != nullptr) {
+    haptics_->update_tools(world_);
+    haptics_->refit_surfaces(time, dt);
+    haptics_->move_proxies(world_);
+    haptics_->couple(world_, time, dt);
+    const HapticParts& parts = haptics_->parts();
+    haptic_parts_[kSurfaceUpdate].record(parts.surface_update);
+    haptic_parts_[kProxyQuery].record(parts.proxy_query);
+    haptic_parts_[kCoupling].record(parts.coupling);
+    last_status_.collision_bits |= haptics_->collision_bits();
   }
   const auto haptics_done = Clock::now();
   const bool healthy = step_bodies(world_, workers_, *this, time, dt);
   const auto models_done = Clock::now();
-  if (healthy)
-    for (Interaction* interaction : interactions_) {
-      interaction->after_step(world_, time, dt);
-      last_status_.collision_bits |= interaction->collision_bits();
-    }
+  if (healthy && response_ != nullptr) last_status_.collision_bits |= response_->respond(time, dt);
   collision_status_.add(last_status_.collision_bits, time);
   const auto response_done = Clock::now();
   // A fault anywhere this tick: no device renders a force from a state that cannot be trusted.
   write_devices(world_, *this, time + dt, time, !healthy, device_log_.get());
-  for (Interaction* interaction : interactions_) interaction->after_write(world_);
+  if (haptics_ != nullptr) haptics_->after_write(world_);
   record(time + dt);
   const auto end = Clock::now();
   stages_[kDeviceRead].record(ms(start, read_done));

@@ -1,6 +1,6 @@
-// The 1 kHz task: device read, interaction (proxy, coupling, contact forces), model step for
-// every body, fault handling, device write, records. Runs on the haptic thread; allocates
-// nothing, takes no lock, throws nothing.
+// The 1 kHz task, its stages named in tick(): device read, tool update, refit, proxy, coupling,
+// model step (boundary motion and fault handling within), contact response, device write,
+// records. Runs on the haptic thread; allocates nothing, takes no lock, throws nothing.
 #pragma once
 
 #include <array>
@@ -8,6 +8,7 @@
 
 #include "body_systems.hpp"
 #include "body_worker.hpp"
+#include "haptic_interaction.hpp"
 #include "recorders.hpp"
 #include "status_bits.hpp"
 #include "tacta/device_log.hpp"
@@ -28,30 +29,6 @@ struct FaultRecord {
   std::array<char, 256> reason;
 };
 
-// Something that acts between ticks' device read and body step: haptic rendering, collision.
-// update() runs before the bodies step (writes body.loads.contact_forces and device forces);
-// after_step() runs after they step (e.g. contact projection).
-// The haptic stage's parts in one tick, ms: bringing the touched surfaces up to date for the
-// proxy (hierarchy refit, embedded vertices), the proxy's queries, and the rest (coupling,
-// passivity, limits, the reaction on the body).
-struct HapticParts {
-  double surface_update = 0, proxy_query = 0, coupling = 0;
-};
-
-class Interaction {
- public:
-  virtual ~Interaction() = default;
-  virtual void before_step(World& world, double time, double dt) noexcept = 0;
-  virtual void after_step(World& world, double time, double dt) noexcept = 0;
-  // After the devices were written: DeviceContact::force is what each device really got (zeroed on
-  // a fault, clamped to its peak), which may differ from what before_step asked for.
-  virtual void after_write(World&) noexcept {}
-  // TACTA_COLLIDE_* bits of this tick (collision response), 0 for the others.
-  virtual uint32_t collision_bits() const noexcept { return 0; }
-  // The parts of this tick's before_step, for the interaction that renders the devices.
-  virtual const HapticParts* haptic_parts() const noexcept { return nullptr; }
-};
-
 class HapticLoop final : public HapticTask, private TickEvents {
  public:
   // Record buffers are reserved for `expected_ticks` ticks and `duration_s` s of frames
@@ -60,7 +37,10 @@ class HapticLoop final : public HapticTask, private TickEvents {
              double duration_s = -1);
   // Grows the record buffers for `expected_ticks` (`duration_s` s of frames) more; allocates.
   void reserve(size_t expected_ticks, double duration_s = -1);
-  void add_interaction(Interaction* interaction) { interactions_.push_back(interaction); }
+  // The haptic side (devices' tools, proxies and couplings) and the contact response this loop
+  // runs; either may be absent (no device; collision off). Not owned.
+  void set_haptics(HapticInteraction* haptics) noexcept { haptics_ = haptics; }
+  void set_response(CollisionResponse* response) noexcept { response_ = response; }
   // Keeps the first device's samples and sent forces (a replayable session log), `ticks` at most.
   void enable_device_log(size_t ticks) { device_log_ = std::make_unique<DeviceLogRecorder>(ticks); }
   const DeviceLogRecorder* device_log() const { return device_log_.get(); }
@@ -116,7 +96,8 @@ class HapticLoop final : public HapticTask, private TickEvents {
 
   World& world_;
   TripleBuffer<Snapshot>& snapshots_;
-  std::vector<Interaction*> interactions_;
+  HapticInteraction* haptics_ = nullptr;
+  CollisionResponse* response_ = nullptr;
   std::vector<std::unique_ptr<BodyWorker>> workers_;  // per body; null for haptic-thread bodies
   Recorder<TraceRow> trace_;
   Recorder<TrajectoryRow> trajectory_;

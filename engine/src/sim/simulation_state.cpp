@@ -97,14 +97,19 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   return result;
 }
 
-uint64_t Simulation::step(uint64_t ticks) { return impl_->session().step(ticks, &impl_->stop); }
+StepResult Simulation::step(uint64_t ticks) {
+  ClockSession& session = impl_->session();
+  const uint64_t ran = session.step(ticks, &impl_->stop);
+  return {ran, session.step_status()};
+}
 
-uint64_t Simulation::advance_to(double time_s) {
+StepResult Simulation::advance_to(double time_s) {
   ClockSession& session = impl_->session();
   if (!std::isfinite(time_s))
     throw InputError({scene().path, 0, 0, "advance_to"}, "expected a finite time in s");
   const double ticks = std::floor((time_s - session.time()) / session.dt() + 0.5);
-  return ticks > 0 ? session.step(static_cast<uint64_t>(ticks), &impl_->stop) : 0;
+  if (!(ticks > 0)) return {};  // the clock never goes back
+  return step(static_cast<uint64_t>(ticks));
 }
 
 double Simulation::time() const noexcept { return impl_->clock ? impl_->clock->time() : 0.0; }

@@ -160,7 +160,7 @@ class LoopHarness {
       const SoftBody b = world.body(i);
       b.model.instance->begin(b.state_view(0.0), dt);
     }
-    loop.add_interaction(&haptics);
+    loop.set_haptics(&haptics);
   }
   void tick() {
     loop.tick(next, static_cast<double>(next) * dt, dt);

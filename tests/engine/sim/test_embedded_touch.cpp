@@ -206,7 +206,7 @@ TEST(EmbeddedTouch, ADroppedEmbeddedBallRestsOnItsSmoothSurface) {
   CollisionResponse response(collision);
   TripleBuffer<Snapshot> snapshots(HapticLoop::make_prototype(world));
   HapticLoop loop(world, snapshots, 1000);
-  loop.add_interaction(&response);
+  loop.set_response(&response);
   const SoftBody ball = world.body(0);
   ASSERT_TRUE(ball.surface.mesh != nullptr);
   const double dt = 1e-3;

@@ -29,8 +29,8 @@ struct ProxyRun {
       const SoftBody b = world->body(i);
       b.model.instance->begin(b.state_view(0.0), dt);
     }
-    loop->add_interaction(haptics.get());
-    if (scene.collision.enabled) loop->add_interaction(response.get());
+    loop->set_haptics(haptics.get());
+    if (scene.collision.enabled) loop->set_response(response.get());
   }
   void tick() {
     loop->tick(next, static_cast<double>(next) * dt, dt);

@@ -32,8 +32,8 @@ std::string run_hash(double duration_s) {
 TEST(SteppingApi, StepsInAnyChunksGiveTheStateRunGives) {
   const std::string reference = run_hash(0.2);
   Simulation one(beam(), plugins());
-  EXPECT_EQ(one.step(1), 1u);
-  EXPECT_EQ(one.step(199), 199u);
+  EXPECT_EQ(one.step(1).ticks, 1u);
+  EXPECT_EQ(one.step(199).ticks, 199u);
   EXPECT_EQ(one.tick(), 200u);
   EXPECT_EQ(one.report().state_hash, reference);
 
@@ -50,13 +50,13 @@ TEST(SteppingApi, RunsAndStepsContinueOneClock) {
   options.duration_s = 0.1;
   const RunResult first = simulation.run(options);
   EXPECT_DOUBLE_EQ(first.sim_time_s, 0.1);
-  EXPECT_EQ(simulation.advance_to(0.15), 50u);
+  EXPECT_EQ(simulation.advance_to(0.15).ticks, 50u);
   EXPECT_NEAR(simulation.time(), 0.15, 1e-12);
   options.duration_s = 0.05;
   const RunResult last = simulation.run(options);
   EXPECT_NEAR(last.sim_time_s, 0.2, 1e-12);
   EXPECT_EQ(last.state_hash, reference);
-  EXPECT_EQ(simulation.advance_to(0.1), 0u) << "the clock never goes back";
+  EXPECT_EQ(simulation.advance_to(0.1).ticks, 0u) << "the clock never goes back";
 }
 
 TEST(SteppingApi, AnAppliedLoadMovesTheBodyUntilCleared) {

@@ -58,8 +58,17 @@ class ContactRenderer {
 
   void reset(const Vec3& device_position) noexcept;
   // time (s) of this tick, measured device position (m) and velocity (m/s), tick dt (s).
+  // tick() is move_proxy() then couple(): a host with several devices runs every proxy, then
+  // every coupling, as named stages of its tick.
   ContactRendering tick(const SurfaceQuery& world, double time, const Vec3& device_position,
                         const Vec3& device_velocity, double dt) noexcept;
+  // The proxy follows the device against the world; a non-finite sample leaves it where it was
+  // (and makes the next couple() send zero).
+  void move_proxy(const SurfaceQuery& world, const Vec3& device_position,
+                  const Vec3& device_velocity) noexcept;
+  // The coupling force (N) between the proxy as move_proxy() left it and the device.
+  ContactRendering couple(double time, const Vec3& device_position, const Vec3& device_velocity,
+                          double dt) noexcept;
 
   // The touched body's local contact model for the next ticks (a body on its own thread); the
   // default, inactive, renders the surface as the proxy finds it.
@@ -98,6 +107,7 @@ class ContactRenderer {
   Vec3 last_sent_{0.0, 0.0, 0.0};     // N, the force sent last tick (held over this one)
   double coupling_energy_ = 0.0;      // J, energy the coupling has taken in this contact
   bool was_in_contact_ = false;
+  bool sample_finite_ = true;  // the sample move_proxy() last saw
 };
 
 }  // namespace tacta::haptics

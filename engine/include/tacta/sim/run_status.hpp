@@ -57,6 +57,12 @@ struct TickStatus {
   }
 };
 
+// What Simulation::step()/advance_to() did: the ticks that ran and what they raised.
+struct StepResult {
+  uint64_t ticks = 0;
+  TickStatus status;
+};
+
 const char* severity_name(StatusSeverity s) noexcept;
 
 }  // namespace tacta

@@ -125,10 +125,11 @@ class Simulation {
   RunResult run(const RunOptions& options);
 
   // Stepping (lockstep, on the calling thread, never while run() is running). step(n) advances n
-  // haptic ticks and returns how many ran (fewer when the run must end: every device finished).
-  uint64_t step(uint64_t ticks = 1);
-  // Steps whole ticks until time() reaches `time_s` (to within half a tick); returns the ticks.
-  uint64_t advance_to(double time_s);
+  // haptic ticks and returns how many ran (fewer when the run must end: every device finished)
+  // with what they raised (as step_status()).
+  StepResult step(uint64_t ticks = 1);
+  // Steps whole ticks until time() reaches `time_s` (to within half a tick); as step().
+  StepResult advance_to(double time_s);
   double time() const noexcept;    // s, simulated: tick() * dt()
   uint64_t tick() const noexcept;  // haptic ticks run since open
   // What the ticks of the last step()/advance_to() raised (model, collision and device bits,
