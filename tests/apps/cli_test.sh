@@ -189,7 +189,9 @@ YAML
   realtime_report)
     # What the kernel granted the haptic thread, and the resident memory around the loop.
     run 0 run "$src/scenes/examples/soft_drop.yaml" --realtime --duration 0.2 --haptic-cpu 0 --out out
-    for key in '"realtime": \{' '"scheduler": "SCHED_' '"memory_locked": ' '"haptic_cpu": ' '"rss_start": [1-9]' '"rss_end": [1-9]'; do
+    for key in '"realtime": \{' '"scheduler": "SCHED_' '"memory_locked": ' '"haptic_cpu": ' '"rss_start": [1-9]' '"rss_end": [1-9]' \
+               '"rss_every_10s": \[' '"spun_waits": [0-9]' '"late_wakeups": [0-9]' '"over_budget_ticks": [0-9]' \
+               '"warm_up_over_budget_ticks": [0-9]' '"max_tick_cpu_ms": '; do
       grep -Eq "$key" out/report.json || fail "report.json has no /$key/"
     done
     run 2 run "$src/scenes/examples/soft_drop.yaml" --realtime --duration 0.2 --set clock.haptic_cpu=99999

@@ -23,8 +23,6 @@ uint64_t tick_count(const ScheduleOptions& o) {
   return static_cast<uint64_t>(std::llround(o.duration_s * o.haptic_rate_hz));
 }
 
-constexpr double kWarmUpS = 1.0;  // s into the run when memory_warm is taken
-
 bool stop_requested(const ScheduleOptions& o) {
   return o.stop != nullptr && o.stop->load(std::memory_order_relaxed);
 }
@@ -55,8 +53,9 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
       haptic.publish(end_time);
       render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
       ++result.frames;
-      if (result.memory_warm.rss_kb == 0 && end_time >= kWarmUpS)
+      if (result.memory_warm.rss_kb == 0 && end_time >= o.warm_up_s)
         result.memory_warm = resident_memory();
+      result.rss_timeline.sample_if_due(end_time);
     }
     if (o.on_progress && ms_between(last_progress, t1) > 100) {
       last_progress = t1;
@@ -94,15 +93,24 @@ double ms_after(const timespec& a, const timespec& b) {  // b - a in ms
 // Absolute-deadline wait on the monotonic clock (so the period does not drift): sleeps to
 // `spin_ns` before the deadline, then spins, since a sleep's wake-up is late by the timer slack
 // and the scheduler's latency (tens of microseconds to milliseconds on a loaded machine).
-void wait_until(const timespec& deadline, int64_t spin_ns) {
+// Returns true when it spun (woke before the deadline), false when the sleep woke past it.
+bool wait_until(const timespec& deadline, int64_t spin_ns) {
   const timespec wake = add_ns(deadline, -spin_ns);
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) != 0) {
   }
-  if (spin_ns <= 0) return;
   timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  if (ms_after(now, deadline) <= 0) return false;
   do {
     clock_gettime(CLOCK_MONOTONIC, &now);
   } while (ms_after(now, deadline) > 0);
+  return true;
+}
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
 ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const ScheduleOptions& o) {
@@ -110,6 +118,7 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
   const uint64_t ticks = tick_count(o);
   const double dt = 1.0 / o.haptic_rate_hz;
   const auto period_ns = static_cast<int64_t>(std::llround(1e9 / o.haptic_rate_hz));
+  const double period_ms = static_cast<double>(period_ns) * 1e-6;
   TickRecorder recorder(ticks);
   std::atomic<bool> haptic_done{false};
   std::atomic<uint64_t> frames{0};
@@ -126,8 +135,9 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
       const double wall_s = ms_between(run_start, SteadyClock::now()) * 1e-3;
       render.frame(wall_s);
       frames.fetch_add(1, std::memory_order_relaxed);
-      if (result.memory_warm.rss_kb == 0 && wall_s >= kWarmUpS)
+      if (result.memory_warm.rss_kb == 0 && wall_s >= o.warm_up_s)
         result.memory_warm = resident_memory();
+      result.rss_timeline.sample_if_due(wall_s);
       // Progress is printed from here, never from the haptic thread (stdout takes a lock).
       if (o.on_progress)
         o.on_progress(static_cast<double>(ticks_done.load(std::memory_order_relaxed)) /
@@ -152,9 +162,10 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
   uint32_t misses_in_a_row = 0;
   for (uint64_t k = 0; k < ticks; ++k) {
     const timespec due = add_ns(start, static_cast<int64_t>(k) * period_ns);
-    wait_until(due, spin_ns);
+    ++(wait_until(due, spin_ns) ? result.spun_waits : result.late_wakeups);
     timespec begin{};
     clock_gettime(CLOCK_MONOTONIC, &begin);
+    const double cpu_begin_ms = thread_cpu_ms();
     result.max_start_jitter_ms = std::max(result.max_start_jitter_ms, ms_after(due, begin));
     const double time = static_cast<double>(k) * dt;
     const bool keep_going = haptic.tick(k, time, dt);
@@ -163,6 +174,13 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     timespec end{};
     clock_gettime(CLOCK_MONOTONIC, &end);
     recorder.record(ms_after(begin, end));
+    const double cpu_ms = thread_cpu_ms() - cpu_begin_ms;
+    if (time < o.warm_up_s) {
+      if (cpu_ms > period_ms) ++result.warm_up_over_budget_ticks;
+    } else {
+      result.max_tick_cpu_ms = std::max(result.max_tick_cpu_ms, cpu_ms);
+      if (cpu_ms > period_ms) ++result.over_budget_ticks;
+    }
     if (ms_after(add_ns(due, period_ns), end) > 0) {
       ++result.deadline_misses;
       if (++misses_in_a_row == kStarvingTicks) session->demote(static_cast<int64_t>(k));
@@ -189,6 +207,11 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
 }
 
 }  // namespace
+
+void RssTimeline::sample_if_due(double time_s) noexcept {
+  if (count >= kCapacity || time_s < static_cast<double>(count + 1) * kEveryS) return;
+  kb[count++] = resident_memory().rss_kb;
+}
 
 ScheduleResult run_schedule(HapticTask& haptic, RenderTask& render,
                             const ScheduleOptions& options) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 
@@ -54,6 +55,20 @@ struct ScheduleOptions {
   std::atomic<bool>* stop = nullptr;                 // set from outside to end the run early
   std::function<void(double fraction)> on_progress;  // called from the scheduling thread, ~10 Hz
   RealtimeOptions realtime;                          // realtime: scheduling, memory, CPU, wait
+  // s of wall (realtime) or simulated (lockstep) time: memory_warm is taken here, and ticks
+  // before it are start-up (cold caches, the first hierarchy build), counted apart.
+  double warm_up_s = 1.0;
+};
+
+// Resident memory every 10 s of the run (a leak shows as growth between samples); 64 samples
+// cover the first 640 s, the last sample is memory_end.
+struct RssTimeline {
+  static constexpr double kEveryS = 10;
+  static constexpr size_t kCapacity = 64;
+  uint64_t kb[kCapacity] = {};
+  size_t count = 0;
+  // Samples when `time_s` has reached the next multiple of kEveryS. Reads /proc: not for the tick.
+  void sample_if_due(double time_s) noexcept;
 };
 
 struct ScheduleResult {
@@ -61,6 +76,17 @@ struct ScheduleResult {
   uint64_t frames = 0;
   uint64_t deadline_misses = 0;    // realtime: ticks that ended after their deadline
   double max_start_jitter_ms = 0;  // realtime: latest tick start after its scheduled start
+  // realtime: ticks after the warm-up whose own CPU time (CLOCK_THREAD_CPUTIME_ID, which leaves
+  // out time the thread was off its CPU, a VM's stolen time included where the kernel accounts
+  // it) exceeded the period. Such a tick misses its deadline by the engine's own work; every
+  // other miss is the thread waiting for its CPU (a stall, preemption or a late wake-up).
+  uint64_t over_budget_ticks = 0;
+  uint64_t warm_up_over_budget_ticks = 0;  // the same during the warm-up (warm_up_s)
+  double max_tick_cpu_ms = 0;              // after the warm-up
+  // realtime: how each wait for a tick's start ended (clock.spin_us): woken before the deadline
+  // and spun to it, or woken already past it (nothing left to spin).
+  uint64_t spun_waits = 0, late_wakeups = 0;
+  RssTimeline rss_timeline;
   double wall_time_s = 0;
   bool stopped_early = false;
   TickSummary tick;

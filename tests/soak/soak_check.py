@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""The realtime soak: runs a scene on the realtime clock for --duration s (haptic thread pinned,
+SCHED_FIFO asked for) and prints a table of what report.json says; exits 1 when a check fails,
+2 when the run fails.
+
+Checks (docs/TESTING.md, "The realtime soak"):
+- no tick over budget after the first second: no tick whose own CPU time (thread CPU clock)
+  exceeded the 1 ms period, i.e. no deadline miss caused by the engine's work. The first second
+  (cold caches, the first whole hierarchy build: about 2 ms at tick 1 of the liver demo) is
+  printed, not asserted. Misses while the thread was off its CPU
+  (a VM's stalls, preemption, late wake-ups) are counted and printed, not asserted: on a shared
+  VM they come from the host, and a test that asserted them would fail on the host's load.
+- where SCHED_FIFO was granted: the spin path ran (most waits ended by spinning to the deadline);
+  and the misses are at most --max-stall-misses (default: not asserted).
+- flat resident memory, where memory was locked: RSS at the end within --rss-growth-kb (default
+  256 kB) of RSS 10 s into the run. With mlockall every page is resident once mapped, so growth
+  is new allocation; 256 kB over the 50 s between is a leak of 5 bytes per tick.
+Usage: soak_check.py --tacta BIN --scene SCENE --out DIR [--duration S] [--cpu N]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--tacta", required=True)
+    p.add_argument("--scene", required=True)
+    p.add_argument("--out", required=True)
+    p.add_argument("--duration", type=float, default=60)
+    p.add_argument("--cpu", type=int, default=min(1, (os.cpu_count() or 1) - 1))
+    p.add_argument("--rss-growth-kb", type=int, default=256)
+    p.add_argument("--max-stall-misses", type=int, default=-1, help="-1: not asserted")
+    a = p.parse_args()
+    command = [a.tacta, "run", a.scene, "--realtime", "--duration", str(a.duration),
+               "--haptic-cpu", str(a.cpu), "--out", a.out, "--quiet",
+               "--set", "output.frames=false", "--set", "output.vtk=false", "--set", "output.plots=[]"]
+    run = subprocess.run(command, capture_output=True, text=True)
+    path = os.path.join(a.out, "report.json")
+    if run.returncode != 0 or not os.path.exists(path):
+        print(" ".join(command), run.stdout, run.stderr, sep="\n")
+        return 2
+    r = json.load(open(path))
+    rt, mem = r["realtime"], r["memory_kb"]
+    fifo = rt["scheduler"] == "SCHED_FIFO" and rt["demoted_at_tick"] == -1
+    pinned = rt["haptic_cpu"] == a.cpu
+    waits = rt["spun_waits"] + rt["late_wakeups"]
+    samples = mem["rss_every_10s"]
+    rss_10 = samples[0] if samples else mem["rss_after_1s"]
+    growth = mem["rss_end"] - rss_10
+    stall_misses = r["deadline_misses"] - r["over_budget_ticks"]
+    checks = [
+        ("ticks", f"{r['ticks']} of {round(a.duration * r['haptic_rate_hz'])}",
+         r["ticks"] == round(a.duration * r["haptic_rate_hz"])),
+        ("scheduler", f"{rt['scheduler']} {rt['priority']}, CPU {rt['haptic_cpu']}, memory locked "
+         f"{rt['memory_locked']} {rt['scheduler_note'] or ''}".strip(), None),
+        ("ticks over budget after 1 s (engine's misses)",
+         f"{r['over_budget_ticks']} (max tick CPU {r['max_tick_cpu_ms']:.3f} ms)",
+         r["over_budget_ticks"] == 0),
+        ("ticks over budget in the first second (start-up)", str(r["warm_up_over_budget_ticks"]),
+         None),
+        ("deadline misses, all", f"{r['deadline_misses']} ({stall_misses} off the CPU); "
+         f"max start jitter {r['max_start_jitter_ms']:.3f} ms",
+         None if a.max_stall_misses < 0 or not (fifo and pinned) else stall_misses <= a.max_stall_misses),
+        ("tick p50 / p99 / p999 / max (ms)",
+         f"{r['tick_ms']['p50']:.3f} / {r['tick_ms']['p99']:.3f} / {r['tick_ms']['p999']:.3f} / "
+         f"{r['tick_ms']['max']:.3f}", None),
+        ("waits spun (spin_us " f"{rt['spin_us']:g})", f"{rt['spun_waits']} of {waits}, "
+         f"{rt['late_wakeups']} woke past the deadline",
+         (rt["spun_waits"] >= waits // 2) if fifo else None),
+        ("RSS kB at 1 s, 10 s, end", f"{mem['rss_after_1s']}, {rss_10}, {mem['rss_end']} "
+         f"(every 10 s: {', '.join(map(str, samples))})", None),
+        ("RSS growth 10 s -> end", f"{growth} kB (bound {a.rss_growth_kb} kB)",
+         growth <= a.rss_growth_kb if rt["memory_locked"] else None),
+        ("faults", str(len(r["faults"])), not r["faults"]),
+    ]
+    print(f"| realtime soak, {a.duration:g} s, {os.path.basename(a.scene)} | measured | check |")
+    print("|---|---|---|")
+    for name, value, ok in checks:
+        print(f"| {name} | {value} | {'-' if ok is None else 'pass' if ok else 'FAIL'} |")
+    return 1 if any(ok is False for _, _, ok in checks) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
