@@ -1,6 +1,9 @@
 // The `tacta` Python module (compiled part `tacta._tacta`): scene errors, the plugin list, and
 // the registration of simulations, bodies and devices. See docs/PYTHON.md.
+#include <dlfcn.h>
 #include <pybind11/stl.h>
+
+#include <filesystem>
 
 #include "bindings.hpp"
 #include "tacta/live_params.hpp"
@@ -36,6 +39,18 @@ py::dict plugin_list() {
   return out;
 }
 
+// <folder of _tacta.so>/plugins: where an installed package (pip, a wheel) carries its plugins.
+// The build tree's module has no such folder and keeps the engine's default search.
+std::string package_plugin_dir() {
+  static const char anchor = 0;  // any address inside this library names its file
+  Dl_info info{};
+  if (dladdr(&anchor, &info) == 0 || !info.dli_fname)
+    return {};
+  const std::filesystem::path dir = std::filesystem::path(info.dli_fname).parent_path() / "plugins";
+  std::error_code ec;
+  return std::filesystem::is_directory(dir, ec) ? dir.string() : std::string();
+}
+
 }  // namespace
 
 std::shared_ptr<PluginRegistry> shared_plugins() {
@@ -43,6 +58,7 @@ std::shared_ptr<PluginRegistry> shared_plugins() {
   static std::shared_ptr<PluginRegistry> registry;
   if (!registry) {
     auto loading = std::make_shared<PluginRegistry>();
+    if (const std::string own = package_plugin_dir(); !own.empty()) loading->add_first_path(own);
     loading->load();
     registry = std::move(loading);
   }
@@ -102,6 +118,7 @@ void register_errors(py::module_& m) {
 PYBIND11_MODULE(_tacta, m) {
   using namespace tacta::python;
   m.doc() = "Tacta: real-time elastic bodies with force feedback (compiled part; import tacta)";
+  m.attr("__version__") = TACTA_VERSION;
   register_errors(m);
   register_simulation(m);
   register_bodies(m);

@@ -6,8 +6,24 @@
     liver = sim.bodies["liver"]
     print(liver.positions.shape, sim.report()["state_hash"])
 
-See docs/PYTHON.md for the whole surface.
+See docs/PYTHON.md for the whole surface, docs/SWEEPS.md for tacta.sweep (runs on Dask).
 """
-from ._tacta import Body, Device, RenderError, SceneError, Simulation, compare, plugins
+import os as _os
 
-__all__ = ["Body", "Device", "RenderError", "SceneError", "Simulation", "compare", "plugins"]
+# A pip-installed package carries the report's plot scripts; the build tree's module finds them
+# in the source tree. Set before the first run that plots.
+_plots = _os.path.join(_os.path.dirname(__file__), "plots")
+if _os.path.isdir(_plots):
+    _os.environ.setdefault("TACTA_PLOT_SCRIPTS", _plots)
+
+from ._tacta import Body, Device, RenderError, SceneError, Simulation, __version__, compare, plugins  # noqa: E402
+
+__all__ = ["Body", "Device", "RenderError", "SceneError", "Simulation", "compare", "plugins", "sweep"]
+
+
+def __getattr__(name):
+    # tacta.sweep is imported on first use: it needs pandas and dask.distributed, the rest does not.
+    if name == "sweep":
+        import importlib
+        return importlib.import_module(".sweep", __name__)
+    raise AttributeError(f"module 'tacta' has no attribute '{name}'")

@@ -38,3 +38,15 @@ def test_refused_plugins_come_with_their_reason():
     assert "dlopen failed" in reasons["tacta_test_absent_dependency.so"]
     loaded = {(p["kind"], p["name"]) for p in found["loaded"]}
     assert ("model", "test_duplicate") in loaded and ("model", "corotational_fem") in loaded
+
+
+def test_an_installed_package_loads_the_plugins_it_carries():
+    # pip's package holds tacta/plugins beside the module (docs/PYTHON.md); the build tree's has none.
+    own = os.path.join(os.path.dirname(os.path.realpath(tacta._tacta.__file__)), "plugins")
+    if not os.path.isdir(own):
+        pytest.skip("the build tree's module: plugins come from build/lib/tacta/plugins")
+    found = tacta.plugins()
+    assert os.path.realpath(found["search_paths"][0]) == own
+    carried = {f for f in os.listdir(own) if f.endswith(".so")}
+    assert {os.path.basename(p["file"]) for p in found["loaded"]} == carried
+    assert all(os.path.dirname(os.path.realpath(p["file"])) == own for p in found["loaded"])

@@ -1,8 +1,9 @@
 // The plugin loader and registry: finds plugin shared libraries, loads them through the C ABI
 // (plugin.h), validates every descriptor they register, and answers lookups by kind and name.
 //
-// Search order: the build tree's plugin folder, the install prefix's lib/tacta/plugins, every
-// folder in TACTA_PLUGIN_PATH (colon-separated), then folders given to add_path(). Every *.so
+// Search order: folders given to add_first_path() (a Python package's own plugins), the build
+// tree's plugin folder, the install prefix's lib/tacta/plugins, every folder in TACTA_PLUGIN_PATH
+// (colon-separated), then folders given to add_path(). Every *.so
 // there is opened with dlopen(RTLD_NOW | RTLD_LOCAL). A file that fails (dlopen error, no entry
 // symbol, ABI refused, a malformed descriptor, a name another file registered already) is
 // recorded with its reason and does not stop the others; nothing of a refused file stays
@@ -44,6 +45,9 @@ class PluginRegistry {
 
   // Adds a folder searched after the defaults; throws tacta::InputError if it is not a folder.
   void add_path(const std::string& directory);
+  // Adds a folder searched before the defaults (a missing one is listed and skipped): the
+  // Python module's own package folder, so an installed wheel loads the plugins it carries.
+  void add_first_path(const std::string& directory);
 
   // The folders load() scans, in order (missing default folders are listed but skipped).
   std::vector<std::string> search_paths() const;

@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 
 struct PluginRegistry::State {
   DefaultPaths defaults = DefaultPaths::Search;
+  std::vector<std::string> first_paths;  // before the defaults
   std::vector<std::string> added_paths;
   std::set<std::string> seen_files;  // canonical paths already tried, loaded or refused
   std::vector<void*> handles;        // open libraries, closed by ~PluginRegistry
@@ -108,8 +109,12 @@ void PluginRegistry::add_path(const std::string& directory) {
   state_->added_paths.push_back(directory);
 }
 
+void PluginRegistry::add_first_path(const std::string& directory) {
+  state_->first_paths.push_back(directory);
+}
+
 std::vector<std::string> PluginRegistry::search_paths() const {
-  std::vector<std::string> paths;
+  std::vector<std::string> paths = state_->first_paths;
   if (state_->defaults == DefaultPaths::Search) {
 #ifdef TACTA_BUILD_PLUGIN_DIR
     paths.emplace_back(TACTA_BUILD_PLUGIN_DIR);

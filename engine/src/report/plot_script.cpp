@@ -22,7 +22,11 @@ std::string plot_scripts_dir() {
   if (std::filesystem::exists(TACTA_SOURCE_DIR "/scripts/plots"))
     return TACTA_SOURCE_DIR "/scripts/plots";
 #endif
+#ifdef TACTA_INSTALL_PLUGIN_DIR
   return TACTA_INSTALL_PLUGIN_DIR "/../../../share/tacta/plots";
+#else
+  return {};  // the pip package sets TACTA_PLOT_SCRIPTS to the scripts it carries (tacta/plots)
+#endif
 }
 
 int run_plot_process(const std::vector<std::string>& args) {
