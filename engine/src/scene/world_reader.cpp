@@ -1,6 +1,8 @@
 // Everything around the bodies: tool and obstacle shapes, devices, obstacles, the collision
 // pipeline and timed model swaps.
 #include <cmath>
+#include <fmt/format.h>
+#include <optional>
 #include <string>
 
 #include "scene/did_you_mean.hpp"
@@ -121,11 +123,38 @@ CollisionDesc read_collision(const Field& field) {
   CollisionDesc collision;
   collision.enabled = true;  // writing the section turns collision on unless it says otherwise
   if (auto f = field.get("enabled")) collision.enabled = f->boolean();
+  // Friction is one coefficient per scene (docs/SCENES.md, `collision.friction`): written as
+  // `collision.friction` or as a collision plugin's own `friction` parameter. The plugin parameter
+  // written in the scene sets it when `collision.friction` is not written; both written with
+  // different values is refused here, naming both, rather than one silently replacing the other.
+  std::optional<Field> scene_friction = field.get("friction");
+  std::optional<Field> plugin_friction;  // the first plugin map that writes `friction`
+  const auto refuse_if_different = [](const Field& here, double value, const Field& other) {
+    const double first = other.real(Range::non_negative());
+    if (value != first)
+      here.fail(fmt::format(
+          "friction is given twice with different values: {:g} here and {:g} at {} (line {}); "
+          "the scene has one Coulomb coefficient, so write it once (collision.friction, or the "
+          "plugin's friction parameter)",
+          value, first, other.path(), other.where().line));
+  };
+  const auto note_plugin_friction = [&](const Field& plugin_field) {
+    if (!plugin_field.is_map()) return;
+    auto f = plugin_field.get("friction");
+    if (!f) return;
+    const double value = f->real(Range::non_negative());
+    if (scene_friction) refuse_if_different(*f, value, *scene_friction);
+    if (plugin_friction)
+      refuse_if_different(*f, value, *plugin_friction);
+    else
+      plugin_friction = *f;
+  };
   const auto stage = [&](const char* key, std::string& name, ParamSet& params) {
     if (auto f = field.get(key)) {
       PluginRef plugin = read_plugin(*f, TACTA_KIND_COLLISION, std::nullopt, collision.enabled);
       name = std::move(plugin.name);
       params = std::move(plugin.params);
+      note_plugin_friction(*f);
     } else if (collision.enabled) {
       // The default plugin is still checked, with its defaults, when collision is on.
       Field implicit(field.context(), YAML::Node(name), child_path(field.path(), key),
@@ -149,10 +178,14 @@ CollisionDesc read_collision(const Field& field) {
         collision.role_plugins[r] = std::move(plugin.name);
         collision.role_params[r] = std::move(plugin.params);
         collision.role_where[r] = role->where();
+        note_plugin_friction(*role);
       }
     }
   }
-  if (auto f = field.get("friction")) collision.friction = f->real(Range::non_negative());
+  if (scene_friction)
+    collision.friction = scene_friction->real(Range::non_negative());
+  else if (plugin_friction)
+    collision.friction = plugin_friction->real(Range::non_negative());
   if (auto f = field.get("self_collision")) collision.self_collision = f->boolean();
   if (auto f = field.get("proxy_refit"))
     collision.proxy_refit_sliced = f->choice({"sliced", "every_tick"}) == "sliced";

@@ -204,7 +204,10 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
       throw InputError(at, plugins.unknown_name_message(TACTA_KIND_COLLISION, name));
     // Collision off in the scene: the broad phase (the proxy's queries) gets its defaults.
     params = complete_params(*found->descriptor, params);
-    // The scene's collision.friction is the Coulomb coefficient of every plugin that has one.
+    // collision.friction is the scene's one Coulomb coefficient, given to every plugin that has
+    // a `friction` parameter. The loader has already resolved it: a plugin's own `friction`
+    // written in the scene sets collision.friction, and two different values are refused
+    // (world_reader.cpp, read_collision), so this never replaces a value the scene wrote.
     params.set_number("friction", c.friction);
     instances_.push_back(std::make_unique<CollisionInstance>(*found, params, dt, at));
   };
