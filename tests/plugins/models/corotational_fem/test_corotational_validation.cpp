@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <numbers>
 
+#include "cantilever_rows.hpp"
 #include "corotational_test_support.hpp"
 
 namespace tacta::models::corotational {
@@ -88,18 +89,13 @@ constexpr double kEulerBernoulli = 0.03237;  // m, q L^4 / (8 E I), SOFA's valid
 constexpr double kShear = 0.00038;           // m, Timoshenko shear part
 
 TEST(CorotationalValidation, CantileverConvergesUnderRefinement) {
-  const double coarse = cantilever_tip_deflection({3, 3, 12});
-  const double medium = cantilever_tip_deflection({5, 5, 30});
-  const double reference = kEulerBernoulli + kShear;
-  std::printf(
-      "cantilever tip deflection: 3x3x12 %.5f m (%.1f%%), 5x5x30 %.5f m (%.1f%%), "
-      "analytic %.5f m\n",
-      coarse, 100 * coarse / reference, medium, 100 * medium / reference, reference);
+  const std::array<double, 3> tips = {cantilever_tip_deflection({3, 3, 12}),
+                                      cantilever_tip_deflection({5, 5, 30}),
+                                      cantilever_tip_deflection({7, 7, 42})};
   // Linear tets lock in bending (worse at nu = 0.45): the deflection grows toward the analytic
-  // value under refinement and never overshoots it.
-  EXPECT_GT(medium, coarse * 1.2);
-  EXPECT_LT(medium, reference * 1.02);
-  EXPECT_GT(medium, 0.5 * reference);
+  // value under refinement (45 / 77 / 86 % of it) and never overshoots it.
+  test::expect_cantilever_convergence("corotational_fem", tips, {0.01477, 0.02537, 0.02804},
+                                      {"3x3x12", "5x5x30", "7x7x42"});
 }
 
 TEST(CorotationalValidation, StaticSolveFindsTheSameEquilibrium) {
