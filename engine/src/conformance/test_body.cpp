@@ -5,6 +5,7 @@
 #include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 #include "tacta/param_defaults.hpp"
+#include "tacta/sdk/elastic_constants.hpp"
 
 namespace tacta::conformance {
 
@@ -26,7 +27,8 @@ std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool cla
   // Liver-like stiffness and water's density: the explicit models' stable step at this cell is
   // a few ms, above the 1 ms tick.
   const double E = 1e5, nu = 0.3, rho = 1000.0;
-  body->material = {E, nu, rho, E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu)), 0.0, 0.0};
+  const sdk::Lame lame = sdk::lame_from_young(E, nu);
+  body->material = {E, nu, rho, lame.lambda, lame.mu, 0.0, 0.0};
   body->masses = lumped_masses(body->mesh, rho);
   body->fixed.assign(body->mesh.node_count(), 0);
   if (clamped)

@@ -12,6 +12,7 @@
 #include "tacta/device_api.h"
 #include "tacta/live_params.hpp"
 #include "tacta/model_api.h"
+#include "tacta/param_defaults.hpp"
 #if __has_include("tacta/collision_api.h")
 #include "tacta/collision_api.h"
 #define TACTA_HAVE_COLLISION_FIELDS 1
@@ -36,12 +37,6 @@ std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
   return text;
-}
-
-size_t count_choices(std::string_view choices) {
-  size_t count = 1;
-  for (const char c : choices) count += c == '|' ? 1 : 0;
-  return count;
 }
 
 std::optional<std::string> check_range(const tacta_param_spec& spec, bool check_default) {
@@ -131,7 +126,7 @@ std::optional<std::string> check_param(const tacta_param_spec& spec) {
     case TACTA_PARAM_CHOICE: {
       if (spec.choices == nullptr || spec.choices[0] == '\0')
         return std::string("CHOICE has no choices");
-      const size_t n = count_choices(spec.choices);
+      const size_t n = choice_names(spec).size();
       if (!(spec.default_value >= 0 && spec.default_value < static_cast<double>(n)))
         return "CHOICE default index " + number(spec.default_value) + " is not one of the " +
                std::to_string(n) + " choices '" + spec.choices + "'";

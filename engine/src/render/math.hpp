@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tacta/render/frame.hpp"
+#include "tacta/sdk/pose.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta::render::detail {
@@ -34,9 +35,9 @@ inline Vec3d perpendicular(const Vec3d& n) {
 
 // Rotates v by the unit quaternion q = (w, x, y, z).
 inline Vec3d rotate(const std::array<double, 4>& q, const Vec3d& v) {
-  const Vec3d u{q[1], q[2], q[3]};
-  const Vec3d t = scaled(cross(u, v), 2.0);
-  return add(add(v, scaled(t, q[0])), cross(u, t));
+  Vec3d out;
+  sdk::rotate(q.data(), v.data(), false, out.data());
+  return out;
 }
 
 // q scaled to unit length; the identity when q is zero or not finite.

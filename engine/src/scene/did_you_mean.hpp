@@ -6,10 +6,11 @@
 #include <string_view>
 #include <vector>
 
+#include "text/edit_distance.hpp"
+
 namespace tacta::scene_detail {
 
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions), case-insensitive.
-size_t edit_distance(std::string_view a, std::string_view b);
+using tacta::edit_distance;
 
 // The candidate closest to `word` if it is close enough to be a likely typo.
 std::optional<std::string> closest_match(std::string_view word,

@@ -4,16 +4,17 @@
 
 #include "scene/readers.hpp"
 #include "tacta/scene_loader.hpp"
+#include "tacta/sdk/elastic_constants.hpp"
 
 namespace tacta {
 
 LameParameters lame_from_engineering(double youngs_modulus, double poisson_ratio) {
-  const double e = youngs_modulus, nu = poisson_ratio;
-  return {e * nu / ((1 + nu) * (1 - 2 * nu)), e / (2 * (1 + nu))};
+  const sdk::Lame l = sdk::lame_from_young(youngs_modulus, poisson_ratio);
+  return {l.lambda, l.mu};
 }
 
 EngineeringConstants engineering_from_lame(double lambda, double mu) {
-  return {mu * (3 * lambda + 2 * mu) / (lambda + mu), lambda / (2 * (lambda + mu))};
+  return {sdk::young_from_lame(lambda, mu), sdk::poisson_from_lame(lambda, mu)};
 }
 
 }  // namespace tacta

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacta/sdk/pose.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta::collision {
@@ -115,18 +116,10 @@ void move_side(const Side& s, double* field, double sign, const double* delta) {
   }
 }
 
+using sdk::rotate;
+
 // Velocity of a side's contact point (m/s); a rigid side moves its material point from the
 // start pose to the end pose over the tick.
-void rotate(const double* q, const double* v, bool inverse, double* out) {
-  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2],
-               z = inverse ? -q[3] : q[3];
-  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]),
-                       2 * (x * v[1] - y * v[0])};
-  out[0] = v[0] + w * t[0] + (y * t[2] - z * t[1]);
-  out[1] = v[1] + w * t[1] + (z * t[0] - x * t[2]);
-  out[2] = v[2] + w * t[2] + (x * t[1] - y * t[0]);
-}
-
 bool side_velocity(const Side& s, const double* rigid_point, double dt, double* out) {
   out[0] = out[1] = out[2] = 0;
   if (s.surface != nullptr) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tacta/sdk/pose.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta::collision {
@@ -14,16 +15,7 @@ bool finite3(const double* a) {
   return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
 }
 
-// Rotation by unit quaternion q (w, x, y, z), or by its inverse.
-void rotate(const double* q, const double* v, bool inverse, double* out) {
-  const double w = q[0], x = inverse ? -q[1] : q[1], y = inverse ? -q[2] : q[2],
-               z = inverse ? -q[3] : q[3];
-  const double t[3] = {2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]),
-                       2 * (x * v[1] - y * v[0])};
-  out[0] = v[0] + w * t[0] + (y * t[2] - z * t[1]);
-  out[1] = v[1] + w * t[1] + (z * t[0] - x * t[2]);
-  out[2] = v[2] + w * t[2] + (x * t[1] - y * t[0]);
-}
+using sdk::rotate;
 
 void to_local(const tacta_pose& pose, const double* x, double* local) {
   const double offset[3] = {x[0] - pose.position[0], x[1] - pose.position[1],
