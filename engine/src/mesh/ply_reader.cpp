@@ -244,6 +244,20 @@ class AsciiValues {
     auto [lo, hi] = range_of(t);
     return static_cast<double>(in_.next_int_in(what, lo, hi));
   }
+  // A value no simulation needs: one that does not parse or fit its type is noted, not fatal.
+  double attribute(Type t, const std::string& name, IgnoredAttribute& ignored) {
+    const std::string_view token = in_.next("a PLY value");
+    double v = 0;
+    bool ok = parse_double(token, v) && std::isfinite(v);
+    if (ok && is_integer(t)) {
+      auto [lo, hi] = range_of(t);
+      ok = v == std::floor(v) && v >= static_cast<double>(lo) && v <= static_cast<double>(hi);
+    }
+    if (!ok)
+      ignored.note(in_.line(), "property '" + name + "': '" + std::string(token.substr(0, 40)) +
+                                   "' is not a value of its type");
+    return 0;
+  }
   [[noreturn]] void fail(const std::string& message) const { in_.fail(message); }
   void finish() {
     if (!in_.at_end()) {
@@ -269,17 +283,18 @@ class BinaryValues {
     item_ = item;
   }
   double value(Type t, const char* what) {
-    const size_t n = size_of(t);
-    if (bytes_.size() - pos_ < n)
-      fail(std::string("the file ends (truncated?) where ") + what + " was expected");
-    unsigned char b[8];
-    std::memcpy(b, bytes_.data() + pos_, n);
-    pos_ += n;
-    if (swap_) std::reverse(b, b + n);
-    double v = decode(t, b);
+    const double v = raw(t, what);
     if (!std::isfinite(v))
       fail(std::string("expected ") + what + " to be finite, found " + std::to_string(v));
     return v;
+  }
+  double attribute(Type t, const std::string& name, IgnoredAttribute& ignored) {
+    const double v = raw(t, "a PLY value");
+    if (!std::isfinite(v))
+      ignored.note(0, "element '" + (element_ ? *element_ : std::string()) + "' item " +
+                          std::to_string(item_) + ": property '" + name + "' is " +
+                          std::to_string(v));
+    return 0;
   }
   [[noreturn]] void fail(const std::string& message) const {
     std::string where =
@@ -294,6 +309,16 @@ class BinaryValues {
   }
 
  private:
+  double raw(Type t, const char* what) {
+    const size_t n = size_of(t);
+    if (bytes_.size() - pos_ < n)
+      fail(std::string("the file ends (truncated?) where ") + what + " was expected");
+    unsigned char b[8];
+    std::memcpy(b, bytes_.data() + pos_, n);
+    pos_ += n;
+    if (swap_) std::reverse(b, b + n);
+    return decode(t, b);
+  }
   static double decode(Type t, const unsigned char* b) {
     auto as = [b]<class T>(T) {
       T v;
@@ -322,9 +347,12 @@ class BinaryValues {
 };
 
 // Each value read consumes at least one byte or token, so the loops end with the file.
+// Positions and face indices are strict; the other values (normals, colours, texture
+// coordinates, other elements) are not used, and a bad one is ignored with one warning.
 template <class Values>
-PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
+PolygonSoup read_items(const std::string& path, const Header& h, const Layout& layout, Values& in) {
   PolygonSoup out;
+  IgnoredAttribute ignored("PLY values a simulation does not use (normals, colours, ...)");
   const int64_t vertices = h.elements[layout.vertex].count;
   out.positions.reserve(static_cast<size_t>(vertices) * 3);
   out.face_starts.push_back(0);
@@ -336,9 +364,14 @@ PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const Property& property = element.properties[p];
         if (!property.is_list()) {
-          const double v = in.value(property.type, "a PLY value");
+          int axis = -1;
           for (int k = 0; k < 3; ++k)
-            if (e == layout.vertex && p == layout.xyz[k]) xyz[k] = v;
+            if (e == layout.vertex && p == layout.xyz[k]) axis = k;
+          if (axis < 0) {
+            in.attribute(property.type, property.name, ignored);
+          } else {
+            xyz[axis] = in.value(property.type, "a vertex coordinate");
+          }
           continue;
         }
         const bool face_list = e == layout.face && p == layout.face_list;
@@ -353,8 +386,11 @@ PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
                   std::to_string(static_cast<int64_t>(n)));
         }
         for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) {
-          const double v = in.value(property.type, face_list ? "a vertex index" : "a PLY value");
-          if (!face_list) continue;
+          if (!face_list) {
+            in.attribute(property.type, property.name, ignored);
+            continue;
+          }
+          const double v = in.value(property.type, "a vertex index");
           if (v < 0 || v >= static_cast<double>(vertices)) {
             in.fail("vertex index " + std::to_string(static_cast<int64_t>(v)) +
                     " is out of range: the file has " + std::to_string(vertices) +
@@ -368,6 +404,7 @@ PolygonSoup read_items(const Header& h, const Layout& layout, Values& in) {
     }
   }
   in.finish();
+  warn_ignored(path, {&ignored}, out.warnings);
   return out;
 }
 
@@ -386,10 +423,10 @@ PolygonSoup read_ply(const std::string& path, const std::string& bytes) {
   check_counts_fit(path, header, bytes.size() - header.data_start);
   if (header.format == "ascii") {
     AsciiValues in(path, bytes, header.lines);
-    return read_items(header, layout, in);
+    return read_items(path, header, layout, in);
   }
   BinaryValues in(path, bytes, header.data_start, header.format == "binary_big_endian");
-  return read_items(header, layout, in);
+  return read_items(path, header, layout, in);
 }
 
 }  // namespace tacta::mesh_detail

@@ -1,4 +1,5 @@
-// Triangle surfaces: PLY and OBJ by our own readers, STL (checked first) and glTF through assimp.
+// Triangle surfaces: PLY, OBJ, OFF and VTK PolyData by our own readers, STL (checked first) and
+// glTF through assimp.
 // assimp's own vertex joining keeps vertices apart when their normals or texture coordinates
 // differ (every STL corner, OBJ seams), so positions are welded again here, exactly, across all
 // sub-meshes: a body's surface must be one connected mesh.
@@ -91,6 +92,7 @@ class SurfaceBuilder {
     for (size_t v = 0; v < local.size(); ++v) {
       local[v] = add_vertex(&soup.positions[3 * v], [&] { return "vertex " + std::to_string(v); });
     }
+    report_.warnings.insert(report_.warnings.end(), soup.warnings.begin(), soup.warnings.end());
     const bool has_uv = !soup.corner_uvs.empty();
     any_uv_ = any_uv_ || has_uv;
     for (size_t f = 0; f + 1 < soup.face_starts.size(); ++f) {
@@ -210,11 +212,18 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
   out.source = path;
   SurfaceBuilder builder(out, r);
   const std::string bytes = mesh_detail::read_file_bytes(path);
-  // Never through assimp: PLY and OBJ (see surface_readers.hpp).
+  // Never through assimp: PLY, OBJ, OFF and VTK (see surface_readers.hpp). A VTK file is legacy
+  // or XML by its first bytes, whatever its extension says.
   if (mesh_detail::is_ply(path, bytes)) {
     builder.add_polygons(mesh_detail::read_ply(path, bytes));
   } else if (extension == ".obj") {
     builder.add_polygons(mesh_detail::read_obj(path, bytes));
+  } else if (extension == ".off") {
+    builder.add_polygons(mesh_detail::read_off(path, bytes));
+  } else if (extension == ".vtk" || extension == ".vtp" || extension == ".vtu") {
+    builder.add_polygons(bytes.starts_with("# vtk DataFile")
+                             ? mesh_detail::read_vtk_legacy_polydata(path, bytes)
+                             : mesh_detail::read_vtk_xml_polydata(path, bytes));
   } else {
     // assimp reads only what was checked first: its other importers are not, so they are refused.
     if (extension == ".stl") {
@@ -224,7 +233,8 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
     } else {
       throw InputError({path, 0, 0, ""},
                        "unsupported surface format '" + extension +
-                           "': expected .obj, .stl, .ply, .gltf or .glb (or a volume mesh)");
+                           "': expected .obj, .stl, .ply, .off, .vtk, .vtp, .gltf or .glb (or a "
+                           "volume mesh)");
     }
     Assimp::Importer importer;
     keep_only_importers_of(importer, extension);

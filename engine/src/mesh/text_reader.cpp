@@ -80,6 +80,13 @@ void TextReader::skip_line() {
   }
 }
 
+void TextReader::skip_bytes(size_t n) {
+  const size_t end = std::min(text_.size(), pos_ + std::min(n, text_.size()));
+  line_ += static_cast<int>(std::count(text_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                       text_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+  pos_ = end;
+}
+
 std::string_view TextReader::next(const char* what) {
   skip_space();
   if (pos_ >= text_.size())

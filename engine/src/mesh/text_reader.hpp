@@ -30,6 +30,13 @@ class TextReader {
   bool next_on_new_line();
   // Skips what is left of the current line, its line break included.
   void skip_line();
+  // Byte offset of the next unread character, and the whole text (binary data inside a text
+  // file, as in BINARY legacy VTK, is read from there).
+  size_t position() const { return pos_; }
+  std::string_view text() const { return text_; }
+  // Moves n bytes on (at most to the end), counting the line breaks passed so that later lines
+  // keep the numbers an editor shows.
+  void skip_bytes(size_t n);
 
   int64_t next_int(const char* what);
   // An integer in [min, max], else an error naming what and the range.

@@ -13,7 +13,7 @@ namespace tacta {
 
 namespace {
 
-MeshFormat detect_text_format(std::string_view head) {
+MeshFormat detect_text_format(std::string_view head, bool surface_is_other) {
   if (head.size() >= 3 && static_cast<unsigned char>(head[0]) == 0xEF &&
       static_cast<unsigned char>(head[1]) == 0xBB && static_cast<unsigned char>(head[2]) == 0xBF) {
     head.remove_prefix(3);  // UTF-8 byte order mark
@@ -28,10 +28,26 @@ MeshFormat detect_text_format(std::string_view head) {
     return MeshFormat::GmshV2;
   }
   if (head.starts_with("$NOD")) return MeshFormat::GmshV1;
-  if (head.starts_with("# vtk DataFile")) return MeshFormat::VtkLegacy;
+  // VTK PolyData is a surface (load_surface reads it): Other for the callers that choose between
+  // the volume and the surface loaders. Its dataset type is in the header (legacy) or the tag.
+  const std::string_view window = head.substr(0, 4096);
+  if (head.starts_with("# vtk DataFile")) {
+    const size_t dataset = window.find("DATASET");
+    const size_t type =
+        dataset == std::string_view::npos ? dataset : window.find_first_not_of(" \t", dataset + 7);
+    if (surface_is_other && type != std::string_view::npos &&
+        window.substr(type).starts_with("POLYDATA"))
+      return MeshFormat::Other;
+    return MeshFormat::VtkLegacy;
+  }
   if (head.starts_with("<")) {
-    std::string_view window = head.substr(0, 4096);
-    if (window.find("<VTKFile") != std::string_view::npos) return MeshFormat::VtkXml;
+    const size_t tag = window.find("<VTKFile");
+    if (tag == std::string_view::npos) return MeshFormat::Other;
+    const std::string_view attributes = window.substr(tag, window.find('>', tag) - tag);
+    if (surface_is_other && (attributes.find("\"PolyData\"") != std::string_view::npos ||
+                             attributes.find("'PolyData'") != std::string_view::npos))
+      return MeshFormat::Other;
+    return MeshFormat::VtkXml;
   }
   return MeshFormat::Other;
 }
@@ -44,7 +60,7 @@ MeshFormat detect_mesh_format(const std::string& path) {
   std::string head(4096, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<size_t>(in.gcount()));
-  return detect_text_format(head);
+  return detect_text_format(head, true);
 }
 
 const char* mesh_format_name(MeshFormat format) {
@@ -66,7 +82,7 @@ VolumeMesh read_by_format(const std::string& path, LoadReport& report) {
   std::string text = read_file_bytes(path);
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError({path, 0, 0, ""}, "the file is empty");
-  switch (detect_text_format(text)) {
+  switch (detect_text_format(text, false)) {  // PolyData: the VTK reader says it is a surface
     case MeshFormat::GmshV1:
     case MeshFormat::GmshV2:
     case MeshFormat::GmshV4: return read_gmsh(path, text, report);

@@ -69,7 +69,9 @@ INSTANTIATE_TEST_SUITE_P(
                       test::asset_mesh("Armadillo_Tetra_4406.vtu"), test::test_mesh("cube_v22.msh"),
                       test::test_mesh("cube_legacy.vtk"), test::test_mesh("cube_ascii.vtu"),
                       test::test_mesh("cube_binary32.vtu"), test::test_mesh("cube_binary64_be.vtu"),
-                      test::test_mesh("cube_zlib.vtu")),
+                      test::test_mesh("cube_zlib.vtu"),
+                      test::test_mesh("vtk9/cube_tets_binary.vtk"),
+                      test::test_mesh("vtk9/cube_tets_raw.vtu")),
     [](const ::testing::TestParamInfo<std::string>& param_info) {
       std::string name = std::filesystem::path(param_info.param).filename().string();
       for (char& ch : name)
@@ -115,7 +117,13 @@ INSTANTIATE_TEST_SUITE_P(
     Files, TruncatedSurface,
     ::testing::Values(test::asset_mesh("liver.obj"), test::asset_mesh("Bunny.stl"),
                       test::test_mesh("tetra.ply"), test::test_mesh("tetra.gltf"),
-                      test::test_mesh("tetra.glb")),
+                      test::test_mesh("tetra.glb"), test::test_mesh("pyramid_coff.off"),
+                      test::test_mesh("pyramid_ascii.vtk"), test::test_mesh("pyramid_binary.vtk"),
+                      test::test_mesh("pyramid_zlib_blocks.vtp"),
+                      test::test_mesh("pyramid_appended_raw64.vtp"),
+                      test::test_mesh("pyramid_appended_base64.vtp"),
+                      test::test_mesh("vtk9/sphere_strips_default.vtp"),
+                      test::test_mesh("vtk9/sphere_strips_binary.vtk")),
     [](const ::testing::TestParamInfo<std::string>& param_info) {
       std::string name = std::filesystem::path(param_info.param).filename().string();
       for (char& ch : name)

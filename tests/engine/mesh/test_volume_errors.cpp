@@ -72,7 +72,19 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenCase{"broken_surface.dae", 0, "unsupported surface format '.dae'", true},
         BrokenCase{"broken_obj_named_gltf.gltf", 0, "the glTF JSON does not parse", true},
         BrokenCase{"fuzz/gltf_strip_without_positions.gltf", 0,
-                   "primitive 0 has no POSITION attribute", true}),
+                   "primitive 0 has no POSITION attribute", true},
+        BrokenCase{"broken_off_index.off", 15, "vertex index '5' is out of range", true},
+        BrokenCase{"broken_off_count.off", 5, "500 faces, more lines than the file has", true},
+        BrokenCase{"broken_off_number.off", 8, "found 'zero'", true},
+        BrokenCase{"broken_off_4off.off", 3, "4OFF and nOFF", true},
+        BrokenCase{"broken_polydata_index.vtk", 16, "cell 0 refers to point 9", true},
+        BrokenCase{"broken_polydata_short.vtk", 20, "TRIANGLE_STRIPS says its cell list holds 10",
+                   true},
+        BrokenCase{"broken_polydata_binary.vtk", 9, "ends before its 10 binary values", true},
+        BrokenCase{"broken_strip.vtp", 12, "strip 0 has 2 points", true},
+        BrokenCase{"broken_zlib_size.vtp", 11, "cannot inflate to the 999999984 bytes", true},
+        BrokenCase{"broken_appended_offset.vtp", 9, "offset inside the appended data", true},
+        BrokenCase{"pyramid_ascii.vtk", 4, "DATASET POLYDATA is a surface"}),
     [](const ::testing::TestParamInfo<BrokenCase>& param_info) {
       std::string name = param_info.param.file;
       for (char& ch : name)
