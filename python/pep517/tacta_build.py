@@ -138,7 +138,7 @@ def _cmake_build(config_settings):
     subprocess.run(configure, check=True, stdout=sys.stderr)
     subprocess.run(["cmake", "--build", str(build_dir), "-j", jobs], check=True, stdout=sys.stderr)
     package = build_dir / "python" / "tacta"
-    if not list(package.glob("_tacta*.so")):
+    if not (package / ("_tacta" + sysconfig.get_config_var("EXT_SUFFIX"))).exists():
         raise RuntimeError(f"the build made no module in {package}")
     return package
 
@@ -164,7 +164,10 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
 
 def _write_wheel(package, info, wheel_directory):
     name = f"tacta-{_project_version()}-{_tag()}.whl"
-    files = sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+    # A build folder shared by two interpreters holds a module for each: take this one's alone.
+    suffix = sysconfig.get_config_var("EXT_SUFFIX")
+    files = sorted(p for p in package.rglob("*") if p.is_file() and "__pycache__" not in p.parts
+                   and not (p.name.startswith("_tacta.") and not p.name.endswith(suffix)))
     record = ""
     with zipfile.ZipFile(pathlib.Path(wheel_directory) / name, "w", zipfile.ZIP_DEFLATED) as wheel:
         for path in files:
@@ -178,7 +181,7 @@ def _write_wheel(package, info, wheel_directory):
             wheel.writestr(_zip_info(arcname, path), data)
             record += _record_line(arcname, data)
         record += f"{info.name}/RECORD,,\n"
-        wheel.writestr(f"{info.name}/RECORD", record)
+        wheel.writestr(_zip_info(f"{info.name}/RECORD", info / "METADATA"), record)
     return name
 
 
