@@ -19,10 +19,11 @@ SKIP_DIRS = ("tests/data/", "assets/", "fuzz/corpus/")
 SELF = "tests/docs/docs_check.py"
 
 
-def tracked(root):
+def tracked(root, *extra):
+    """The checkout's files (tracked; with "--others", also new files git does not ignore)."""
     try:
-        out = subprocess.run(["git", "-C", root, "ls-files"], capture_output=True, text=True,
-                             check=True).stdout
+        out = subprocess.run(["git", "-C", root, "ls-files", *extra, "--exclude-standard"],
+                             capture_output=True, text=True, check=True).stdout
         return [f for f in out.splitlines() if os.path.isfile(os.path.join(root, f))]
     except (OSError, subprocess.CalledProcessError):
         files = []
@@ -43,7 +44,7 @@ def text_of(path):
 def main():
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else ".")
     files = [f for f in tracked(root) if not f.startswith(SKIP_DIRS) and f != SELF]
-    names = {os.path.basename(f) for f in tracked(root)}
+    names = {os.path.basename(f) for f in tracked(root) + tracked(root, "--others")}
     problems = []
     for f in files:
         text = text_of(os.path.join(root, f))

@@ -15,7 +15,7 @@ Checks (docs/TESTING.md, "The realtime soak"):
 - flat resident memory, where memory was locked: RSS at the end within --rss-growth-kb (default
   256 kB) of RSS 10 s into the run. With mlockall every page is resident once mapped, so growth
   is new allocation; 256 kB over the 50 s between is a leak of 5 bytes per tick.
-Usage: soak_check.py --tacta BIN --scene SCENE --out DIR [--duration S] [--cpu N]
+Usage: soak_check.py --tacta BIN --scene SCENE --out DIR [--duration S] [--cpu N] [--set KEY=VALUE ...]
 """
 import argparse
 import json
@@ -33,10 +33,13 @@ def main():
     p.add_argument("--cpu", type=int, default=min(1, (os.cpu_count() or 1) - 1))
     p.add_argument("--rss-growth-kb", type=int, default=256)
     p.add_argument("--max-stall-misses", type=int, default=-1, help="-1: not asserted")
+    p.add_argument("--set", action="append", default=[], help="a scene override, as tacta run")
     a = p.parse_args()
     command = [a.tacta, "run", a.scene, "--realtime", "--duration", str(a.duration),
                "--haptic-cpu", str(a.cpu), "--out", a.out, "--quiet",
                "--set", "output.frames=false", "--set", "output.vtk=false", "--set", "output.plots=[]"]
+    for s in a.set:
+        command += ["--set", s]
     run = subprocess.run(command, capture_output=True, text=True)
     path = os.path.join(a.out, "report.json")
     if run.returncode != 0 or not os.path.exists(path):
