@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim_test_support.hpp"
+#include "validation_row.hpp"
 
 namespace tacta::simtest {
 namespace {
@@ -102,11 +103,20 @@ TEST(BoundaryMotion, StuckPlateHoldsItsFaceWhileTheFloorLetsItsFaceSlide) {
                              "stuck");
   EXPECT_NEAR(p.corner[0], 0.0, 1e-12);  // glued where it touched
   EXPECT_NEAR(p.corner[1], -0.0002, 1e-12);
-  // The sliding bottom still widens (by symmetry twice the origin corner's outward motion) by
-  // about a free block's amount: on this 4x2x4 mesh the glued top pushes material down and out
-  // about as much as it holds the bottom back (0.7x on the one-diagonal split, 1.05x mirrored).
-  EXPECT_GT(-2 * p.origin[0], 0.5 * kWidening);
-  EXPECT_LT(-2 * p.origin[0], 1.5 * kWidening);
+  // Reference: the same block converged under refinement, solved directly without plates. A
+  // frictionless floor is a mirror plane, so the block is the half of a 40 mm cube glued on both
+  // faces and squeezed 0.4 mm (fixed base, prescribed top, cholesky): its mid-plane corners widen
+  // by 2 x 6.047e-5 / 6.087e-5 / 6.074e-5 m on [4,8,4] / [8,16,8] / [16,32,16] cells
+  // (docs/VALIDATION.md), so 1.2148e-4 m = 1.012 x a free block's nu e W: the glued top makes
+  // the free bottom widen a little more, not less. Tolerance 5 %: this coarse 4x2x4 mesh is
+  // +3.4 % above it (discretisation; the reference moved 0.2 % over its last refinement).
+  constexpr double kReference = 2 * 6.074e-5;
+  const double widening = -2 * p.origin[0];
+  test::validation_row("boundary_motion.stuck_plate_floor_widening",
+                       "fine-mesh mirrored block, 1.2148e-4 m", "5 % (4x2x4 discretisation)",
+                       test::validation_number(widening) + " m",
+                       std::abs(widening - kReference) <= 0.05 * kReference);
+  EXPECT_NEAR(widening, kReference, 0.05 * kReference);
 }
 
 // A column held at its base whose top face follows a table; every model moves the same nodes.

@@ -194,6 +194,9 @@ TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
         << "the device returned more energy than the hand put in";
     EXPECT_LE(run.peer["peak"], kPeakForce + 1e-9);
     EXPECT_GE(run.peer["held_fraction"], kHeldFraction) << "contact was not held while pressed in";
+    // The peer sends every tick; 50 ms of silence (the net device's watchdog) means the link or
+    // one side stalled, and the device reads DISCONNECTED (force zero) until it hears again.
+    EXPECT_EQ(run.link.at("watchdog_trips"), 0.0) << "the link fell silent past the watchdog";
     EXPECT_GT(run.sim.devices.at(0).contact_ticks,
               100u);  // ticks: fewer when the engine runs late (ASan, load)
     EXPECT_LE(run.sim.devices.at(0).max_force_N, kPeakForce + 1e-9);

@@ -3,6 +3,7 @@
 // poses that press the liver, and receives the SENSOR forces and the POLYDATA surface. The last
 // surface it gets is checked against the simulation's own state at that time: vertex count,
 // triangles, positions.
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <igtlTransformMessage.h>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include "../../../plugins/devices/openigtlink/igtl_io.hpp"
@@ -25,6 +27,7 @@
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/sim/simulation.hpp"
+#include "validation_row.hpp"
 
 namespace tacta {
 namespace {
@@ -60,6 +63,7 @@ class SlicerLikeClient {
   std::string surface_name;
   std::vector<float> points;
   std::vector<uint32_t> triangles;
+  std::vector<std::array<double, 3>> sensor_forces;  // N, every SENSOR in the order received
 
  private:
   void run(const fs::path& port_file) {
@@ -101,6 +105,8 @@ class SlicerLikeClient {
           const double f = std::hypot(m->GetValue(0), m->GetValue(1), m->GetValue(2));
           if (f > max_force_N) max_force_N = f;
           ++sensors;
+          std::lock_guard<std::mutex> lock(mutex);
+          sensor_forces.push_back({m->GetValue(0), m->GetValue(1), m->GetValue(2)});
         }
       } else if (std::string(header->GetDeviceType()) == "POLYDATA") {
         igtl::PolyDataMessage::Pointer m = igtl::PolyDataMessage::New();
@@ -149,6 +155,62 @@ struct StateKeeper final : FrameObserver {
   std::map<double, std::vector<double>> positions;
 };
 
+// Every SENSOR the client received is the force the engine sent the device at one of its ticks,
+// in tick order. Reference: the engine's own per-tick force (trace.csv, printed to 9 digits);
+// tolerance: that print's rounding, 1e-8 N + 1e-8 |F| (SENSOR carries float64, so nothing else
+// separates them).
+void expect_sensors_are_the_engines_forces(const std::vector<std::array<double, 3>>& sensors,
+                                           const fs::path& trace) {
+  std::vector<std::array<double, 3>> ticks;
+  std::ifstream in(trace);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::array<double, 14> v{};
+    std::istringstream row(line);
+    for (double& x : v) {
+      row >> x;
+      row.ignore(1);
+    }
+    ticks.push_back({v[8], v[9], v[10]});  // force_x_N, force_y_N, force_z_N
+  }
+  ASSERT_GT(ticks.size(), 100u) << trace;
+  size_t tick = 0, matched = 0, nonzero = 0;
+  double worst = 0;
+  for (const auto& f : sensors) {
+    // An exact zero is also what the device says before the engine's first write and after the
+    // run (openigtlink.cpp): not ordered against the ticks.
+    if (f[0] == 0 && f[1] == 0 && f[2] == 0) {
+      ++matched;
+      continue;
+    }
+    const auto close = [&](size_t k) {
+      double d = 0, m = 0;
+      for (int a = 0; a < 3; ++a) {
+        d = std::max(d, std::abs(f[a] - ticks[k][a]));
+        m = std::max(m, std::abs(f[a]));
+      }
+      return d <= 1e-8 + 1e-8 * m ? d : -1.0;
+    };
+    size_t k = tick;
+    while (k < ticks.size() && close(k) < 0) ++k;
+    if (k == ticks.size()) continue;  // not found from here on: counted below
+    worst = std::max(worst, close(k));
+    tick = k, ++matched, ++nonzero;
+  }
+  const bool pass = matched == sensors.size() && nonzero > 0;
+  tacta::test::validation_row("openigtlink.sensor_equals_device_force",
+                              "the engine's device force at that tick (trace.csv, 9 digits)",
+                              "1e-8 N + 1e-8 |F| (the trace's rounding)",
+                              std::to_string(matched) + " of " + std::to_string(sensors.size()) +
+                                  " SENSOR (" + std::to_string(nonzero) +
+                                  " non-zero) matched in tick order, worst " +
+                                  tacta::test::validation_number(worst, 2) + " N",
+                              pass);
+  EXPECT_EQ(matched, sensors.size()) << "a SENSOR carried a force the engine never sent";
+  EXPECT_GT(nonzero, 0u);
+}
+
 TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSurface) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink";
   fs::remove_all(work);
@@ -167,6 +229,7 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   options.realtime = true;
   options.duration_s = 1.5;
   options.observers = {&keeper};
+  options.out_dir = (work / "run").string();  // trace.csv: the device force of every tick
   const RunResult result = sim.run(options);
   client.stop_sending = true;
   ASSERT_FALSE(keeper.positions.empty());
@@ -188,6 +251,7 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   EXPECT_EQ(result.devices.at(0).counters.empty(), false);
 
   std::lock_guard<std::mutex> lock(client.mutex);
+  expect_sensors_are_the_engines_forces(client.sensor_forces, work / "run" / "trace.csv");
   EXPECT_EQ(client.surface_name, "liver");
   const auto state =
       keeper.positions.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
