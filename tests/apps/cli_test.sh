@@ -226,6 +226,47 @@ YAML
     run 0 run tets.yaml --out out
     expect_output 'tetrahedralized' "what the body became"
     ;;
+  mesh_formats)
+    # OFF and VTK PolyData surfaces (issue 24) in mesh-info and as scene bodies; refusals name
+    # file and line. Binary legacy VTK tets load as a volume.
+    meshes="$src/tests/data/meshes"
+    for f in pyramid.off pyramid_binary.vtk pyramid_appended_base64.vtp vtk9/sphere_strips_default.vtp; do
+      run 0 mesh-info "$meshes/$f"
+      expect_output 'closed: yes' "a closed surface ($f)"
+    done
+    run 0 mesh-info "$meshes/vtk9/cube_tets_binary.vtk"
+    expect_output 'tets: 6' "a binary legacy tet mesh"
+    run 0 mesh-info "$meshes/uv_indices_without_vt.obj"
+    expect_output 'warning: ignored, as a simulation does not use them: texture coordinates' "the one warning"
+    run 2 mesh-info "$meshes/broken_off_index.off"
+    expect_output "broken_off_index\.off:15: vertex index '5' is out of range" "the file, line and index"
+    run 2 mesh-info "$meshes/broken_polydata_binary.vtk"
+    expect_output 'broken_polydata_binary\.vtk:9: .*truncated' "the file and line of the cut data"
+    run 2 mesh-info "$meshes/broken_zlib_size.vtp"
+    expect_output 'broken_zlib_size\.vtp:11: .*cannot inflate' "the forged zlib header refused"
+    cp "$meshes/pyramid_appended_base64.vtp" "$meshes/pyramid_ascii.vtk" "$meshes/pyramid_coff.off" .
+    cat >formats.yaml <<'YAML'
+name: formats
+clock: {duration_s: 0.05}
+bodies:
+  - name: from_vtp
+    mesh: {file: pyramid_appended_base64.vtp, surface: pyramid_ascii.vtk, scale: 0.05}
+    material: {youngs_modulus: 3.0e3, poisson_ratio: 0.3, density: 1000}
+    model: corotational_fem
+    fixed: [{box: {min: [-1, -1, -1], max: [1, 1, 0.01]}}]
+  - name: from_off
+    mesh: {file: pyramid_coff.off, scale: 0.05, translate: [0.2, 0, 0]}
+    material: {youngs_modulus: 3.0e3, poisson_ratio: 0.3, density: 1000}
+    model: corotational_fem
+    fixed: [{box: {min: [-1, -1, -1], max: [1, 1, 0.01]}}]
+YAML
+    run 0 run formats.yaml --out out
+    expect_file out/report.json
+    sed 's/pyramid_coff\.off/broken_off_index.off/' formats.yaml >broken_formats.yaml
+    cp "$meshes/broken_off_index.off" .
+    run 2 run broken_formats.yaml --out out2
+    expect_output "broken_off_index\.off:15: " "the mesh file and line from a scene"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -42,19 +42,23 @@ struct LoadReport {
 // pieces), or the file's format and counts; the warnings are separate (report.warnings).
 std::string describe_body_mesh(const VolumeMesh& mesh, const LoadReport& report);
 
-// Which reader a file needs, found from its first bytes (never from its extension).
+// Which reader a file needs, found from its first bytes (never from its extension); Other for a
+// surface file, VTK PolyData included.
 enum class MeshFormat { GmshV1, GmshV2, GmshV4, VtkLegacy, VtkXml, Other };
 MeshFormat detect_mesh_format(const std::string& path);
 const char* mesh_format_name(MeshFormat format);
 
-// A triangle surface from .ply or .obj (our own readers), .stl (checked, then read by assimp),
-// .gltf or .glb (assimp); other extensions are refused. Every sub-mesh merged with
-// its node transform applied, identical positions welded, degenerate triangles dropped and counted.
+// A triangle surface from .ply, .obj, .off or VTK PolyData (.vtk legacy, .vtp XML; our own
+// readers), .stl (checked, then read by assimp), .gltf or .glb (assimp); other extensions are
+// refused. Polygons fanned, strips split; attributes a simulation does not use (texture
+// coordinates, normals, colours) that do not parse are dropped with one warning. Every sub-mesh
+// merged with its node transform applied, identical positions welded, degenerate triangles
+// dropped and counted.
 SurfaceMesh load_surface(const std::string& path, LoadReport* report = nullptr);
 
-// A tetrahedral mesh from Gmsh (.msh v1, v2.2 ASCII, v4.1 ASCII) or VTK (legacy ASCII
-// UNSTRUCTURED_GRID; XML .vtu ascii, inline base64 binary, zlib-compressed). Tets only are kept;
-// the result is finalized (see finalize).
+// A tetrahedral mesh from Gmsh (.msh v1, v2.2 ASCII, v4.1 ASCII) or VTK (legacy ASCII or BINARY
+// UNSTRUCTURED_GRID; XML .vtu ascii, inline base64 binary, appended raw or base64,
+// zlib-compressed). Tets only are kept; the result is finalized (see finalize).
 VolumeMesh load_volume(const std::string& path, LoadReport* report = nullptr);
 
 // Makes a raw mesh ready for a model: unreferenced nodes removed (indices remapped), tets oriented
