@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "geometry.hpp"
+#include "scene_geometry.hpp"
 #include "gl.hpp"
 #include "math.hpp"
 #include "overlay.hpp"

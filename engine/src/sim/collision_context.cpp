@@ -10,7 +10,7 @@
 #include "collision_instance.hpp"
 #include "embedded_collision.hpp"
 #include "mesh_file_check.hpp"
-#include "param_defaults.hpp"
+#include "complete_params.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {

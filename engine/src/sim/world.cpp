@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "param_defaults.hpp"
+#include "complete_params.hpp"
 
 namespace tacta {
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/param_defaults.hpp"
+#include "sim/complete_params.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/sdk/common.hpp"
 

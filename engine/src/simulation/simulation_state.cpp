@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "../report/run_outputs.hpp"
-#include "run_status.hpp"
-#include "simulation_impl.hpp"
+#include "report/run_outputs.hpp"
+#include "sim/run_status_gather.hpp"
+#include "simulation/simulation_impl.hpp"
 #include "tacta/live_params.hpp"
 
 namespace tacta {

@@ -1,4 +1,4 @@
-#include "geometry.hpp"
+#include "scene_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "clock_session.hpp"
-#include "collision_context.hpp"
-#include "haptic_interaction.hpp"
-#include "haptic_loop.hpp"
-#include "param_defaults.hpp"
+#include "sim/clock_session.hpp"
+#include "sim/collision_context.hpp"
+#include "sim/haptic_interaction.hpp"
+#include "sim/haptic_loop.hpp"
+#include "sim/complete_params.hpp"
 #include "tacta/sim/simulation.hpp"
-#include "world.hpp"
+#include "sim/world.hpp"
 
 namespace tacta {
 

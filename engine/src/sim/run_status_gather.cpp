@@ -1,4 +1,4 @@
-#include "run_status.hpp"
+#include "run_status_gather.hpp"
 
 #include <fmt/format.h>
 
