@@ -219,16 +219,15 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   }
   haptics::LocalCompliance c;
   // Until the body has shown its stiffness (the first refresh of a press) the surface is rendered
-  // as the last step left it: an analytic guess (a flat punch on a half-space) came out 3 to 4
-  // times softer than the meshes' own response and made the force jump when the measurement came.
+  // as the last step left it (an analytic guess, a flat punch on a half-space, is 3 to 4 times
+  // softer than the meshes' own response: the force would jump when the measurement came).
   c.active = body.schedule.local_contact_yielding && m.stiffness > 0;
   // Why the measured stiffness matters: the surface the loop sees lags the force it renders by
   // two periods (the step posted at k runs on the forces of k-2..k-1 and shows at k+1). With the
   // device still, F_k = const + g F_(k-2) with g = k_c (k_true - k_l) / (k_true (k_l + k_c)): the
   // rigid snapshot (k_l -> infinity) gives g = -k_c / k_true, a ringing or bouncing contact as soon
   // as the coupling is stiffer than the tissue; k_l near k_true gives g near 0. Whatever k_l, the
-  // held force is the exact series k_c k_true / (k_c + k_true) d. (Half the measured value was
-  // tried as a safety margin: worse force error on the liver and the block, docs/BENCHMARKS.md.)
+  // held force is the exact series k_c k_true / (k_c + k_true) d.
   c.stiffness = m.stiffness;
   c.normal = m.onset_normal;
   c.reference_force = std::max(0.0, dot(m.felt, m.onset_normal));
