@@ -5,7 +5,10 @@ SCHED_FIFO asked for) and prints a table of what report.json says; exits 1 when 
 
 Checks (docs/TESTING.md, "The realtime soak"):
 - no tick over budget after the first second: no tick whose own CPU time (thread CPU clock)
-  exceeded the 1 ms period, i.e. no deadline miss caused by the engine's work. The first second
+  exceeded the 1 ms period, i.e. no deadline miss caused by the engine's work. In a virtual
+  machine the thread's CPU clock also runs while the host has taken the virtual CPU away (steal
+  time, /proc/stat): when the haptic CPU's steal grew during the run, ticks over budget cannot be
+  told from the host's and are printed, not asserted. The first second
   (cold caches, the first whole hierarchy build: about 2 ms at tick 1 of the liver demo) is
   printed, not asserted. Misses while the thread was off its CPU
   (a VM's stalls, preemption, late wake-ups) are counted and printed, not asserted: on a shared
@@ -24,6 +27,19 @@ import subprocess
 import sys
 
 
+def steal_jiffies(cpu):
+    """Steal time of one CPU, in USER_HZ ticks (/proc/stat, 8th value); None where not reported."""
+    try:
+        with open("/proc/stat") as f:
+            for line in f:
+                fields = line.split()
+                if fields[0] == f"cpu{cpu}" and len(fields) > 8:
+                    return int(fields[8])
+    except OSError:
+        pass
+    return None
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--tacta", required=True)
@@ -40,7 +56,10 @@ def main():
                "--set", "output.frames=false", "--set", "output.vtk=false", "--set", "output.plots=[]"]
     for s in a.set:
         command += ["--set", s]
+    steal_before = steal_jiffies(a.cpu)
     run = subprocess.run(command, capture_output=True, text=True)
+    steal_after = steal_jiffies(a.cpu)
+    stolen = None if steal_before is None or steal_after is None else steal_after - steal_before
     path = os.path.join(a.out, "report.json")
     if run.returncode != 0 or not os.path.exists(path):
         print(" ".join(command), run.stdout, run.stderr, sep="\n")
@@ -60,8 +79,9 @@ def main():
         ("scheduler", f"{rt['scheduler']} {rt['priority']}, CPU {rt['haptic_cpu']}, memory locked "
          f"{rt['memory_locked']} {rt['scheduler_note'] or ''}".strip(), None),
         ("ticks over budget after 1 s (engine's misses)",
-         f"{r['over_budget_ticks']} (max tick CPU {r['max_tick_cpu_ms']:.3f} ms)",
-         r["over_budget_ticks"] == 0),
+         f"{r['over_budget_ticks']} (max tick CPU {r['max_tick_cpu_ms']:.3f} ms; host steal on "
+         f"CPU {a.cpu} during the run: {'not reported' if stolen is None else f'{stolen} jiffies'})",
+         r["over_budget_ticks"] == 0 if not stolen else (None if r["over_budget_ticks"] else True)),
         ("ticks over budget in the first second (start-up)", str(r["warm_up_over_budget_ticks"]),
          None),
         ("deadline misses, all", f"{r['deadline_misses']} ({stall_misses} off the CPU); "
