@@ -35,27 +35,48 @@ struct BulletSoftBody::World {
   }
 };
 
-std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
-                                                 std::span<const double> masses,
-                                                 const tacta_material& material, StiffnessRule rule,
-                                                 double dt, int position_iterations) {
+namespace {
+// k_e dt^2 / m_reduced of each mesh edge's spring (N/m from the rule), -1 where both ends are held.
+std::vector<double> stiffness_dt2(const tacta_mesh_view& mesh, std::span<const double> masses,
+                                  const tacta_material& material, StiffnessRule rule, double dt) {
   const std::vector<double> spring =
       edge_stiffness("bullet_softbody", mesh, material, rule);  // N/m
-  std::vector<double> fraction(mesh.edge_count);
+  std::vector<double> out(mesh.edge_count);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const double inverse_mass_sum =
         (masses[mesh.edges[2 * e]] > 0 ? 1 / masses[mesh.edges[2 * e]] : 0) +
         (masses[mesh.edges[2 * e + 1]] > 0 ? 1 / masses[mesh.edges[2 * e + 1]] : 0);
-    if (!(inverse_mass_sum > 0)) {  // both ends held: Bullet never moves it
+    out[e] = inverse_mass_sum > 0 ? spring[e] * dt * dt * inverse_mass_sum : -1.0;
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<double> link_stiffness_from_material(const tacta_mesh_view& mesh,
+                                                 std::span<const double> masses,
+                                                 const tacta_material& material, StiffnessRule rule,
+                                                 double dt, int position_iterations) {
+  const std::vector<double> k_dt2 = stiffness_dt2(mesh, masses, material, rule, dt);
+  std::vector<double> fraction(mesh.edge_count);
+  for (uint32_t e = 0; e < mesh.edge_count; ++e) {
+    if (k_dt2[e] < 0) {  // both ends held: Bullet never moves it
       fraction[e] = 1.0;
       continue;
     }
-    const double stiffness_dt2 = spring[e] * dt * dt * inverse_mass_sum;  // k dt^2 / m_reduced
-    const double closed_per_step = stiffness_dt2 / (1.0 + stiffness_dt2);
+    const double closed_per_step = k_dt2[e] / (1.0 + k_dt2[e]);
     const double per_iteration = 1.0 - std::pow(1.0 - closed_per_step, 1.0 / position_iterations);
     fraction[e] = std::clamp(per_iteration, 1e-6, 1.0);  // Bullet divides by kLST
   }
   return fraction;
+}
+
+int substeps_for(const tacta_mesh_view& mesh, std::span<const double> masses,
+                 const tacta_material& material, StiffnessRule rule, double dt) {
+  const std::vector<double> k_dt2 = stiffness_dt2(mesh, masses, material, rule, dt);
+  const double stiffest = k_dt2.empty() ? 0.0 : *std::max_element(k_dt2.begin(), k_dt2.end());
+  // (dt / n)^2 k / m <= kStiffnessDt2: n >= sqrt(k dt^2 / m / kStiffnessDt2).
+  return std::clamp(static_cast<int>(std::ceil(std::sqrt(std::max(stiffest, 0.0) / kStiffnessDt2))),
+                    1, kMaxSubsteps);
 }
 
 BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material& material,
@@ -90,11 +111,21 @@ BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material
   w.body =
       std::make_unique<btSoftBody>(&w.info, static_cast<int>(mesh.node_count), x.data(), m.data());
   body_ = w.body.get();
+  // A held node is an infinite mass to Bullet (inverse mass 0), so the rule must see it so: with
+  // its lumped mass instead, a link to the clamp closed its error as if shared with a node that
+  // never moves, about twice too stiff (a 2x2x6-cell cantilever settled 0.80x mass_spring's).
+  std::vector<double> moving_masses(masses.begin(), masses.end());
+  for (uint32_t i = 0; i < mesh.node_count; ++i)
+    if (!fixed_.empty() && fixed_[i]) moving_masses[i] = 0.0;
+  substeps_ = options.stiffness_override > 0.0
+                  ? 1
+                  : substeps_for(mesh, moving_masses, material, options.stiffness_rule, dt);
+  const double substep = dt / substeps_;
   link_stiffness_ =
       options.stiffness_override > 0.0
           ? std::vector<double>(mesh.edge_count, options.stiffness_override)
-          : link_stiffness_from_material(mesh, masses, material, options.stiffness_rule, dt,
-                                         options.position_iterations);
+          : link_stiffness_from_material(mesh, moving_masses, material, options.stiffness_rule,
+                                         substep, options.position_iterations);
   for (uint32_t e = 0; e < mesh.edge_count; ++e) {
     const uint32_t i = mesh.edges[2 * e], j = mesh.edges[2 * e + 1];
     if (i >= mesh.node_count || j >= mesh.node_count)
@@ -114,7 +145,7 @@ BulletSoftBody::BulletSoftBody(const tacta_mesh_view& mesh, const tacta_material
       median(link_stiffness_);
   if (options.bending) body_->generateBendingConstraints(2, bullet_material);
   body_->m_cfg.piterations = options.position_iterations;
-  body_->m_cfg.kDP = std::clamp(1.0 - std::exp(-alpha_ * dt), 0.0, 1.0);
+  body_->m_cfg.kDP = std::clamp(1.0 - std::exp(-alpha_ * substep), 0.0, 1.0);
   body_->m_cfg.collisions = 0;  // no colliders here: contact reaches us as external forces
   // Bullet computes its runtime constants, the links' rest lengths among them, at the first
   // predictMotion from the nodes' positions *then*, which step() has just overwritten with the
@@ -133,13 +164,19 @@ uint32_t BulletSoftBody::step(tacta_body_state& state, double dt) noexcept {
     btSoftBody::Node& node = body_->m_nodes[i];
     const double* x = state.positions + 3 * i;
     const double* v = state.velocities + 3 * i;
-    const double* f = state.external_forces + 3 * i;
     node.m_x = btVector3(x[0], x[1], x[2]);
     node.m_q = node.m_x;
     node.m_v = btVector3(v[0], v[1], v[2]);
-    node.m_f = node.m_im > 0.0 ? btVector3(f[0], f[1], f[2]) : btVector3(0, 0, 0);
   }
-  world_->world.stepSimulation(dt, 0, dt);
+  const double substep = dt / substeps_;
+  for (int k = 0; k < substeps_; ++k) {
+    for (int i = 0; i < count; ++i) {  // Bullet clears the forces after each of its steps
+      btSoftBody::Node& node = body_->m_nodes[i];
+      const double* f = state.external_forces + 3 * i;
+      node.m_f = node.m_im > 0.0 ? btVector3(f[0], f[1], f[2]) : btVector3(0, 0, 0);
+    }
+    world_->world.stepSimulation(substep, 0, substep);
+  }
   for (int i = 0; i < count; ++i) {
     const btSoftBody::Node& node = body_->m_nodes[i];
     const bool held = !fixed_.empty() && fixed_[i];

@@ -48,7 +48,8 @@ class BulletSoftBodyPlugin {
     return std::string("link kLST ") + median_and_range(body_->link_stiffness()) +
            (stiffness_override_ > 0
                 ? " (stiffness_override)"
-                : std::string(" from ") + stiffness_rule_name(rule_) + " springs at the setup dt");
+                : std::string(" from ") + stiffness_rule_name(rule_) + " springs at the setup dt") +
+           ", " + std::to_string(body_->substeps()) + " Bullet steps per step";
   }
 
  private:

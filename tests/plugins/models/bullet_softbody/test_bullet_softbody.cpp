@@ -11,6 +11,7 @@
 #include "tacta/model_api.h"
 #include "tacta/models/spring_stiffness.hpp"
 #include "tacta/models/test_meshes.hpp"
+#include "validation_row.hpp"
 
 namespace {
 
@@ -30,6 +31,13 @@ struct PluginRun {
     void* instance = nullptr;
     const tacta_status status = api.create(&setup, &instance, message, size);
     return status == TACTA_OK ? instance : nullptr;
+  }
+  // create(), failing the test with the plugin's message when it refuses.
+  void* create_or_fail(const TestMesh& mesh, const tacta_mesh_view& view) {
+    char message[256] = {0};
+    void* instance = create(mesh, view, message, sizeof message);
+    EXPECT_NE(instance, nullptr) << message;
+    return instance;
   }
 };
 
@@ -78,21 +86,96 @@ TEST(BulletSoftBody, FixedNodesStayWhileTheRestSags) {
   std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0);
   for (uint32_t i = 0; i < mesh.node_count(); ++i) f[3 * i + 1] = -9.81 * mesh.masses[i];
   tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
-  for (int i = 0; i < 200; ++i)
-    ASSERT_EQ(run.api.step(instance, &state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+  // The undamped beam swings (period about 0.2 s): the tip's largest sag over the run, not its
+  // phase at the end, shows that the free end moves.
   double tip = 0.0;
-  for (uint32_t i = 0; i < mesh.node_count(); ++i) {
+  for (int step = 0; step < 200; ++step) {
+    ASSERT_EQ(run.api.step(instance, &state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+    for (uint32_t i = 0; i < mesh.node_count(); ++i)
+      if (!mesh.fixed[i] && mesh.positions[3 * i + 2] > 0.19)
+        tip = std::max(tip, mesh.positions[3 * i + 1] - x[3 * i + 1]);
+  }
+  for (uint32_t i = 0; i < mesh.node_count(); ++i)
     if (mesh.fixed[i]) {
       for (int c = 0; c < 3; ++c) EXPECT_EQ(x[3 * i + c], mesh.positions[3 * i + c]);
       EXPECT_EQ(v[3 * i + 1], 0.0);
-    } else if (mesh.positions[3 * i + 2] > 0.19) {
-      tip = std::max(tip, mesh.positions[3 * i + 1] - x[3 * i + 1]);
+    }
+  EXPECT_GT(tip, 1e-4);  // the free end moved down
+  // How far it sags against a reference: SettledCantileverTipWithinTwentyPercentOfMassSpring.
+  std::printf("bullet cantilever tip, largest sag over 0.2 s: %.4f m\n", tip);
+  run.api.destroy(instance);
+}
+
+// The settled tip of a damped cantilever (2x2x6 cells, SOFA's material, alpha 20/s, 1.5 s at
+// 1 ms), Bullet against mass_spring with the same stiffness rule (van_gelder, both defaults).
+// Reference: mass_spring, whose implicit steps settle on the same spring network's static
+// equilibrium. Tolerance 20 %: a position projection is its spring only as x = k h^2 / m -> 0
+// (at finite x the network is up to ln(1 + x) / x as stiff); the plugin's substeps keep x <= 1/16
+// (measured 1.001x here; 1.86x before them and the held-node fix, whatever the iterations).
+double settled_tip(const char* file, const char* name) {
+  LoadedPlugin plugin(file);
+  const tacta_descriptor& d = plugin.descriptor(name);
+  const auto& api = plugin.api<tacta_model_api>(name);
+  auto params = tacta::testing::default_params(d);
+  TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 6}, {0.02, 0.02, 0.2}, 1100.0);
+  mesh.fix_plane(2, 0.0);
+  tacta_material material = tacta::models::make_material(2e6, 0.45, 1100.0);
+  material.rayleigh_mass = 20.0;
+  const tacta_mesh_view view = mesh.view();
+  const tacta_model_setup setup = mesh.setup(view, material, params.data(), d.param_count, 1e-3);
+  void* instance = nullptr;
+  char message[256] = {0};
+  EXPECT_EQ(api.create(&setup, &instance, message, sizeof message), TACTA_OK) << message;
+  if (instance == nullptr) return 0.0;
+  std::vector<double> x = mesh.positions, v(x.size(), 0.0), f(x.size(), 0.0);
+  for (uint32_t i = 0; i < mesh.node_count(); ++i) f[3 * i + 1] = -9.81 * mesh.masses[i];
+  tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
+  if (api.begin != nullptr) api.begin(instance, &state, 1e-3);
+  for (int i = 0; i < 1500; ++i)
+    EXPECT_EQ(api.step(instance, &state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+  api.destroy(instance);
+  return -mesh.mean_displacement_on_plane(x.data(), 2, 0.2, 1);
+}
+
+TEST(BulletSoftBody, SettledCantileverTipWithinTwentyPercentOfMassSpring) {
+  const double bullet = settled_tip("tacta_bullet_softbody.so", "bullet_softbody");
+  const double springs = settled_tip("tacta_mass_spring.so", "mass_spring");
+  const bool pass = std::abs(bullet - springs) <= 0.2 * springs;
+  tacta::test::validation_row("bullet_softbody.cantilever_vs_mass_spring",
+                              "mass_spring's settled tip (same springs, exact solve), " +
+                                  tacta::test::validation_number(springs) + " m",
+                              "20 % (a projection is a spring only as k h^2 / m -> 0)",
+                              tacta::test::validation_number(bullet) + " m (" +
+                                  tacta::test::validation_number(bullet / springs, 3) + "x)",
+                              pass);
+  EXPECT_NEAR(bullet, springs, 0.2 * springs);
+}
+
+// A first step that starts deformed pulls back towards the rest shape (Bullet used to take the
+// links' rest lengths from the first step's positions, so a body that started stretched stayed).
+TEST(BulletSoftBody, FirstStepFromAStretchedStartPullsBack) {
+  PluginRun run;
+  const TestMesh mesh = tacta::models::box_tet_mesh({2, 2, 2}, {0.1, 0.1, 0.1}, 1000.0);
+  const tacta_mesh_view view = mesh.view();
+  void* instance = run.create_or_fail(mesh, view);
+  ASSERT_NE(instance, nullptr);
+  std::vector<double> x = mesh.positions;
+  for (double& c : x) c = 0.05 + 1.01 * (c - 0.05);  // 1 % about the centre
+  std::vector<double> v(x.size(), 0.0), f(x.size(), 0.0);
+  const std::vector<double> stretched = x;
+  tacta_body_state state{mesh.node_count(), x.data(), v.data(), f.data(), 0.0};
+  ASSERT_EQ(run.api.step(instance, &state, 1e-3), 0u);
+  // Every corner node moves towards the centre.
+  for (uint32_t i = 0; i < mesh.node_count(); ++i) {
+    double before = 0, after = 0;
+    for (int c = 0; c < 3; ++c) {
+      before += std::pow(stretched[3 * i + c] - 0.05, 2);
+      after += std::pow(x[3 * i + c] - 0.05, 2);
+    }
+    if (before > 3 * 0.05 * 0.05) {
+      EXPECT_LT(after, before) << "node " << i;
     }
   }
-  EXPECT_GT(tip, 1e-4);  // the free end moved down
-  // A free fall over the 0.2 s would be 0.196 m; the static elastic answer is about 0.03 m.
-  std::printf("bullet cantilever tip after 0.2 s: %.4f m\n", tip);
-  EXPECT_LT(tip, 0.15);  // links hold the beam
   run.api.destroy(instance);
 }
 
