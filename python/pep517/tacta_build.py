@@ -131,6 +131,9 @@ def _cmake_build(config_settings):
                  # so a run's state hash equals the command line's (tests/python compare them).
                  "-DCMAKE_BUILD_TYPE=Release", "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG",
                  "-DCMAKE_C_FLAGS_RELEASE=-O2 -DNDEBUG"]
+    cache = build_dir / "CMakeCache.txt"
+    if cache.exists() and f"_Python3_EXECUTABLE:INTERNAL={sys.executable}\n" not in cache.read_text():
+        configure.append("-U_Python3_*")  # another interpreter built here: find this one afresh
     if shutil.which("ninja") and not (build_dir / "Makefile").exists():
         configure += ["-G", "Ninja"]
     configure += (_setting(config_settings, "cmake-args", "TACTA_PIP_CMAKE_ARGS") or "").split()
