@@ -15,6 +15,13 @@ namespace tacta {
 // (the 1 kHz demos have hundreds to a few thousand), and keeps a typo from eating the memory.
 constexpr int64_t kMaxGridNodes = 4'000'000;
 
+// The tet budget a surface file is sized to when the scene gives no voxel_size (or no
+// tetrahedralize.max_volume): the default model (corotational_fem) steps this many tets well
+// inside the 1 ms haptic tick on a 2-core machine (docs/SCENES.md has the measured figures).
+constexpr int64_t kDefaultMaxTets = 1000;
+// The largest max_tets a scene may ask for: the voxeliser's 2 million cells, 6 tets each.
+constexpr int64_t kMaxTetsLimit = 12'000'000;
+
 // A box [origin, origin + size] cut into cells[0] x cells[1] x cells[2] hexahedra, each split into
 // 6 tets around its diagonal from the (min x, min y, min z) corner to the opposite one, so that
 // neighbouring cells share their face diagonals (a conforming mesh). Node index:

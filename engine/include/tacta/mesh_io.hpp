@@ -36,6 +36,11 @@ struct LoadReport {
   std::vector<double> piece_volumes;  // m^3, one per connected piece of the tets (face-connected)
   size_t split_pieces =
       0;  // > 0: the inside cells fell into this many pieces, joined by the crossed cells
+  // The automatic tet budget (max_tets) a surface was sized to, 0 when a size was given
+  // (voxel_size, tetrahedralize.max_volume) or the mesh is a volume file or a primitive.
+  size_t max_tets = 0;
+  double thin_part_size = 0;  // m: the voxel the surface's thin parts ask for (automatic voxels)
+  double budget_max_volume = 0;  // m^3: the max_volume chosen to meet the budget (Gmsh), 0: none
 };
 
 // One line a person reads: what a surface-made body became (voxel size, counts, volume kept,

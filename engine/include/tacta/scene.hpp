@@ -44,6 +44,9 @@ struct MeshSourceDesc {
   double radius = 0.05;               // Sphere, m
   int subdivisions = 2;               // Sphere resolution
   double voxel_size = 0;              // File with a surface only: tet grid cell, m (0 = automatic)
+  // File with a surface only, automatic voxels or tetrahedralize without max_volume: the most
+  // tets the body may have (0: kDefaultMaxTets, mesh_build.hpp), so that it steps at 1 kHz.
+  int64_t max_tets = 0;
   std::optional<TetrahedralizeDesc>
       tetrahedralize;       // File with a surface only: Gmsh instead of voxels
   Vec3 scale{1, 1, 1};      // applied to file coordinates (e.g. mm -> m: 0.001)

@@ -25,12 +25,14 @@ void write_mesh_origin(JsonWriter& j, const BodyResult& b, const LoadReport& loa
   if (load.voxel_size > 0) {
     j.field("voxel_size_m", load.voxel_size)
         .field("voxel_cells", static_cast<uint64_t>(load.voxel_cells));
+    j.field("thin_part_size_m", load.thin_part_size);
     j.field("surface_shells", static_cast<uint64_t>(load.shells));
     j.field("enclosed_volume_m3", load.enclosed_volume).field("volume_m3", load.mesh_volume);
     j.key("piece_volumes_m3").begin_array();
     for (double v : load.piece_volumes) j.value(v);
     j.end_array();
   }
+  if (load.max_tets > 0) j.field("max_tets", static_cast<uint64_t>(load.max_tets));
   j.key("warnings").begin_array();
   for (const std::string& w : b.mesh_warnings) j.value(w);
   j.end_array();

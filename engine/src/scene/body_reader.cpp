@@ -166,12 +166,13 @@ MeshSourceDesc read_mesh_source(const Field& field) {
   field.expect_map(
       "a map with `file` or one primitive (box_grid, beam_grid, quad_grid, "
       "unit_square, sphere), or 'unit_square'");
-  field.check_keys({"file", "scale", "translate", "voxel_size", "surface", "tetrahedralize",
-                    "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
+  field.check_keys({"file", "scale", "translate", "voxel_size", "max_tets", "surface",
+                    "tetrahedralize", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
   const std::string source = exactly_one_of(
       field, {"file", "box_grid", "beam_grid", "quad_grid", "unit_square", "sphere"});
   if (source != "file") {
-    for (const char* file_only : {"scale", "translate", "voxel_size", "tetrahedralize"})
+    for (const char* file_only :
+         {"scale", "translate", "voxel_size", "max_tets", "tetrahedralize"})
       if (auto f = field.get(file_only))
         f->fail(std::string("'") + file_only + "' applies to a mesh `file` only, not to " + source);
   }
@@ -194,6 +195,15 @@ MeshSourceDesc read_mesh_source(const Field& field) {
       if (field.get("voxel_size"))
         f->fail("give `voxel_size` (voxel tets) or `tetrahedralize` (Gmsh), not both");
       mesh.tetrahedralize = read_tetrahedralize(*f);
+    }
+    if (auto f = field.get("max_tets")) {
+      if (field.get("voxel_size"))
+        f->fail("`voxel_size` fixes the voxels, `max_tets` sizes them automatically; give one");
+      if (mesh.tetrahedralize && mesh.tetrahedralize->max_volume > 0)
+        f->fail(
+            "`tetrahedralize.max_volume` fixes the tets' size, `max_tets` sizes them "
+            "automatically; give one");
+      mesh.max_tets = f->integer(1, kMaxTetsLimit);
     }
   } else if (source == "box_grid" || source == "beam_grid") {
     mesh.kind =

@@ -83,6 +83,7 @@ TEST(Voxelize, BodyMeshFromASurfaceFileUsesTheAutomaticVoxel) {
   desc.kind = MeshSourceDesc::Kind::File;
   desc.path = test::asset_mesh("Bunny.stl");
   desc.scale = {0.001, 0.001, 0.001};
+  desc.max_tets = kMaxTetsLimit;  // the thin parts' size, not the tet budget, decides here
   LoadReport report;
   VolumeMesh bunny = load_body_mesh(desc, &report);
   EXPECT_GT(bunny.tet_count(), 0u);

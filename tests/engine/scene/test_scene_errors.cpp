@@ -224,6 +224,33 @@ TEST(SceneErrors, TetrahedralizeKeys) {
                3, 75, "bodies[0].mesh.tetrahedralize", {"mesh `file` only"});
 }
 
+// mesh.max_tets: an integer in range, on a mesh file only, not with a size that fixes the tets.
+TEST(SceneErrors, MaxTetsKeys) {
+  const std::string body =
+      "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: "
+      "0.3}\n    model: tensor_mass\n";
+  auto with_mesh = [&](const std::string& mesh) {
+    std::string text = body;
+    text.replace(text.find("MESH"), 4, mesh);
+    return text;
+  };
+  EXPECT_EQ(load(with_mesh("{file: organ.stl, max_tets: 4000}")).bodies[0].mesh.max_tets, 4000);
+  EXPECT_EQ(load(with_mesh("{file: organ.stl, tetrahedralize: true, max_tets: 800}"))
+                .bodies[0]
+                .mesh.max_tets,
+            800);
+  expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, max_tets: 500}")), 3, 57,
+               "bodies[0].mesh.max_tets", {"give one"});
+  expect_error(
+      load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volume: 1}, max_tets: 500}")),
+      3, 72, "bodies[0].mesh.max_tets", {"give one"});
+  expect_error(load_error(with_mesh(
+                   "{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, max_tets: 5}")),
+               3, 69, "bodies[0].mesh.max_tets", {"mesh `file` only"});
+  expect_error(load_error(with_mesh("{file: organ.stl, max_tets: 0}")), 3, 39,
+               "bodies[0].mesh.max_tets", {"12000000"});
+}
+
 TEST(SceneErrors, DuplicateKey) {
   expect_error(load_error(yaml(kMinimalScene) + "seed: 1\nseed: 2\n"), 7, 1, "seed",
                {"duplicate key 'seed'"});
