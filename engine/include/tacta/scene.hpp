@@ -150,6 +150,10 @@ struct DeviceDesc {
   bool coupling_first_contact =
       true;             // first-contact stretch limit; false: the coupling alone (Z-width)
   std::string touches;  // body name, empty = all bodies
+  // `stream_surface`: the surface a device that takes one (OpenIGTLink POLYDATA) is sent: the
+  // body's embedded surface when it has one (false, `embedded`), or the boundary of its
+  // simulation tets (true, `simulation`).
+  bool stream_simulation_surface = false;
   SourceLocation where;
 };
 

@@ -84,8 +84,9 @@ ShapeDesc read_shape(const Field& field) {
 }
 
 DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) {
-  field.expect_map("a device: a map {name, plugin, params, tool, coupling, touches}");
-  field.check_keys({"name", "plugin", "params", "tool", "coupling", "touches"});
+  field.expect_map(
+      "a device: a map {name, plugin, params, tool, coupling, touches, stream_surface}");
+  field.check_keys({"name", "plugin", "params", "tool", "coupling", "touches", "stream_surface"});
   DeviceDesc device;
   device.where = field.where();
   device.name = field.require("name").text();
@@ -104,6 +105,8 @@ DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) 
     if (auto o = f->get("first_contact")) device.coupling_first_contact = o->boolean();
   }
   if (auto f = field.get("touches")) device.touches = read_body_name(*f, bodies, false);
+  if (auto f = field.get("stream_surface"))
+    device.stream_simulation_surface = f->choice({"embedded", "simulation"}) == "simulation";
   return device;
 }
 

@@ -18,8 +18,10 @@ class DeviceSurfaceFeed final : public FrameObserver {
         shown_body_[k] = static_cast<size_t>(touched);
       const size_t b = shown_body_[k];
       const BodyStatic& body = scene.bodies[b];
-      // The surface the body is drawn and touched through: its embedded one when it has one.
+      // The surface the body is drawn and touched through: its embedded one when it has one,
+      // unless the scene asks for the simulation tets' boundary (stream_surface: simulation).
       const bool embedded =
+          !world_.device(d).link.desc.stream_simulation_surface &&
           !body.surface_triangles.empty() &&
           snapshot.bodies[b].surface_positions.size() == body.surface_rest_positions.size();
       const std::vector<double>& positions =

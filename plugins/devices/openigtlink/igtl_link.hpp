@@ -82,7 +82,7 @@ class IgtlLink {
   std::condition_variable pose_arrived_;
   bool have_pose_ = false;
   // Network thread only.
-  double last_pose_time_ = -1, last_surface_time_ = -1e30;
+  double last_pose_time_ = -1, next_surface_time_ = -1e30;  // s, monotonic
   double last_position_[3] = {0, 0, 0}, velocity_[3] = {0, 0, 0};
 };
 
