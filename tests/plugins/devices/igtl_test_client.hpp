@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "../../../plugins/devices/openigtlink/igtl_io.hpp"
+#include "tacta/scene_loader.hpp"
+#include "tacta/sim/registry_schemas.hpp"
 
 namespace tacta::igtl_test {
 
@@ -135,5 +137,18 @@ class SlicerLikeClient {
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
+
+// scenes/examples/slicer_liver.yaml with its server on a free port written to WORK/port (for
+// SlicerLikeClient), WORK emptied first, and the extra overrides.
+inline SceneDesc slicer_liver_scene(const fs::path& work, const RegistrySchemas& schemas,
+                                    std::vector<std::string> overrides = {}) {
+  fs::remove_all(work);
+  fs::create_directories(work);
+  overrides.insert(overrides.end(), {"devices.0.params.port=0",
+                                     "devices.0.params.port_file=" + (work / "port").string(),
+                                     "devices.0.params.connect_timeout=30"});
+  return load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
+                    overrides);
+}
 
 }  // namespace tacta::igtl_test

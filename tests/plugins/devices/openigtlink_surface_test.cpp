@@ -53,15 +53,9 @@ struct SurfaceKeeper final : FrameObserver {
 
 TEST(OpenIgtlinkSurface, SlicerLiverStreamsTheFineEmbeddedSurface) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink_surface";
-  fs::remove_all(work);
-  fs::create_directories(work);
   PluginRegistry plugins;
   plugins.load();
-  const RegistrySchemas schemas(plugins);
-  const SceneDesc scene = load_scene(
-      std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
-      {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-       "devices.0.params.connect_timeout=30"});
+  const SceneDesc scene = igtl_test::slicer_liver_scene(work, RegistrySchemas(plugins));
   SlicerLikeClient client(work / "port");
   Simulation sim(scene, plugins);
   SurfaceKeeper keeper;

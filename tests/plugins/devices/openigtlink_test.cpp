@@ -107,16 +107,11 @@ void expect_sensors_are_the_engines_forces(const std::vector<std::array<double, 
 
 TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSurface) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink";
-  fs::remove_all(work);
-  fs::create_directories(work);
   PluginRegistry plugins;
   plugins.load();
-  const RegistrySchemas schemas(plugins);
-  const SceneDesc scene = load_scene(
-      std::string(TACTA_SOURCE_DIR) + "/scenes/examples/slicer_liver.yaml", schemas,
-      {"devices.0.params.port=0", "devices.0.params.port_file=" + (work / "port").string(),
-       "devices.0.params.connect_timeout=30",
-       "devices.0.stream_surface=simulation"});  // the tets' boundary, checked node by node
+  const SceneDesc scene = igtl_test::slicer_liver_scene(
+      work, RegistrySchemas(plugins),
+      {"devices.0.stream_surface=simulation"});  // the tets' boundary, checked node by node
   SlicerLikeClient client(work / "port");
   Simulation sim(scene, plugins);  // connect waits for the client's first TRANSFORM
   StateKeeper keeper;
