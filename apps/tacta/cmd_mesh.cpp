@@ -1,4 +1,4 @@
-// `tacta mesh tetrahedralize IN OUT.msh`: a closed surface (OBJ, STL, PLY, glTF) filled with
+// `tacta mesh tetrahedralize IN OUT.msh`: a closed surface (OBJ, STL, PLY, OFF, VTK, glTF) filled with
 // conforming quality tetrahedra by Gmsh, written as a Gmsh 4.1 .msh, with a quality report
 // (counts, smallest and largest dihedral angle, radius ratio). Exit 2 on an open or bad surface.
 #include <cstdio>
@@ -34,7 +34,9 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   CLI::App* tet = mesh->add_subcommand(
       "tetrahedralize",
       "Fill a closed surface with conforming quality tetrahedra (Gmsh) and write a .msh");
-  tet->add_option("IN", o->in, "A closed triangle surface (OBJ, STL, PLY, glTF)")->required();
+  tet->add_option("IN", o->in,
+                  "A closed triangle surface (OBJ, STL, PLY, OFF, VTK PolyData .vtk/.vtp, glTF)")
+      ->required();
   tet->add_option("OUT", o->out, "The tetrahedral mesh to write (Gmsh 4.1 .msh)")->required();
   tet->add_option("--max-volume", o->tet.max_volume,
                   "Largest tet, m^3 (0: sized from the surface triangles)")

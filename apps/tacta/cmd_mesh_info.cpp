@@ -1,7 +1,8 @@
 // `tacta mesh-info FILE [--json]`: what a mesh file holds, or why it cannot be read. The format
-// comes from the file's content: Gmsh and VTK files are read as tet meshes (counts, bounds, element
-// quality, total volume), anything else as a surface through assimp (counts, bounds, closedness,
-// enclosed volume). Exit 0 when it loads, 2 when the file is bad (the error names file and line).
+// comes from the file's content: Gmsh and VTK grids are read as tet meshes (counts, bounds, element
+// quality, total volume), anything else (VTK PolyData included) as a surface (counts, bounds,
+// closedness, enclosed volume). Exit 0 when it loads, 2 when the file is bad (the error names
+// file and line).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -13,7 +14,6 @@
 #include "command.hpp"
 #include "tacta/error.hpp"
 #include "tacta/json.hpp"
-#include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace {
@@ -26,7 +26,6 @@ struct Summary {
   tacta::LoadReport report;
   std::string as_body;  // a surface: what a scene body made of it becomes (automatic voxels)
   tacta::LoadReport body_report;
-  size_t body_nodes = 0, body_tets = 0;  // of that body; 0 when refused
 };
 
 Summary summarize(const std::string& path) {
@@ -58,8 +57,6 @@ Summary summarize(const std::string& path) {
   try {
     const tacta::VolumeMesh body = tacta::load_body_mesh(as_body, &s.body_report);
     s.as_body = tacta::describe_body_mesh(body, s.body_report);
-    s.body_nodes = body.node_count();
-    s.body_tets = body.tet_count();
   } catch (const tacta::InputError& e) {
     s.as_body = std::string("refused: ") + e.what();
   }
@@ -104,12 +101,6 @@ void print_text(const std::string& path, const Summary& s) {
               << "\n  enclosed volume: " << s.volume << " m^3"
               << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
               << "\n  as a scene body: " << s.as_body << "\n";
-    if (s.body_report.max_tets > 0) {
-      std::cout << "  tet budget: max_tets " << s.body_report.max_tets << " (default "
-                << tacta::kDefaultMaxTets << ") gave " << s.body_tets << " tets, " << s.body_nodes
-                << " nodes, voxel " << s.body_report.voxel_size << " m; the thin parts ask for "
-                << s.body_report.thin_part_size << " m\n";
-    }
     for (const std::string& w : s.body_report.warnings)
       std::cout << "  as a scene body, warning: " << w << "\n";
   }
@@ -153,10 +144,6 @@ void print_json(const std::string& path, const Summary& s) {
     json.key("as_body").begin_object().field("summary", s.as_body);
     json.field("voxel_size_m", s.body_report.voxel_size)
         .field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
-    json.field("max_tets", static_cast<uint64_t>(s.body_report.max_tets))
-        .field("thin_part_size_m", s.body_report.thin_part_size);
-    json.field("tets", static_cast<uint64_t>(s.body_tets))
-        .field("nodes", static_cast<uint64_t>(s.body_nodes));
     json.field("volume_m3", s.body_report.mesh_volume);
     json.key("piece_volumes_m3").begin_array();
     for (double v : s.body_report.piece_volumes) json.value(v);
@@ -191,7 +178,8 @@ void add_mesh_info_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "mesh-info",
-      "Load a mesh (Gmsh .msh, VTK .vtk/.vtu tets; OBJ, STL, PLY, glTF surfaces) and print its "
+      "Load a mesh (Gmsh .msh, VTK .vtk/.vtu tets; OBJ, STL, PLY, OFF, VTK PolyData .vtk/.vtp, "
+      "glTF surfaces) and print its "
       "format, counts, bounds and quality, or the error that stops it loading");
   cmd->add_option("FILE", options->file, "The mesh file; its format is read from its content")
       ->required();

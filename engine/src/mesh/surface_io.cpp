@@ -221,9 +221,16 @@ SurfaceMesh load_surface(const std::string& path, LoadReport* report) {
   } else if (extension == ".off") {
     builder.add_polygons(mesh_detail::read_off(path, bytes));
   } else if (extension == ".vtk" || extension == ".vtp" || extension == ".vtu") {
-    builder.add_polygons(bytes.starts_with("# vtk DataFile")
-                             ? mesh_detail::read_vtk_legacy_polydata(path, bytes)
-                             : mesh_detail::read_vtk_xml_polydata(path, bytes));
+    const size_t start = bytes.find_first_not_of(" \t\r\n");
+    if (bytes.starts_with("# vtk DataFile")) {
+      builder.add_polygons(mesh_detail::read_vtk_legacy_polydata(path, bytes));
+    } else if (bytes.starts_with("\xEF\xBB\xBF") ||
+               (start != std::string::npos && bytes[start] == '<')) {
+      builder.add_polygons(mesh_detail::read_vtk_xml_polydata(path, bytes));
+    } else {
+      throw InputError({path, 1, 0, ""},
+                       "not a VTK file: expected '# vtk DataFile' (legacy) or <VTKFile> (XML)");
+    }
   } else {
     // assimp reads only what was checked first: its other importers are not, so they are refused.
     if (extension == ".stl") {

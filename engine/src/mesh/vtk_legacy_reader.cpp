@@ -151,10 +151,16 @@ bool is_keyword(std::string_view token) {
 // or, in a file written by hand, to the next section.
 void skip_metadata(TextReader& in) {
   in.skip_line();
-  while (!in.at_end()) {
+  for (;;) {
     const std::string_view rest = in.text().substr(in.position());
+    if (rest.empty()) return;
     const std::string_view line = rest.substr(0, rest.find('\n'));
-    if (line.find_first_not_of(" \t\r") == std::string_view::npos || is_keyword(in.peek())) break;
+    const size_t word = line.find_first_not_of(" \t\r");
+    if (word == std::string_view::npos) {
+      in.skip_line();
+      return;
+    }
+    if (is_keyword(line.substr(word, line.find_first_of(" \t\r", word) - word))) return;
     in.skip_line();
   }
 }

@@ -136,8 +136,8 @@ std::vector<unsigned char> binary_payload(const XmlContext& ctx, const XMLElemen
   if (compressed_total > in.most_left())
     ctx.fail(array, "the compressed blocks are cut short (truncated?)");
   const bool sizes_fit =
-      blocks == 0 || ((blocks == 1 || block_size <= expected_bytes) && last_size <= block_size &&
-                      (blocks - 1) * block_size <= expected_bytes);
+      blocks == 0 ||
+      (last_size <= block_size && (blocks == 1 || block_size <= expected_bytes / (blocks - 1)));
   const uint64_t total = !sizes_fit || blocks == 0 ? 0
                                                    : (blocks - 1) * block_size +
                                                          (last_size == 0 ? block_size : last_size);

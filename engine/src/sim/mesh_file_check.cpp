@@ -12,9 +12,10 @@ void require_mesh_file(const std::string& path, const SourceLocation& where) {
     throw InputError(
         where, "no such file: " + path + " (a relative path is read from the scene's folder)");
   if (status.type() == std::filesystem::file_type::directory)
-    throw InputError(where, path +
-                                " is a directory; expected a mesh file (.msh, .vtk, .vtu, .obj, "
-                                ".stl, .ply, .gltf, ...)");
+    throw InputError(where,
+                     path +
+                         " is a directory; expected a mesh file (.msh, .vtk, .vtu, .vtp, .obj, "
+                         ".stl, .ply, .off, .gltf, ...)");
   if (ec || status.type() != std::filesystem::file_type::regular)
     throw InputError(where, path + " is not a regular file; expected a mesh file");
   if (access(path.c_str(), R_OK) != 0)
