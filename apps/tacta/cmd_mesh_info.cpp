@@ -14,6 +14,7 @@
 #include "command.hpp"
 #include "tacta/error.hpp"
 #include "tacta/json.hpp"
+#include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace {
@@ -26,6 +27,7 @@ struct Summary {
   tacta::LoadReport report;
   std::string as_body;  // a surface: what a scene body made of it becomes (automatic voxels)
   tacta::LoadReport body_report;
+  size_t body_nodes = 0, body_tets = 0;  // of that body; 0 when refused
 };
 
 Summary summarize(const std::string& path) {
@@ -57,6 +59,8 @@ Summary summarize(const std::string& path) {
   try {
     const tacta::VolumeMesh body = tacta::load_body_mesh(as_body, &s.body_report);
     s.as_body = tacta::describe_body_mesh(body, s.body_report);
+    s.body_nodes = body.node_count();
+    s.body_tets = body.tet_count();
   } catch (const tacta::InputError& e) {
     s.as_body = std::string("refused: ") + e.what();
   }
@@ -101,6 +105,12 @@ void print_text(const std::string& path, const Summary& s) {
               << "\n  enclosed volume: " << s.volume << " m^3"
               << "\n  edge length: min " << q.min_edge << ", max " << q.max_edge << " m"
               << "\n  as a scene body: " << s.as_body << "\n";
+    if (s.body_report.max_tets > 0) {
+      std::cout << "  tet budget: max_tets " << s.body_report.max_tets << " (default "
+                << tacta::kDefaultMaxTets << ") gave " << s.body_tets << " tets, " << s.body_nodes
+                << " nodes, voxel " << s.body_report.voxel_size << " m; the thin parts ask for "
+                << s.body_report.thin_part_size << " m\n";
+    }
     for (const std::string& w : s.body_report.warnings)
       std::cout << "  as a scene body, warning: " << w << "\n";
   }
@@ -144,6 +154,10 @@ void print_json(const std::string& path, const Summary& s) {
     json.key("as_body").begin_object().field("summary", s.as_body);
     json.field("voxel_size_m", s.body_report.voxel_size)
         .field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
+    json.field("max_tets", static_cast<uint64_t>(s.body_report.max_tets))
+        .field("thin_part_size_m", s.body_report.thin_part_size);
+    json.field("tets", static_cast<uint64_t>(s.body_tets))
+        .field("nodes", static_cast<uint64_t>(s.body_nodes));
     json.field("volume_m3", s.body_report.mesh_volume);
     json.key("piece_volumes_m3").begin_array();
     for (double v : s.body_report.piece_volumes) json.value(v);
