@@ -220,11 +220,11 @@ void write_realtime(JsonWriter& j, const RunResult& result) {
   j.key("memory_kb").begin_object();
   j.field("rss_start", s.memory_start.rss_kb).field("rss_after_1s", s.memory_warm.rss_kb);
   j.field("rss_end", s.memory_end.rss_kb).field("peak", s.memory_end.peak_kb);
-  j.end_object();
-  const RealtimeGrant& g = s.realtime;
   j.key("rss_every_10s").begin_array();
   for (size_t i = 0; i < s.rss_timeline.count; ++i) j.value(s.rss_timeline.kb[i]);
   j.end_array();
+  j.end_object();
+  const RealtimeGrant& g = s.realtime;
   j.key("realtime").begin_object();
   j.field("scheduler", g.scheduler).field("priority", g.priority).field("nice", g.nice);
   j.field("scheduler_note", g.scheduler_note);
@@ -235,10 +235,10 @@ void write_realtime(JsonWriter& j, const RunResult& result) {
   j.field("haptic_cpu", g.cpu).field("cpu_note", g.cpu_note);
   j.field("helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered))
       .field("spin_us", g.spin_us);
-  j.end_object();
-}
   // How each tick's wait ended: spun to the deadline (spin_us at work) or woken past it.
   j.field("spun_waits", s.spun_waits).field("late_wakeups", s.late_wakeups);
+  j.end_object();
+}
 
 }  // namespace
 
@@ -277,14 +277,14 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   }
   j.end_object();
   j.field("deadline_misses", result.schedule.deadline_misses);
-  j.field("max_start_jitter_ms", result.schedule.max_start_jitter_ms);
-  j.field("stopped_early", result.schedule.stopped_early);
   // Misses the engine's own work caused: ticks whose thread CPU time exceeded the period (the
   // other misses are time off the CPU: VM stalls, preemption, late wake-ups), after and during
   // the first second (start-up: cold caches, the first hierarchy build).
   j.field("over_budget_ticks", result.schedule.over_budget_ticks);
   j.field("warm_up_over_budget_ticks", result.schedule.warm_up_over_budget_ticks);
   j.field("max_tick_cpu_ms", result.schedule.max_tick_cpu_ms);
+  j.field("max_start_jitter_ms", result.schedule.max_start_jitter_ms);
+  j.field("stopped_early", result.schedule.stopped_early);
   write_realtime(j, result);
   write_bodies(j, world, result);
   write_devices(j, world, result.status);
