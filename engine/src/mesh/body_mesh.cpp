@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <string>
 
-#include "mesh/readers.hpp"
+#include "mesh/volume_readers.hpp"
 #include "mesh/tet_budget.hpp"
 #include "tacta/embedded_surface.hpp"
 #include "tacta/mesh_build.hpp"

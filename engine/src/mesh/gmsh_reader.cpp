@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mesh/readers.hpp"
+#include "mesh/volume_readers.hpp"
 #include "mesh/text_reader.hpp"
 
 namespace tacta::mesh_detail {

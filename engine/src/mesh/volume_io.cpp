@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "mesh/readers.hpp"
+#include "mesh/volume_readers.hpp"
 #include "mesh/text_reader.hpp"
 #include "tacta/mesh_io.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/readers.hpp"
+#include "mesh/volume_readers.hpp"
 #include "mesh/surface_readers.hpp"
 #include "mesh/text_reader.hpp"
 #include "mesh/vtk_cells.hpp"

@@ -5,7 +5,7 @@
 #include <tinyxml2.h>
 #include <vector>
 
-#include "mesh/readers.hpp"
+#include "mesh/volume_readers.hpp"
 #include "mesh/surface_readers.hpp"
 #include "mesh/vtk_cells.hpp"
 #include "mesh/vtk_xml_data.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "scene/plugin_params.hpp"
-#include "scene/readers.hpp"
+#include "scene/section_readers.hpp"
 #include "tacta/mesh_build.hpp"
 
 namespace tacta::scene_detail {

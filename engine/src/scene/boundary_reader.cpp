@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "scene/readers.hpp"
+#include "scene/section_readers.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta::scene_detail {

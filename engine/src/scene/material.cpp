@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 #include <string>
 
-#include "scene/readers.hpp"
+#include "scene/section_readers.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sdk/elastic_constants.hpp"
 

@@ -12,7 +12,7 @@
 
 #include "scene/did_you_mean.hpp"
 #include "scene/overrides.hpp"
-#include "scene/readers.hpp"
+#include "scene/section_readers.hpp"
 
 namespace tacta {
 

@@ -7,7 +7,7 @@
 
 #include "scene/did_you_mean.hpp"
 #include "scene/plugin_params.hpp"
-#include "scene/readers.hpp"
+#include "scene/section_readers.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta::scene_detail {
