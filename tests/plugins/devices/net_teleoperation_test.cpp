@@ -172,13 +172,11 @@ double force_error(const std::vector<std::pair<double, double>>& run,
   return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : -1.0;
 }
 
-// Share of the pressed-in time the peer feels contact. A sanitizer build runs the engine's ticks
-// several times slower, late ticks thin the contact at 250 ms (0.77 seen under ASan at -j2).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr double kHeldFraction = 0.6;
-#else
+// Share of the pressed-in time the peer feels contact. Contact was lost under sanitizers (0.77
+// seen under ASan) when another test shared the two cores: the slowed peer fell silent past the
+// device's 50 ms watchdog, which reads DISCONNECTED (force zero) until it hears again. The cases
+// now run alone (SERIAL in CMakeLists.txt) and every build holds the same bound.
 constexpr double kHeldFraction = 0.8;
-#endif
 
 TEST(NetTeleoperation, StaysPassiveAndHoldsContactUpTo250msRoundTrip) {
   struct Case {
