@@ -193,16 +193,14 @@ TEST(SceneErrors, ShapesAndPrimitivesNeedExactlyOneKind) {
                "output.plots[0]", {"did you mean 'energy'?"});
 }
 
+// One tensor_mass body whose `mesh:` value is `mesh` (line 3 of the scene).
+std::string with_mesh(const std::string& mesh) {
+  return "bodies:\n  - name: b\n    mesh: " + mesh +
+         "\n    material: {youngs_modulus: 1.0e4, poisson_ratio: 0.3}\n    model: tensor_mass\n";
+}
+
 // mesh.tetrahedralize: a map of known keys in range, on a mesh file only, not with voxel_size.
 TEST(SceneErrors, TetrahedralizeKeys) {
-  const std::string body =
-      "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: "
-      "0.3}\n    model: tensor_mass\n";
-  auto with_mesh = [&](const std::string& mesh) {
-    std::string text = body;
-    text.replace(text.find("MESH"), 4, mesh);
-    return text;
-  };
   const SceneDesc ok = load(with_mesh(
       "{file: organ.stl, tetrahedralize: {max_volume: 1.0e-6, min_dihedral: 5, optimize: false}}"));
   ASSERT_TRUE(ok.bodies[0].mesh.tetrahedralize.has_value());
@@ -226,14 +224,6 @@ TEST(SceneErrors, TetrahedralizeKeys) {
 
 // mesh.max_tets: an integer in range, on a mesh file only, not with a size that fixes the tets.
 TEST(SceneErrors, MaxTetsKeys) {
-  const std::string body =
-      "bodies:\n  - name: b\n    mesh: MESH\n    material: {youngs_modulus: 1.0e4, poisson_ratio: "
-      "0.3}\n    model: tensor_mass\n";
-  auto with_mesh = [&](const std::string& mesh) {
-    std::string text = body;
-    text.replace(text.find("MESH"), 4, mesh);
-    return text;
-  };
   EXPECT_EQ(load(with_mesh("{file: organ.stl, max_tets: 4000}")).bodies[0].mesh.max_tets, 4000);
   EXPECT_EQ(load(with_mesh("{file: organ.stl, tetrahedralize: true, max_tets: 800}"))
                 .bodies[0]
@@ -242,11 +232,11 @@ TEST(SceneErrors, MaxTetsKeys) {
   expect_error(load_error(with_mesh("{file: organ.stl, voxel_size: 0.01, max_tets: 500}")), 3, 57,
                "bodies[0].mesh.max_tets", {"give one"});
   expect_error(
-      load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volume: 1}, max_tets: 500}")),
-      3, 72, "bodies[0].mesh.max_tets", {"give one"});
-  expect_error(load_error(with_mesh(
-                   "{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, max_tets: 5}")),
-               3, 69, "bodies[0].mesh.max_tets", {"mesh `file` only"});
+      load_error(with_mesh("{file: organ.stl, tetrahedralize: {max_volume: 1}, max_tets: 500}")), 3,
+      72, "bodies[0].mesh.max_tets", {"give one"});
+  expect_error(
+      load_error(with_mesh("{box_grid: {size: [1, 1, 1], cells: [1, 1, 1]}, max_tets: 5}")), 3, 69,
+      "bodies[0].mesh.max_tets", {"mesh `file` only"});
   expect_error(load_error(with_mesh("{file: organ.stl, max_tets: 0}")), 3, 39,
                "bodies[0].mesh.max_tets", {"12000000"});
 }

@@ -14,6 +14,7 @@
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
 #include <list>
+#include <map>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -22,11 +23,23 @@
 #include "../../../plugins/devices/openigtlink/igtl_io.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
+#include "tacta/sim/snapshot.hpp"
 
 namespace tacta::igtl_test {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
+
+// Every snapshot the render task took of the first body, by simulated time (s), and that body's
+// static description (rest positions, triangles, its surface's).
+struct FrameKeeper final : FrameObserver {
+  void on_start(const SceneStatic& scene) override { body = scene.bodies.at(0); }
+  void on_frame(const SceneStatic&, const Snapshot& s) override {
+    frames[s.time_s] = s.bodies.at(0);
+  }
+  BodyStatic body;
+  std::map<double, BodySnapshot> frames;
+};
 using igtl_device::Received;
 
 // The tool's path (mm, Slicer's unit): 12 mm over a point of the liver's upper surface, down to

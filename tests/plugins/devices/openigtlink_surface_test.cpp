@@ -31,6 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
+using igtl_test::FrameKeeper;
 using igtl_test::SlicerLikeClient;
 
 // The port a link listens on, where SlicerLikeClient looks for it.
@@ -41,16 +42,6 @@ fs::path write_port(const igtl_device::IgtlLink& link, const std::string& name) 
   return dir / name;
 }
 
-// Every snapshot of the render task: the embedded surface's vertex positions by simulated time.
-struct SurfaceKeeper final : FrameObserver {
-  void on_start(const SceneStatic& scene) override { body = scene.bodies.at(0); }
-  void on_frame(const SceneStatic&, const Snapshot& s) override {
-    surfaces[s.time_s] = s.bodies.at(0).surface_positions;
-  }
-  BodyStatic body;
-  std::map<double, std::vector<double>> surfaces;
-};
-
 TEST(OpenIgtlinkSurface, SlicerLiverStreamsTheFineEmbeddedSurface) {
   const fs::path work = fs::path(TACTA_BINARY_DIR) / "test_work" / "openigtlink_surface";
   PluginRegistry plugins;
@@ -58,7 +49,7 @@ TEST(OpenIgtlinkSurface, SlicerLiverStreamsTheFineEmbeddedSurface) {
   const SceneDesc scene = igtl_test::slicer_liver_scene(work, RegistrySchemas(plugins));
   SlicerLikeClient client(work / "port");
   Simulation sim(scene, plugins);
-  SurfaceKeeper keeper;
+  FrameKeeper keeper;
   RunOptions options;
   options.realtime = true;
   options.duration_s = 0.5;
@@ -74,9 +65,10 @@ TEST(OpenIgtlinkSurface, SlicerLiverStreamsTheFineEmbeddedSurface) {
   EXPECT_EQ(client.triangles.size(), 3u * 4384u);
   EXPECT_EQ(client.points.size(), keeper.body.surface_rest_positions.size());
   const auto state =
-      keeper.surfaces.lower_bound(client.surface_time - 1e-6);  // the stamp carries ~1 ns
-  ASSERT_TRUE(state != keeper.surfaces.end() && state->first < client.surface_time + 1e-6);
-  ASSERT_EQ(state->second.size(), client.points.size());
+      keeper.frames.lower_bound(client.surface_time - 1e-6);  // the stamp carries ~1 ns
+  ASSERT_TRUE(state != keeper.frames.end() && state->first < client.surface_time + 1e-6);
+  const std::vector<double>& surface = state->second.surface_positions;
+  ASSERT_EQ(surface.size(), client.points.size());
   // Points go out in the order the triangles first use them: each streamed point is one of the
   // surface's vertices at that time (the closest within float32 mm).
   double worst = 0;
@@ -84,9 +76,9 @@ TEST(OpenIgtlinkSurface, SlicerLiverStreamsTheFineEmbeddedSurface) {
   for (size_t v = 0; 3 * v < p.size(); v += 97) {
     double nearest = INFINITY;
     for (size_t w = 0; 3 * w < p.size(); ++w)
-      nearest = std::min(nearest, std::hypot(p[3 * v] * 1e-3 - state->second[3 * w],
-                                             p[3 * v + 1] * 1e-3 - state->second[3 * w + 1],
-                                             p[3 * v + 2] * 1e-3 - state->second[3 * w + 2]));
+      nearest = std::min(nearest, std::hypot(p[3 * v] * 1e-3 - surface[3 * w],
+                                             p[3 * v + 1] * 1e-3 - surface[3 * w + 1],
+                                             p[3 * v + 2] * 1e-3 - surface[3 * w + 2]));
     worst = std::max(worst, nearest);
   }
   EXPECT_LT(worst, 1e-7) << "m: float32 mm carries a ~0.2 m coordinate to ~1e-8 m";
@@ -101,14 +93,18 @@ tacta_device_surface torus_surface(std::vector<double>& positions, std::vector<u
   for (uint32_t i = 0; i < nu; ++i)
     for (uint32_t j = 0; j < nv; ++j) {
       const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv, r = 0.1 + 0.03 * std::cos(v);
-      positions.insert(positions.end(), {r * std::cos(u), 0.03 * std::sin(v) + time * 1e-3,
-                                         r * std::sin(u)});
-      const uint32_t a = i * nv + j, b = ((i + 1) % nu) * nv + j, c = ((i + 1) % nu) * nv + (j + 1) % nv,
-                     d = i * nv + (j + 1) % nv;
+      positions.insert(positions.end(),
+                       {r * std::cos(u), 0.03 * std::sin(v) + time * 1e-3, r * std::sin(u)});
+      const uint32_t a = i * nv + j, b = ((i + 1) % nu) * nv + j,
+                     c = ((i + 1) % nu) * nv + (j + 1) % nv, d = i * nv + (j + 1) % nv;
       tris.insert(tris.end(), {a, b, c, a, c, d});
     }
-  return {time, "organ", positions.data(), static_cast<uint32_t>(positions.size() / 3),
-          tris.data(), static_cast<uint32_t>(tris.size() / 3)};
+  return {time,
+          "organ",
+          positions.data(),
+          static_cast<uint32_t>(positions.size() / 3),
+          tris.data(),
+          static_cast<uint32_t>(tris.size() / 3)};
 }
 
 // Lockstep: each of 60 frames (one simulated second at 60 Hz) is offered once the previous one
@@ -139,9 +135,10 @@ TEST(OpenIgtlinkSurface, FourThousandTrianglesEveryFrameInLockstep) {
   }
   EXPECT_EQ(link.counts().surfaces_out.load(), static_cast<uint64_t>(kFrames));
   std::sort(ms.begin(), ms.end());
-  std::printf("openigtlink: 4,000-triangle POLYDATA, offer to arrival: median %.3f ms, max %.3f ms "
-              "(60 Hz allows 16.7 ms)\n",
-              ms[ms.size() / 2], ms.back());
+  std::printf(
+      "openigtlink: 4,000-triangle POLYDATA, offer to arrival: median %.3f ms, max %.3f ms "
+      "(60 Hz allows 16.7 ms)\n",
+      ms[ms.size() / 2], ms.back());
 }
 
 // The send rate on the wall clock, printed (docs/BENCHMARKS.md): a new 4,000-triangle frame

@@ -36,18 +36,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using igtl_device::Received;
+using igtl_test::FrameKeeper;
 using igtl_test::SlicerLikeClient;
-
-
-// Every snapshot the render task took: the liver's node positions by simulated time.
-struct StateKeeper final : FrameObserver {
-  void on_start(const SceneStatic& scene) override { body = scene.bodies.at(0); }
-  void on_frame(const SceneStatic&, const Snapshot& s) override {
-    positions[s.time_s] = s.bodies.at(0).positions;
-  }
-  BodyStatic body;
-  std::map<double, std::vector<double>> positions;
-};
 
 // Every SENSOR the client received is the force the engine sent the device at one of its ticks,
 // in tick order. Reference: the engine's own per-tick force (trace.csv, printed to 9 digits);
@@ -114,7 +104,7 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
       {"devices.0.stream_surface=simulation"});  // the tets' boundary, checked node by node
   SlicerLikeClient client(work / "port");
   Simulation sim(scene, plugins);  // connect waits for the client's first TRANSFORM
-  StateKeeper keeper;
+  FrameKeeper keeper;
   RunOptions options;
   options.realtime = true;
   options.duration_s = 1.5;
@@ -122,8 +112,8 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   options.out_dir = (work / "run").string();  // trace.csv: the device force of every tick
   const RunResult result = sim.run(options);
   client.stop_sending = true;
-  ASSERT_FALSE(keeper.positions.empty());
-  const double final_time = keeper.positions.rbegin()->first;
+  ASSERT_FALSE(keeper.frames.empty());
+  const double final_time = keeper.frames.rbegin()->first;
   for (int i = 0; i < 300;
        ++i) {  // the final frame's POLYDATA follows within a frame period or two
     {
@@ -144,8 +134,8 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   expect_sensors_are_the_engines_forces(client.sensor_forces, work / "run" / "trace.csv");
   EXPECT_EQ(client.surface_name, "liver");
   const auto state =
-      keeper.positions.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
-  ASSERT_TRUE(state != keeper.positions.end() && state->first < client.surface_time + 1e-6)
+      keeper.frames.lower_bound(client.surface_time - 1e-6);  // s: the stamp carries ~1 ns
+  ASSERT_TRUE(state != keeper.frames.end() && state->first < client.surface_time + 1e-6)
       << "the surface's time stamp " << client.surface_time << " s is no state the simulation had";
   // The streamed vertices are the nodes the boundary triangles use, in the order first used.
   std::vector<int64_t> vertex_of_node(keeper.body.rest_positions.size() / 3, -1);
@@ -162,7 +152,7 @@ TEST(OpenIgtlinkDevice, SlicerLikeClientPressesTheLiverAndGetsForcesAndTheLiveSu
   double worst = 0, moved = 0;
   for (size_t v = 0; v < node_of_vertex.size(); ++v)
     for (size_t a = 0; a < 3; ++a) {
-      const double simulated = state->second[3 * node_of_vertex[v] + a];
+      const double simulated = state->second.positions[3 * node_of_vertex[v] + a];
       worst = std::max(worst,
                        std::abs(static_cast<double>(client.points[3 * v + a]) * 1e-3 - simulated));
       moved = std::max(moved,
