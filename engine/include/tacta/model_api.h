@@ -106,6 +106,9 @@ typedef struct tacta_model_counter {
  * tests each property a model claims and skips the others. */
 #define TACTA_MODEL_CLAIM_ROTATION_INVARIANT (1u << 0) /* no force under a rigid rotation */
 #define TACTA_MODEL_CLAIM_MOMENTUM (1u << 1) /* internal forces sum to zero at any shape */
+/* step() reads nothing an earlier step wrote: positions, velocities and the parameters are the
+ * whole state, so a checkpoint needs no save_state/load_state from this model. */
+#define TACTA_MODEL_CLAIM_NO_HISTORY (1u << 2)
 
 typedef struct tacta_model_api {
   /* required: build an instance for one body; may allocate. Writes a reason on failure. */
@@ -144,11 +147,29 @@ typedef struct tacta_model_api {
    * between steps without rebuilding the instance, as "name|name"; the engine changes any other
    * parameter by a swap to a fresh instance. Only REAL, INT and BOOL parameters can be live. */
   const char* live_params;
+  /* optional, appended (NULL when api_size does not reach it): the instance's own evolving state,
+   * for checkpoints: what step() reads that an earlier step wrote (element rotations, warm starts,
+   * integrator history, counters), not what create() derives from the setup. save_state writes it
+   * into bytes when capacity is enough and returns its size in bytes either way (call with
+   * capacity 0 to ask). load_state sets it, on an instance created from the same setup, from what
+   * save_state wrote; it checks size and content and returns an error with a reason otherwise.
+   * The engine calls no begin() after a load: the next step() continues bit for bit as the saved
+   * instance's would. A model with neither entry must claim TACTA_MODEL_CLAIM_NO_HISTORY to be
+   * checkpointed. Not from the 1 kHz path. */
+  size_t (*save_state)(void* instance, void* bytes, size_t capacity);
+  tacta_status (*load_state)(void* instance, const void* bytes, size_t size, char* message,
+                             size_t message_capacity);
 } tacta_model_api;
 
 /* The claims of a model table whose plugin saw api_size bytes of it (0 for an older plugin). */
 static inline uint32_t tacta_model_claims(const tacta_model_api* api, uint32_t api_size) {
   return api_size >= offsetof(tacta_model_api, claims) + sizeof(uint32_t) ? api->claims : 0u;
+}
+
+/* The checkpoint entries of a model table, NULL when the plugin has none or is older. */
+static inline int tacta_model_has_state_entries(const tacta_model_api* api, uint32_t api_size) {
+  return api_size >= offsetof(tacta_model_api, load_state) + sizeof(void*) &&
+         api->save_state != NULL && api->load_state != NULL;
 }
 
 /* The live parameter list of a model table ("a|b"), NULL when the plugin has none or is older. */
@@ -166,6 +187,7 @@ static const tacta_api_field tacta_model_api_fields[] = {
     TACTA_MODEL_API_FIELD(elastic_energy, 0), TACTA_MODEL_API_FIELD(internal_forces, 0),
     TACTA_MODEL_API_FIELD(set_param, 0),      TACTA_MODEL_API_FIELD(node_stress, 0),
     TACTA_MODEL_API_FIELD(counters, 0),       TACTA_MODEL_API_FIELD(describe, 0),
+    TACTA_MODEL_API_FIELD(save_state, 0),     TACTA_MODEL_API_FIELD(load_state, 0),
 };
 
 #ifdef __cplusplus
