@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/plugin_instance.hpp"
+#include "plugin/plugin_instance.hpp"
 #include "tacta/mesh.hpp"
 #include "tacta/model_api.h"
 #include "tacta/scene.hpp"

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "../sim/haptic_loop.hpp"
+#include "../systems/haptic_loop.hpp"
 #include "tacta/sim/simulation.hpp"
 
 namespace tacta {

@@ -8,10 +8,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "output/vtk_observer.hpp"
 #include "report/run_outputs.hpp"
 #include "simulation/simulation_impl.hpp"
 #include "tacta/sim/registry_schemas.hpp"
-#include "sim/vtk_observer.hpp"
 
 namespace tacta {
 

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "sim/clock_session.hpp"
-#include "sim/collision_context.hpp"
-#include "sim/haptic_interaction.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/complete_params.hpp"
+#include "collision/collision_context.hpp"
+#include "haptic_interaction/haptic_interaction.hpp"
+#include "plugin/complete_params.hpp"
+#include "systems/haptic_loop.hpp"
 #include "tacta/sim/simulation.hpp"
-#include "sim/world.hpp"
+#include "timing/clock_session.hpp"
+#include "world/world.hpp"
 
 namespace tacta {
 

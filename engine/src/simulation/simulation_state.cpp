@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "report/run_outputs.hpp"
-#include "sim/run_status_gather.hpp"
+#include "report/run_status_gather.hpp"
 #include "simulation/simulation_impl.hpp"
 #include "tacta/live_params.hpp"
 

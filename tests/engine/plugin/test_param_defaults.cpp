@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "sim/complete_params.hpp"
+#include "plugin/complete_params.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/sdk/common.hpp"
 

@@ -15,10 +15,10 @@
 #include <thread>
 #include <vector>
 
-#include "sim/collision_context.hpp"
-#include "sim/haptic_interaction.hpp"
-#include "sim/haptic_loop.hpp"
-#include "sim/world.hpp"
+#include "collision/collision_context.hpp"
+#include "haptic_interaction/haptic_interaction.hpp"
+#include "systems/haptic_loop.hpp"
+#include "world/world.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <thread>
 
-#include "sim/entity_commands.hpp"
+#include "world/entity_commands.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <set>
 #include <utility>
 
-#include "sim/status_bits.hpp"
+#include "systems/status_bits.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {

@@ -4,7 +4,7 @@
 // device's read (TACTA_DEVICE_FAULT), each from a test plugin that returns it on purpose.
 #include <nlohmann/json.hpp>
 
-#include "sim/status_bits.hpp"
+#include "systems/status_bits.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {

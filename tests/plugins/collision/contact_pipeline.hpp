@@ -1,6 +1,6 @@
 // Test helper: the engine's per-tick collision pipeline over the real plugin libraries
 // (bvh: refit + pairs; ccd: exact contacts on the pairs; convex: vertices against tools and
-// obstacles; ccd: respond), as engine/src/sim/collision_context.cpp runs it.
+// obstacles; ccd: respond), as engine/src/collision/collision_context.cpp runs it.
 #pragma once
 
 #include <stdexcept>

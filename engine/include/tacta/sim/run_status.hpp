@@ -1,7 +1,7 @@
 // Run-time status as a run reports it: the warning and error bits seen per body (model steps),
 // per device and for the collision pipeline, each with the ticks it was seen on and a one-line
-// remedy, and which collision plugin served which role. Filled after the run (run_status.cpp in
-// engine/src/sim); report.json and `tacta run` print it.
+// remedy, and which collision plugin served which role. Filled after the run
+// (engine/src/report/run_status_gather.cpp); report.json and `tacta run` print it.
 #pragma once
 
 #include <cstdint>
@@ -47,7 +47,7 @@ struct RunStatus {
 struct TickStatus {
   uint32_t model_bits = 0;      // TACTA_STEP_* over every body stepped
   uint32_t collision_bits = 0;  // TACTA_COLLIDE_*
-  uint32_t device_bits = 0;     // device bits (engine/src/sim/status_bits.hpp) over every device
+  uint32_t device_bits = 0;     // device bits (engine/src/systems/status_bits.hpp) over every device
   bool error = false;
   void merge(const TickStatus& t) noexcept {
     model_bits |= t.model_bits;

@@ -1,0 +1,153 @@
+// The engine's side of collision: the per-tick world view handed to the collision plugins
+// (surfaces of the bodies, the tools, the obstacles), the plugin instances the scene names
+// (broad phase, narrow phase, convex), and the per-tick pipeline: refit, candidate pairs, exact
+// contacts, response. Buffers are sized at load time; the tick path allocates nothing.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "collision/proxy_freshness.hpp"
+#include "tacta/collision_api.h"
+#include "tacta/haptics/surface_query.hpp"
+#include "tacta/plugin_registry.hpp"
+#include "world/world.hpp"
+
+namespace tacta {
+
+class CollisionInstance;
+
+// One loaded collision plugin: the roles it declares (or, guessed, its entries imply) and the
+// roles the engine gave it (TACTA_COLLISION_ROLE_* bits).
+struct CollisionPluginUse {
+  std::string name;
+  uint32_t roles = 0;
+  bool roles_guessed = false;
+  uint32_t serves = 0;
+};
+
+// "broad_phase, response" for a TACTA_COLLISION_ROLE_* mask ("none" for 0).
+std::string role_names(uint32_t roles);
+constexpr uint32_t role_index(uint32_t role) { return static_cast<uint32_t>(__builtin_ctz(role)); }
+class EmbeddedCollisionSurface;
+
+class CollisionContext {
+ public:
+  // Builds the world view and the plugin instances; throws InputError (bad mesh, unknown plugin).
+  CollisionContext(World& world, const PluginRegistry& plugins);
+  ~CollisionContext();
+  CollisionContext(const CollisionContext&) = delete;
+  CollisionContext& operator=(const CollisionContext&) = delete;
+
+  // Tool shapes (one per device, their Tool components): the host moves them each tick (pose at
+  // start and end); refit and detect_and_respond copy them into the plugins' view.
+  tacta_collision_shape& tool(size_t device) { return world_.tool(device).rigid.shape; }
+  // Body index -> surface index in the view (-1 when the body does not collide).
+  int surface_of(size_t body) const {
+    return body < surface_of_body_.size() ? surface_of_body_[body] : -1;
+  }
+  // False while the surface's body waits to be added, and after it was removed.
+  bool surface_present(uint32_t surface) const noexcept;
+  int body_of(uint32_t surface) const { return body_of_surface_[surface]; }
+
+  // A body added while the scene runs gets its surface here, on the thread that runs the ticks,
+  // between them (lockstep): builds the surface, checks its thickness (InputError) and has the
+  // plugins prepare again (allocates). The surface stays out of every query and contact until
+  // the body enters at a tick boundary, as an event's body is until its time.
+  void add_surface(size_t body);
+
+  // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
+  void refit(double time, double dt) noexcept;
+  // Before the haptic proxy's queries: with collision.proxy_refit sliced (and a broad phase that
+  // offers update_elements) one slice of each surface is refit and the queries are widened by
+  // what the rest may have moved (SurfaceFreshness); an embedded surface's vertices are brought
+  // up to date only where a query looks (the patch near the tool). Otherwise a whole refit.
+  // The vertices made current stay so for the rest of this pass only because nothing moves a
+  // node between this call and the proxy's last query of the tick (the reaction only adds
+  // contact forces; the step and the response come after): a query made later in the tick must
+  // call this again first.
+  void refit_for_proxy(double time, double dt) noexcept;
+  // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
+  // that brought embedded vertices up to date for them; for the tick breakdown.
+  double query_ms() const noexcept { return query_ms_; }
+  double patch_ms() const noexcept { return patch_ms_; }
+  // TACTA_COLLIDE_* bits the plugins returned outside detect_and_respond (hierarchy updates,
+  // slice refits, the proxy's patch queries) since the last call; clears them.
+  uint32_t take_bits() noexcept { return std::exchange(raised_bits_, 0u); }
+  // Whole refits the proxy path made (every tick when not sliced; when sliced, the first and
+  // any whose margin passed its cap), and slices refit, since load.
+  uint64_t proxy_whole_refits() const noexcept { return proxy_whole_refits_; }
+  uint64_t proxy_slices() const noexcept { return proxy_slices_; }
+  // The proxy's hierarchies are refit by slices (collision.proxy_refit sliced, and a broad phase
+  // serving the proxy that offers it); false: whole, every tick.
+  bool proxy_sliced() const noexcept { return sliced_; }
+  // Contacts over the tick and the response (positions and velocities corrected in place).
+  // Returns TACTA_COLLIDE_* bits.
+  uint32_t detect_and_respond(double time, double dt) noexcept;
+  const tacta_contact* contacts() const noexcept { return contacts_.data(); }
+  uint32_t contact_count() const noexcept { return contact_count_; }
+
+  // Answers the god-object proxy's queries against one body's surface (or every surface, -1).
+  const haptics::SurfaceQuery& surface_query(int body) noexcept;
+  tacta_collision_world& view() noexcept { return view_; }
+
+  std::vector<CollisionPluginUse> plugin_uses() const;
+  // The pair and contact buffers (sized from the surfaces at load) and the most a tick used.
+  uint32_t pairs_capacity() const noexcept { return static_cast<uint32_t>(pairs_.size()); }
+  uint32_t contacts_capacity() const noexcept { return static_cast<uint32_t>(contacts_.size()); }
+  uint32_t pairs_high_water() const noexcept { return pairs_high_water_; }
+  uint32_t contacts_high_water() const noexcept { return contacts_high_water_; }
+
+ private:
+  class Query;
+  // Before a proxy query on `surface` over the box lo..hi (m): the view's margin is the surface's,
+  // and an embedded surface's vertices the query can reach are made current.
+  void prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept;
+  // True when `surface` has vertices that are current only where a query looked (prepare_query).
+  bool patched(uint32_t surface) const noexcept {
+    return sliced_ && embedded_[static_cast<size_t>(body_of_surface_[surface])] != nullptr;
+  }
+  // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
+  uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
+  bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
+  void append(size_t body, const tacta_collision_surface& s);
+  void prepare_plugins(const SourceLocation& where);
+  void sync_tools() noexcept;  // Tool components -> the packed view
+  template <class Add>
+  void pick_roles(const CollisionDesc& c, bool needed, Add& add);
+  World& world_;
+  tacta_collision_world view_{};
+  std::vector<tacta_collision_surface> surfaces_;
+  std::vector<std::vector<double>> inverse_masses_;
+  std::vector<tacta_collision_shape> tools_;
+  std::vector<tacta_collision_shape> obstacles_;
+  std::vector<int> surface_of_body_;
+  std::vector<std::unique_ptr<EmbeddedCollisionSurface>>
+      embedded_;                       // per body; null: its tets' boundary
+  std::vector<uint64_t> refits_seen_;  // per body: its StepSchedule::refreshes at the last refit
+  bool refitted_once_ = false;
+  std::vector<SurfaceFreshness> freshness_;     // per surface
+  std::vector<std::array<double, 6>> covered_;  // per surface: box made current this pass, m
+  std::vector<double> last_distance_;           // per surface: the last closest point's distance, m
+  std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
+  bool sliced_ = false;                         // refit_for_proxy refits slices
+  const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
+  uint64_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
+  double query_ms_ = 0, patch_ms_ = 0;
+  uint32_t raised_bits_ = 0;  // see take_bits()
+  uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;
+  std::vector<int> body_of_surface_;
+  std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)
+  std::vector<tacta_collision_pair> pairs_;
+  std::vector<tacta_contact> contacts_;
+  uint32_t contact_count_ = 0;
+  uint32_t pairs_high_water_ = 0, contacts_high_water_ = 0;
+  std::array<CollisionInstance*, TACTA_COLLISION_ROLE_COUNT> served_{};  // per role index
+  bool response_enabled_ = false;
+  std::unique_ptr<Query> query_;
+};
+
+}  // namespace tacta

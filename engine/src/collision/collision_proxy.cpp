@@ -1,0 +1,172 @@
+// CollisionContext's side of the haptic proxy: the hierarchies refit a slice at a time while
+// the bodies move (SurfaceFreshness), and an embedded surface's vertices brought up to date where
+// a query looks.
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "collision/collision_context.hpp"
+#include "collision/collision_instance.hpp"
+#include "collision/embedded_collision.hpp"
+
+namespace tacta {
+
+namespace {
+constexpr int kMaxSlicesPerTick = 4;  // while the margin is past half its cap
+}  // namespace
+
+void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
+  ++proxy_pass_;  // every embedded vertex is stale until made current in this pass
+  query_ms_ = patch_ms_ = 0;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (auto& c : covered_) c = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
+  if (!sliced_) {
+    ++proxy_whole_refits_;
+    refit(time, dt);
+    return;
+  }
+  bool whole = !refitted_once_;
+  for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
+    if (surface_present(k) &&
+        !freshness_[k].advance(
+            world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data()))
+      whole = true;
+  if (!whole) {
+    sync_tools();
+    view_.time = time;
+    view_.dt = dt;
+    for (uint32_t k = 0; k < view_.surface_count && !whole; ++k) {
+      if (!surface_present(k)) continue;
+      uint32_t first = 0, count = 0, total = 0;
+      const uint32_t* order = nullptr;
+      if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
+          total != surfaces_[k].triangle_count) {
+        whole = true;  // no hierarchy yet, or one over other elements than triangles (tets)
+        break;
+      }
+      // One slice a tick while the margin is past its target, up to kMaxSlicesPerTick while a
+      // fast body keeps it there: the cost follows the motion, and a whole refit (a spike of
+      // the whole surface's cost) waits for motion faster than that.
+      for (int n = 0; n < kMaxSlicesPerTick && !whole; ++n) {
+        freshness_[k].next_slice(first, count);
+        if (count == 0) break;
+        if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
+          e->refresh_triangles(order + first, count, proxy_pass_);
+        // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
+        const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
+        raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};
+        if (bits & TACTA_COLLIDE_UNPREPARED) whole = true;
+        ++proxy_slices_;
+        if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
+      }
+    }
+    if (!whole) return;
+  }
+  ++proxy_whole_refits_;
+  refitted_once_ = false;  // a whole refit, whatever moved (the margin restarts from it)
+  refit(time, dt);
+}
+
+void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept {
+  // The query widens its search by how far any vertex may be from its element's box.
+  view_.query_margin = sliced_ ? freshness_[surface].margin() : 0.0;
+  EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get();
+  if (!sliced_ || e == nullptr) return;
+  std::array<double, 6>& c = covered_[surface];
+  if (c[0] <= lo[0] && c[1] <= lo[1] && c[2] <= lo[2] && hi[0] <= c[3] && hi[1] <= c[4] &&
+      hi[2] <= c[5])
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  // An embedded surface's vertices are current only where a query looked this tick: those of
+  // every triangle the widened box reaches (the hull of this box and what was covered) are
+  // brought up to date, so the query reads where they are now.
+  for (size_t a = 0; a < 3; ++a) {
+    c[a] = std::min(c[a], lo[a]);
+    c[a + 3] = std::max(c[a + 3], hi[a]);
+  }
+  tacta_collision_shape box{};
+  box.type = TACTA_SHAPE_BOX;
+  for (size_t a = 0; a < 3; ++a) {
+    box.half_extents[a] = 0.5 * (c[a + 3] - c[a]);
+    box.pose_start.position[a] = 0.5 * (c[a + 3] + c[a]);
+  }
+  box.pose_start.rotation[0] = 1.0;
+  box.pose_end = box.pose_start;
+  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  uint32_t count = 0;
+  raised_bits_ |=
+      proxy->api.overlap_shape(proxy->instance, &view_, &box, surface, patch_triangles_.data(),
+                               static_cast<uint32_t>(patch_triangles_.size()), &count);
+  e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
+  patch_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Rounds of detect + respond: the response's corrections are motions too, and can cross a
+// face that the first round never tested; the next round's CCD (start -> corrected end) finds
+// those. Rounds stop when a round finds no surface-surface contact. Contacts of all rounds are
+// published (a resting contact found again has a force near zero: its velocity was corrected).
+uint32_t CollisionContext::detect_and_respond(double time, double dt) noexcept {
+  sync_tools();
+  constexpr int kMaxRounds = 3;
+  contact_count_ = 0;
+  if (!response_enabled_) return TACTA_COLLIDE_OK;
+  uint32_t bits = 0;
+  const CollisionInstance* broad = served_[role_index(TACTA_COLLISION_ROLE_BROAD_PHASE)];
+  const CollisionInstance* narrow = served_[role_index(TACTA_COLLISION_ROLE_NARROW_PHASE)];
+  const CollisionInstance* response = served_[role_index(TACTA_COLLISION_ROLE_RESPONSE)];
+  const bool self_collision = world_.scene().collision.self_collision;
+  // Bodies waiting to be added, or removed, are out of every pair and contact.
+  bool all_present = true;
+  for (uint32_t k = 0; k < view_.surface_count; ++k)
+    all_present = all_present && surface_present(k);
+  for (int round = 0; round < kMaxRounds; ++round) {
+    refit(time, dt);
+    uint32_t pair_count = 0;
+    // One surface and no self-collision: every pair the broad phase could find would be dropped.
+    if (broad != nullptr && broad->api.find_pairs != nullptr &&
+        (self_collision || view_.surface_count > 1))
+      bits |= broad->api.find_pairs(broad->instance, &view_, pairs_.data(),
+                                    static_cast<uint32_t>(pairs_.size()), &pair_count);
+    if (!self_collision ||
+        !all_present) {  // collision.self_collision off: drop pairs within one surface
+      uint32_t kept = 0;
+      for (uint32_t p = 0; p < pair_count; ++p)
+        if ((self_collision || pairs_[p].surface_a != pairs_[p].surface_b) &&
+            surface_present(pairs_[p].surface_a) && surface_present(pairs_[p].surface_b))
+          pairs_[kept++] = pairs_[p];
+      pair_count = kept;
+    }
+    pairs_high_water_ = std::max(pairs_high_water_, pair_count);
+    // Every narrow phase detects; the one serving the role gets the broad phase's pairs, the
+    // others (convex: surfaces against tools and obstacles) the whole world (pairs NULL).
+    const uint32_t first = contact_count_;
+    for (auto& inst : instances_) {
+      if (inst->api.detect == nullptr || !(inst->roles & TACTA_COLLISION_ROLE_NARROW_PHASE))
+        continue;
+      uint32_t found = 0;
+      const bool pairwise = inst.get() == narrow && broad != nullptr;
+      bits |= inst->api.detect(inst->instance, &view_, pairwise ? pairs_.data() : nullptr,
+                               pairwise ? pair_count : 0, contacts_.data() + contact_count_,
+                               static_cast<uint32_t>(contacts_.size()) - contact_count_, &found);
+      if (!all_present) found = drop_absent(contact_count_, found);
+      contact_count_ += found;
+    }
+    for (auto& e : embedded_)
+      if (e) e->remember();
+    if (response != nullptr && response->api.respond != nullptr)
+      bits |= response->api.respond(response->instance, &view_, contacts_.data() + first,
+                                    contact_count_ - first);
+    for (auto& e : embedded_)
+      if (e) e->apply_response();
+    bool surface_contacts = false;
+    for (uint32_t c = first; c < contact_count_; ++c)
+      surface_contacts = surface_contacts || contacts_[c].type == TACTA_CONTACT_VERTEX_FACE ||
+                         contacts_[c].type == TACTA_CONTACT_EDGE_EDGE;
+    if (!surface_contacts) break;
+  }
+  contacts_high_water_ = std::max(contacts_high_water_, contact_count_);
+  return bits;
+}
+
+}  // namespace tacta

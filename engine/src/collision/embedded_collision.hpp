@@ -1,0 +1,62 @@
+// The collision layer's side of a body's embedded surface (tacta/embedded_surface.hpp): the
+// surface vertices are what the collision plugins see (start and end of the tick, velocities,
+// inverse masses), and what the contact response does to them goes back to the tet nodes by the
+// transpose of the embedding weights. Buffers are sized at load time; no allocation per tick.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "tacta/collision_api.h"
+#include "world/world.hpp"
+
+namespace tacta {
+
+class EmbeddedCollisionSurface {
+ public:
+  // node_inverse_masses: 1 per node, 1/kg (0 fixed); must outlive this object.
+  EmbeddedCollisionSurface(World& world, size_t body,
+                           const std::vector<double>& node_inverse_masses);
+  // Points the plugin view at the surface's arrays.
+  void describe(tacta_collision_surface& view) noexcept;
+  // Start positions from the body's saved (start of tick) state, end positions, normals and
+  // velocities from its current one; every vertex is then current as of proxy pass `pass`.
+  void refresh(uint64_t pass = 0) noexcept;
+  // Start and end positions of the listed triangles' vertices only, skipping those already
+  // current as of `pass`: the slices a hierarchy is refit by and the patch the proxy's queries
+  // read. Velocities are left to refresh(), which runs before a contact response.
+  void refresh_triangles(const uint32_t* triangles, uint32_t count, uint64_t pass) noexcept;
+  // Largest sum of |weight| over the vertices: no vertex moves further than this times the
+  // furthest-moving node (1 inside the tets, more for extrapolated vertices).
+  double weight_bound() const noexcept { return weight_bound_; }
+  // Before the response: keeps the surface's end positions and velocities to see what it changed.
+  void remember() noexcept;
+  // After it: each vertex's correction is an impulse (its change over its inverse mass), spread
+  // to the nodes by the weights (the transpose of the interpolation); a node reached by several
+  // corrected vertices takes their mean, so a tet pushed by many vertices is not pushed many
+  // times, and a few such passes bring the vertices to where the response put them. Then the
+  // surface follows the nodes.
+  void apply_response() noexcept;
+
+ private:
+  SoftBody body() noexcept { return world_.body(body_); }
+
+  World& world_;
+  size_t body_;
+  const std::vector<double>& node_inverse_masses_;
+  std::vector<double> start_;           // 3 per vertex, m
+  std::vector<double> velocities_;      // 3 per vertex, m/s
+  std::vector<double> inverse_masses_;  // 1 per vertex, 1/kg: sum of w^2 / m over its tet's nodes
+  std::vector<double> end_before_;      // 3 per vertex, m
+  std::vector<double> velocities_before_;     // 3 per vertex, m/s
+  std::vector<double> target_positions_;      // 3 per vertex, m: where the response put it
+  std::vector<double> target_velocities_;     // 3 per vertex, m/s
+  std::vector<uint8_t> corrected_;            // 1 per vertex: the response changed it
+  std::vector<double> node_position_change_;  // 3 per node, m
+  std::vector<double> node_velocity_change_;  // 3 per node, m/s
+  std::vector<uint32_t> node_reached_;        // 1 per node: corrected vertices that reach it
+  std::vector<uint64_t> fresh_at_;  // 1 per vertex: the proxy pass it was last made current
+  double weight_bound_ = 1.0;
+};
+
+}  // namespace tacta

@@ -1,0 +1,143 @@
+#include "systems/body_systems.hpp"
+
+#include <algorithm>
+
+namespace tacta {
+
+namespace {
+
+constexpr double kTimeSlack_s = 1e-12;  // s: a boundary due "now" despite rounding
+
+void swap_models(ModelSlot& slot, const StepSchedule& schedule, NodeState& nodes, NodeLoads& loads,
+                 double time, double haptic_dt) noexcept {
+  const double dt = schedule.step_dt(haptic_dt);
+  while (slot.next_swap < slot.swaps.size() &&
+         slot.swaps[slot.next_swap].time_s <= time + kTimeSlack_s) {
+    // The scheduled instance was built at load time; the outgoing one is parked in its place
+    // and destroyed with the world, so nothing is freed on the haptic thread.
+    std::swap(slot.instance, slot.swaps[slot.next_swap].model);
+    ++slot.next_swap;
+    slot.instance->begin(state_view(nodes, loads, time), dt);
+  }
+  ModelInstance* incoming = slot.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel);
+  if (incoming == nullptr) return;
+  ModelInstance* outgoing = slot.instance.release();
+  slot.instance.reset(incoming);
+  ModelInstance* head = slot.mailbox->retired.load(std::memory_order_relaxed);
+  do {
+    outgoing->retired_next = head;
+  } while (!slot.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
+                                                        std::memory_order_relaxed));
+  if (slot.runtime_swaps.size() < slot.runtime_swaps.capacity())
+    slot.runtime_swaps.push_back({time, incoming->name()});
+  else
+    ++slot.runtime_swaps_unlisted;
+  slot.instance->begin(state_view(nodes, loads, time), dt);
+}
+
+// A body on a worker: this tick's contact joins the period's impulse; at the body's boundary the
+// finished step is collected, swaps are taken while the model is idle, and the next step posted.
+bool step_on_worker(World& world, size_t body, BodyWorker& w, TickEvents& events, double time,
+                    double dt) noexcept {
+  const SoftBody b = world.body(body);
+  w.accumulate(b.loads.contact_forces, dt);
+  if (time + kTimeSlack_s < b.schedule.next_step_s) return true;
+  if (!w.finish_step(time)) return true;  // realtime: still stepping, render on the old state
+  const StepOutcome& out = w.last_outcome();
+  events.stepped(body, out.bits, time);
+  if (out.why != nullptr) {
+    // Detected on the tick the step is collected: the device force drops in this same tick.
+    events.faulted(body, out.bits, out.why, time);
+    return false;
+  }
+  swap_models(b.model, b.schedule, b.nodes, b.loads, time,
+              1.0 / world.scene().clock.haptic_rate_hz);
+  w.post(time, b.schedule.period_s);
+  // The next boundary counts from this post: a late step shifts the body's clock, it never
+  // makes the worker run two steps back to back.
+  b.schedule.next_step_s = std::max(b.schedule.next_step_s + b.schedule.period_s,
+                                    time + b.schedule.period_s - kTimeSlack_s);
+  return true;
+}
+
+}  // namespace
+
+void start_contact_sums(World& world) noexcept {
+  world.bodies_in_scene<NodeLoads>().each([](ecs::Entity, InScene&, NodeLoads& loads) {
+    if (loads.applied_forces.empty())
+      std::fill(loads.contact_forces.begin(), loads.contact_forces.end(), 0.0);
+    else
+      std::copy(loads.applied_forces.begin(), loads.applied_forces.end(),
+                loads.contact_forces.begin());
+  });
+}
+
+void take_model_swaps(World& world, double time) noexcept {
+  const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
+  world.bodies_in_scene<ModelSlot, StepSchedule, NodeState, NodeLoads>().each(
+      [&](ecs::Entity, InScene&, ModelSlot& slot, StepSchedule& schedule, NodeState& nodes,
+          NodeLoads& loads) {
+        if (!schedule.own_thread) swap_models(slot, schedule, nodes, loads, time, haptic_dt);
+      });
+}
+
+bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& workers,
+                 TickEvents& events, double time, double dt) noexcept {
+  const Vec3& g = world.scene().gravity;
+  bool healthy = true;
+  world
+      .bodies_in_scene<FaultState, StepSchedule, ModelSlot, RestShape, NodeState, NodeLoads,
+                       BodyConstraints>()
+      .each([&](ecs::Entity e, InScene&, FaultState& fault, StepSchedule& schedule,
+                ModelSlot& model, RestShape& shape, NodeState& nodes, NodeLoads& loads,
+                BodyConstraints& constraints) {
+        if (fault.frozen) return;
+        const size_t body = e.index;
+        if (BodyWorker* w = body < workers.size() ? workers[body].get() : nullptr) {
+          healthy = step_on_worker(world, body, *w, events, time, dt) && healthy;
+          return;
+        }
+        double step_dt = dt;
+        if (schedule.period_s > 0) {
+          // A slower body steps once its own clock falls due, by its own period.
+          if (time + kTimeSlack_s < schedule.next_step_s) return;
+          schedule.next_step_s += schedule.period_s;
+          step_dt = schedule.period_s;
+        }
+        const StepArrays arrays{nodes.positions, nodes.velocities, loads.external_forces,
+                                nodes.step_start, loads.contact_forces};
+        const StepOutcome out =
+            step_body_arrays(*model.instance, *shape.topology, g, fault.divergence_limit_m, arrays,
+                             time, step_dt, constraints.boundary.get());
+        events.stepped(body, out.bits, time);
+        if (out.why != nullptr) {
+          events.faulted(body, out.bits, out.why, time);
+          healthy = false;
+          return;
+        }
+        fault.max_displacement_m = std::max(fault.max_displacement_m, out.max_displacement);
+      });
+  return healthy;
+}
+
+void record_bodies(World& world, double time, Recorder<TrajectoryRow>& trajectory,
+                   Recorder<ProbeRow>& probes) noexcept {
+  world.bodies_in_scene<NodeState, Recording>().each(
+      [&](ecs::Entity e, InScene&, NodeState& nodes, Recording& recording) {
+        const auto body = static_cast<uint32_t>(e.index);
+        for (uint32_t n : recording.recorded_nodes) {
+          TrajectoryRow row{time, body, n, {}, {}};
+          for (int a = 0; a < 3; ++a) {
+            row.x[a] = nodes.positions[3 * n + a];
+            row.v[a] = nodes.velocities[3 * n + a];
+          }
+          trajectory.push(row);
+        }
+        for (size_t p = 0; p < recording.probes.size(); ++p) {
+          const Vec3 x = recording.probes[p].position(nodes.positions.data());
+          probes.push({time, body, static_cast<uint32_t>(p), {x[0], x[1], x[2]}});
+        }
+      });
+}
+
+}  // namespace tacta

@@ -1,0 +1,91 @@
+// The persistent clock of a Simulation: the haptic loop with its records, the snapshot buffer
+// and the render task, built at the first step or run and kept until the Simulation closes, so
+// that step(), advance_to() and run() all continue one timeline from t = 0.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "collision/collision_context.hpp"
+#include "haptic_interaction/haptic_interaction.hpp"
+#include "systems/haptic_loop.hpp"
+#include "tacta/sim/scheduler.hpp"
+#include "tacta/sim/snapshot.hpp"
+#include "tacta/sim/triple_buffer.hpp"
+#include "world/world.hpp"
+
+namespace tacta {
+
+// Hands the newest snapshot to the observers at each frame (frames, VTK, a window, Python).
+class ObserverRenderTask final : public RenderTask {
+ public:
+  ObserverRenderTask(TripleBuffer<Snapshot>& snapshots, const SceneStatic& scene)
+      : snapshots_(snapshots), scene_(scene) {}
+  void frame(double /*wall_time*/) override {
+    if (!snapshots_.acquire()) return;
+    for (FrameObserver* o : observers) o->on_frame(scene_, snapshots_.read_slot());
+  }
+  std::vector<FrameObserver*> observers;  // changed only between steps and runs
+
+ private:
+  TripleBuffer<Snapshot>& snapshots_;
+  const SceneStatic& scene_;
+};
+
+class ClockSession {
+ public:
+  // Calls each model's begin() with the body's initial state; `haptics` and `response` may be null.
+  ClockSession(World& world, HapticInteraction* haptics, CollisionResponse* response);
+  ~ClockSession();
+
+  // Grows every record buffer for `ticks` more ticks (allocates; outside the 1 kHz path).
+  void reserve(uint64_t ticks);
+  // Lockstep ticks on the calling thread from the current time, frames at every 1/render_rate
+  // of simulated time; returns the ticks run (fewer when the loop ends the run).
+  uint64_t step(uint64_t ticks, const std::atomic<bool>* stop = nullptr);
+  // What the ticks of the last step() raised, OR-ed over them.
+  const TickStatus& step_status() const noexcept { return step_status_; }
+  // A batch on `options`' clock from the current time; the clock advances by the ticks it ran.
+  ScheduleResult run(const ScheduleOptions& options);
+
+  // A body added between steps (lockstep, not during run()): its render description and snapshot
+  // entries are made here (allocates), so frames, VTK and observers show it once it enters.
+  void add_body(size_t slot);
+
+  uint64_t tick() const noexcept { return tick_; }
+  double dt() const noexcept { return dt_; }
+  double time() const noexcept { return static_cast<double>(tick_) * dt_; }
+  HapticLoop& loop() noexcept { return loop_; }
+  const HapticLoop& loop() const noexcept { return loop_; }
+  const SceneStatic& scene_static() const noexcept { return scene_static_; }
+  // The schedule figures of everything run so far (ticks, frames, tick durations, memory).
+  ScheduleResult totals() const;
+  // Observers told of every frame from now on (on_start is called here).
+  void attach(FrameObserver* observer);
+  void detach(FrameObserver* observer);
+  std::vector<FrameObserver*>& observers() noexcept { return render_.observers; }
+  std::vector<double> initial_energy_J;  // per body: kinetic + elastic at t = 0
+
+ private:
+  void start_workers(bool lockstep, uint64_t ticks);
+
+  World& world_;
+  double dt_;
+  uint64_t tick_ = 0;
+  FrameClock frame_clock_;  // 1/render_rate boundaries of simulated time, for step()
+  SceneStatic scene_static_;
+  TripleBuffer<Snapshot> snapshots_;
+  HapticLoop loop_;
+  ObserverRenderTask render_;
+  std::unique_ptr<FrameObserver> surface_feed_;  // remote devices' surface, when any
+  TickStatus step_status_;
+  TickRecorder step_ms_;     // durations of stepped ticks
+  ScheduleResult last_run_;  // the last run()'s schedule figures
+  uint64_t frames_ = 0;
+  int workers_mode_ = -1;  // -1 none, 0 realtime, 1 lockstep
+};
+
+SceneStatic describe_scene(World& world);
+
+}  // namespace tacta

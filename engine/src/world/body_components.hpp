@@ -1,0 +1,151 @@
+// The components of a body entity, one concern each. They live in the World's registry pools
+// (reserved at load for every body slot, never removed: a removed body's last state stays for the
+// report) and the systems (body_systems.hpp) run over views of them. Plain structs; the arrays
+// are 3 doubles per node.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "boundary/boundary_motion.hpp"
+#include "boundary/probes.hpp"
+#include "plugin/plugin_instance.hpp"
+#include "tacta/ecs.hpp"
+#include "tacta/embedded_surface.hpp"
+#include "tacta/mesh.hpp"
+#include "tacta/mesh_io.hpp"
+#include "tacta/model_api.h"
+
+namespace tacta {
+
+// What a model instance points into for its whole life; heap-held so it never moves.
+struct BodyTopology {
+  VolumeMesh mesh;
+  tacta_mesh_view view{};
+  tacta_material material{};
+  std::vector<double> masses;  // kg per node, lumped
+  std::vector<uint8_t> fixed;  // 1 per node
+  LoadReport load;             // what the mesh file became (voxels, Gmsh tets) and its warnings
+};
+
+struct BodyInfo {
+  std::string name;
+  std::string load_warning;  // something odd but legal in the scene (every node fixed); empty: none
+};
+
+// Tag: the body is in the running scene (entered, not removed). Systems view bodies through it.
+struct InScene {};
+
+// When a body is part of the running scene. Bodies added while a scene runs wait as Pending
+// until the tick boundary that takes them in; removed ones stay (frozen in place, out of every
+// system) so the report still lists them.
+struct BodyPresence {
+  enum State : uint8_t { kPending, kPresent, kRemoved };
+  State state = kPresent;
+  double added_s = -1;          // s, simulated; -1: in the scene from the start
+  double removed_s = -1;        // s, simulated; -1: not removed
+  double initial_energy_J = 0;  // kinetic + elastic when added (bodies added while running)
+};
+
+struct NodeState {
+  std::vector<double> positions;   // m
+  std::vector<double> velocities;  // m/s
+  // m: where the last step started. A faulted step is put back here; collision sweeps and the
+  // haptic proxy move from here to `positions`.
+  std::vector<double> step_start;
+  size_t node_count() const noexcept { return positions.size() / 3; }
+};
+
+struct NodeLoads {
+  std::vector<double> external_forces;  // N: gravity + contact + tool, rebuilt each step
+  std::vector<double> contact_forces;   // N: accumulated by collision and haptics this tick
+  std::vector<double> applied_forces;   // N, set through the stepping API; empty: none
+};
+
+struct RestShape {
+  std::unique_ptr<BodyTopology> topology;
+  const std::vector<double>& rest() const { return topology->mesh.positions; }
+};
+
+// The embedded surface entity of a body slot (made at load, one per slot): the surface the body
+// is drawn, touched and collided through when it came from a surface file or was given
+// `surface:`. `mesh` null: the body is seen through its tets' boundary. Heap-held: views point in.
+struct BodySurface {
+  std::unique_ptr<EmbeddedSurface> mesh;
+  uint32_t body = 0;  // the body slot it follows
+};
+
+// On a body entity: its embedded surface's entity.
+struct SurfaceLink {
+  ecs::Entity surface;
+};
+
+// A model change scheduled for a time, built at load time so the switch itself allocates nothing.
+struct ScheduledSwap {
+  double time_s = 0;
+  std::string model_name;                // the incoming model, for the report
+  std::unique_ptr<ModelInstance> model;  // incoming until the swap; the outgoing one after it
+};
+
+// Runtime swaps requested from another thread (the viewer): the requester builds the instance
+// and posts it in `incoming`; the haptic thread takes it at the start of a tick and pushes the
+// outgoing instance on the `retired` stack (lock-free), which the requester empties and deletes.
+// The haptic thread never allocates or frees a model.
+struct ModelMailbox {
+  std::atomic<ModelInstance*> incoming{nullptr};
+  std::atomic<ModelInstance*> retired{nullptr};
+  ~ModelMailbox();
+};
+
+struct RuntimeSwap {
+  double time_s;
+  const char* model;  // the descriptor's name: lives as long as the plugin registry
+};
+
+struct ModelSlot {
+  std::unique_ptr<ModelInstance> instance;
+  std::vector<ScheduledSwap> swaps;  // sorted by time
+  size_t next_swap = 0;
+  std::string initial_model;  // the scene's model; later ones are in swaps/runtime_swaps
+  std::unique_ptr<ModelMailbox> mailbox = std::make_unique<ModelMailbox>();
+  std::vector<RuntimeSwap> runtime_swaps;  // reserved at load; swaps past its capacity go unlisted
+  uint64_t runtime_swaps_unlisted = 0;     // and are counted here (report.json models_run_unlisted)
+};
+
+struct StepSchedule {
+  double period_s = 0;                 // s; 0: every haptic tick
+  double next_step_s = 0;              // s; when a slower body steps next
+  bool own_thread = false;             // steps on a BodyWorker thread, not the haptic one
+  uint64_t refreshes = 0;              // own_thread: finished steps taken into NodeState so far
+  bool local_contact_yielding = true;  // own_thread: render through haptics::LocalCompliance
+  // s: how far one model step advances this body (its own period, else the haptic tick).
+  double step_dt(double haptic_dt) const noexcept { return period_s > 0 ? period_s : haptic_dt; }
+};
+
+// Prescribed motion and plates; null when none.
+struct BodyConstraints {
+  std::unique_ptr<BoundaryMotion> boundary;
+};
+
+// The divergence watch and, once it fired, the fault that froze the body.
+struct FaultState {
+  bool frozen = false;
+  uint32_t bits = 0;               // TACTA_STEP_* bits of the step that failed
+  double time_s = 0;               // simulated time of the failed step
+  std::array<char, 160> reason{};  // fixed buffer: written from the 1 kHz path
+  double divergence_limit_m = 1;   // displacement beyond which the body counts as diverged
+  double max_displacement_m = 0;   // over the whole run
+};
+
+// What is recorded of the body beyond its state: trajectories and probes.
+struct Recording {
+  std::optional<uint32_t> probe_node;
+  std::vector<uint32_t> recorded_nodes;  // nodes whose trajectory is recorded
+  std::vector<Probe> probes;             // rest points followed through their tets (probes.csv)
+};
+
+}  // namespace tacta
