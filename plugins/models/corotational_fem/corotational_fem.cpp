@@ -82,11 +82,10 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
     static_start_.assign(n, 0.0);
   }
   solver_ = std::make_unique<SafeSolver>(
-      matrix_,
-      sparse::SolverOptions{options_.solver, options_.preconditioner, options_.max_iterations,
-                            options_.tolerance, options_.refactor_interval, options_.fallback,
-                            options_.restart_factor,
-                            options_.threaded_solve ? options_.host : nullptr});
+      matrix_, sparse::SolverOptions{
+                   options_.solver, options_.preconditioner, options_.max_iterations,
+                   options_.tolerance, options_.refactor_interval, options_.fallback,
+                   options_.restart_factor, options_.threaded_solve ? options_.host : nullptr});
   rows_ = sparse::RowTeam(options_.threaded_solve ? options_.host : nullptr, node_count_,
                           kMinThreadedNodes);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
@@ -171,8 +170,8 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   if (rows_.threaded()) {
     rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
       matrix_.zero_rows(begin, end);
-      std::fill(forces_.begin() + 3 * std::ptrdiff_t{begin}, forces_.begin() + 3 * std::ptrdiff_t{end},
-                0.0);
+      std::fill(forces_.begin() + 3 * std::ptrdiff_t{begin},
+                forces_.begin() + 3 * std::ptrdiff_t{end}, 0.0);
     });
   } else {
     matrix_.set_zero();
@@ -237,6 +236,18 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   }
   result |= guard_.check(state.positions, state.velocities);
   return result;
+}
+
+void CorotationalFem::state_fields(StateIo& io) {
+  io.vector(polar_guess_, "polar_guess");
+  io.vector(step_rotation_, "step_rotation");
+  io.vector(step_turn_, "step_turn");
+  io.vector(delta_v_, "delta_v");
+  io.vector(previous_delta_v_, "previous_delta_v");
+  io.vector(equilibrium_loads_, "equilibrium_loads");
+  io.value(static_counters_, "static_counters");
+  io.value(last_solve_, "last_solve");
+  solver_->state_fields(io);
 }
 
 void CorotationalFem::begin(const tacta_body_state& state, double /*dt*/) noexcept {

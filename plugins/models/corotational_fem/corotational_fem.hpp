@@ -20,6 +20,7 @@
 #include "safe_solver.hpp"
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/state_blob.hpp"
 
 namespace tacta::models::corotational {
 
@@ -32,6 +33,7 @@ using sparse::SafeSolver;
 using sparse::SolverCounters;
 using sparse::SolveReport;
 using sparse::SolverFallback;
+using tacta::models::StateIo;
 
 enum class RotationMethod { kPolar = 0, kSvd = 1 };
 struct Options {
@@ -107,6 +109,9 @@ class CorotationalFem {
   // CG limits, and the incomplete Cholesky's steps between refactorisations.
   void set_solver_limits(int max_iterations, double tolerance, int refactor_interval);
   const Options& options() const { return options_; }
+  // Checkpoints (state_blob.hpp): what step() reads that an earlier step wrote (warm-start
+  // rotations, the CG guess's history, the static solve's last loads, the solver's state).
+  void state_fields(StateIo& io);
 
  private:
   struct Element {

@@ -15,6 +15,10 @@
 namespace tacta::models::corotational {
 namespace {
 
+using tacta::models::load_state_blob;
+using tacta::models::save_state_blob;
+using tacta::models::StateHeader;
+
 class CorotationalFemPlugin {
  public:
   static constexpr const char* kName = "corotational_fem";
@@ -75,6 +79,13 @@ class CorotationalFemPlugin {
         }},
         model_->counters(), out, capacity);
   }
+  size_t save_state(void* bytes, size_t capacity) noexcept {
+    return save_state_blob(state_header(), bytes, capacity,
+                           [&](StateIo& io) { model_->state_fields(io); });
+  }
+  void load_state(const void* bytes, size_t size) {
+    load_state_blob(state_header(), bytes, size, [&](StateIo& io) { model_->state_fields(io); });
+  }
   // Live changes reach the solver's limits only (max_iterations, tolerance, refactor_interval):
   // rotation, solver and preconditioner decide the buffers built at creation.
   void set_param(uint32_t index, const tacta_param_value& value) {
@@ -102,6 +113,10 @@ class CorotationalFemPlugin {
   }
 
  private:
+  StateHeader state_header() const {
+    return {kName, kStateVersion, model_->node_count(), model_->element_count()};
+  }
+  static constexpr uint32_t kStateVersion = 1;  // CorotationalFem::state_fields' layout
   std::unique_ptr<CorotationalFem> model_;
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "hot_path.hpp"
+#include "tacta/models/state_blob.hpp"
 
 namespace tacta::models::sparse {
 
@@ -125,6 +126,11 @@ TACTA_HOT_PATH void BlockIncompleteCholesky::apply(const double* r, double* z) c
     zi[1] -= m[3] * s0 + m[4] * s1 + m[5] * s2;
     zi[2] -= m[6] * s0 + m[7] * s1 + m[8] * s2;
   }
+}
+
+void BlockIncompleteCholesky::state_fields(StateIo& io) {
+  io.vector(factor_, "ic_factor");
+  io.vector(pivot_inverse_, "ic_pivot_inverse");
 }
 
 }  // namespace tacta::models::sparse

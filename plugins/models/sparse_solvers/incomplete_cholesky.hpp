@@ -10,6 +10,10 @@
 
 #include "block_sparse.hpp"
 
+namespace tacta::models {
+class StateIo;
+}
+
 namespace tacta::models::sparse {
 
 class BlockIncompleteCholesky {
@@ -23,6 +27,8 @@ class BlockIncompleteCholesky {
   // z = M^-1 r (forward then backward block substitution), 4 values per node (the fourth 0,
   // see PaddedBlocks).
   void apply(const double* r, double* z) const;
+  // Checkpoints (state_blob.hpp): the factor, which may be older than the matrix being solved.
+  void state_fields(StateIo& io);
 
  private:
   struct Update {  // w[target] -= w[left]^T Dinv_k w[right], left and right in row k

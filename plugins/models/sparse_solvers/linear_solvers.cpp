@@ -8,6 +8,7 @@
 
 #include "hot_path.hpp"
 #include "lanes4.hpp"
+#include "tacta/models/state_blob.hpp"
 
 namespace tacta::models::sparse {
 
@@ -135,6 +136,17 @@ double ConjugateGradientSolver::multiply(const BlockSparseMatrix& a, const doubl
                                          double* y) const {
   // IC(0) needs few products: copying A to the padded layout would cost more than it saves.
   return incomplete_cholesky_ ? a.multiply(x, y, 4) : padded_.multiply_symmetric(x, y);
+}
+
+void ConjugateGradientSolver::state_fields(StateIo& io) {
+  io.value(solves_since_factor_, "solves_since_factor");
+  io.value(replaced_pivots_, "replaced_pivots");
+  if (incomplete_cholesky_) {
+    incomplete_cholesky_->state_fields(io);
+    return;
+  }
+  io.vector(inverse_columns_, "jacobi_inverse");
+  padded_.state_fields(io);
 }
 
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
@@ -275,10 +287,9 @@ SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x
   bool fused = false;  // from the second iteration: p = z + beta p formed inside the product
   for (int k = 0; k < max_iterations; ++k) {
     team.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
-      team.sums(chunk).s[0] =
-          fused ? padded_.multiply_rows(p_.data(), ap_.data(), begin, end, z_.data(), beta,
-                                        p_next_.data())
-                : padded_.multiply_rows(p_.data(), ap_.data(), begin, end);
+      team.sums(chunk).s[0] = fused ? padded_.multiply_rows(p_.data(), ap_.data(), begin, end,
+                                                            z_.data(), beta, p_next_.data())
+                                    : padded_.multiply_rows(p_.data(), ap_.data(), begin, end);
     });
     if (fused) std::swap(p_, p_next_);
     const double p_ap = team.total(0);

@@ -52,6 +52,9 @@ class ConjugateGradientSolver {
     return iterate(a, b, x, max_iterations);
   }
   bool threaded() const { return team_.threaded(); }
+  // Checkpoints (state_blob.hpp): the preconditioner the next solve may keep, and the
+  // refactorisation count.
+  void state_fields(StateIo& io);
   void set_limits(int max_iterations, double tolerance, int refactor_interval) {
     max_iterations_ = max_iterations;
     tolerance_ = tolerance;

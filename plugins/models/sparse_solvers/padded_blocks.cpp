@@ -5,6 +5,7 @@
 
 #include "hot_path.hpp"
 #include "lanes4.hpp"
+#include "tacta/models/state_blob.hpp"
 
 namespace tacta::models::sparse {
 
@@ -132,5 +133,7 @@ TACTA_HOT_PATH double PaddedBlocks::multiply_symmetric(const double* __restrict 
   }
   return x_dot_y;
 }
+
+void PaddedBlocks::state_fields(StateIo& io) { io.vector(values_, "padded_values"); }
 
 }  // namespace tacta::models::sparse

@@ -11,6 +11,10 @@
 
 #include "block_sparse.hpp"
 
+namespace tacta::models {
+class StateIo;
+}
+
 namespace tacta::models::sparse {
 
 class PaddedBlocks {
@@ -27,14 +31,15 @@ class PaddedBlocks {
   // q = z + beta x, formed on the fly for every block (CG's direction update fused into the
   // product: no pass and no wait between them) and written to q_out for rows [begin, end).
   double multiply_rows(const double* x, double* y, uint32_t begin, uint32_t end,
-                       const double* z = nullptr, double beta = 0.0,
-                       double* q_out = nullptr) const;
+                       const double* z = nullptr, double beta = 0.0, double* q_out = nullptr) const;
+  // Checkpoints (state_blob.hpp): the values, which a kept preconditioner reuses.
+  void state_fields(StateIo& io);
 
  private:
   uint32_t node_count_;
   std::vector<uint32_t> row_starts_, columns_;
   std::vector<uint32_t> lower_starts_, lower_blocks_, lower_rows_;  // see BlockSparseMatrix
-  std::vector<double> values_;  // 12 per block
+  std::vector<double> values_;                                      // 12 per block
 };
 
 }  // namespace tacta::models::sparse

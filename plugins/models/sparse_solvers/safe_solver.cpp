@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "tacta/models/state_blob.hpp"
+
 namespace tacta::models::sparse {
 
 namespace {
@@ -89,6 +91,15 @@ SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, doubl
   counters_.max_relative_residual =
       std::max(counters_.max_relative_residual, report.relative_residual);
   return report;
+}
+
+void SafeSolver::state_fields(StateIo& io) {
+  io.value(counters_, "solver_counters");
+  io.value(direct_hold_, "direct_hold");
+  io.value(direct_hold_length_, "direct_hold_length");
+  io.value(cg_current_, "cg_current");
+  if (io.loading()) cholesky_current_ = false;  // see the header: refactorised on its next use
+  if (cg_) cg_->state_fields(io);
 }
 
 }  // namespace tacta::models::sparse

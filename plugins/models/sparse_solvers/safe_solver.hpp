@@ -61,6 +61,10 @@ class SafeSolver {
   const SolverOptions& options() const { return options_; }
   const SolverCounters& counters() const { return counters_; }
   bool iterative() const { return cg_ != nullptr; }
+  // Checkpoints (state_blob.hpp): the counters, the LDL^T hold, and what CG keeps between
+  // solves. The LDL^T factor is not saved: a load marks it stale, and refactorising the same
+  // matrix gives the same factor, bit for bit.
+  void state_fields(StateIo& io);
 
  private:
   SolveReport solve_direct(const BlockSparseMatrix& a, const double* b, double* x,

@@ -15,6 +15,8 @@
 //   std::string describe() const          what the instance chose that its parameters did not say
 //   static constexpr uint32_t kClaims      TACTA_MODEL_CLAIM_* bits (checked by tacta check-plugin)
 //   static constexpr const char* kLiveParams  "a|b": what set_param changes without a swap
+//   size_t save_state(void* bytes, size_t capacity) noexcept    checkpoint: see model_api.h
+//   void load_state(const void* bytes, size_t size)    throws std::invalid_argument on a bad blob
 #pragma once
 
 #include <cstring>
@@ -73,6 +75,14 @@ struct ModelAdapter {
     }
   }
 
+  static size_t save_state(void* instance, void* bytes, size_t capacity) noexcept {
+    return static_cast<T*>(instance)->save_state(bytes, capacity);
+  }
+  static tacta_status load_state(void* instance, const void* bytes, size_t size, char* message,
+                                 size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { static_cast<T*>(instance)->load_state(bytes, size); });
+  }
+
   static tacta_model_api table() {
     tacta_model_api api{};
     api.create = &create;
@@ -93,6 +103,13 @@ struct ModelAdapter {
     if constexpr (requires(const T& t) { t.describe(); }) api.describe = &describe;
     if constexpr (requires { T::kClaims; }) api.claims = T::kClaims;
     if constexpr (requires { T::kLiveParams; }) api.live_params = T::kLiveParams;
+    if constexpr (requires(T & t, void* b, const void* c) {
+                    t.save_state(b, size_t{0});
+                    t.load_state(c, size_t{0});
+                  }) {
+      api.save_state = &save_state;
+      api.load_state = &load_state;
+    }
     return api;
   }
 };
