@@ -19,6 +19,8 @@ CheckResult check_step_allocations(const tacta_descriptor& model, const Allocati
 CheckResult check_nan_reported(const tacta_descriptor& model);
 CheckResult check_worker_thread(const tacta_descriptor& model);
 CheckResult check_live_params(const tacta_descriptor& model);
+// save_state/load_state restore bit for bit (or NO_HISTORY is claimed); bad blobs are refused.
+CheckResult check_checkpoint(const tacta_descriptor& model);
 
 // The descriptor's TACTA_MODEL_CLAIM_* bits.
 uint32_t claims_of(const tacta_descriptor& model);

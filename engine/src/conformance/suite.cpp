@@ -49,6 +49,7 @@ std::vector<CheckResult> check_model(const tacta_descriptor& model, const Alloca
       {"NaN input reported", [&] { return check_nan_reported(model); }},
       {"step on a worker thread", [&] { return check_worker_thread(model); }},
       {"live parameters", [&] { return check_live_params(model); }},
+      {"checkpoint", [&] { return check_checkpoint(model); }},
   };
   for (const auto& [name, check] : checks) results.push_back(guarded(name, check));
   return results;
