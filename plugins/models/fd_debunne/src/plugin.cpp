@@ -16,7 +16,8 @@ class FdDebunnePlugin {
       "Debunne et al.: finite differences of the Navier equation on the mesh edge graph, explicit";
   static constexpr uint32_t kVersion = 10000;
   // Finite differences on the edge graph: neither rotation-invariant nor momentum-conserving.
-  static constexpr uint32_t kClaims = 0;
+  // No history: both explicit integrators step from x and v alone.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_NO_HISTORY;
   static constexpr const char* kLiveParams = "damping";
   static constexpr std::array<tacta_param_spec, 5> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|explicit_euler", 0,
