@@ -35,8 +35,22 @@ class TensorMassPlugin {
   double elastic_energy(const double* x) noexcept { return model_.elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_.internal_forces(x, f); }
   std::string describe() const { return model_.note(); }
+  size_t save_state(void* bytes, size_t capacity) noexcept {
+    return tacta::models::save_state_blob(
+        state_header(), bytes, capacity,
+        [&](tacta::models::StateIo& io) { model_.state_fields(io); });
+  }
+  void load_state(const void* bytes, size_t size) {
+    tacta::models::load_state_blob(state_header(), bytes, size,
+                                   [&](tacta::models::StateIo& io) { model_.state_fields(io); });
+  }
 
  private:
+  static constexpr uint32_t kStateVersion = 1;  // TensorMassModel::state_fields' layout
+  tacta::models::StateHeader state_header() const {
+    return {kName, kStateVersion, model_.node_count(),
+            static_cast<uint32_t>(model_.edges().size() / 2)};
+  }
   static TensorMassOptions options(const tacta_model_setup& setup) {
     const tacta::sdk::Params p(kParams, setup.params, setup.param_count);
     TensorMassOptions o;

@@ -24,6 +24,7 @@
 
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/state_blob.hpp"
 
 namespace tacta::models {
 
@@ -62,6 +63,12 @@ class TensorMassModel {
   const std::vector<Eigen::Matrix3d>& vertex_blocks() const { return vertex_block_; }
   const std::vector<Eigen::Matrix3d>& edge_blocks() const { return edge_block_; }
   const std::vector<uint32_t>& edges() const { return edges_; }
+  // Checkpoints (state_blob.hpp): central differences' x(t - dt) and whether it is set; the
+  // implicit solver's factor is fixed at creation.
+  void state_fields(StateIo& io) {
+    io.vector(previous_, "previous_positions");
+    io.value(has_history_, "has_history");
+  }
 
  private:
   uint32_t step_central(tacta_body_state& state, double dt) noexcept;
