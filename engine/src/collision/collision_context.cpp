@@ -244,7 +244,7 @@ bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
   // A body stepping on its own thread has its state replaced at each refresh, so a correction
   // made here would be lost: for the response it is a moving obstacle (infinite mass).
   for (size_t n = 0; n < inv.size(); ++n)
-    inv[n] = b.schedule.own_thread || b.shape.topology->fixed[n] || b.shape.topology->masses[n] <= 0
+    inv[n] = b.settings.own_thread || b.shape.topology->fixed[n] || b.shape.topology->masses[n] <= 0
                  ? 0.0
                  : 1.0 / b.shape.topology->masses[n];
   s.body_id = static_cast<uint32_t>(i);
@@ -402,8 +402,8 @@ void CollisionContext::refit(double time, double dt) noexcept {
   for (size_t i = 0; i < surface_of_body_.size(); ++i) {
     if (surface_of_body_[i] < 0) continue;
     const SoftBody b = world_.body(i);
-    if (!b.schedule.own_thread || b.schedule.refreshes != refits_seen_[i]) moved = true;
-    refits_seen_[i] = b.schedule.refreshes;
+    if (!b.settings.own_thread || b.progress.refreshes != refits_seen_[i]) moved = true;
+    refits_seen_[i] = b.progress.refreshes;
   }
   if (!moved) return;
   refitted_once_ = true;

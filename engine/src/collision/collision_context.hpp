@@ -127,7 +127,7 @@ class CollisionContext {
   std::vector<int> surface_of_body_;
   std::vector<std::unique_ptr<EmbeddedCollisionSurface>>
       embedded_;                       // per body; null: its tets' boundary
-  std::vector<uint64_t> refits_seen_;  // per body: its StepSchedule::refreshes at the last refit
+  std::vector<uint64_t> refits_seen_;  // per body: its StepProgress::refreshes at the last refit
   bool refitted_once_ = false;
   std::vector<SurfaceFreshness> freshness_;     // per surface
   std::vector<std::array<double, 6>> covered_;  // per surface: box made current this pass, m

@@ -181,7 +181,7 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   LocalModel& m = ch.local;
   const int touched = m.body >= 0 ? m.body : slot.contact.touched_body;
   if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() ||
-      !world.body(static_cast<size_t>(touched)).schedule.own_thread) {
+      !world.body(static_cast<size_t>(touched)).settings.own_thread) {
     ch.renderer.set_local_compliance({});
     return;
   }
@@ -189,12 +189,12 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   if (m.body != touched) {
     m = LocalModel{};
     m.body = touched;
-    m.refreshes_seen = body.schedule.refreshes;
+    m.refreshes_seen = body.progress.refreshes;
   }
-  if (body.schedule.refreshes != m.refreshes_seen) {
+  if (body.progress.refreshes != m.refreshes_seen) {
     // The worker finished a step and took the next: the state now shown felt `posted`, the step
     // now running is driven by the mean of the ticks since (BodyWorker::post does the same sums).
-    m.refreshes_seen = body.schedule.refreshes;
+    m.refreshes_seen = body.progress.refreshes;
     m.felt = m.posted;
     m.posted = m.impulse_time > 0 ? scaled(m.impulse, 1.0 / m.impulse_time) : Vec3{0, 0, 0};
     m.impulse = {0, 0, 0};
@@ -221,7 +221,7 @@ void HapticInteraction::prepare_local_model(World& world, Channel& ch,
   // Until the body has shown its stiffness (the first refresh of a press) the surface is rendered
   // as the last step left it (an analytic guess, a flat punch on a half-space, is 3 to 4 times
   // softer than the meshes' own response: the force would jump when the measurement came).
-  c.active = body.schedule.local_contact_yielding && m.stiffness > 0;
+  c.active = body.settings.local_contact_yielding && m.stiffness > 0;
   // Why the measured stiffness matters: the surface the loop sees lags the force it renders by
   // two periods (the step posted at k runs on the forces of k-2..k-1 and shows at k+1). With the
   // device still, F_k = const + g F_(k-2) with g = k_c (k_true - k_l) / (k_true (k_l + k_c)): the

@@ -62,8 +62,8 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
     br.elastic_energy_J = b.model.instance->elastic_energy(b.nodes.positions.data());
     br.model_counters = b.model.instance->counters();
     br.frozen = b.fault.frozen;
-    br.own_thread = b.schedule.own_thread;
-    br.step_rate_hz = b.schedule.period_s > 0 ? 1.0 / b.schedule.period_s : 0.0;
+    br.own_thread = b.settings.own_thread;
+    br.step_rate_hz = b.settings.period_s > 0 ? 1.0 / b.settings.period_s : 0.0;
     if (const BodyWorker* w = loop.worker(i)) {
       br.worker_steps = w->stats().steps;
       br.worker_step_ms = w->step_ms().summary();
@@ -227,7 +227,7 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
   params.set_number(name, value);
   // A live parameter (the schema's live list) changes in place while nothing steps the model and no
   // swap waits: between steps, on a haptic-thread body. Any other change is a swap.
-  const bool quiet = !impl_->running.load() && !b.schedule.own_thread && !pending;
+  const bool quiet = !impl_->running.load() && !b.settings.own_thread && !pending;
   std::string why;
   if (quiet && is_live_param(d, name) &&
       b.model.instance->set_param(index, tacta_param_value{value, nullptr, nullptr, 0}, why)) {

@@ -8,9 +8,9 @@ namespace {
 
 constexpr double kTimeSlack_s = 1e-12;  // s: a boundary due "now" despite rounding
 
-void swap_models(ModelSlot& slot, const StepSchedule& schedule, NodeState& nodes, NodeLoads& loads,
+void swap_models(ModelSlot& slot, const BodySettings& settings, NodeState& nodes, NodeLoads& loads,
                  double time, double haptic_dt) noexcept {
-  const double dt = schedule.step_dt(haptic_dt);
+  const double dt = settings.step_dt(haptic_dt);
   while (slot.next_swap < slot.swaps.size() &&
          slot.swaps[slot.next_swap].time_s <= time + kTimeSlack_s) {
     // The scheduled instance was built at load time; the outgoing one is parked in its place
@@ -41,7 +41,7 @@ bool step_on_worker(World& world, size_t body, BodyWorker& w, TickEvents& events
                     double dt) noexcept {
   const SoftBody b = world.body(body);
   w.accumulate(b.loads.contact_forces, dt);
-  if (time + kTimeSlack_s < b.schedule.next_step_s) return true;
+  if (time + kTimeSlack_s < b.progress.next_step_s) return true;
   if (!w.finish_step(time)) return true;  // realtime: still stepping, render on the old state
   const StepOutcome& out = w.last_outcome();
   events.stepped(body, out.bits, time);
@@ -50,13 +50,13 @@ bool step_on_worker(World& world, size_t body, BodyWorker& w, TickEvents& events
     events.faulted(body, out.bits, out.why, time);
     return false;
   }
-  swap_models(b.model, b.schedule, b.nodes, b.loads, time,
+  swap_models(b.model, b.settings, b.nodes, b.loads, time,
               1.0 / world.scene().clock.haptic_rate_hz);
-  w.post(time, b.schedule.period_s);
+  w.post(time, b.settings.period_s);
   // The next boundary counts from this post: a late step shifts the body's clock, it never
   // makes the worker run two steps back to back.
-  b.schedule.next_step_s = std::max(b.schedule.next_step_s + b.schedule.period_s,
-                                    time + b.schedule.period_s - kTimeSlack_s);
+  b.progress.next_step_s = std::max(b.progress.next_step_s + b.settings.period_s,
+                                    time + b.settings.period_s - kTimeSlack_s);
   return true;
 }
 
@@ -74,10 +74,10 @@ void start_contact_sums(World& world) noexcept {
 
 void take_model_swaps(World& world, double time) noexcept {
   const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
-  world.bodies_in_scene<ModelSlot, StepSchedule, NodeState, NodeLoads>().each(
-      [&](ecs::Entity, InScene&, ModelSlot& slot, StepSchedule& schedule, NodeState& nodes,
+  world.bodies_in_scene<ModelSlot, BodySettings, NodeState, NodeLoads>().each(
+      [&](ecs::Entity, InScene&, ModelSlot& slot, BodySettings& settings, NodeState& nodes,
           NodeLoads& loads) {
-        if (!schedule.own_thread) swap_models(slot, schedule, nodes, loads, time, haptic_dt);
+        if (!settings.own_thread) swap_models(slot, settings, nodes, loads, time, haptic_dt);
       });
 }
 
@@ -86,11 +86,11 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
   const Vec3& g = world.scene().gravity;
   bool healthy = true;
   world
-      .bodies_in_scene<FaultState, StepSchedule, ModelSlot, RestShape, NodeState, NodeLoads,
-                       BodyConstraints>()
-      .each([&](ecs::Entity e, InScene&, FaultState& fault, StepSchedule& schedule,
-                ModelSlot& model, RestShape& shape, NodeState& nodes, NodeLoads& loads,
-                BodyConstraints& constraints) {
+      .bodies_in_scene<FaultState, BodySettings, StepProgress, ModelSlot, RestShape, NodeState,
+                       NodeLoads, BodyConstraints>()
+      .each([&](ecs::Entity e, InScene&, FaultState& fault, const BodySettings& settings,
+                StepProgress& progress, ModelSlot& model, RestShape& shape, NodeState& nodes,
+                NodeLoads& loads, BodyConstraints& constraints) {
         if (fault.frozen) return;
         const size_t body = e.index;
         if (BodyWorker* w = body < workers.size() ? workers[body].get() : nullptr) {
@@ -98,17 +98,17 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
           return;
         }
         double step_dt = dt;
-        if (schedule.period_s > 0) {
+        if (settings.period_s > 0) {
           // A slower body steps once its own clock falls due, by its own period.
-          if (time + kTimeSlack_s < schedule.next_step_s) return;
-          schedule.next_step_s += schedule.period_s;
-          step_dt = schedule.period_s;
+          if (time + kTimeSlack_s < progress.next_step_s) return;
+          progress.next_step_s += settings.period_s;
+          step_dt = settings.period_s;
         }
         const StepArrays arrays{nodes.positions, nodes.velocities, loads.external_forces,
                                 nodes.step_start, loads.contact_forces};
         const StepOutcome out =
-            step_body_arrays(*model.instance, *shape.topology, g, fault.divergence_limit_m, arrays,
-                             time, step_dt, constraints.boundary.get());
+            step_body_arrays(*model.instance, *shape.topology, g, settings.divergence_limit_m,
+                             arrays, time, step_dt, constraints.boundary.get());
         events.stepped(body, out.bits, time);
         if (out.why != nullptr) {
           events.faulted(body, out.bits, out.why, time);

@@ -83,7 +83,7 @@ bool BodyWorker::finish_step(double time) noexcept {
 void BodyWorker::collect() noexcept {
   in_flight_ = false;
   collected_ = job_outcome_;
-  ++body_.schedule.refreshes;
+  ++body_.progress.refreshes;
   // The state the haptic thread renders against moves to the finished step; the one it replaces
   // becomes the start of the body's motion for the collision layer's swept queries.
   std::copy(body_.nodes.positions.begin(), body_.nodes.positions.end(),
@@ -129,9 +129,9 @@ void BodyWorker::run() noexcept {
 void BodyWorker::step_job() noexcept {
   const auto start = std::chrono::steady_clock::now();
   const StepArrays arrays{positions_, velocities_, external_forces_, step_start_, contact_mean_};
-  job_outcome_ =
-      step_body_arrays(*job_model_, *body_.shape.topology, gravity_, body_.fault.divergence_limit_m,
-                       arrays, job_time_, job_dt_, body_.constraints.boundary.get());
+  job_outcome_ = step_body_arrays(*job_model_, *body_.shape.topology, gravity_,
+                                  body_.settings.divergence_limit_m, arrays, job_time_, job_dt_,
+                                  body_.constraints.boundary.get());
   // What snapshots want from the model is computed here, where the model lives during a step.
   job_elastic_J_ = job_model_->elastic_energy(positions_.data());
   job_has_stress_ = job_model_->has_stress();

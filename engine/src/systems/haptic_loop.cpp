@@ -173,9 +173,9 @@ void HapticLoop::start_workers(bool lockstep, size_t expected_ticks) {
   const double haptic_rate = world_.scene().clock.haptic_rate_hz;
   for (size_t i = 0; i < world_.body_count(); ++i) {
     const SoftBody b = world_.body(i);
-    if (!b.schedule.own_thread) continue;
+    if (!b.settings.own_thread) continue;
     const auto steps = static_cast<size_t>(static_cast<double>(expected_ticks) / haptic_rate /
-                                           b.schedule.period_s) +
+                                           b.settings.period_s) +
                        2;
     if (!workers_[i])
       workers_[i] = std::make_unique<BodyWorker>(b, world_.scene().gravity, lockstep, steps);

@@ -116,14 +116,22 @@ struct ModelSlot {
   uint64_t runtime_swaps_unlisted = 0;     // and are counted here (report.json models_run_unlisted)
 };
 
-struct StepSchedule {
+// The body's settings: what the scene fixed at load and no tick changes (MuJoCo's mjModel side).
+// Everything the ticks change is in the state components (NodeState, NodeLoads, StepProgress,
+// FaultState, ...), which are what a checkpoint holds.
+struct BodySettings {
   double period_s = 0;                 // s; 0: every haptic tick
-  double next_step_s = 0;              // s; when a slower body steps next
   bool own_thread = false;             // steps on a BodyWorker thread, not the haptic one
-  uint64_t refreshes = 0;              // own_thread: finished steps taken into NodeState so far
   bool local_contact_yielding = true;  // own_thread: render through haptics::LocalCompliance
+  double divergence_limit_m = 1;       // displacement beyond which the body counts as diverged
   // s: how far one model step advances this body (its own period, else the haptic tick).
   double step_dt(double haptic_dt) const noexcept { return period_s > 0 ? period_s : haptic_dt; }
+};
+
+// Where the body's own stepping stands.
+struct StepProgress {
+  double next_step_s = 0;  // s; when a slower body steps next
+  uint64_t refreshes = 0;  // own_thread: finished steps taken into NodeState so far
 };
 
 // Prescribed motion and plates; null when none.
@@ -137,7 +145,6 @@ struct FaultState {
   uint32_t bits = 0;               // TACTA_STEP_* bits of the step that failed
   double time_s = 0;               // simulated time of the failed step
   std::array<char, 160> reason{};  // fixed buffer: written from the 1 kHz path
-  double divergence_limit_m = 1;   // displacement beyond which the body counts as diverged
   double max_displacement_m = 0;   // over the whole run
 };
 

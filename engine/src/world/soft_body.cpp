@@ -164,13 +164,13 @@ BodyParts build_soft_body(const BodyDesc& desc, const SceneDesc& scene,
   body.recording.probe_node = desc.probe_node;
   body.recording.recorded_nodes = recorded_nodes(desc, scene, n);
   // Ten body sizes of displacement is far past any elastic regime: call it divergence.
-  body.fault.divergence_limit_m = 10.0 * std::max(bounding_diagonal(rest), 1e-3);
+  body.settings.divergence_limit_m = 10.0 * std::max(bounding_diagonal(rest), 1e-3);
 
   const double dt =
       desc.step_rate_hz > 0 ? 1.0 / desc.step_rate_hz : 1.0 / scene.clock.haptic_rate_hz;
-  body.schedule.period_s = desc.step_rate_hz > 0 ? dt : 0.0;
-  body.schedule.own_thread = desc.own_thread;
-  body.schedule.local_contact_yielding = desc.local_contact_yielding;
+  body.settings.period_s = desc.step_rate_hz > 0 ? dt : 0.0;
+  body.settings.own_thread = desc.own_thread;
+  body.settings.local_contact_yielding = desc.local_contact_yielding;
   body.model.instance = make_model(desc.model, desc.model_params, topo, dt, desc.where);
   require_internal_forces(body.constraints, *body.model.instance, desc.where);
   body.model.initial_model = desc.model;

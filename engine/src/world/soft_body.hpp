@@ -21,7 +21,8 @@ struct BodyParts {
   RestShape shape;
   BodySurface surface;
   ModelSlot model;
-  StepSchedule schedule;
+  BodySettings settings;
+  StepProgress progress;
   BodyConstraints constraints;
   FaultState fault;
   Recording recording;
@@ -41,14 +42,15 @@ struct SoftBody {
   RestShape& shape;
   BodySurface& surface;
   ModelSlot& model;
-  StepSchedule& schedule;
+  const BodySettings& settings;
+  StepProgress& progress;
   BodyConstraints& constraints;
   FaultState& fault;
   Recording& recording;
 
   bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
   size_t node_count() const noexcept { return nodes.node_count(); }
-  double step_dt(double haptic_dt) const noexcept { return schedule.step_dt(haptic_dt); }
+  double step_dt(double haptic_dt) const noexcept { return settings.step_dt(haptic_dt); }
   const std::vector<double>& rest() const { return shape.rest(); }
   double kinetic_energy() const noexcept;
   tacta_body_state state_view(double time) const noexcept {

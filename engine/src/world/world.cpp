@@ -146,7 +146,8 @@ SoftBody World::body(size_t i) const noexcept {
       registry_.pool<RestShape>().at(e),
       registry_.pool<BodySurface>().at(registry_.pool<SurfaceLink>().at(e).surface.index),
       registry_.pool<ModelSlot>().at(e),
-      registry_.pool<StepSchedule>().at(e),
+      registry_.pool<BodySettings>().at(e),
+      registry_.pool<StepProgress>().at(e),
       registry_.pool<BodyConstraints>().at(e),
       registry_.pool<FaultState>().at(e),
       registry_.pool<Recording>().at(e)};
@@ -161,7 +162,8 @@ void World::install(size_t slot, BodyParts&& p) noexcept {
   b.shape = std::move(p.shape);
   b.surface.mesh = std::move(p.surface.mesh);
   b.model = std::move(p.model);
-  b.schedule = p.schedule;
+  registry_.pool<BodySettings>().at(static_cast<uint32_t>(slot)) = p.settings;
+  b.progress = p.progress;
   b.constraints = std::move(p.constraints);
   b.fault = p.fault;
   b.recording = std::move(p.recording);
@@ -184,7 +186,7 @@ int World::body_index(const std::string& name) const {
 
 ecs::Entity World::add_body(const BodyDesc& desc, const std::function<void(size_t slot)>& prepare) {
   BodyParts built = build_body(desc);  // the heavy part, outside the lock
-  if (built.schedule.own_thread)
+  if (built.settings.own_thread)
     throw InputError(
         desc.where,
         "a body added while the scene runs cannot have step_thread: own (its worker thread "
@@ -320,7 +322,7 @@ void World::enter(size_t slot, double time) noexcept {
   if (b.presence.state != BodyPresence::kPending) return;
   b.presence.state = BodyPresence::kPresent;
   b.presence.added_s = time;
-  b.schedule.next_step_s = time;
+  b.progress.next_step_s = time;
   b.presence.initial_energy_J = begin_model(b, time, 1.0 / scene_.clock.haptic_rate_hz);
   ecs::Pool<InScene>& in_scene = registry_.pool<InScene>();  // reserved for every slot
   if (!in_scene.contains(body_entities_[slot].index)) in_scene.emplace(body_entities_[slot]);
@@ -339,7 +341,8 @@ void World::leave(size_t slot, double time) noexcept {
 // later allocates nothing and never moves a component another thread holds.
 void World::reserve_body_components(size_t slots) {
   reserve_each<InScene, BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, SurfaceLink,
-               ModelSlot, StepSchedule, BodyConstraints, FaultState, Recording>(registry_, slots);
+               ModelSlot, BodySettings, StepProgress, BodyConstraints, FaultState, Recording>(
+      registry_, slots);
   registry_.reserve<BodySurface>(2 * slots);  // on the surface entities, after the bodies
 }
 
@@ -352,7 +355,8 @@ void World::emplace_body_components(ecs::Entity e) {
   registry_.emplace<NodeLoads>(e);
   registry_.emplace<RestShape>(e);
   registry_.emplace<ModelSlot>(e);
-  registry_.emplace<StepSchedule>(e);
+  registry_.emplace<BodySettings>(e);
+  registry_.emplace<StepProgress>(e);
   registry_.emplace<BodyConstraints>(e);
   registry_.emplace<FaultState>(e);
   registry_.emplace<Recording>(e);

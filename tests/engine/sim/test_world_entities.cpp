@@ -46,8 +46,8 @@ TEST(WorldEntities, EveryThingIsAnEntityWithItsComponents) {
   World& w = h.world;
   ASSERT_EQ(w.body_capacity(), 3u);
   // Every slot (used or not) has every body component, and an embedded surface entity.
-  EXPECT_EQ((count<BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, ModelSlot, StepSchedule,
-                   BodyConstraints, FaultState, Recording, SurfaceLink>(w)),
+  EXPECT_EQ((count<BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, ModelSlot, BodySettings,
+                   StepProgress, BodyConstraints, FaultState, Recording, SurfaceLink>(w)),
             3u);
   EXPECT_EQ(count<BodySurface>(w), 3u);
   EXPECT_EQ(count<InScene>(w), 2u) << "the two scene bodies are in; the spare slot is not";
