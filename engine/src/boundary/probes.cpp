@@ -9,7 +9,6 @@ namespace tacta {
 
 std::vector<Probe> locate_probes(const std::vector<ProbeDesc>& probes, const VolumeMesh& mesh,
                                  const SourceLocation& where) {
-  using mesh_detail::P3;
   std::vector<Probe> out;
   if (probes.empty()) return out;
   if (mesh.tets.empty())
@@ -17,7 +16,7 @@ std::vector<Probe> locate_probes(const std::vector<ProbeDesc>& probes, const Vol
   // A point on a face shared by two tets, or on the surface, is inside up to rounding.
   constexpr double kInsideTolerance = 1e-9;
   for (const ProbeDesc& desc : probes) {
-    const P3 p{desc.rest[0], desc.rest[1], desc.rest[2]};
+    const Vec3 p{desc.rest[0], desc.rest[1], desc.rest[2]};
     double best = -1e300;
     Probe probe{desc.name, desc.rest, {}, {}};
     for (size_t t = 0; t < mesh.tet_count(); ++t) {

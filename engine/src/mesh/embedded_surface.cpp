@@ -14,13 +14,12 @@ namespace tacta {
 
 namespace {
 
-using mesh_detail::P3;
 using mesh_detail::point;
 
 struct Box {
-  P3 lo, hi;
+  Vec3 lo, hi;
   // Distance (m) from p to the box, 0 inside.
-  double distance(const P3& p) const {
+  double distance(const Vec3& p) const {
     double d2 = 0;
     for (size_t a = 0; a < 3; ++a) {
       const double out = std::max({lo[a] - p[a], 0.0, p[a] - hi[a]});
@@ -30,7 +29,7 @@ struct Box {
   }
 };
 
-std::array<double, 4> weights_in(const VolumeMesh& mesh, size_t t, const P3& p) {
+std::array<double, 4> weights_in(const VolumeMesh& mesh, size_t t, const Vec3& p) {
   const uint32_t* n = &mesh.tets[4 * t];
   return mesh_detail::barycentric(p, point(mesh.positions, n[0]), point(mesh.positions, n[1]),
                                   point(mesh.positions, n[2]), point(mesh.positions, n[3]));
@@ -81,7 +80,7 @@ class TetGrid {
   // Visits the tets listed in the cells at Chebyshev distance r from p's cell (a tet may come
   // more than once); false when no cell of the grid is that far.
   template <class Visit>
-  bool ring(const P3& p, int64_t r, Visit&& visit) const {
+  bool ring(const Vec3& p, int64_t r, Visit&& visit) const {
     int64_t c[3], lo[3], hi[3];
     bool any = false;
     for (size_t a = 0; a < 3; ++a) {
@@ -117,7 +116,7 @@ class TetGrid {
   size_t cell(int64_t i, int64_t j, int64_t k) const {
     return static_cast<size_t>(i + n_[0] * (j + n_[1] * k));
   }
-  P3 origin_{};
+  Vec3 origin_{};
   double h_ = 1;
   int64_t n_[3] = {1, 1, 1};
   std::vector<uint32_t> start_, items_;  // cell c holds items_[start_[c] .. start_[c + 1])
@@ -137,11 +136,11 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
     Box& b = boxes[t];
     b.lo = b.hi = point(mesh.positions, mesh.tets[4 * t]);
     for (size_t k = 1; k < 4; ++k) {
-      const P3 q = point(mesh.positions, mesh.tets[4 * t + k]);
+      const Vec3 q = point(mesh.positions, mesh.tets[4 * t + k]);
       for (size_t a = 0; a < 3; ++a)
         b.lo[a] = std::min(b.lo[a], q[a]), b.hi[a] = std::max(b.hi[a], q[a]);
     }
-    mean_diagonal += mesh_detail::norm(b.hi - b.lo) / static_cast<double>(tets);
+    mean_diagonal += norm(sub(b.hi, b.lo)) / static_cast<double>(tets);
   }
   const size_t count = surface.vertex_count();
   Embedding e{surface, std::vector<uint32_t>(count), std::vector<double>(4 * count)};
@@ -150,7 +149,7 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
   std::vector<size_t> seen(tets, SIZE_MAX);       // the vertex that last looked at each tet
   std::vector<std::pair<uint32_t, double>> near;  // tet, distance from its box (m)
   for (size_t v = 0; v < count; ++v) {
-    const P3 p = point(surface.positions, static_cast<uint32_t>(v));
+    const Vec3 p = point(surface.positions, static_cast<uint32_t>(v));
     // Tets whose box holds p; failing those (p outside the mesh), the tets whose boxes lie within
     // one mean tet size of the nearest box. Among them, the one needing the least extrapolation.
     // After ring r of the grid every box nearer than r cells has been seen.

@@ -13,7 +13,6 @@ namespace tacta {
 
 namespace {
 
-using mesh_detail::P3;
 using mesh_detail::point;
 
 constexpr double kZeroVolume = 1e-12;  // |6V| below this times (longest edge)^3 is a flat tet
@@ -82,11 +81,11 @@ void orient_tets(VolumeMesh& mesh, LoadReport& report) {
   size_t inverted = 0;
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     uint32_t* v = &mesh.tets[4 * t];
-    P3 a = point(mesh.positions, v[0]), b = point(mesh.positions, v[1]),
-       c = point(mesh.positions, v[2]), d = point(mesh.positions, v[3]);
-    double six_volume = mesh_detail::triple(b - a, c - a, d - a);
-    double longest =
-        std::max({norm(b - a), norm(c - a), norm(d - a), norm(c - b), norm(d - b), norm(d - c)});
+    Vec3 a = point(mesh.positions, v[0]), b = point(mesh.positions, v[1]),
+         c = point(mesh.positions, v[2]), d = point(mesh.positions, v[3]);
+    double six_volume = triple(sub(b, a), sub(c, a), sub(d, a));
+    double longest = std::max({distance(b, a), distance(c, a), distance(d, a), distance(c, b),
+                               distance(d, b), distance(d, c)});
     if (!(std::abs(six_volume) > kZeroVolume * longest * longest * longest)) {
       fail(mesh, "tet " + std::to_string(t) + " (nodes " + std::to_string(v[0]) + " " +
                      std::to_string(v[1]) + " " + std::to_string(v[2]) + " " +
@@ -117,9 +116,9 @@ void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per
     uint32_t* v = &elements[per * e];
     double twice_area = 0, longest = 0;
     for (size_t k = 0; k < per; ++k) {
-      P3 p = point(mesh.positions, v[k]), q = point(mesh.positions, v[(k + 1) % per]);
+      Vec3 p = point(mesh.positions, v[k]), q = point(mesh.positions, v[(k + 1) % per]);
       twice_area += p[0] * q[1] - q[0] * p[1];
-      longest = std::max(longest, norm(q - p));
+      longest = std::max(longest, distance(q, p));
     }
     if (!(std::abs(twice_area) > kZeroVolume * longest * longest))
       fail(mesh, std::string(what) + " " + std::to_string(e) + " has zero area");

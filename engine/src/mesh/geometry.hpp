@@ -1,41 +1,26 @@
-// Small 3D vector helpers for the mesh code (positions are flat arrays of 3 doubles per point).
+// Mesh helpers over tacta::Vec3 (positions are flat arrays of 3 doubles per point).
 #pragma once
 
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "tacta/vec3.hpp"
+
 namespace tacta::mesh_detail {
 
-// A point or vector, m. A struct of its own (not std::array) so the operators below are found.
-struct P3 {
-  double v[3];
-  double& operator[](size_t i) { return v[i]; }
-  double operator[](size_t i) const { return v[i]; }
-};
-
-inline P3 point(const std::vector<double>& positions, uint32_t i) {
-  return {positions[3 * size_t{i}], positions[3 * size_t{i} + 1], positions[3 * size_t{i} + 2]};
+// Point i of a flat position array (3 doubles per point, m).
+inline Vec3 point(const std::vector<double>& positions, uint32_t i) {
+  return point_at(positions.data(), i);
 }
-inline P3 operator-(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline P3 operator+(const P3& a, const P3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline P3 operator*(double s, const P3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline P3 cross(const P3& a, const P3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double norm(const P3& a) { return std::sqrt(dot(a, a)); }
-// a . (b x c): six times the signed volume of the tet (0, a, b, c).
-inline double triple(const P3& a, const P3& b, const P3& c) { return dot(a, cross(b, c)); }
 
 // Barycentric weights of p in tet (a, b, c, d); they sum to 1 and reproduce p (also outside).
-inline std::array<double, 4> barycentric(const P3& p, const P3& a, const P3& b, const P3& c,
-                                         const P3& d) {
-  double six_volume = triple(b - a, c - a, d - a);
-  double wb = triple(p - a, c - a, d - a) / six_volume;
-  double wc = triple(b - a, p - a, d - a) / six_volume;
-  double wd = triple(b - a, c - a, p - a) / six_volume;
+inline std::array<double, 4> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
+                                         const Vec3& d) {
+  double six_volume = triple(sub(b, a), sub(c, a), sub(d, a));
+  double wb = triple(sub(p, a), sub(c, a), sub(d, a)) / six_volume;
+  double wc = triple(sub(b, a), sub(p, a), sub(d, a)) / six_volume;
+  double wd = triple(sub(b, a), sub(c, a), sub(p, a)) / six_volume;
   return {1.0 - wb - wc - wd, wb, wc, wd};
 }
 

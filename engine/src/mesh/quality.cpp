@@ -12,24 +12,24 @@
 
 namespace tacta {
 
-using mesh_detail::P3;
 using mesh_detail::point;
 
 namespace {
 
 double tet_volume(const VolumeMesh& mesh, size_t t) {
   const uint32_t* v = &mesh.tets[4 * t];
-  P3 a = point(mesh.positions, v[0]);
-  return mesh_detail::triple(point(mesh.positions, v[1]) - a, point(mesh.positions, v[2]) - a,
-                             point(mesh.positions, v[3]) - a) /
+  Vec3 a = point(mesh.positions, v[0]);
+  return triple(sub(point(mesh.positions, v[1]), a), sub(point(mesh.positions, v[2]), a),
+                sub(point(mesh.positions, v[3]), a)) /
          6.0;
 }
 
 double polygon_area(const VolumeMesh& mesh, const uint32_t* v, size_t count) {
-  P3 sum{0, 0, 0};
-  P3 a = point(mesh.positions, v[0]);
+  Vec3 sum{0, 0, 0};
+  Vec3 a = point(mesh.positions, v[0]);
   for (size_t k = 1; k + 1 < count; ++k)
-    sum = sum + cross(point(mesh.positions, v[k]) - a, point(mesh.positions, v[k + 1]) - a);
+    sum = add(sum,
+              cross(sub(point(mesh.positions, v[k]), a), sub(point(mesh.positions, v[k + 1]), a)));
   return 0.5 * norm(sum);
 }
 
@@ -39,7 +39,8 @@ double tet_aspect(const VolumeMesh& mesh, size_t t) {
   double longest = 0, largest_face = 0;
   for (int i = 0; i < 4; ++i) {
     for (int j = i + 1; j < 4; ++j)
-      longest = std::max(longest, norm(point(mesh.positions, v[i]) - point(mesh.positions, v[j])));
+      longest =
+          std::max(longest, distance(point(mesh.positions, v[i]), point(mesh.positions, v[j])));
     uint32_t face[3];
     for (int k = 0, n = 0; k < 4; ++k)
       if (k != i) face[n++] = v[k];
@@ -53,23 +54,23 @@ double tet_aspect(const VolumeMesh& mesh, size_t t) {
 // dihedral angles (radians) from the outward face normals: pi minus the angle between two of them.
 double tet_shape(const VolumeMesh& mesh, size_t t, double& min_dihedral, double& max_dihedral) {
   const uint32_t* v = &mesh.tets[4 * t];
-  const P3 o = point(mesh.positions, v[0]);
-  const P3 a = point(mesh.positions, v[1]) - o, b = point(mesh.positions, v[2]) - o,
-           c = point(mesh.positions, v[3]) - o;
-  const double six_volume = mesh_detail::triple(a, b, c);
-  const P3 centre_times =
-      dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b);
+  const Vec3 o = point(mesh.positions, v[0]);
+  const Vec3 a = sub(point(mesh.positions, v[1]), o), b = sub(point(mesh.positions, v[2]), o),
+             c = sub(point(mesh.positions, v[3]), o);
+  const double six_volume = triple(a, b, c);
+  const Vec3 centre_times = add(add(scaled(cross(b, c), dot(a, a)), scaled(cross(c, a), dot(b, b))),
+                                scaled(cross(a, b), dot(c, c)));
   const double circumradius = norm(centre_times) / (2.0 * std::abs(six_volume));
   static constexpr int kFace[4][3] = {
       {1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};  // opposite vertex k
-  P3 normal[4];
+  Vec3 normal[4];
   double area = 0;
   for (int f = 0; f < 4; ++f) {
-    const P3 p0 = point(mesh.positions, v[kFace[f][0]]);
-    const P3 n = cross(point(mesh.positions, v[kFace[f][1]]) - p0,
-                       point(mesh.positions, v[kFace[f][2]]) - p0);
+    const Vec3 p0 = point(mesh.positions, v[kFace[f][0]]);
+    const Vec3 n = cross(sub(point(mesh.positions, v[kFace[f][1]]), p0),
+                         sub(point(mesh.positions, v[kFace[f][2]]), p0));
     area += 0.5 * norm(n);
-    normal[f] = (1.0 / norm(n)) * n;
+    normal[f] = scaled(n, 1.0 / norm(n));
   }
   min_dihedral = std::numbers::pi;
   max_dihedral = 0;
@@ -132,8 +133,8 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
       const uint32_t* v = &elements[per * e];
       double area = polygon_area(mesh, v, per), longest = 0;
       for (size_t k = 0; k < per; ++k)
-        longest = std::max(
-            longest, norm(point(mesh.positions, v[(k + 1) % per]) - point(mesh.positions, v[k])));
+        longest = std::max(longest, distance(point(mesh.positions, v[(k + 1) % per]),
+                                             point(mesh.positions, v[k])));
       take(area, longest * longest / area * (quads ? 1.0 : 0.5));
     }
   }
@@ -143,7 +144,7 @@ MeshQuality mesh_quality(const VolumeMesh& mesh) {
   double min_e = std::numeric_limits<double>::infinity(), max_e = 0;
   for (size_t e = 0; e + 1 < mesh.edges.size(); e += 2) {
     double length =
-        norm(point(mesh.positions, mesh.edges[e + 1]) - point(mesh.positions, mesh.edges[e]));
+        distance(point(mesh.positions, mesh.edges[e + 1]), point(mesh.positions, mesh.edges[e]));
     min_e = std::min(min_e, length);
     max_e = std::max(max_e, length);
   }
@@ -169,9 +170,8 @@ double enclosed_volume(const SurfaceMesh& surface) {
   double six_volume = 0;
   for (size_t t = 0; t < surface.triangle_count(); ++t) {
     const uint32_t* v = &surface.triangles[3 * t];
-    six_volume +=
-        mesh_detail::triple(point(surface.positions, v[0]), point(surface.positions, v[1]),
-                            point(surface.positions, v[2]));
+    six_volume += triple(point(surface.positions, v[0]), point(surface.positions, v[1]),
+                         point(surface.positions, v[2]));
   }
   return six_volume / 6.0;
 }

@@ -25,8 +25,6 @@ namespace tacta {
 
 namespace {
 
-using mesh_detail::P3;
-
 constexpr double kDegenerateArea =
     1e-12;  // |cross| below this times (longest edge)^2 is a flat triangle
 
@@ -153,10 +151,10 @@ class SurfaceBuilder {
 
   bool degenerate(const uint32_t t[3]) const {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
-    P3 a = mesh_detail::point(out_.positions, t[0]), b = mesh_detail::point(out_.positions, t[1]),
-       c = mesh_detail::point(out_.positions, t[2]);
-    double longest = std::max({norm(b - a), norm(c - b), norm(a - c)});
-    return !(norm(cross(b - a, c - a)) > kDegenerateArea * longest * longest);
+    Vec3 a = mesh_detail::point(out_.positions, t[0]), b = mesh_detail::point(out_.positions, t[1]),
+         c = mesh_detail::point(out_.positions, t[2]);
+    double longest = std::max({distance(b, a), distance(c, b), distance(a, c)});
+    return !(norm(cross(sub(b, a), sub(c, a))) > kDegenerateArea * longest * longest);
   }
 
   SurfaceMesh& out_;

@@ -19,24 +19,23 @@ namespace tacta {
 
 namespace {
 
-using mesh_detail::P3;
 using mesh_detail::point;
 
 constexpr int64_t kMaxCells = 2'000'000;  // 12 million tets: far past what a haptic loop steps
 
 // Separating-axis test of a triangle (relative to a box centre) against a box of half-edge half.
-bool triangle_touches_box(const P3 tri[3], double half) {
-  const P3 edges[3] = {tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]};
-  P3 axes[13] = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}, cross(edges[0], edges[1])};
+bool triangle_touches_box(const Vec3 tri[3], double half) {
+  const Vec3 edges[3] = {sub(tri[1], tri[0]), sub(tri[2], tri[1]), sub(tri[0], tri[2])};
+  Vec3 axes[13] = {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}, cross(edges[0], edges[1])};
   int count = 4;
-  for (const P3& e : edges) {
+  for (const Vec3& e : edges) {
     for (int a = 0; a < 3; ++a) {
-      P3 unit{{0, 0, 0}};
+      Vec3 unit{{0, 0, 0}};
       unit[static_cast<size_t>(a)] = 1;
       axes[count++] = cross(unit, e);
     }
   }
-  for (const P3& axis : axes) {
+  for (const Vec3& axis : axes) {
     double radius = half * (std::abs(axis[0]) + std::abs(axis[1]) + std::abs(axis[2]));
     if (radius == 0) continue;  // parallel edges give a null axis, which separates nothing
     double p0 = dot(axis, tri[0]), p1 = dot(axis, tri[1]), p2 = dot(axis, tri[2]);
@@ -45,14 +44,14 @@ bool triangle_touches_box(const P3 tri[3], double half) {
   return true;
 }
 
-double winding_number(const SurfaceMesh& s, const P3& p) {
+double winding_number(const SurfaceMesh& s, const Vec3& p) {
   double total = 0;
   for (size_t t = 0; t < s.triangle_count(); ++t) {
-    P3 a = point(s.positions, s.triangles[3 * t]) - p,
-       b = point(s.positions, s.triangles[3 * t + 1]) - p,
-       c = point(s.positions, s.triangles[3 * t + 2]) - p;
+    Vec3 a = sub(point(s.positions, s.triangles[3 * t]), p),
+         b = sub(point(s.positions, s.triangles[3 * t + 1]), p),
+         c = sub(point(s.positions, s.triangles[3 * t + 2]), p);
     double la = norm(a), lb = norm(b), lc = norm(c);
-    double numerator = mesh_detail::triple(a, b, c);
+    double numerator = triple(a, b, c);
     double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
     total += 2.0 * std::atan2(numerator, denominator);
   }
@@ -60,7 +59,7 @@ double winding_number(const SurfaceMesh& s, const P3& p) {
 }
 
 struct Grid {
-  P3 origin;
+  Vec3 origin;
   double h = 0;
   int64_t n[3] = {0, 0, 0};
   int64_t cell(int64_t i, int64_t j, int64_t k) const { return i + n[0] * (j + n[1] * k); }
@@ -74,7 +73,7 @@ void mark_touched_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& 
   const double half =
       0.5 * g.h * (1 + 1e-9);  // a hair larger: a vertex on a cell face touches both cells
   for (size_t t = 0; t < s.triangle_count(); ++t) {
-    P3 tri[3];
+    Vec3 tri[3];
     for (int k = 0; k < 3; ++k)
       tri[k] = point(s.positions, s.triangles[3 * t + static_cast<size_t>(k)]);
     int64_t lo[3], hi[3];
@@ -88,10 +87,10 @@ void mark_touched_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& 
         for (int64_t i = lo[0]; i <= hi[0]; ++i) {
           int64_t c = g.cell(i, j, k);
           if (active[static_cast<size_t>(c)]) continue;
-          P3 centre = g.origin + P3{{(static_cast<double>(i) + 0.5) * g.h,
-                                     (static_cast<double>(j) + 0.5) * g.h,
-                                     (static_cast<double>(k) + 0.5) * g.h}};
-          P3 local[3] = {tri[0] - centre, tri[1] - centre, tri[2] - centre};
+          Vec3 centre = add(g.origin, Vec3{(static_cast<double>(i) + 0.5) * g.h,
+                                           (static_cast<double>(j) + 0.5) * g.h,
+                                           (static_cast<double>(k) + 0.5) * g.h});
+          Vec3 local[3] = {sub(tri[0], centre), sub(tri[1], centre), sub(tri[2], centre)};
           if (triangle_touches_box(local, half)) active[static_cast<size_t>(c)] = 1;
         }
       }
@@ -111,9 +110,9 @@ void mark_inside_cells(const SurfaceMesh& s, const Grid& g, std::vector<char>& a
         }
         int64_t end = i;
         while (end < g.n[0] && !touched[static_cast<size_t>(g.cell(end, j, k))]) ++end;
-        P3 centre = g.origin +
-                    P3{{(static_cast<double>(i) + 0.5) * g.h, (static_cast<double>(j) + 0.5) * g.h,
-                        (static_cast<double>(k) + 0.5) * g.h}};
+        Vec3 centre = add(g.origin, Vec3{(static_cast<double>(i) + 0.5) * g.h,
+                                         (static_cast<double>(j) + 0.5) * g.h,
+                                         (static_cast<double>(k) + 0.5) * g.h});
         if (std::abs(winding_number(s, centre)) > 0.5) {
           for (int64_t r = i; r < end; ++r) active[static_cast<size_t>(g.cell(r, j, k))] = 1;
         }
@@ -130,24 +129,25 @@ void keep_majority_cells(const SurfaceMesh& s, const Grid& g, const std::vector<
   const int64_t nodes_x = g.n[0] + 1, nodes_y = g.n[1] + 1;
   std::vector<signed char> node_inside(static_cast<size_t>(nodes_x * nodes_y * (g.n[2] + 1)),
                                        -1);  // -1: not yet known
-  auto inside = [&](const P3& p) { return std::abs(winding_number(s, p)) > 0.5; };
+  auto inside = [&](const Vec3& p) { return std::abs(winding_number(s, p)) > 0.5; };
   for (int64_t k = 0; k < g.n[2]; ++k) {
     for (int64_t j = 0; j < g.n[1]; ++j) {
       for (int64_t i = 0; i < g.n[0]; ++i) {
         const auto c = static_cast<size_t>(g.cell(i, j, k));
         if (!touched[c]) continue;
-        P3 base = g.origin + P3{{static_cast<double>(i) * g.h, static_cast<double>(j) * g.h,
-                                 static_cast<double>(k) * g.h}};
-        int votes = inside(base + P3{{0.5 * g.h, 0.5 * g.h, 0.5 * g.h}}) ? 1 : 0;
+        Vec3 base = add(g.origin, Vec3{static_cast<double>(i) * g.h, static_cast<double>(j) * g.h,
+                                       static_cast<double>(k) * g.h});
+        int votes = inside(add(base, Vec3{0.5 * g.h, 0.5 * g.h, 0.5 * g.h})) ? 1 : 0;
         for (int64_t corner = 0; corner < 8; ++corner) {
           int64_t di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
           signed char& known = node_inside[static_cast<size_t>(
               (i + di) + nodes_x * ((j + dj) + nodes_y * (k + dk)))];
           if (known < 0) {
-            known = inside(base + P3{{static_cast<double>(di) * g.h, static_cast<double>(dj) * g.h,
-                                      static_cast<double>(dk) * g.h}})
-                        ? 1
-                        : 0;
+            known =
+                inside(add(base, Vec3{static_cast<double>(di) * g.h, static_cast<double>(dj) * g.h,
+                                      static_cast<double>(dk) * g.h}))
+                    ? 1
+                    : 0;
           }
           votes += known;
         }
@@ -285,9 +285,9 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
                          " open edges, " + std::to_string(r.nonmanifold_edges) +
                          " non-manifold edges); its inside is a best guess");
   }
-  P3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-         std::numeric_limits<double>::infinity()}};
-  P3 hi = -1.0 * lo;
+  Vec3 lo{{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+           std::numeric_limits<double>::infinity()}};
+  Vec3 hi = scaled(lo, -1.0);
   for (size_t v = 0; v < closed.vertex_count(); ++v) {
     for (size_t a = 0; a < 3; ++a) {
       lo[a] = std::min(lo[a], closed.positions[3 * v + a]);
@@ -360,7 +360,7 @@ VolumeMesh voxelize(const SurfaceMesh& closed, double cell_size, LoadReport* rep
   e.weights.resize(4 * closed.vertex_count());
   size_t outside = 0;
   for (size_t v = 0; v < closed.vertex_count(); ++v) {
-    P3 p = point(closed.positions, static_cast<uint32_t>(v));
+    Vec3 p = point(closed.positions, static_cast<uint32_t>(v));
     int64_t idx[3];
     for (int a = 0; a < 3; ++a) idx[a] = g.clamp_index(p[static_cast<size_t>(a)], a);
     int64_t cell = g.cell(idx[0], idx[1], idx[2]);
