@@ -5,15 +5,13 @@
 // Exit code 1 when ours has a false negative (the one thing it must never have).
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "tacta/ccd_queries.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
 #include "tacta/param_defaults.hpp"
@@ -21,80 +19,7 @@
 
 namespace {
 
-namespace fs = std::filesystem;
-
-tacta::SourceLocation at(const std::string& file, int line = 0, int column = 0) {
-  return tacta::SourceLocation{file, line, column, ""};
-}
-
-struct Query {
-  double points[24];
-  bool truth = false;
-  bool vertex_face = false;
-};
-
-// Rows are x_num,x_den,y_num,y_den,z_num,z_den,truth; the denominators are powers of two and
-// each quotient is exactly a double, so strtod of both and one division are exact.
-void read_file(const fs::path& file, std::vector<Query>& out) {
-  std::ifstream in(file);
-  if (!in) throw tacta::InputError(at(file.string()), "cannot open the file");
-  const bool vertex_face = file.parent_path().filename() == "vertex-face";
-  if (!vertex_face && file.parent_path().filename() != "edge-edge")
-    throw tacta::InputError(at(file.string()),
-                            "expected the file inside a 'vertex-face' or 'edge-edge' folder");
-  std::string line;
-  int line_number = 0, row = 0;
-  Query q;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.empty() || line == "\r") continue;
-    std::stringstream fields(line);
-    std::string f[7];
-    for (int k = 0; k < 7; ++k)
-      if (!std::getline(fields, f[k], ','))
-        throw tacta::InputError(at(file.string(), line_number),
-                                "expected 7 comma-separated integers, found " + std::to_string(k));
-    for (int k = 0; k < 3; ++k) {
-      char* end_num = nullptr;
-      char* end_den = nullptr;
-      const double num = std::strtod(f[2 * k].c_str(), &end_num);
-      const double den = std::strtod(f[2 * k + 1].c_str(), &end_den);
-      if (end_num == f[2 * k].c_str() || end_den == f[2 * k + 1].c_str() || den == 0.0)
-        throw tacta::InputError(at(file.string(), line_number, 2 * k + 1),
-                                "expected an integer numerator and a non-zero denominator");
-      q.points[3 * row + k] = num / den;
-    }
-    const bool truth = f[6].rfind('1', 0) == 0;
-    if (row == 0) q.truth = truth;
-    q.vertex_face = vertex_face;
-    if (++row == 8) {
-      out.push_back(q);
-      row = 0;
-    }
-  }
-  if (row != 0)
-    throw tacta::InputError(at(file.string(), line_number),
-                            "the row count is not a multiple of 8 (one query is 8 rows)");
-}
-
-std::vector<Query> read_paths(const std::vector<std::string>& paths) {
-  std::vector<fs::path> files;
-  for (const std::string& p : paths) {
-    if (fs::is_directory(p)) {
-      for (const auto& entry : fs::recursive_directory_iterator(p))
-        if (entry.is_regular_file() && entry.path().extension() == ".csv")
-          files.push_back(entry.path());
-    } else if (fs::is_regular_file(p)) {
-      files.emplace_back(p);
-    } else {
-      throw tacta::InputError(at(p), "no such file or folder");
-    }
-  }
-  std::sort(files.begin(), files.end());
-  std::vector<Query> queries;
-  for (const fs::path& f : files) read_file(f, queries);
-  return queries;
-}
+tacta::SourceLocation at(const std::string& file) { return tacta::SourceLocation{file, 0, 0, ""}; }
 
 struct Score {
   long false_negatives = 0, false_positives = 0;
@@ -102,13 +27,13 @@ struct Score {
 };
 
 // Answers every query once for the counts, then times `repeat` passes per query (ns each).
-Score score(const tacta_collision_api& api, void* instance, const std::vector<Query>& queries,
-            int repeat) {
+Score score(const tacta_collision_api& api, void* instance,
+            const std::vector<tacta::CcdQuery>& queries, int repeat) {
   Score s;
   std::vector<double> ns(queries.size());
   double total = 0.0;
   for (size_t i = 0; i < queries.size(); ++i) {
-    const Query& q = queries[i];
+    const tacta::CcdQuery& q = queries[i];
     auto run = [&] {
       tacta_ccd_hit hit{};
       return q.vertex_face ? api.vertex_face(instance, q.points, &hit)
@@ -154,7 +79,7 @@ void* make_instance(const tacta::LoadedDescriptor& d, int method) {
 }
 
 int run_bench(const std::vector<std::string>& paths, int repeat) {
-  const std::vector<Query> queries = read_paths(paths);
+  const std::vector<tacta::CcdQuery> queries = tacta::read_ccd_paths({paths.begin(), paths.end()});
   tacta::PluginRegistry registry;
   registry.load();
   const tacta::LoadedDescriptor& d = registry.require(TACTA_KIND_COLLISION, "ccd");
@@ -168,22 +93,26 @@ int run_bench(const std::vector<std::string>& paths, int repeat) {
   api.destroy(ours);
   api.destroy(plain);
   long vertex_face = 0, positives = 0;
-  for (const Query& q : queries) {
+  for (const tacta::CcdQuery& q : queries) {
     vertex_face += q.vertex_face;
     positives += q.truth;
   }
-  std::cout << "{\"queries\": " << queries.size() << ", \"vertex_face\": " << vertex_face
-            << ", \"edge_edge\": " << static_cast<long>(queries.size()) - vertex_face
-            << ", \"positives\": " << positives << ", \"method\": \"inclusion\""
-            << ", \"false_negatives\": " << a.false_negatives
-            << ", \"false_positives\": " << a.false_positives
-            << ", \"ns_per_query_median\": " << a.median_ns
-            << ", \"ns_per_query_mean\": " << a.mean_ns
-            << ", \"baseline\": {\"method\": \"plain Moore-Wilhelms (cubic roots, inside test)\""
-            << ", \"false_negatives\": " << b.false_negatives
-            << ", \"false_positives\": " << b.false_positives
-            << ", \"ns_per_query_median\": " << b.median_ns
-            << ", \"ns_per_query_mean\": " << b.mean_ns << "}}" << std::endl;
+  const auto scored = [](const Score& s) {
+    return nlohmann::ordered_json{{"false_negatives", s.false_negatives},
+                                  {"false_positives", s.false_positives},
+                                  {"ns_per_query_median", s.median_ns},
+                                  {"ns_per_query_mean", s.mean_ns}};
+  };
+  nlohmann::ordered_json json = {{"queries", queries.size()},
+                                 {"vertex_face", vertex_face},
+                                 {"edge_edge", static_cast<long>(queries.size()) - vertex_face},
+                                 {"positives", positives},
+                                 {"method", "inclusion"}};
+  json.update(scored(a));
+  nlohmann::ordered_json baseline = {{"method", "plain Moore-Wilhelms (cubic roots, inside test)"}};
+  baseline.update(scored(b));
+  json["baseline"] = baseline;
+  std::cout << json.dump() << std::endl;
   return a.false_negatives == 0 ? tacta::cli::kExitOk : tacta::cli::kExitFault;
 }
 

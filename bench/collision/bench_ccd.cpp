@@ -2,15 +2,15 @@
 // against the plain Moore-Wilhelms (cubic roots then inside test).
 #include <benchmark/benchmark.h>
 
-#include "ccd_queries.hpp"
 #include "inclusion_ccd.hpp"
 #include "plain_ccd.hpp"
+#include "tacta/ccd_queries.hpp"
 
 namespace {
 
-const std::vector<tacta::testing::CcdQuery>& queries() {
+const std::vector<tacta::CcdQuery>& queries() {
   static const auto all =
-      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+      tacta::read_ccd_paths({std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd"});
   return all;
 }
 

@@ -3,10 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <sstream>
+#include <string>
 
-#include "ccd_queries.hpp"
 #include "plugin_fixture.hpp"
+#include "tacta/ccd_queries.hpp"
 #include "tacta/collision_api.h"
+#include "tacta/error.hpp"
 
 namespace {
 
@@ -58,8 +61,7 @@ TEST_F(CcdPlugin, DescriptorIsCollisionKindWithRequiredEntries) {
 }
 
 TEST_F(CcdPlugin, NoFalseNegativeOnAnyReferenceQuery) {
-  const auto queries =
-      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+  const auto queries = tacta::read_ccd_paths({std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd"});
   ASSERT_EQ(queries.size(), 2824u);
   int positives = 0, false_positives = 0;
   for (const auto& q : queries) {
@@ -169,8 +171,7 @@ namespace {
 // and checks our conservative test does strictly better on the same queries.
 TEST_F(CcdPlugin, PlainBaselineMissesWhereOursDoesNot) {
   void* plain = make(1);
-  const auto queries =
-      tacta::testing::read_ccd_folder(std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd");
+  const auto queries = tacta::read_ccd_paths({std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd"});
   int plain_misses = 0, plain_false_positives = 0;
   for (const auto& q : queries) {
     tacta_ccd_hit hit{};
@@ -183,6 +184,54 @@ TEST_F(CcdPlugin, PlainBaselineMissesWhereOursDoesNot) {
               plain_misses, plain_false_positives, queries.size());
   EXPECT_GT(plain_misses, 0);
   api().destroy(plain);
+}
+
+}  // namespace
+
+namespace {
+
+// The reader's bounds: each bad row names its line and column; 8 good rows make one query.
+std::string reader_error(const std::string& text) {
+  std::istringstream in(text);
+  try {
+    (void)tacta::read_ccd_queries(in, "q.csv", true);
+  } catch (const tacta::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CcdQueryReader, ReadsEightRowsAsOneQuery) {
+  std::string text;
+  for (int row = 0; row < 8; ++row) text += "3,4,-1,2,5,1," + std::string(row ? "0" : "1") + "\r\n";
+  std::istringstream in(text + "\n");
+  const auto queries = tacta::read_ccd_queries(in, "q.csv", true);
+  ASSERT_EQ(queries.size(), 1u);
+  EXPECT_TRUE(queries[0].truth);
+  EXPECT_TRUE(queries[0].vertex_face);
+  EXPECT_EQ(queries[0].origin, "q.csv:1");
+  EXPECT_EQ(queries[0].points[21], 0.75);
+  EXPECT_EQ(queries[0].points[22], -0.5);
+  EXPECT_EQ(queries[0].points[23], 5.0);
+}
+
+TEST(CcdQueryReader, BadRowsNameLineAndColumn) {
+  const std::string good = "1,1,1,1,1,1,0\n";
+  EXPECT_EQ(reader_error(good + "1,1,1,1,1,1\n"),
+            "q.csv:2: expected 7 comma-separated integers x_num,x_den,y_num,y_den,z_num,z_den,"
+            "truth");
+  EXPECT_EQ(reader_error(good + "1,1,1,1,1,1,0,0\n").substr(0, 8), "q.csv:2:");
+  EXPECT_EQ(reader_error("1,1,x,1,1,1,0\n"),
+            "q.csv:1:3: expected an integer of at most 64 digits, found 'x'");
+  EXPECT_EQ(reader_error("1,3,1,1,1,1,0\n"),
+            "q.csv:1:2: expected a power-of-two denominator, found '3'");
+  EXPECT_EQ(reader_error("1,0,1,1,1,1,0\n").substr(0, 10), "q.csv:1:2:");
+  EXPECT_EQ(reader_error("1,1,1,1,1,1,2\n"),
+            "q.csv:1:7: expected the truth column 0 or 1, found '2'");
+  EXPECT_EQ(reader_error(std::string(2000, '1') + "\n"),
+            "q.csv:1: line longer than 1024 characters");
+  EXPECT_EQ(reader_error(good + good),
+            "q.csv:2: the row count is not a multiple of 8 (one query is 8 rows)");
 }
 
 }  // namespace
