@@ -102,7 +102,22 @@ typedef struct tacta_device_api {
   /* optional (ABI 1.1): fills up to `capacity` counters, returns how many it has. Called after
    * the run from the host thread, for report.json. */
   uint32_t (*counters)(void* instance, tacta_device_counter* counters, uint32_t capacity);
+  /* optional (ABI 1.3), appended: the instance's own evolving state, for checkpoints (a scripted
+   * hand's position, velocity and held force; a replay's cursor), as tacta_model_api's entries:
+   * save_state writes it into bytes when capacity is enough and returns its size either way;
+   * load_state sets it on an instance created from the same setup and connected, or returns an
+   * error with a reason. A device without them (a live link) restarts from its connection. Not
+   * from the 1 kHz path. */
+  size_t (*save_state)(void* instance, void* bytes, size_t capacity);
+  tacta_status (*load_state)(void* instance, const void* bytes, size_t size, char* message,
+                             size_t message_capacity);
 } tacta_device_api;
+
+/* The checkpoint entries of a device table, 0 when the plugin has none or is older. */
+static inline int tacta_device_has_state_entries(const tacta_device_api* api, uint32_t api_size) {
+  return api_size >= offsetof(tacta_device_api, load_state) + sizeof(void*) &&
+         api->save_state != NULL && api->load_state != NULL;
+}
 
 #define TACTA_DEVICE_API_FIELD(member, required) \
   { #member, offsetof(tacta_device_api, member), required }
@@ -113,7 +128,8 @@ static const tacta_api_field tacta_device_api_fields[] = {
     TACTA_DEVICE_API_FIELD(read, 1),         TACTA_DEVICE_API_FIELD(write, 1),
     TACTA_DEVICE_API_FIELD(capabilities, 1), TACTA_DEVICE_API_FIELD(status, 0),
     TACTA_DEVICE_API_FIELD(input, 0),        TACTA_DEVICE_API_FIELD(surface, 0),
-    TACTA_DEVICE_API_FIELD(counters, 0),
+    TACTA_DEVICE_API_FIELD(counters, 0),     TACTA_DEVICE_API_FIELD(save_state, 0),
+    TACTA_DEVICE_API_FIELD(load_state, 0),
 };
 
 #ifdef __cplusplus

@@ -29,7 +29,8 @@ extern "C" {
 /* Major must match exactly; a plugin built against a newer minor than the host is refused. */
 #define TACTA_ABI_MAJOR 1u
 #define TACTA_ABI_MINOR \
-  3u /* 1.1: device_api surface and counters entries; 1.2: model_api describe; 1.3: state entries */
+  3u /* 1.1: device_api surface and counters entries; 1.2: model_api describe; 1.3: model and \
+        device state entries */
 
 #define TACTA_ABI_BIT_SCALAR_DOUBLE (1u << 0) /* state arrays are double, not float */
 #define TACTA_ABI_BIT_POINTER_64 (1u << 1)    /* 64-bit pointers */

@@ -290,4 +290,26 @@ void BoundaryMotion::advance(Managed& node, const double* force, double* x, doub
   }
 }
 
+std::vector<double> BoundaryMotion::save_state() const {
+  std::vector<double> state;
+  state.reserve(7 * managed_.size());
+  for (const Managed& m : managed_) {
+    for (size_t k = 0; k < 3; ++k) state.push_back(m.saved_velocity[k]);
+    state.push_back(m.stuck ? 1.0 : 0.0);
+    for (size_t k = 0; k < 3; ++k) state.push_back(m.anchor[k]);
+  }
+  return state;
+}
+
+bool BoundaryMotion::load_state(const std::vector<double>& state) noexcept {
+  if (state.size() != 7 * managed_.size()) return false;
+  const double* s = state.data();
+  for (Managed& m : managed_) {
+    for (size_t k = 0; k < 3; ++k) m.saved_velocity[k] = *s++;
+    m.stuck = *s++ != 0.0;
+    for (size_t k = 0; k < 3; ++k) m.anchor[k] = *s++;
+  }
+  return true;
+}
+
 }  // namespace tacta

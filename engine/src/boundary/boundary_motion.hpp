@@ -66,6 +66,10 @@ class BoundaryMotion {
   // `external` is the step's external force (gravity + contact), N per node.
   void after_step(ModelInstance& model, std::span<double> positions, std::span<double> velocities,
                   std::span<const double> external, double time, double dt) noexcept;
+  // Checkpoints: what after_step carries between steps (managed nodes' saved velocities, stuck
+  // flags and anchors), 7 numbers per managed node. load_state: false when the count differs.
+  std::vector<double> save_state() const;
+  bool load_state(const std::vector<double>& state) noexcept;
 
  private:
   struct Held {  // every axis prescribed

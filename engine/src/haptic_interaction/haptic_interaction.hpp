@@ -15,6 +15,9 @@
 
 namespace tacta {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 // The haptic stage's parts in one tick, ms: bringing the touched surfaces up to date for the
 // proxy (hierarchy refit, embedded vertices), the proxy's queries, and the rest (tool update,
 // coupling, passivity, limits, the reaction on the body).
@@ -38,6 +41,10 @@ class HapticInteraction {
   // The renderer's energy observers integrate the force each device really held.
   void after_write(World& world) noexcept;
   const HapticParts& parts() const noexcept { return parts_; }
+  // Checkpoints: each device's channel (proxy, first contact, coupling, passivity, local model)
+  // as plain bytes (checkpoint/loop_state.cpp). Between ticks only.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
   // TACTA_COLLIDE_* bits the collision plugins returned to this tick's refit and queries.
   uint32_t collision_bits() const noexcept { return collision_bits_; }
 

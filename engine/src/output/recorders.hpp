@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace tacta {
@@ -54,6 +55,11 @@ class Recorder {
       ++dropped_;
   }
   const std::vector<Row>& rows() const noexcept { return rows_; }
+  // A checkpoint's rows and drop count (allocates; the next run grows the room past them).
+  void restore(std::vector<Row> rows, uint64_t dropped) {
+    rows_ = std::move(rows);
+    dropped_ = dropped;
+  }
   uint64_t dropped() const noexcept { return dropped_; }
 
  private:

@@ -43,6 +43,44 @@ ModelInstance::~ModelInstance() {
   if (instance_ != nullptr) api_.destroy(instance_);
 }
 
+bool ModelInstance::can_save_state(std::string& why) const {
+  if (tacta_model_has_state_entries(&api_, descriptor_.api_size) ||
+      (tacta_model_claims(&api_, descriptor_.api_size) & TACTA_MODEL_CLAIM_NO_HISTORY) != 0)
+    return true;
+  why = "model '" + std::string(descriptor_.name) +
+        "' has no save_state/load_state entries and does not claim TACTA_MODEL_CLAIM_NO_HISTORY";
+  return false;
+}
+
+std::vector<uint8_t> ModelInstance::save_state() {
+  if (!tacta_model_has_state_entries(&api_, descriptor_.api_size)) return {};
+  std::vector<uint8_t> bytes(api_.save_state(instance_, nullptr, 0));
+  // The size asked first is the size written: a model whose state grew between the calls is
+  // asked again.
+  while (true) {
+    const size_t size = api_.save_state(instance_, bytes.data(), bytes.size());
+    if (size <= bytes.size()) {
+      bytes.resize(size);
+      return bytes;
+    }
+    bytes.resize(size);
+  }
+}
+
+bool ModelInstance::load_state(const std::vector<uint8_t>& bytes, std::string& why) {
+  if (!tacta_model_has_state_entries(&api_, descriptor_.api_size)) {
+    if (bytes.empty()) return true;
+    why = "model '" + std::string(descriptor_.name) + "' has no load_state for " +
+          std::to_string(bytes.size()) + " bytes of state";
+    return false;
+  }
+  char message[256] = {};
+  if (api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message) == TACTA_OK)
+    return true;
+  why = "model '" + std::string(descriptor_.name) + "' refused its state: " + message;
+  return false;
+}
+
 std::vector<std::pair<std::string, double>> ModelInstance::counters() {
   std::vector<std::pair<std::string, double>> named;
   // An entry past the plugin's own table size is absent (a plugin built before it existed).
@@ -75,6 +113,26 @@ DeviceInstance::~DeviceInstance() {
 bool DeviceInstance::has_entry(size_t offset, const void* entry) const noexcept {
   // An entry past the plugin's own table size is absent (a plugin built before it existed).
   return descriptor_.api_size >= offset + sizeof(void*) && entry != nullptr;
+}
+
+bool DeviceInstance::has_state() const noexcept {
+  return tacta_device_has_state_entries(&api_, descriptor_.api_size) != 0;
+}
+
+std::vector<uint8_t> DeviceInstance::save_state() {
+  if (!has_state()) return {};
+  std::vector<uint8_t> bytes(api_.save_state(instance_, nullptr, 0));
+  bytes.resize(api_.save_state(instance_, bytes.data(), bytes.size()));
+  return bytes;
+}
+
+bool DeviceInstance::load_state(const std::vector<uint8_t>& bytes, std::string& why) {
+  if (!has_state()) return true;  // a live link: it reconnects
+  char message[256] = {};
+  if (api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message) == TACTA_OK)
+    return true;
+  why = "device plugin '" + std::string(descriptor_.name) + "' refused its state: " + message;
+  return false;
 }
 
 bool DeviceInstance::input(const double* values, uint32_t count) noexcept {

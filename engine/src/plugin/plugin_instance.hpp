@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -76,6 +77,13 @@ class ModelInstance {
     return text;
   }
 
+  // Checkpoints (model_api.h save_state / load_state, or the NO_HISTORY claim). Not from the
+  // 1 kHz path. can_save: false with why (naming the model) when neither is there.
+  bool can_save_state(std::string& why) const;
+  std::vector<uint8_t> save_state();  // empty for a model that claims no history
+  // Sets the instance's own state from what save_state wrote; false with the model's reason.
+  bool load_state(const std::vector<uint8_t>& bytes, std::string& why);
+
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;
   size_t scratch_bytes() const noexcept { return arena_.bytes(); }  // host scratch granted
@@ -113,6 +121,11 @@ class DeviceInstance {
   // Whether the plugin takes a body surface (the optional `surface` entry), and hands it one.
   bool wants_surface() const noexcept;
   void surface(const tacta_device_surface& surface) noexcept;
+  // Checkpoints (device_api.h save_state / load_state): false when the plugin has none (a live
+  // link, which reconnects instead). load_state: false with the plugin's reason.
+  bool has_state() const noexcept;
+  std::vector<uint8_t> save_state();
+  bool load_state(const std::vector<uint8_t>& bytes, std::string& why);
   // The plugin's counters for report.json (the optional `counters` entry); empty without it.
   std::vector<std::pair<std::string, double>> counters();
 

@@ -20,6 +20,9 @@
 
 namespace tacta {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 // A fault as report.json lists it.
 struct FaultRecord {
   double time_s;
@@ -66,6 +69,11 @@ class HapticLoop final : public HapticTask, private TickEvents {
   // Copies the current state into `s` (sized by make_prototype) without recording it: what
   // publish() hands the render task, and what a picture between steps draws.
   void capture(Snapshot& s, double time) const noexcept;
+
+  // Checkpoints: the records so far, status counters and the record cadence
+  // (checkpoint/loop_state.cpp). Between ticks only.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
   const Recorder<TraceRow>& trace() const { return trace_; }
   const Recorder<TrajectoryRow>& trajectory() const { return trajectory_; }

@@ -17,6 +17,9 @@
 
 namespace tacta {
 
+class CheckpointWriter;
+class CheckpointReader;
+
 // Hands the newest snapshot to the observers at each frame (frames, VTK, a window, Python).
 class ObserverRenderTask final : public RenderTask {
  public:
@@ -52,6 +55,11 @@ class ClockSession {
   // A body added between steps (lockstep, not during run()): its render description and snapshot
   // entries are made here (allocates), so frames, VTK and observers show it once it enters.
   void add_body(size_t slot);
+
+  // Checkpoints: the clock (tick, frames, the next frame boundary) and the loop's state
+  // (checkpoint/loop_state.cpp). Between steps only.
+  void save_state(CheckpointWriter& out) const;
+  void load_state(CheckpointReader& in);
 
   uint64_t tick() const noexcept { return tick_; }
   double dt() const noexcept { return dt_; }

@@ -15,6 +15,7 @@
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
 #include "tacta_devices/seqlock_slot.hpp"
+#include "tacta_devices/state_bytes.hpp"
 
 namespace tacta::mouse_device {
 namespace {
@@ -102,6 +103,15 @@ class MouseDevice {
 
   tacta_device_capabilities capabilities() const noexcept {
     return devices::omni_capabilities(origin_, 3);
+  }
+
+  // Checkpoints: the stylus's motion and held force (the target is the host's input, fed anew).
+  size_t save_state(void* bytes, size_t capacity) const noexcept {
+    return devices::save_fields(bytes, capacity, started_, last_time_, position_, velocity_,
+                                force_);
+  }
+  void load_state(const void* bytes, size_t size) {
+    devices::load_fields("mouse", bytes, size, started_, last_time_, position_, velocity_, force_);
   }
 
  private:

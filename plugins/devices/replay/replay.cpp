@@ -14,6 +14,7 @@
 #include "interpolation.hpp"
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
+#include "tacta_devices/state_bytes.hpp"
 
 namespace tacta::replay {
 
@@ -86,6 +87,14 @@ class ReplayDevice {
       return TACTA_DEVICE_FINISHED;
     }
     return TACTA_DEVICE_CONNECTED;
+  }
+
+  // Checkpoints: read() is a function of time; what carries is whether the log ended.
+  size_t save_state(void* bytes, size_t capacity) const noexcept {
+    return devices::save_fields(bytes, capacity, finished_, last_force_);
+  }
+  void load_state(const void* bytes, size_t size) {
+    devices::load_fields("replay", bytes, size, finished_, last_force_);
   }
 
   void write(double, const tacta_device_command& command) noexcept {

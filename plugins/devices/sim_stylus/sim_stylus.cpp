@@ -18,6 +18,7 @@
 #include "hand_script.hpp"
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
+#include "tacta_devices/state_bytes.hpp"
 
 namespace tacta::sim_stylus {
 namespace {
@@ -159,6 +160,16 @@ class SimStylus {
   tacta_device_capabilities capabilities() const noexcept {
     // sim_stylus: 6 sensed (the Omni senses its gimbal; here the orientation stays the identity).
     return devices::omni_capabilities(origin_, 6);
+  }
+
+  // Checkpoints: the hand's motion, the force it holds and the noise generator.
+  size_t save_state(void* bytes, size_t capacity) const noexcept {
+    return devices::save_fields(bytes, capacity, started_, last_time_, position_, velocity_, force_,
+                                noise_);
+  }
+  void load_state(const void* bytes, size_t size) {
+    devices::load_fields("sim_stylus", bytes, size, started_, last_time_, position_, velocity_,
+                         force_, noise_);
   }
 
   tacta_device_state status(char* reason, size_t capacity) const noexcept {

@@ -15,6 +15,8 @@
 //       host-fed input (lock-free); a null instance means every live instance
 //   void surface(const tacta_device_surface&) noexcept     render thread; copy what you keep
 //   uint32_t counters(tacta_device_counter*, uint32_t capacity) const noexcept   for report.json
+//   size_t save_state(void* bytes, size_t capacity) const noexcept     checkpoints (device_api.h)
+//   void load_state(const void* bytes, size_t size)   may throw std::invalid_argument (the reason)
 #pragma once
 
 #include "tacta/device_api.h"
@@ -56,6 +58,13 @@ struct DeviceAdapter {
   static uint32_t counters(void* instance, tacta_device_counter* out, uint32_t capacity) noexcept {
     return static_cast<const T*>(instance)->counters(out, capacity);
   }
+  static size_t save_state(void* instance, void* bytes, size_t capacity) noexcept {
+    return static_cast<const T*>(instance)->save_state(bytes, capacity);
+  }
+  static tacta_status load_state(void* instance, const void* bytes, size_t size, char* message,
+                                 size_t capacity) noexcept {
+    return guarded(message, capacity, [&] { static_cast<T*>(instance)->load_state(bytes, size); });
+  }
 
   static tacta_device_api table() {
     tacta_device_api api{};
@@ -73,6 +82,13 @@ struct DeviceAdapter {
       api.surface = &surface;
     if constexpr (requires(const T& t, tacta_device_counter* c) { t.counters(c, uint32_t{0}); })
       api.counters = &counters;
+    if constexpr (requires(const T& t, T& m, void* b, const void* c) {
+                    t.save_state(b, size_t{0});
+                    m.load_state(c, size_t{0});
+                  }) {
+      api.save_state = &save_state;
+      api.load_state = &load_state;
+    }
     return api;
   }
 };

@@ -1,0 +1,253 @@
+#include "checkpoint/world_state.hpp"
+
+#include <cstring>
+
+namespace tacta {
+
+namespace {
+
+enum : uint32_t { kBodySection = 0x424f4459, kDeviceSection = 0x44455643 };
+
+void write_params(CheckpointWriter& out, const ParamSet& params) {
+  out.pod(params.size());
+  for (uint32_t i = 0; i < params.size(); ++i) {
+    const tacta_param_value& v = params.data()[i];
+    out.text(params.names()[i]);
+    out.pod(v.number);
+    out.pod(static_cast<uint8_t>(v.text != nullptr));
+    out.text(v.text != nullptr ? v.text : "");
+    out.array(v.values != nullptr ? std::vector<double>(v.values, v.values + v.count)
+                                  : std::vector<double>{});
+  }
+}
+
+ParamSet read_params(CheckpointReader& in) {
+  const auto count = in.pod<uint32_t>("the parameter count");
+  if (count > 4096) in.fail(std::to_string(count) + " parameters is past any model's");
+  ParamSet params;
+  for (uint32_t i = 0; i < count; ++i) {
+    const std::string name = in.text("a parameter name");
+    const auto number = in.pod<double>("a parameter value");
+    const auto has_text = in.pod<uint8_t>("a parameter kind");
+    const std::string text = in.text("a parameter text");
+    std::vector<double> values = in.array<double>("a parameter vector", 1u << 20);
+    if (has_text != 0)
+      params.add_text(name, text, number);
+    else if (!values.empty())
+      params.add_vector(name, std::move(values));
+    else
+      params.add_number(name, number);
+  }
+  return params;
+}
+
+std::string params_bytes(const ParamSet& params) {
+  CheckpointWriter w;
+  write_params(w, params);
+  return std::string(w.bytes().begin(), w.bytes().end());
+}
+
+}  // namespace
+
+uint64_t scene_fingerprint(const World& world) {
+  CheckpointWriter w;
+  const SceneDesc& scene = world.scene();
+  w.text(scene.name);
+  w.pod(scene.clock.haptic_rate_hz);
+  w.pod(scene.clock.render_rate_hz);
+  w.pod(scene.seed);
+  w.pod(scene.gravity);
+  w.pod(static_cast<uint64_t>(scene.bodies.size()));
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const SoftBody b = world.body(i);
+    w.text(b.info.name);
+    w.pod(static_cast<uint64_t>(b.node_count()));
+    w.pod(static_cast<uint64_t>(b.shape.topology->mesh.tets.size()));
+    w.text(scene.bodies[i].model);
+    write_params(w, scene.bodies[i].model_params);
+    w.pod(b.settings.period_s);
+  }
+  w.pod(static_cast<uint64_t>(world.device_count()));
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceLink& link = world.device(d).link;
+    w.text(link.name);
+    w.text(link.desc.plugin);
+    write_params(w, link.desc.params);
+  }
+  return fnv1a64(w.bytes().data(), w.bytes().size());
+}
+
+void save_bodies(CheckpointWriter& out, World& world, const RequestedModels& requested) {
+  out.pod(static_cast<uint64_t>(world.body_count()));
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    const SoftBody b = world.body(i);
+    const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
+    std::string why;
+    if (!b.model.instance->can_save_state(why))
+      throw InputError(where, "cannot checkpoint body '" + b.info.name + "': " + why);
+    if (b.settings.own_thread)
+      throw InputError(where, "cannot checkpoint body '" + b.info.name +
+                                  "': it steps on its own thread (step_thread: own)");
+    if (b.model.mailbox->incoming.load() != nullptr)
+      throw InputError(where, "cannot checkpoint body '" + b.info.name +
+                                  "' while a model swap waits for the next tick: step once");
+    const size_t at = out.begin_section(kBodySection);
+    out.text(b.info.name);
+    out.pod(b.presence);
+    out.array(b.nodes.positions);
+    out.array(b.nodes.velocities);
+    out.array(b.nodes.step_start);
+    out.array(b.loads.external_forces);
+    out.array(b.loads.contact_forces);
+    out.array(b.loads.applied_forces);
+    out.pod(static_cast<uint64_t>(b.model.next_swap));
+    out.pod(static_cast<uint64_t>(b.model.runtime_swaps.size()));
+    for (const RuntimeSwap& s : b.model.runtime_swaps) {
+      out.pod(s.time_s);
+      out.text(s.model);
+    }
+    out.pod(b.model.runtime_swaps_unlisted);
+    out.text(b.model.instance->name());
+    out.text(requested.models[i]);
+    write_params(out, requested.params[i]);
+    const std::vector<uint8_t> own = b.model.instance->save_state();
+    out.blob(own);
+    out.pod(b.progress);
+    out.pod(b.fault);
+    out.array(b.constraints.boundary ? b.constraints.boundary->save_state()
+                                     : std::vector<double>{});
+    out.end_section(at);
+  }
+}
+
+void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugins,
+                 const RequestedModels& requested) {
+  const auto count = in.pod<uint64_t>("the body count");
+  if (count != world.body_count())
+    in.fail(std::to_string(count) + " bodies in the checkpoint, " +
+            std::to_string(world.body_count()) +
+            " in the scene (bodies added while it ran are not restored)");
+  const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
+  for (size_t i = 0; i < world.body_count(); ++i) {
+    const SoftBody b = world.body(i);
+    CheckpointReader r = in.section(kBodySection, "body '" + b.info.name + "'");
+    const std::string name = r.text("the body name");
+    if (name != b.info.name)
+      r.fail("body " + std::to_string(i) + " is '" + name + "' in the checkpoint, '" + b.info.name +
+             "' in the scene");
+    r.pod_into(b.presence, "presence");
+    r.array_exact(b.nodes.positions, "node positions (3 per node)");
+    r.array_exact(b.nodes.velocities, "node velocities (3 per node)");
+    r.array_exact(b.nodes.step_start, "step start positions (3 per node)");
+    r.array_exact(b.loads.external_forces, "external forces (3 per node)");
+    r.array_exact(b.loads.contact_forces, "contact forces (3 per node)");
+    b.loads.applied_forces = r.array<double>("applied forces", b.nodes.positions.size());
+    if (!b.loads.applied_forces.empty() &&
+        b.loads.applied_forces.size() != b.nodes.positions.size())
+      r.fail("applied forces: " + std::to_string(b.loads.applied_forces.size()) +
+             " numbers, expected none or 3 per node");
+    // The scheduled swaps done by the checkpoint's time, as the tick does them (no begin()).
+    const auto next_swap = r.pod<uint64_t>("the next scheduled swap");
+    if (next_swap > b.model.swaps.size())
+      r.fail(std::to_string(next_swap) + " scheduled swaps done, the scene has " +
+             std::to_string(b.model.swaps.size()));
+    for (; b.model.next_swap < next_swap; ++b.model.next_swap)
+      std::swap(b.model.instance, b.model.swaps[b.model.next_swap].model);
+    const auto swaps = r.pod<uint64_t>("the runtime swap count");
+    if (swaps > b.model.runtime_swaps.capacity())
+      r.fail(std::to_string(swaps) + " runtime swaps listed, room for " +
+             std::to_string(b.model.runtime_swaps.capacity()));
+    b.model.runtime_swaps.clear();
+    for (uint64_t s = 0; s < swaps; ++s) {
+      const auto time = r.pod<double>("a runtime swap time");
+      const std::string model = r.text("a runtime swap model");
+      const LoadedDescriptor* found = plugins.find(TACTA_KIND_MODEL, model);
+      if (found == nullptr) r.fail("no model plugin '" + model + "' (a runtime swap)");
+      b.model.runtime_swaps.push_back({time, found->descriptor->name});
+    }
+    r.pod_into(b.model.runtime_swaps_unlisted, "unlisted runtime swaps");
+    const std::string running = r.text("the model running");
+    requested.models[i] = r.text("the model asked for");
+    requested.params[i] = read_params(r);
+    const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name + ".model"};
+    // A runtime swap or a parameter change: the instance is built afresh from what was asked.
+    if (running == requested.models[i] &&
+        (running != b.model.instance->name() ||
+         params_bytes(requested.params[i]) != params_bytes(world.body_desc(i).model_params)))
+      b.model.instance = world.make_model(running, requested.params[i], *b.shape.topology,
+                                          b.settings.step_dt(haptic_dt), where);
+    if (running != b.model.instance->name())
+      r.fail("body '" + b.info.name + "' runs model '" + running + "' in the checkpoint, '" +
+             b.model.instance->name() + "' here");
+    const std::span<const uint8_t> own = r.blob("the model's own state");
+    std::string why;
+    if (!b.model.instance->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
+      r.fail(why);
+    r.pod_into(b.progress, "step progress");
+    r.pod_into(b.fault, "fault state");
+    const std::vector<double> boundary = r.array<double>("boundary motion state", 1u << 28);
+    if (b.constraints.boundary ? !b.constraints.boundary->load_state(boundary) : !boundary.empty())
+      r.fail("boundary motion state of " + std::to_string(boundary.size()) +
+             " numbers does not match the scene's managed nodes");
+    r.expect_end();
+  }
+}
+
+std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
+  std::vector<std::string> notes;
+  out.pod(static_cast<uint64_t>(world.device_count()));
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot slot = world.device(d);
+    const size_t at = out.begin_section(kDeviceSection);
+    out.text(slot.link.name);
+    out.pod(slot.link.sample);
+    out.pod(slot.link.state);
+    out.pod(slot.link.status_reason);
+    out.pod(slot.link.status_time_s);
+    out.pod(slot.contact);
+    out.pod(slot.stats);
+    out.pod(static_cast<uint8_t>(slot.link.device->has_state()));
+    out.blob(slot.link.device->save_state());
+    if (!slot.link.device->has_state())
+      notes.push_back("device '" + slot.link.name + "' (" + slot.link.desc.plugin +
+                      ") is a live link: its state is not saved; a restore reconnects it");
+    out.end_section(at);
+  }
+  return notes;
+}
+
+std::vector<std::string> load_devices(CheckpointReader& in, World& world) {
+  std::vector<std::string> notes;
+  const auto count = in.pod<uint64_t>("the device count");
+  if (count != world.device_count())
+    in.fail(std::to_string(count) + " devices in the checkpoint, " +
+            std::to_string(world.device_count()) + " in the scene");
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    const DeviceSlot slot = world.device(d);
+    CheckpointReader r = in.section(kDeviceSection, "device '" + slot.link.name + "'");
+    const std::string name = r.text("the device name");
+    if (name != slot.link.name)
+      r.fail("device " + std::to_string(d) + " is '" + name + "' in the checkpoint, '" +
+             slot.link.name + "' in the scene");
+    r.pod_into(slot.link.sample, "the last sample");
+    r.pod_into(slot.link.state, "the connection state");
+    r.pod_into(slot.link.status_reason, "the status reason");
+    slot.link.status_reason.back() = '\0';
+    r.pod_into(slot.link.status_time_s, "the status time");
+    r.pod_into(slot.contact, "the contact");
+    r.pod_into(slot.stats, "the statistics");
+    const bool had_state = r.pod<uint8_t>("whether the plugin saved state") != 0;
+    const std::span<const uint8_t> own = r.blob("the plugin's own state");
+    std::string why;
+    if (had_state && slot.link.device->has_state() &&
+        !slot.link.device->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
+      r.fail(why);
+    if (!slot.link.device->has_state())
+      notes.push_back("device '" + slot.link.name + "' (" + slot.link.desc.plugin +
+                      ") is a live link: restored connected afresh, its own state not restored");
+    r.expect_end();
+  }
+  return notes;
+}
+
+}  // namespace tacta
