@@ -8,12 +8,12 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <string>
 
 #include "command.hpp"
 #include "tacta/error.hpp"
-#include "tacta/json.hpp"
 #include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 
@@ -120,68 +120,58 @@ void print_text(const std::string& path, const Summary& s) {
   for (const std::string& w : s.report.warnings) std::cout << "  warning: " << w << "\n";
 }
 
+using Json = nlohmann::ordered_json;
+
+// NaN and infinities are null; bytes that are not UTF-8 (a file name) become U+FFFD.
+void print(const Json& json) {
+  std::cout << json.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
+}
+
 void print_json(const std::string& path, const Summary& s) {
   const tacta::MeshQuality& q = s.quality;
-  tacta::JsonWriter json(std::cout);
-  json.begin_object();
-  json.field("file", path).field("format", s.report.format).field("kind", s.kind);
-  json.field(s.kind == "volume" ? "nodes" : "vertices", static_cast<uint64_t>(s.nodes));
-  json.field("triangles", static_cast<uint64_t>(s.triangles));
+  Json json = {{"file", path}, {"format", s.report.format}, {"kind", s.kind}};
+  json[s.kind == "volume" ? "nodes" : "vertices"] = static_cast<uint64_t>(s.nodes);
+  json["triangles"] = static_cast<uint64_t>(s.triangles);
   if (s.kind == "volume") {
-    json.field("tets", static_cast<uint64_t>(s.tets))
-        .field("edges", static_cast<uint64_t>(s.edges));
-    json.field("skipped_elements", static_cast<uint64_t>(s.report.skipped_elements));
-    json.field("inverted_tets", static_cast<uint64_t>(s.report.inverted_tets));
-    json.field("removed_nodes", static_cast<uint64_t>(s.report.removed_nodes));
-    json.field("volume_m3", s.volume);
-    json.key("quality").begin_object();
-    json.field("min_tet_volume_m3", q.min_volume).field("max_tet_volume_m3", q.max_volume);
-    json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
-    json.field("worst_aspect_ratio", q.worst_aspect_ratio);
-    json.field("min_dihedral_deg", q.min_dihedral_deg)
-        .field("max_dihedral_deg", q.max_dihedral_deg);
-    json.field("min_radius_ratio", q.min_radius_ratio)
-        .field("mean_radius_ratio", q.mean_radius_ratio);
-    json.end_object();
+    json["tets"] = static_cast<uint64_t>(s.tets);
+    json["edges"] = static_cast<uint64_t>(s.edges);
+    json["skipped_elements"] = static_cast<uint64_t>(s.report.skipped_elements);
+    json["inverted_tets"] = static_cast<uint64_t>(s.report.inverted_tets);
+    json["removed_nodes"] = static_cast<uint64_t>(s.report.removed_nodes);
+    json["volume_m3"] = s.volume;
+    json["quality"] = {{"min_tet_volume_m3", q.min_volume},
+                       {"max_tet_volume_m3", q.max_volume},
+                       {"min_edge_m", q.min_edge},
+                       {"max_edge_m", q.max_edge},
+                       {"worst_aspect_ratio", q.worst_aspect_ratio},
+                       {"min_dihedral_deg", q.min_dihedral_deg},
+                       {"max_dihedral_deg", q.max_dihedral_deg},
+                       {"min_radius_ratio", q.min_radius_ratio},
+                       {"mean_radius_ratio", q.mean_radius_ratio}};
   } else {
-    json.field("welded_vertices", static_cast<uint64_t>(s.report.welded_vertices));
-    json.field("degenerate_triangles", static_cast<uint64_t>(s.report.degenerate_triangles));
-    json.field("closed", s.report.closed());
-    json.field("open_edges", static_cast<uint64_t>(s.report.boundary_edges));
-    json.field("nonmanifold_edges", static_cast<uint64_t>(s.report.nonmanifold_edges));
-    json.field("enclosed_volume_m3", s.volume);
-    json.field("min_edge_m", q.min_edge).field("max_edge_m", q.max_edge);
-    json.key("as_body").begin_object().field("summary", s.as_body);
-    json.field("voxel_size_m", s.body_report.voxel_size)
-        .field("voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells));
-    json.field("max_tets", static_cast<uint64_t>(s.body_report.max_tets))
-        .field("thin_part_size_m", s.body_report.thin_part_size);
-    json.field("tets", static_cast<uint64_t>(s.body_tets))
-        .field("nodes", static_cast<uint64_t>(s.body_nodes));
-    json.field("volume_m3", s.body_report.mesh_volume);
-    json.key("piece_volumes_m3").begin_array();
-    for (double v : s.body_report.piece_volumes) json.value(v);
-    json.end_array();
-    json.key("warnings").begin_array();
-    for (const std::string& w : s.body_report.warnings) json.value(w);
-    json.end_array().end_object();
+    json["welded_vertices"] = static_cast<uint64_t>(s.report.welded_vertices);
+    json["degenerate_triangles"] = static_cast<uint64_t>(s.report.degenerate_triangles);
+    json["closed"] = s.report.closed();
+    json["open_edges"] = static_cast<uint64_t>(s.report.boundary_edges);
+    json["nonmanifold_edges"] = static_cast<uint64_t>(s.report.nonmanifold_edges);
+    json["enclosed_volume_m3"] = s.volume;
+    json["min_edge_m"] = q.min_edge;
+    json["max_edge_m"] = q.max_edge;
+    json["as_body"] = {{"summary", s.as_body},
+                       {"voxel_size_m", s.body_report.voxel_size},
+                       {"voxel_cells", static_cast<uint64_t>(s.body_report.voxel_cells)},
+                       {"max_tets", static_cast<uint64_t>(s.body_report.max_tets)},
+                       {"thin_part_size_m", s.body_report.thin_part_size},
+                       {"tets", static_cast<uint64_t>(s.body_tets)},
+                       {"nodes", static_cast<uint64_t>(s.body_nodes)},
+                       {"volume_m3", s.body_report.mesh_volume},
+                       {"piece_volumes_m3", s.body_report.piece_volumes},
+                       {"warnings", s.body_report.warnings}};
   }
-  json.key("bounds_min_m")
-      .begin_array()
-      .value(q.bounds_min[0])
-      .value(q.bounds_min[1])
-      .value(q.bounds_min[2])
-      .end_array();
-  json.key("bounds_max_m")
-      .begin_array()
-      .value(q.bounds_max[0])
-      .value(q.bounds_max[1])
-      .value(q.bounds_max[2])
-      .end_array();
-  json.key("warnings").begin_array();
-  for (const std::string& w : s.report.warnings) json.value(w);
-  json.end_array();
-  json.end_object();
+  json["bounds_min_m"] = Json::array({q.bounds_min[0], q.bounds_min[1], q.bounds_min[2]});
+  json["bounds_max_m"] = Json::array({q.bounds_max[0], q.bounds_max[1], q.bounds_max[2]});
+  json["warnings"] = s.report.warnings;
+  print(json);
 }
 
 void add_mesh_info_command(CLI::App& app, int& exit_code) {
@@ -205,11 +195,7 @@ void add_mesh_info_command(CLI::App& app, int& exit_code) {
     } catch (const tacta::InputError& e) {
       std::cerr << "tacta mesh-info: " << e.what() << "\n";
       if (options->json) {
-        tacta::JsonWriter json(std::cout);
-        json.begin_object()
-            .field("file", options->file)
-            .field("error", std::string(e.what()))
-            .end_object();
+        print(Json{{"file", options->file}, {"error", e.what()}});
       }
       exit_code = tacta::cli::kExitBadInput;
       return;

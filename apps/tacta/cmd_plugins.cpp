@@ -3,13 +3,13 @@
 // (they are listed), 2 when a --path is not a folder.
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
-#include "tacta/json.hpp"
 #include "tacta/live_params.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
@@ -109,69 +109,73 @@ void print_text(const tacta::PluginRegistry& registry) {
   }
 }
 
-void write_param(tacta::JsonWriter& json, const tacta_param_spec& p, bool live) {
-  json.begin_object();
-  json.field("name", p.name).field("type", type_name(p.type)).field("unit", p.unit ? p.unit : "");
-  json.field("live", live);
+using Json = nlohmann::ordered_json;
+
+// A plugin's C string; a null one (a careless plugin) is null, as it was absent.
+Json text(const char* s) { return s ? Json(s) : Json(nullptr); }
+
+Json param_json(const tacta_param_spec& p, bool live) {
+  Json json = {{"name", text(p.name)},
+               {"type", type_name(p.type)},
+               {"unit", p.unit ? p.unit : ""},
+               {"live", live}};
   switch (p.type) {
     case TACTA_PARAM_REAL:
     case TACTA_PARAM_INT:
-      json.field("default", p.default_value).field("min", p.min_value).field("max", p.max_value);
+      json["default"] = p.default_value;
+      json["min"] = p.min_value;
+      json["max"] = p.max_value;
       break;
-    case TACTA_PARAM_BOOL: json.field("default", p.default_value != 0); break;
+    case TACTA_PARAM_BOOL: json["default"] = p.default_value != 0; break;
     case TACTA_PARAM_CHOICE: {
       const auto choices = tacta::choice_names(p);
       const auto index = static_cast<size_t>(p.default_value);
-      json.field("default", index < choices.size() ? choices[index] : std::string());
-      json.key("choices").begin_array();
-      for (const auto& c : choices) json.value(c);
-      json.end_array();
+      json["default"] = index < choices.size() ? choices[index] : std::string();
+      json["choices"] = choices;
       break;
     }
-    case TACTA_PARAM_TEXT: json.field("default", p.default_text); break;
+    case TACTA_PARAM_TEXT: json["default"] = text(p.default_text); break;
     case TACTA_PARAM_VECTOR:
-      json.field("default", p.default_text).field("stride", p.vector_stride);
-      json.field("min", p.min_value).field("max", p.max_value);
+      json["default"] = text(p.default_text);
+      json["stride"] = p.vector_stride;
+      json["min"] = p.min_value;
+      json["max"] = p.max_value;
       break;
     default: break;
   }
-  json.field("help", p.help ? p.help : "");
-  json.end_object();
+  json["help"] = p.help ? p.help : "";
+  return json;
 }
 
 void print_json(const tacta::PluginRegistry& registry) {
-  tacta::JsonWriter json(std::cout);
-  json.begin_object();
-  json.key("search_paths").begin_array();
-  for (const auto& p : registry.search_paths()) json.value(p);
-  json.end_array();
-  json.key("plugins").begin_array();
+  Json plugins = Json::array();
   for (const auto& e : registry.list()) {
     const tacta_descriptor& d = *e.descriptor;
-    json.begin_object();
-    json.field("kind", tacta_kind_name(d.kind)).field("name", d.name);
-    json.field("version", version_text(d.version)).field("description", d.description);
-    json.field("file", e.file);
+    Json plugin = {{"kind", tacta_kind_name(d.kind)},
+                   {"name", text(d.name)},
+                   {"version", version_text(d.version)},
+                   {"description", text(d.description)},
+                   {"file", e.file}};
     if (d.kind == TACTA_KIND_COLLISION) {
       int guessed = 0;
       const uint32_t roles = tacta_collision_roles(&d, &guessed);
-      json.key("roles").begin_array();
+      Json& names = plugin["roles"] = Json::array();
       for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
-        if (roles & (1u << r)) json.value(tacta_collision_role_name(1u << r));
-      json.end_array().field("roles_guessed", guessed != 0);
+        if (roles & (1u << r)) names.push_back(tacta_collision_role_name(1u << r));
+      plugin["roles_guessed"] = guessed != 0;
     }
-    json.key("parameters").begin_array();
+    Json& params = plugin["parameters"] = Json::array();
     for (uint32_t i = 0; i < d.param_count; ++i)
-      write_param(json, d.params[i], tacta::is_live_param(d, d.params[i].name));
-    json.end_array();
-    json.end_object();
+      params.push_back(param_json(d.params[i], tacta::is_live_param(d, d.params[i].name)));
+    plugins.push_back(plugin);
   }
-  json.end_array();
-  json.key("refused").begin_array();
+  Json refused = Json::array();
   for (const auto& r : registry.refused())
-    json.begin_object().field("file", r.file).field("reason", r.reason).end_object();
-  json.end_array();
-  json.end_object();
+    refused.push_back({{"file", r.file}, {"reason", r.reason}});
+  const Json json = {
+      {"search_paths", registry.search_paths()}, {"plugins", plugins}, {"refused", refused}};
+  // Bytes that are not UTF-8 (a plugin's strings) become U+FFFD rather than failing the listing.
+  std::cout << json.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
 }
 
 void add_plugins_command(CLI::App& app, int& exit_code) {

@@ -3,10 +3,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "tacta/compare/compare.hpp"
-#include "tacta/json.hpp"
 #include "tacta/output/plot_script.hpp"
 
 namespace tacta {
@@ -74,61 +75,42 @@ void compare_with_reference(CompareSummary& summary) {
   }
 }
 
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// An absent figure or name is null in compare.json.
+Json or_null(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+Json or_null(const std::string& text) { return text.empty() ? Json(nullptr) : Json(text); }
+
+}  // namespace
+
 void write_compare_json(const std::string& path, const CompareSummary& summary) {
   std::ofstream file(path);
   if (!file) throw std::runtime_error("cannot write " + path);
-  JsonWriter json(file);
-  json.begin_object();
-  json.field("scene", summary.scene).field("duration_s", summary.duration_s);
-  json.key("reference");
-  if (summary.reference.empty())
-    json.null();
-  else
-    json.value(summary.reference);
-  json.key("models").begin_array();
-  for (const CompareRow& r : summary.rows) {
-    json.begin_object();
-    json.field("model", r.model)
-        .field("tick_p50_ms", r.tick_p50_ms)
-        .field("tick_p99_ms", r.tick_p99_ms);
-    json.field("max_displacement_m", r.max_displacement_m);
-    json.key("energy_drift");
-    if (r.energy_drift)
-      json.value(*r.energy_drift);
-    else
-      json.null();
-    json.field("energy_start_J", r.energy_start_J).field("energy_end_J", r.energy_end_J);
-    json.key("probe_displacement_m");
-    if (r.probe_displacement_m)
-      json.value(*r.probe_displacement_m);
-    else
-      json.null();
-    json.key("probe");
-    if (r.probe.empty())
-      json.null();
-    else
-      json.value(r.probe);
-    json.field("faults", static_cast<uint64_t>(r.faults)).field("state_hash", r.state_hash);
-    json.key("fault_reason");
-    if (r.fault_reason.empty())
-      json.null();
-    else
-      json.value(r.fault_reason);
-    json.field("out_dir", r.out_dir);
-    json.key("displacement_ratio");
-    if (r.displacement_ratio)
-      json.value(*r.displacement_ratio);
-    else
-      json.null();
-    json.key("difference_from_reference_m");
-    if (r.difference_from_reference_m)
-      json.value(*r.difference_from_reference_m);
-    else
-      json.null();
-    json.end_object();
-  }
-  json.end_array();
-  json.end_object();
+  Json models = Json::array();
+  for (const CompareRow& r : summary.rows)
+    models.push_back({{"model", r.model},
+                      {"tick_p50_ms", r.tick_p50_ms},
+                      {"tick_p99_ms", r.tick_p99_ms},
+                      {"max_displacement_m", r.max_displacement_m},
+                      {"energy_drift", or_null(r.energy_drift)},
+                      {"energy_start_J", r.energy_start_J},
+                      {"energy_end_J", r.energy_end_J},
+                      {"probe_displacement_m", or_null(r.probe_displacement_m)},
+                      {"probe", or_null(r.probe)},
+                      {"faults", static_cast<uint64_t>(r.faults)},
+                      {"state_hash", r.state_hash},
+                      {"fault_reason", or_null(r.fault_reason)},
+                      {"out_dir", r.out_dir},
+                      {"displacement_ratio", or_null(r.displacement_ratio)},
+                      {"difference_from_reference_m", or_null(r.difference_from_reference_m)}});
+  const Json json = {{"scene", summary.scene},
+                     {"duration_s", summary.duration_s},
+                     {"reference", or_null(summary.reference)},
+                     {"models", models}};
+  // Non-finite numbers are written as null; bytes that are not UTF-8 become U+FFFD.
+  file << json.dump(2, ' ', false, Json::error_handler_t::replace) << "\n";
   if (!file) throw std::runtime_error("cannot write " + path);
 }
 
