@@ -23,9 +23,12 @@
 #include "stretch_energy.hpp"
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/state_blob.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models::hyperelastic {
+
+using tacta::models::StateIo;
 
 enum class SolveMode { kDynamic = 0, kStatic = 1 };
 // Where the volumetric energy is evaluated: per element (locks near nu 0.5), or on nodally
@@ -84,6 +87,10 @@ class HyperelasticModel {
   const Options& options() const { return options_; }
   uint32_t node_count() const { return node_count_; }
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
+  // Checkpoints (state_blob.hpp): the counters, the next step's first guess, the static solve's
+  // last loads, and the lagged system (A, Kd, the F it was assembled at, its age, the solver's
+  // preconditioner) that a later step's first correction may reuse.
+  void state_fields(StateIo& io);
 
  private:
   using Element = TetRest;  // nodes, rest gradients (1/m), volume (m^3)

@@ -271,6 +271,20 @@ uint32_t HyperelasticModel::step(tacta_body_state& state, double dt) noexcept {
   return result | guard_.check(state.positions, state.velocities);
 }
 
+void HyperelasticModel::state_fields(StateIo& io) {
+  io.value(counters_, "newton_counters");
+  io.vector(last_correction_, "last_correction");
+  io.vector(equilibrium_loads_, "equilibrium_loads");
+  io.value(inverted_, "inverted");
+  io.value(system_valid_, "system_valid");
+  io.value(system_age_, "system_age");
+  io.value(system_step_, "system_step");
+  io.vector(assembled_deformation_, "assembled_deformation");
+  io.values(matrix_.values(), "system_matrix");
+  io.values(damping_.values(), "damping_matrix");
+  solver_->state_fields(io);
+}
+
 void HyperelasticModel::begin(const tacta_body_state& /*state*/, double /*dt*/) noexcept {
   std::fill(last_correction_.begin(), last_correction_.end(), 0.0);
   system_valid_ = false;

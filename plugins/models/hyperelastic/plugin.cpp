@@ -12,6 +12,10 @@
 namespace tacta::models::hyperelastic {
 namespace {
 
+using tacta::models::load_state_blob;
+using tacta::models::save_state_blob;
+using tacta::models::StateHeader;
+
 // Nodal averaging costs a wider matrix (a node couples with its 1-ring's 1-ring); below
 // nu 0.45 per-element volumes lock little (VALIDATION.md), so auto keeps them there.
 constexpr double kNodalAverageFromPoisson = 0.45;
@@ -119,6 +123,13 @@ class HyperelasticPlugin {
   double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
   void node_stress(const double* x, double* s) noexcept { model_->node_stress(x, s); }
+  size_t save_state(void* bytes, size_t capacity) noexcept {
+    return save_state_blob(state_header(), bytes, capacity,
+                           [&](StateIo& io) { model_->state_fields(io); });
+  }
+  void load_state(const void* bytes, size_t size) {
+    load_state_blob(state_header(), bytes, size, [&](StateIo& io) { model_->state_fields(io); });
+  }
   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
     const NewtonCounters& c = model_->counters();
     return sparse::report_counters(
@@ -138,6 +149,10 @@ class HyperelasticPlugin {
   }
 
  private:
+  static constexpr uint32_t kStateVersion = 1;  // HyperelasticModel::state_fields' layout
+  StateHeader state_header() const {
+    return {kName, kStateVersion, model_->node_count(), model_->element_count()};
+  }
   std::unique_ptr<HyperelasticModel> model_;
 };
 

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -24,6 +25,16 @@ struct StateHeader {
   uint32_t element_count;  // tets, springs or whatever the model counts; 0 when none
 };
 
+// What a blob holds as bytes: trivially copyable types, and Eigen's fixed-size matrices and
+// quaternions (plain arrays of their scalars, though Eigen declares its own copy constructors;
+// a dynamic matrix owns heap memory and is not trivially destructible, so it is refused).
+template <class T>
+concept BlobBytes = std::is_trivially_copyable_v<T> || requires {
+  typename T::Scalar;
+  requires std::is_standard_layout_v<T> && std::is_trivially_destructible_v<T>;
+  requires sizeof(T) % sizeof(typename T::Scalar) == 0;
+};
+
 class StateIo {
  public:
   enum class Mode { kMeasure, kWrite, kCheck, kRead };
@@ -32,14 +43,18 @@ class StateIo {
       : mode_(mode), model_(model), bytes_(static_cast<unsigned char*>(bytes)), size_(size) {}
 
   // One trivially copyable value (a counter, a flag, a double).
-  template <class T>
+  template <BlobBytes T>
   void value(T& v, const char* name) {
-    static_assert(std::is_trivially_copyable_v<T>);
     raw(&v, sizeof v, name);
   }
   // A vector sized at creation: its length is stored, and a load requires the same length.
-  template <class T>
+  template <BlobBytes T>
   void vector(std::vector<T>& v, const char* name) {
+    values(std::span<T>(v), name);
+  }
+  // The same for any array the instance owns (a matrix's values).
+  template <BlobBytes T>
+  void values(std::span<T> v, const char* name) {
     uint64_t count = v.size();
     header_value(&count, sizeof count, name);
     if (!ok()) return;
@@ -48,7 +63,7 @@ class StateIo {
            " values in the blob, this instance " + std::to_string(v.size()));
       return;
     }
-    raw(v.data(), v.size() * sizeof(T), name);
+    raw(v.data(), v.size_bytes(), name);
   }
   // The header: on a check or a read, refuses another model, layout or mesh.
   void header(const StateHeader& expected);
