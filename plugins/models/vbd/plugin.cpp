@@ -14,6 +14,10 @@
 namespace tacta::models::vbd {
 namespace {
 
+using tacta::models::load_state_blob;
+using tacta::models::save_state_blob;
+using tacta::models::StateHeader;
+
 class VbdPlugin {
  public:
   static constexpr const char* kName = "vbd";
@@ -62,6 +66,13 @@ class VbdPlugin {
   void begin(const tacta_body_state& state, double dt) noexcept { model_->begin(state, dt); }
   double elastic_energy(const double* x) noexcept { return model_->elastic_energy(x); }
   void internal_forces(const double* x, double* f) noexcept { model_->internal_forces(x, f); }
+  size_t save_state(void* bytes, size_t capacity) noexcept {
+    return save_state_blob(state_header(), bytes, capacity,
+                           [&](StateIo& io) { model_->state_fields(io); });
+  }
+  void load_state(const void* bytes, size_t size) {
+    load_state_blob(state_header(), bytes, size, [&](StateIo& io) { model_->state_fields(io); });
+  }
   uint32_t counters(tacta_model_counter* out, uint32_t capacity) noexcept {
     const std::array<tacta_model_counter, 2> own{{
         {"colours", static_cast<double>(model_->colour_count())},
@@ -99,6 +110,10 @@ class VbdPlugin {
   }
 
  private:
+  static constexpr uint32_t kStateVersion = 1;  // VbdModel::state_fields' layout
+  StateHeader state_header() const {
+    return {kName, kStateVersion, model_->node_count(), model_->element_count()};
+  }
   std::unique_ptr<VbdModel> model_;
 };
 

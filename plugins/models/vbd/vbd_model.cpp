@@ -373,6 +373,18 @@ void VbdModel::internal_forces(const double* positions, double* forces) noexcept
   }
 }
 
+void VbdModel::state_fields(StateIo& io) {
+  io.vector(step_rotation_, "step_rotation");
+  io.vector(query_rotation_, "query_rotation");
+  io.vector(previous_velocity_, "previous_velocity");
+  io.value(history_, "history");
+  uint64_t skipped = skipped_updates();
+  io.value(skipped, "skipped_vertex_updates");
+  if (!io.loading()) return;
+  for (WorkerTally& t : tallies_) t.skipped = 0;
+  tallies_[0].skipped = skipped;
+}
+
 uint64_t VbdModel::skipped_updates() const {
   uint64_t total = 0;
   for (const WorkerTally& t : tallies_) total += t.skipped;

@@ -20,9 +20,12 @@
 
 #include "tacta/model_api.h"
 #include "tacta/models/divergence_guard.hpp"
+#include "tacta/models/state_blob.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
 namespace tacta::models::vbd {
+
+using tacta::models::StateIo;
 
 enum class Energy { kCorotational = 0, kNeoHookean = 1 };                // scene choice order
 enum class InitialGuess { kAdaptive = 0, kInertia = 1, kPrevious = 2 };  // scene choice order
@@ -62,6 +65,11 @@ class VbdModel {
   void set_chebyshev_rho(double rho) { options_.chebyshev_rho = rho; }
   // Vertex updates skipped because their 3x3 block was singular, since create().
   uint64_t skipped_updates() const;
+  uint32_t element_count() const { return static_cast<uint32_t>(tets_.size()); }
+  // Checkpoints (state_blob.hpp): the warm-start rotations, the adaptive guess's v_{t-1} and
+  // whether it is set, and the skipped-update count (loaded onto the first worker's tally: the
+  // restored instance may have another number of workers).
+  void state_fields(StateIo& io);
 
   // Below this fraction of the rest volume the Neo-Hookean volume term continues as its
   // quadratic Taylor expansion: the log barrier's local Newton steps overshoot there (a vertex
