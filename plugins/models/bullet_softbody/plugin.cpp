@@ -16,8 +16,11 @@ class BulletSoftBodyPlugin {
   static constexpr const char* kDescription =
       "Bullet's btSoftBody (links and tetras, position-based) as a reference peer; not for haptics";
   static constexpr uint32_t kVersion = 10000;
-  // A reference peer (Bullet's position-based links): no claim about its forces.
-  static constexpr uint32_t kClaims = 0;
+  // A reference peer (Bullet's position-based links): no claim about its forces. No history:
+  // step() writes every node's x, q (the predicted start) and v into Bullet and clears its
+  // forces before it steps; what Bullet derives from them (links' constants, bounds, normals) it
+  // recomputes each step, and its world steps with a fixed substep, accumulating no time.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_NO_HISTORY;
   static constexpr std::array<tacta_param_spec, 4> kParams = {
       sdk::int_param("position_iterations", 10, 1, 200,
                      "Bullet position-solver iterations per step (m_cfg.piterations)"),
