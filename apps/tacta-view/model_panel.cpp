@@ -14,6 +14,7 @@ ModelPanel::ModelPanel(const PluginRegistry& plugins, Simulation& simulation,
     if (d.descriptor->kind == TACTA_KIND_MODEL) model_names_.emplace_back(d.descriptor->name);
   for (const BodyDesc& b : scene.bodies) {
     body_names_.push_back(b.name);
+    handles_.push_back(simulation.body(b.name));
     BodyState state;
     state.model = b.model;
     if (auto schema = plugins.schema(TACTA_KIND_MODEL, b.model))
@@ -62,7 +63,8 @@ bool ModelPanel::choose_model(size_t body, const std::string& model) {
 
 bool ModelPanel::apply(size_t body) {
   try {
-    simulation_.request_model_swap(body, bodies_[body].model, to_param_set(bodies_[body].values));
+    simulation_.request_model_swap(handles_[body], bodies_[body].model,
+                                   to_param_set(bodies_[body].values));
   } catch (const std::exception& e) {
     error_ = e.what();
     return false;

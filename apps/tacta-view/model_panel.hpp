@@ -43,6 +43,7 @@ class ModelPanel {
   Simulation& simulation_;
   std::vector<std::string> model_names_;
   std::vector<std::string> body_names_;
+  std::vector<BodyHandle> handles_;  // per scene body, as body_names_
   std::vector<BodyState> bodies_;
   size_t selected_ = 0;
   std::string error_;

@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <thread>
 
+#include "tacta/log.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/vec3.hpp"
@@ -58,12 +59,12 @@ std::vector<std::string> with_mouse(std::vector<std::string> overrides, bool mou
 // The viewer's pointer drives every mouse device of the scene, through the instances the
 // simulation owns; no feed when the scene has none.
 MouseTool::Feed mouse_feed(Simulation& simulation) {
-  std::vector<size_t> mice;
-  for (size_t d = 0; d < simulation.device_count(); ++d)
+  std::vector<DeviceHandle> mice;
+  for (const DeviceHandle d : simulation.devices())
     if (simulation.device_plugin(d) == "mouse") mice.push_back(d);
   if (mice.empty()) return {};
   return [&simulation, mice](const Vec3d& target) {
-    for (size_t d : mice) simulation.device_input(d, target.data(), 3);
+    for (const DeviceHandle d : mice) simulation.device_input(d, target.data(), 3);
   };
 }
 
@@ -238,8 +239,7 @@ int Viewer::run() {
   int code = 0;
   if (!options_.screenshot.empty()) {
     if (window.last_picture().empty()) {
-      std::fprintf(stderr, "error: no frame was shown, nothing to write to %s\n",
-                   options_.screenshot.c_str());
+      log_error("no frame was shown, nothing to write to " + options_.screenshot);
       code = 1;
     } else {
       render::write_png(options_.screenshot, window.last_picture());

@@ -20,7 +20,7 @@ namespace py = pybind11;
 // plugin's lock-free input, obj.write(force) with the force last sent (N). Called with the GIL
 // held between chunks of `every_ticks` haptic ticks, never inside one.
 struct PythonDevice {
-  size_t device = 0;
+  DeviceHandle device;
   uint64_t every_ticks = 1;
   py::object object;
 };
@@ -36,12 +36,24 @@ struct SimHolder {
 };
 using SimPtr = std::shared_ptr<SimHolder>;
 
-// One body or device of a simulation, by index; holding it keeps the simulation alive.
-struct EntityHandle {
+// A body or device of a simulation: its handle (checked by the engine on every use) and its name
+// (kept, so a removed body still prints as itself); holding it keeps the simulation alive.
+template <class HandleT>
+struct Entity {
   SimPtr holder;
-  size_t index = 0;
+  HandleT handle;
+  std::string name;
   Simulation& sim() const { return *holder->sim; }
+  friend bool operator==(const Entity& a, const Entity& b) {
+    return a.holder == b.holder && a.handle == b.handle;
+  }
 };
+using Body = Entity<BodyHandle>;
+using Device = Entity<DeviceHandle>;
+
+// sim.body(x) / sim.device(x): x a name, a handle, or a Body / Device of this simulation.
+Body body_of(const SimPtr& holder, const py::object& which);
+Device device_of(const SimPtr& holder, const py::object& which);
 
 // The process-wide plugin registry, loaded on first use (searched folders: docs/PYTHON.md).
 std::shared_ptr<PluginRegistry> shared_plugins();
@@ -67,27 +79,13 @@ py::object json_written_by(const std::function<std::string(const std::string& di
 // Raises tacta.RenderError (a RuntimeError): no picture could be made (no EGL, no renderer).
 [[noreturn]] void raise_render_error(const std::string& message);
 
-// Adds Simulation.<property>: a dict {name: Item{holder, index}} over count() items, in scene order.
-template <typename Item>
-void def_by_name(py::module_& m, const char* property, size_t (Simulation::*count)() const,
-                 const std::string& (Simulation::*name)(size_t) const, const char* doc) {
-  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
-  simulation.def_property_readonly(
-      property,
-      [count, name](const SimPtr& h) {
-        py::dict out;
-        for (size_t i = 0; i < ((*h->sim).*count)(); ++i)
-          out[py::str(((*h->sim).*name)(i))] = Item{{h, i}};
-        return out;
-      },
-      doc);
-}
-
 void register_errors(py::module_& m);
+void register_handles(py::module_& m);
 void register_simulation(py::module_& m);
 void register_bodies(py::module_& m);
 void register_devices(py::module_& m);
 void register_snapshot(py::module_& m);
 void register_compare(py::module_& m);
+void register_log(py::module_& m);
 
 }  // namespace tacta::python

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <pybind11/numpy.h>
+#include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
@@ -11,8 +12,6 @@
 
 namespace tacta::python {
 namespace {
-
-struct Device : EntityHandle {};
 
 const char* state_name(int32_t state) {
   switch (state) {
@@ -30,7 +29,7 @@ py::array_t<double> vec3(const double* v) {
   return out;
 }
 
-void feed(SimHolder& holder, size_t device, const std::vector<double>& values) {
+void feed(SimHolder& holder, DeviceHandle device, const std::vector<double>& values) {
   if (!holder.sim->device_input(device, values.data(), static_cast<uint32_t>(values.size())))
     throw py::value_error(
         "device '" + holder.sim->device_name(device) + "' (plugin " +
@@ -76,29 +75,36 @@ uint64_t step_driving_devices(SimHolder& holder, uint64_t ticks) {
 }
 
 void register_devices(py::module_& m) {
-  py::class_<Device>(m, "Device", "One device of a Simulation: sim.devices['stylus'].")
-      .def_property_readonly("name", [](const Device& d) { return d.sim().device_name(d.index); })
+  py::class_<Device>(m, "Device",
+                     "One device of a Simulation: sim.device('stylus'), sim.devices['stylus'].")
+      .def_readonly("name", &Device::name)
+      .def_readonly("handle", &Device::handle, "its tacta.DeviceHandle (index, generation)")
+      .def_property_readonly(
+          "index", [](const Device& d) { return d.handle.index; },
+          "its row in sim.report()['devices'] (handle.index)")
+      .def(py::self == py::self)
+      .def("__hash__", [](const Device& d) { return std::hash<DeviceHandle>{}(d.handle); })
       .def_property_readonly("plugin",
-                             [](const Device& d) { return d.sim().device_plugin(d.index); })
+                             [](const Device& d) { return d.sim().device_plugin(d.handle); })
       .def_property_readonly(
           "position",
-          [](const Device& d) { return vec3(d.sim().device_reading(d.index).position); },
+          [](const Device& d) { return vec3(d.sim().device_reading(d.handle).position); },
           "(3,) the last sampled stylus position, m")
       .def_property_readonly(
-          "proxy", [](const Device& d) { return vec3(d.sim().device_reading(d.index).proxy); },
+          "proxy", [](const Device& d) { return vec3(d.sim().device_reading(d.handle).proxy); },
           "(3,) the god-object proxy on the touched surface, m")
       .def_property_readonly(
-          "force", [](const Device& d) { return vec3(d.sim().device_reading(d.index).force); },
+          "force", [](const Device& d) { return vec3(d.sim().device_reading(d.handle).force); },
           "(3,) the force last sent to the device, N (zero after a fault)")
       .def_property_readonly(
           "status",
-          [](const Device& d) { return state_name(d.sim().device_reading(d.index).state); },
+          [](const Device& d) { return state_name(d.sim().device_reading(d.handle).state); },
           "'connected', 'disconnected', 'fault' or 'finished'")
       .def_property_readonly(
-          "in_contact", [](const Device& d) { return d.sim().device_reading(d.index).in_contact; })
+          "in_contact", [](const Device& d) { return d.sim().device_reading(d.handle).in_contact; })
       .def(
           "input",
-          [](Device& d, const std::vector<double>& values) { feed(*d.holder, d.index, values); },
+          [](Device& d, const std::vector<double>& values) { feed(*d.holder, d.handle, values); },
           py::arg("values"),
           "Hands values to the plugin's input entry (mouse: a target x, y, z in m).")
       .def(
@@ -112,8 +118,8 @@ void register_devices(py::module_& m) {
             const uint64_t every =
                 std::max<uint64_t>(1, static_cast<uint64_t>(std::llround(per_tick)));
             auto& list = d.holder->python_devices;
-            std::erase_if(list, [&](const PythonDevice& pd) { return pd.device == d.index; });
-            list.push_back({d.index, every, std::move(object)});
+            std::erase_if(list, [&](const PythonDevice& pd) { return pd.device == d.handle; });
+            list.push_back({d.handle, every, std::move(object)});
             return every;
           },
           py::arg("device"), py::arg("rate_hz") = 100.0,
@@ -122,7 +128,7 @@ void register_devices(py::module_& m) {
           "to the plugin's input. Returns the haptic ticks between calls.")
       .def(
           "change_tool",
-          [](Device& d, const py::object& tool) { d.sim().change_tool(d.index, yaml_text(tool)); },
+          [](Device& d, const py::object& tool) { d.sim().change_tool(d.handle, yaml_text(tool)); },
           py::arg("tool"),
           "Replaces the tool this device carries at the next tick: a shape as a scene gives "
           "`tool` ({'sphere': {'radius': 0.004}}). The proxy takes its radius and starts afresh "
@@ -132,16 +138,28 @@ void register_devices(py::module_& m) {
           "detach",
           [](Device& d) {
             std::erase_if(d.holder->python_devices,
-                          [&](const PythonDevice& pd) { return pd.device == d.index; });
+                          [&](const PythonDevice& pd) { return pd.device == d.handle; });
           },
           "Stops driving this device from Python (its last target stays).")
       .def("__repr__", [](const Device& d) {
-        return "<tacta.Device '" + d.sim().device_name(d.index) + "' " +
-               d.sim().device_plugin(d.index) + ">";
+        return "<tacta.Device '" + d.name + "' " + d.sim().device_plugin(d.handle) + ">";
       });
 
-  def_by_name<Device>(m, "devices", &Simulation::device_count, &Simulation::device_name,
-                      "{name: Device}, in scene order");
+  auto simulation = py::reinterpret_borrow<py::class_<SimHolder, SimPtr>>(m.attr("Simulation"));
+  simulation.def_property_readonly(
+      "devices",
+      [](const SimPtr& h) {
+        py::dict out;
+        for (const DeviceHandle handle : h->sim->devices()) {
+          const std::string& name = h->sim->device_name(handle);
+          out[py::str(name)] = Device{h, handle, name};
+        }
+        return out;
+      },
+      "{name: Device}, in scene order");
+  simulation.def("device", &device_of, py::arg("device"),
+                 "The Device named `device` (or the one a tacta.DeviceHandle / Device names). "
+                 "Raises tacta.SceneError for an unknown name (with a did-you-mean).");
 }
 
 }  // namespace tacta::python

@@ -1,9 +1,8 @@
 // The `tacta` Python module (compiled part `tacta._tacta`): scene errors, the plugin list, and
 // the registration of simulations, bodies and devices. See docs/PYTHON.md.
 #include <dlfcn.h>
-#include <pybind11/stl.h>
-
 #include <filesystem>
+#include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "tacta/live_params.hpp"
@@ -44,8 +43,7 @@ py::dict plugin_list() {
 std::string package_plugin_dir() {
   static const char anchor = 0;  // any address inside this library names its file
   Dl_info info{};
-  if (dladdr(&anchor, &info) == 0 || !info.dli_fname)
-    return {};
+  if (dladdr(&anchor, &info) == 0 || !info.dli_fname) return {};
   const std::filesystem::path dir = std::filesystem::path(info.dli_fname).parent_path() / "plugins";
   std::error_code ec;
   return std::filesystem::is_directory(dir, ec) ? dir.string() : std::string();
@@ -120,11 +118,13 @@ PYBIND11_MODULE(_tacta, m) {
   m.doc() = "Tacta: real-time elastic bodies with force feedback (compiled part; import tacta)";
   m.attr("__version__") = TACTA_VERSION;
   register_errors(m);
+  register_handles(m);
   register_simulation(m);
   register_bodies(m);
   register_devices(m);
   register_snapshot(m);
   register_compare(m);
+  register_log(m);
   m.def(
       "plugins", &plugin_list,
       "What the plugin loader found: {'loaded': [{kind, name, file}], 'refused': [{file, reason}], "

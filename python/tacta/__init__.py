@@ -3,7 +3,7 @@
     import tacta
     sim = tacta.Simulation("scenes/liver_palpation.yaml", overrides={"bodies.*.model": "tensor_mass"})
     sim.step(1000)
-    liver = sim.bodies["liver"]
+    liver = sim.body("liver")
     print(liver.positions.shape, sim.report()["state_hash"])
 
 See docs/PYTHON.md for the whole surface, docs/SWEEPS.md for tacta.sweep (runs on Dask).
@@ -16,9 +16,12 @@ _plots = _os.path.join(_os.path.dirname(__file__), "plots")
 if _os.path.isdir(_plots):
     _os.environ.setdefault("TACTA_PLOT_SCRIPTS", _plots)
 
-from ._tacta import Body, Device, RenderError, SceneError, Simulation, __version__, compare, plugins  # noqa: E402
+from ._tacta import (  # noqa: E402
+    Body, BodyHandle, Device, DeviceHandle, RenderError, SceneError, Simulation, __version__, compare, plugins,
+)
 
-__all__ = ["Body", "Device", "RenderError", "SceneError", "Simulation", "compare", "plugins", "sweep"]
+__all__ = ["Body", "BodyHandle", "Device", "DeviceHandle", "RenderError", "SceneError", "Simulation", "compare",
+           "plugins", "sweep"]
 
 
 def __getattr__(name):

@@ -59,6 +59,6 @@ def test_bad_additions_are_scene_errors():
         sim.add_body({**cube("bad"), "material": {"youngs_modulus": -1, "poisson_ratio": 0.3, "density": 1000}})
     with pytest.raises(tacta.SceneError):
         sim.add_body(cube("beam"))  # the name is in use
-    with pytest.raises(tacta.SceneError, match="no body named"):
+    with pytest.raises(tacta.SceneError, match="unknown body .nobody."):
         sim.remove_body("nobody")
     assert set(sim.bodies) == {"beam"}  # nothing half-added

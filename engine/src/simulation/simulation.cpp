@@ -64,7 +64,7 @@ BodyHandle Simulation::add_body(const BodyDesc& desc) {
   });
   impl_->requested_models.push_back(desc.model);
   impl_->requested_params.push_back(desc.model_params);
-  return {e.index, e.generation};
+  return {e.index, e.generation ^ impl_->salt};
 }
 
 BodyHandle Simulation::add_body(const std::string& yaml) {
@@ -72,37 +72,24 @@ BodyHandle Simulation::add_body(const std::string& yaml) {
       load_body_from_string(yaml, impl_->world.scene().path, RegistrySchemas(impl_->plugins)));
 }
 
-void Simulation::change_tool(size_t device, const ShapeDesc& tool) {
-  impl_->world.change_tool(device, tool);
+void Simulation::change_tool(DeviceHandle device, const ShapeDesc& tool) {
+  impl_->world.change_tool(impl_->device_at(device), tool);
 }
 
-void Simulation::change_tool(size_t device, const std::string& yaml) {
+void Simulation::change_tool(DeviceHandle device, const std::string& yaml) {
   change_tool(device, load_shape_from_string(yaml, impl_->world.scene().path,
                                              RegistrySchemas(impl_->plugins)));
 }
 
 void Simulation::remove_body(BodyHandle body) {
-  impl_->world.remove_body({body.index, body.generation});
+  impl_->body_at(body);  // InputError naming a stale or foreign handle
+  impl_->world.remove_body({body.index, body.generation ^ impl_->salt});
 }
 
-BodyHandle Simulation::body_handle(size_t body) const {
-  const ecs::Entity e = impl_->world.body_handle(body);
-  return {e.index, e.generation};
-}
-
-bool Simulation::body_alive(BodyHandle body) const noexcept {
-  return impl_->world.is_live({body.index, body.generation});
-}
-
-size_t Simulation::body_index(BodyHandle body) const {
-  return impl_->world.body_slot({body.index, body.generation});
-}
-
-void Simulation::request_model_swap(size_t body, const std::string& model, const ParamSet& params) {
+void Simulation::request_model_swap(BodyHandle handle, const std::string& model,
+                                    const ParamSet& params) {
   World& world = impl_->world;
-  if (body >= world.body_count())
-    throw InputError({world.scene().path, 0, 0, "bodies"},
-                     "no body with index " + std::to_string(body));
+  const size_t body = impl_->body_at(handle);
   const SoftBody b = world.body(body);
   const double dt = b.step_dt(1.0 / world.scene().clock.haptic_rate_hz);
   std::unique_ptr<ModelInstance> instance =
@@ -120,21 +107,11 @@ void Simulation::request_model_swap(size_t body, const std::string& model, const
   impl_->requested_params[body] = params;
 }
 
-bool Simulation::device_input(size_t device, const double* values, uint32_t count) {
-  World& world = impl_->world;
-  if (device >= world.device_count())
-    throw InputError({world.scene().path, 0, 0, "devices"},
-                     "no device with index " + std::to_string(device));
-  return world.device(device).link.device->input(values, count);
-}
-
-size_t Simulation::device_count() const { return impl_->world.device_count(); }
-const std::string& Simulation::device_plugin(size_t device) const {
-  return impl_->world.device(device).link.desc.plugin;
+bool Simulation::device_input(DeviceHandle device, const double* values, uint32_t count) {
+  return impl_->world.device(impl_->device_at(device)).link.device->input(values, count);
 }
 
 void Simulation::request_stop() noexcept { impl_->stop.store(true, std::memory_order_relaxed); }
-size_t Simulation::body_count() const { return impl_->world.body_count(); }
 std::vector<std::string> Simulation::load_warnings() const {
   std::vector<std::string> warnings;
   for (size_t i = 0; i < impl_->world.body_count(); ++i)
@@ -142,13 +119,6 @@ std::vector<std::string> Simulation::load_warnings() const {
       warnings.push_back(impl_->world.body(i).info.load_warning);
   return warnings;
 }
-const std::string& Simulation::body_name(size_t body) const {
-  return impl_->world.body(body).info.name;
-}
-const std::string& Simulation::body_model(size_t body) const {
-  return impl_->requested_models.at(body);
-}
-
 Simulation::~Simulation() = default;
 
 RunResult Simulation::run(const RunOptions& options) {

@@ -19,7 +19,7 @@ namespace tacta {
 
 struct Simulation::Impl {
   Impl(const SceneDesc& scene, const PluginRegistry& registry)
-      : world(scene, registry), plugins(registry) {
+      : world(scene, registry), plugins(registry), salt(next_salt()) {
     // Collision is needed for contact response, and for the haptic proxy's surface queries.
     if (scene.collision.enabled || world.device_count() > 0) {
       collision = std::make_unique<CollisionContext>(world, registry);
@@ -38,18 +38,24 @@ struct Simulation::Impl {
   std::unique_ptr<HapticInteraction> haptics;
   std::unique_ptr<CollisionResponse> response;
   std::unique_ptr<ClockSession> clock;  // built at the first step or run
+  std::vector<std::string> checkpoint_notes;  // what the last save or restore could not carry
 
   ClockSession& session() {
     if (!clock) clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
     return *clock;
   }
   RunResult collect(const ScheduleResult& schedule) const;
-  size_t check_body(size_t body) const {
-    if (body >= world.body_count())
-      throw InputError({world.scene().path, 0, 0, "bodies"},
-                       "no body with index " + std::to_string(body));
-    return body;
+  static uint32_t next_salt() noexcept;
+  // Handles: a body's generation is the world's XOR this Simulation's salt, a device's is the
+  // salt, so a handle from another Simulation fails the check (simulation_handles.cpp).
+  const uint32_t salt;
+  BodyHandle body_handle(size_t index) const;
+  DeviceHandle device_handle(size_t index) const noexcept {
+    return {static_cast<uint32_t>(index), salt};
   }
+  // The index a handle names; InputError naming the handle and why it is stale or foreign.
+  size_t body_at(BodyHandle body) const;
+  size_t device_at(DeviceHandle device) const;
 };
 
 // Writes report.json, the CSV records and the plots of everything since open into `dir`.

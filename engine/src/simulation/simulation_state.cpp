@@ -9,6 +9,7 @@
 #include "report/run_status_gather.hpp"
 #include "simulation/simulation_impl.hpp"
 #include "tacta/live_params.hpp"
+#include "tacta/log.hpp"
 
 namespace tacta {
 
@@ -27,7 +28,7 @@ void write_outputs_into(const std::string& dir, const HapticLoop& loop, const Wo
   write_csv_records(dir, loop, world, result);
   std::vector<std::string> warnings;
   write_plots(dir, world, result, warnings);
-  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : warnings) log_warning(w);
   write_report_json(dir, loop, world, result);
 }
 
@@ -114,9 +115,6 @@ StepResult Simulation::advance_to(double time_s) {
 
 double Simulation::time() const noexcept { return impl_->clock ? impl_->clock->time() : 0.0; }
 uint64_t Simulation::tick() const noexcept { return impl_->clock ? impl_->clock->tick() : 0; }
-TickStatus Simulation::step_status() const noexcept {
-  return impl_->clock ? impl_->clock->step_status() : TickStatus{};
-}
 double Simulation::dt() const noexcept { return 1.0 / impl_->world.scene().clock.haptic_rate_hz; }
 Snapshot Simulation::snapshot() {
   ClockSession& session = impl_->session();
@@ -130,30 +128,30 @@ void Simulation::detach(FrameObserver* observer) {
   if (impl_->clock) impl_->clock->detach(observer);
 }
 
-BodyArrays Simulation::body_arrays(size_t body) {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+BodyArrays Simulation::body_arrays(BodyHandle handle) {
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   return {b.node_count(),  b.nodes.positions.data(),       b.nodes.velocities.data(),
           b.rest().data(), b.shape.topology->fixed.data(), b.shape.topology->masses.data()};
 }
 
-void Simulation::state_written(size_t body) {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+void Simulation::state_written(BodyHandle handle) {
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   // The model's history (previous positions, warm starts) no longer matches the state.
   const tacta_body_state state = b.state_view(time());
   b.model.instance->begin(state, b.step_dt(dt()));
 }
 
-const VolumeMesh& Simulation::body_mesh(size_t body) const {
-  return impl_->world.body(impl_->check_body(body)).shape.topology->mesh;
+const VolumeMesh& Simulation::body_mesh(BodyHandle handle) const {
+  return impl_->world.body(impl_->body_at(handle)).shape.topology->mesh;
 }
 
-const std::vector<uint32_t>& Simulation::surface_triangles(size_t body) const {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+const std::vector<uint32_t>& Simulation::surface_triangles(BodyHandle handle) const {
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   return b.surface.mesh ? b.surface.mesh->triangles : b.shape.topology->mesh.triangles;
 }
 
-std::vector<double> Simulation::surface_positions(size_t body) const {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+std::vector<double> Simulation::surface_positions(BodyHandle handle) const {
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   if (!b.surface.mesh) return b.nodes.positions;
   // From the nodes: the surface's own positions are current only where the proxy last looked.
   std::vector<double> positions(b.surface.mesh->positions.size());
@@ -161,9 +159,9 @@ std::vector<double> Simulation::surface_positions(size_t body) const {
   return positions;
 }
 
-void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,
+void Simulation::set_applied_forces(BodyHandle handle, const std::vector<uint32_t>& nodes,
                                     const std::vector<double>& forces) {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   const SourceLocation where{scene().path, 0, 0, "bodies." + b.info.name + " applied forces"};
   if (forces.size() != 3 * nodes.size())
     throw InputError(where, "expected 3 force components (N) per node, found " +
@@ -182,21 +180,22 @@ void Simulation::set_applied_forces(size_t body, const std::vector<uint32_t>& no
   b.loads.applied_forces = std::move(applied);
 }
 
-void Simulation::clear_applied_forces(size_t body) {
-  impl_->world.body(impl_->check_body(body)).loads.applied_forces.clear();
+void Simulation::clear_applied_forces(BodyHandle handle) {
+  impl_->world.body(impl_->body_at(handle)).loads.applied_forces.clear();
 }
 
-double Simulation::kinetic_energy(size_t body) const {
-  return impl_->world.body(impl_->check_body(body)).kinetic_energy();
+double Simulation::kinetic_energy(BodyHandle handle) const {
+  return impl_->world.body(impl_->body_at(handle)).kinetic_energy();
 }
 
-double Simulation::elastic_energy(size_t body) const {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+double Simulation::elastic_energy(BodyHandle handle) const {
+  const SoftBody b = impl_->world.body(impl_->body_at(handle));
   return b.model.instance->elastic_energy(b.nodes.positions.data());
 }
 
-bool Simulation::set_param(size_t body, const std::string& name, double value) {
-  const SoftBody b = impl_->world.body(impl_->check_body(body));
+bool Simulation::set_param(BodyHandle handle, const std::string& name, double value) {
+  const size_t body = impl_->body_at(handle);
+  const SoftBody b = impl_->world.body(body);
   // The model running now, or the one a pending swap brings in.
   const bool pending = b.model.mailbox->incoming.load() != nullptr;
   const std::string model =
@@ -234,20 +233,12 @@ bool Simulation::set_param(size_t body, const std::string& name, double value) {
     impl_->requested_params[body] = std::move(params);
     return true;
   }
-  request_model_swap(body, model, params);
+  request_model_swap(handle, model, params);
   return false;
 }
 
-const ParamSet& Simulation::body_params(size_t body) const {
-  return impl_->requested_params.at(impl_->check_body(body));
-}
-
-DeviceReading Simulation::device_reading(size_t device) const {
-  const World& world = impl_->world;
-  if (device >= world.device_count())
-    throw InputError({world.scene().path, 0, 0, "devices"},
-                     "no device with index " + std::to_string(device));
-  const DeviceSlot slot = world.device(device);
+DeviceReading Simulation::device_reading(DeviceHandle device) const {
+  const DeviceSlot slot = impl_->world.device(impl_->device_at(device));
   DeviceReading r;
   for (size_t k = 0; k < 3; ++k) {
     r.position[k] = slot.link.sample.position[k];
@@ -277,17 +268,6 @@ std::string Simulation::write_report(const std::string& dir) {
   return dir + "/report.json";
 }
 
-int Simulation::body_index(const std::string& name) const { return impl_->world.body_index(name); }
-
-int Simulation::device_index(const std::string& name) const {
-  for (size_t d = 0; d < impl_->world.device_count(); ++d)
-    if (impl_->world.device(d).link.name == name) return static_cast<int>(d);
-  return -1;
-}
-
-const std::string& Simulation::device_name(size_t device) const {
-  return impl_->world.device(device).link.name;
-}
 const SceneDesc& Simulation::scene() const { return impl_->world.scene(); }
 
 }  // namespace tacta

@@ -30,7 +30,7 @@ SceneDesc beam(const std::vector<std::string>& overrides = {}) {
   return scene_from_text(kBeam, "beam_lifecycle", overrides);
 }
 
-double tip_y(Simulation& s, size_t body) {
+double tip_y(Simulation& s, BodyHandle body) {
   const BodyArrays a = s.body_arrays(body);
   return a.positions[3 * (a.nodes - 1) + 1];
 }
@@ -39,20 +39,25 @@ TEST(EntityLifecycle, AddAndRemoveInLockstep) {
   Simulation simulation(beam(), plugins());
   simulation.step(50);
   const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
-  EXPECT_EQ(simulation.body_count(), 2u);
-  EXPECT_EQ(simulation.body_index(added), 1u);
+  EXPECT_EQ(simulation.bodies().size(), 2u);
+  EXPECT_EQ(added.index, 1u);
+  EXPECT_EQ(simulation.body("second"), added);
   EXPECT_TRUE(simulation.body_alive(added));
-  const double rest_y = tip_y(simulation, 1);
+  const double rest_y = tip_y(simulation, added);
   simulation.step(50);  // enters at the boundary before tick 50, then sags under gravity
-  EXPECT_LT(tip_y(simulation, 1), rest_y - 1e-5) << "the added body steps";
+  EXPECT_LT(tip_y(simulation, added), rest_y - 1e-5) << "the added body steps";
 
-  const BodyHandle first = simulation.body_handle(0);
+  const BodyHandle first = simulation.body("beam");
+  // Borrowed arrays stay valid after the removal (only the handle goes stale).
+  const BodyArrays first_arrays = simulation.body_arrays(first);
+  const double* first_tip_y = first_arrays.positions + 3 * (first_arrays.nodes - 1) + 1;
   simulation.remove_body(first);
   EXPECT_FALSE(simulation.body_alive(first));
+  EXPECT_EQ(simulation.bodies(), std::vector<BodyHandle>{added}) << "removed: not listed";
   simulation.step(1);
-  const double frozen_y = tip_y(simulation, 0);
+  const double frozen_y = *first_tip_y;
   simulation.step(20);
-  EXPECT_EQ(tip_y(simulation, 0), frozen_y) << "a removed body no longer steps";
+  EXPECT_EQ(*first_tip_y, frozen_y) << "a removed body no longer steps";
 
   const RunResult r = simulation.report();
   ASSERT_EQ(r.bodies.size(), 2u);
@@ -82,12 +87,42 @@ TEST(EntityLifecycle, StaleHandlesAreDetected) {
     EXPECT_NE(std::string(e.what()).find("second"), std::string::npos)
         << "names the body: " << e.what();
   }
-  EXPECT_THROW(simulation.body_index(h), InputError);
-  EXPECT_THROW(simulation.body_index(BodyHandle{7, 1}), InputError) << "a slot never used";
-  EXPECT_THROW(simulation.body_index(BodyHandle{}), InputError) << "a default handle";
-  const BodyHandle now = simulation.body_handle(1);
-  EXPECT_NE(now.generation, h.generation);
-  EXPECT_FALSE(simulation.body_alive(now)) << "removed: no live handle";
+  EXPECT_THROW(simulation.body_arrays(h), InputError);
+  EXPECT_THROW(simulation.body_name(h), InputError);
+  EXPECT_THROW(simulation.body_arrays(BodyHandle{7, 1}), InputError) << "a slot never used";
+  EXPECT_THROW(simulation.body_arrays(BodyHandle{}), InputError) << "a default handle";
+  EXPECT_EQ(simulation.bodies().size(), 1u) << "removed: no live handle";
+  try {
+    simulation.body("second");
+    FAIL() << "a removed body has no handle by name";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("was removed"), std::string::npos) << e.what();
+  }
+}
+
+// A handle from another Simulation of the same scene names the same index there but is refused
+// here, body and device alike; an unknown name gets a did-you-mean.
+TEST(EntityLifecycle, ForeignHandlesAndUnknownNamesAreRefused) {
+  Simulation one(beam(), plugins()), other(beam(), plugins());
+  const BodyHandle mine = one.body("beam"), theirs = other.body("beam");
+  EXPECT_EQ(mine.index, theirs.index);
+  EXPECT_NE(mine, theirs);
+  EXPECT_FALSE(one.body_alive(theirs));
+  try {
+    one.body_arrays(theirs);
+    FAIL() << "a handle from another simulation must throw";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another simulation"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'beam'"), std::string::npos) << e.what();
+  }
+  try {
+    one.body("bem");
+    FAIL() << "an unknown name must throw";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'beam'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(one.device("stylus"), InputError) << "the beam scene has no device";
+  EXPECT_TRUE(one.devices().empty());
 }
 
 TEST(EntityLifecycle, BadAddsAreInputErrors) {
@@ -106,7 +141,7 @@ TEST(EntityLifecycle, BadAddsAreInputErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("capacity.bodies"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(simulation.body_count(), 2u);
+  EXPECT_EQ(simulation.bodies().size(), 2u);
 }
 
 // Realtime: the haptic thread runs on the wall clock while this thread adds a body and removes
@@ -117,7 +152,7 @@ TEST(EntityLifecycle, AddAndRemoveDuringARealtimeRun) {
   run.wait_until(0.05);
   const BodyHandle added = simulation.add_body(std::string(kSecondBeam));
   run.wait_until(0.15);
-  simulation.remove_body(simulation.body_handle(0));
+  simulation.remove_body(simulation.body("beam"));
   const RunResult& result = run.join();
   ASSERT_EQ(result.bodies.size(), 2u);
   EXPECT_EQ(result.schedule.ticks, 400u);
@@ -165,7 +200,7 @@ std::string indented(const std::string& body, const std::string& indent) {
   return out;
 }
 
-double lowest_y(Simulation& s, size_t body) {
+double lowest_y(Simulation& s, BodyHandle body) {
   const BodyArrays a = s.body_arrays(body);
   double y = 1e9;
   for (size_t n = 0; n < a.nodes; ++n) y = std::min(y, a.positions[3 * n + 1]);
@@ -194,14 +229,14 @@ TEST(EntityLifecycle, BodyAddedAfterTheClockStartedCollidesAndIsDrawn) {
   FrameCounter frames;
   late.attach(&frames);
   late.step(50);
-  late.add_body(std::string(kDroppedCube));
+  const BodyHandle cube = late.add_body(std::string(kDroppedCube));
   EXPECT_EQ(late.snapshot().bodies.size(), 2u);
   late.step(300);
   EXPECT_EQ(frames.bodies, 2u) << "the render task describes the added body";
   EXPECT_TRUE(frames.last_present) << "frames carry it once it entered";
-  EXPECT_GT(lowest_y(late, 1), 0.1 - 0.003)
+  EXPECT_GT(lowest_y(late, cube), 0.1 - 0.003)
       << "rests on the block (it would be near -0.33 m falling through)";
-  EXPECT_LT(lowest_y(late, 1), 0.1 + 0.003);
+  EXPECT_LT(lowest_y(late, cube), 0.1 + 0.003);
   const Snapshot shot = late.snapshot();
   ASSERT_EQ(shot.bodies.size(), 2u);
   EXPECT_TRUE(shot.bodies[1].present);
@@ -210,7 +245,7 @@ TEST(EntityLifecycle, BodyAddedAfterTheClockStartedCollidesAndIsDrawn) {
                                  indented(kDroppedCube, "      ");
   Simulation timed(scene_from_text(with_event, "block_event"), plugins());
   timed.step(350);
-  const BodyArrays a = late.body_arrays(1), b = timed.body_arrays(1);
+  const BodyArrays a = late.body_arrays(cube), b = timed.body_arrays(timed.bodies().at(1));
   ASSERT_EQ(a.nodes, b.nodes);
   // Not bit for bit: the event's body had its hierarchy built at load, this one when added, so
   // the broad phase lists the same pairs in another order and the sequential contact response
@@ -253,7 +288,7 @@ fixed: [{box: {min: [-1, -0.001, -1], max: [1, 0.001, 1]}}]
     double strongest = 0;
     for (int t = 0; t < 380; ++t) {
       simulation.step(1);
-      const DeviceReading reading = simulation.device_reading(0);
+      const DeviceReading reading = simulation.device_reading(simulation.devices().at(0));
       const auto& f = reading.force;
       strongest = std::max(strongest, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
     }
@@ -275,7 +310,7 @@ events:
   - {time: 0.1, remove: beam}
 )";
   Simulation simulation(scene_from_text(text, "beam_events"), plugins());
-  EXPECT_EQ(simulation.body_count(), 2u) << "the event's body has its slot from load";
+  EXPECT_EQ(simulation.bodies().size(), 2u) << "the event's body has its slot from load";
   const RunResult pending = simulation.report();
   EXPECT_TRUE(pending.bodies[1].pending);
   RunOptions options;

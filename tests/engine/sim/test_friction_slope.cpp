@@ -63,7 +63,7 @@ struct Slide {
 // velocity over ticks [from, to].
 Slide slide(const std::string& text, int ticks, int from, int to) {
   Simulation sim(scene_from_text(text, "friction_slope"), plugins());
-  const BodyArrays a = sim.body_arrays(0);
+  const BodyArrays a = sim.body_arrays(sim.body("block"));
   double mass = 0, x0 = 0;
   for (size_t n = 0; n < a.nodes; ++n) mass += a.masses[n];
   for (size_t n = 0; n < a.nodes; ++n) x0 += a.masses[n] * a.positions[3 * n] / mass;
@@ -72,7 +72,7 @@ Slide slide(const std::string& text, int ticks, int from, int to) {
   Slide s;
   for (int tick = 1; tick <= ticks; ++tick) {
     sim.step(1);
-    const BodyArrays b = sim.body_arrays(0);
+    const BodyArrays b = sim.body_arrays(sim.body("block"));
     double v = 0, x = 0;
     for (size_t n = 0; n < b.nodes; ++n) {
       v += b.masses[n] * b.velocities[3 * n] / mass;

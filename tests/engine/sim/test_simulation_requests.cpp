@@ -27,11 +27,13 @@ bodies:
 
 TEST(SimulationRequests, SwapWithDefaultParametersBeforeRun) {
   Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
-  ASSERT_EQ(simulation.body_count(), 1u);
-  EXPECT_EQ(simulation.body_name(0), "beam");
+  ASSERT_EQ(simulation.bodies().size(), 1u);
+  const BodyHandle beam = simulation.bodies()[0];
+  EXPECT_EQ(simulation.body_name(beam), "beam");
   // "empty = the defaults" (simulation.hpp).
-  ASSERT_NO_THROW(simulation.request_model_swap(0, "corotational_fem", ParamSet{}));
-  EXPECT_EQ(simulation.body_model(0), "corotational_fem");
+  ASSERT_NO_THROW(
+      simulation.request_model_swap(simulation.body("beam"), "corotational_fem", ParamSet{}));
+  EXPECT_EQ(simulation.body_model(simulation.body("beam")), "corotational_fem");
   const std::string out = fresh_dir("requests_swap");
   RunOptions options;
   options.out_dir = out;
@@ -49,9 +51,12 @@ TEST(SimulationRequests, SwapWithDefaultParametersBeforeRun) {
 
 TEST(SimulationRequests, BadSwapRequestsAreInputErrors) {
   Simulation simulation(scene_from_text(kBeam, "beam_requests"), plugins());
-  EXPECT_THROW(simulation.request_model_swap(3, "corotational_fem", ParamSet{}), InputError);
-  EXPECT_THROW(simulation.request_model_swap(0, "no_such_model", ParamSet{}), InputError);
-  EXPECT_EQ(simulation.body_model(0), "tensor_mass") << "a refused request changes nothing";
+  EXPECT_THROW(simulation.request_model_swap(BodyHandle{3, 0}, "corotational_fem", ParamSet{}),
+               InputError);
+  EXPECT_THROW(simulation.request_model_swap(simulation.body("beam"), "no_such_model", ParamSet{}),
+               InputError);
+  EXPECT_EQ(simulation.body_model(simulation.body("beam")), "tensor_mass")
+      << "a refused request changes nothing";
 }
 
 TEST(SimulationRequests, StopEndsOneRunAndIsConsumed) {
@@ -87,7 +92,7 @@ TEST(SimulationRequests, SwapPostedDuringARealtimeRun) {
   while (!started.running.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   const ParamSet params =
       defaults_of(*plugins().require(TACTA_KIND_MODEL, "corotational_fem").descriptor);
-  simulation.request_model_swap(0, "corotational_fem", params);
+  simulation.request_model_swap(simulation.body("beam"), "corotational_fem", params);
   runner.join();
   EXPECT_EQ(result.mode, "realtime");
   EXPECT_EQ(result.schedule.ticks, 500u);
@@ -123,12 +128,17 @@ devices:
 // the scene follows its own target, fed to the instance the simulation owns.
 TEST(SimulationRequests, DeviceInputReachesEachDeviceInstance) {
   Simulation simulation(scene_from_text(kTwoMice, "two_mice"), plugins());
-  ASSERT_EQ(simulation.device_count(), 2u);
-  EXPECT_EQ(simulation.device_plugin(1), "mouse");
+  const std::vector<DeviceHandle> devices = simulation.devices();
+  ASSERT_EQ(devices.size(), 2u);
+  EXPECT_EQ(simulation.device_plugin(devices[1]), "mouse");
   const double left[3] = {0.05, 0.25, 0.0}, right[3] = {-0.05, 0.35, 0.02};
-  EXPECT_TRUE(simulation.device_input(0, left, 3));
-  EXPECT_TRUE(simulation.device_input(1, right, 3));
-  EXPECT_THROW(simulation.device_input(2, left, 3), InputError);
+  EXPECT_TRUE(simulation.device_input(devices[0], left, 3));
+  EXPECT_TRUE(simulation.device_input(devices[1], right, 3));
+  EXPECT_THROW(simulation.device_input(DeviceHandle{2, devices[0].generation}, left, 3),
+               InputError);
+  EXPECT_THROW(simulation.device_input(DeviceHandle{0, devices[0].generation + 1}, left, 3),
+               InputError)
+      << "another simulation's handle";
   const std::string out = fresh_dir("two_mice");
   RunOptions options;
   options.out_dir = out;
@@ -167,10 +177,10 @@ TEST(SimulationRequests, DeviceInputDuringARealtimeRun) {
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; std::chrono::steady_clock::now() - start < std::chrono::milliseconds(150); ++k) {
     const double target[3] = {0.02 * std::sin(0.1 * k), 0.28, 0.01};
-    simulation.device_input(0, target, 3);
+    simulation.device_input(simulation.devices()[0], target, 3);
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
-  simulation.device_input(0, last, 3);
+  simulation.device_input(simulation.devices()[0], last, 3);
   runner.join();
   ASSERT_TRUE(done.load());
   const Csv trace = read_csv(out + "/trace.csv");

@@ -61,7 +61,7 @@ TEST(SteppingApi, RunsAndStepsContinueOneClock) {
 
 TEST(SteppingApi, AnAppliedLoadMovesTheBodyUntilCleared) {
   Simulation loaded(beam(), plugins()), free(beam(), plugins());
-  const BodyArrays arrays = loaded.body_arrays(0);
+  const BodyArrays arrays = loaded.body_arrays(loaded.body("beam"));
   // The tip nodes (x = 0.3 m) pulled up by 1 N in all.
   std::vector<uint32_t> tip;
   for (uint32_t n = 0; n < arrays.nodes; ++n)
@@ -70,32 +70,33 @@ TEST(SteppingApi, AnAppliedLoadMovesTheBodyUntilCleared) {
   std::vector<double> forces;
   for (size_t i = 0; i < tip.size(); ++i)
     forces.insert(forces.end(), {0.0, 1.0 / static_cast<double>(tip.size()), 0.0});
-  loaded.set_applied_forces(0, tip, forces);
+  loaded.set_applied_forces(loaded.body("beam"), tip, forces);
   loaded.step(100);
   free.step(100);
-  const double y_loaded = loaded.body_arrays(0).positions[3 * tip[0] + 1];
-  const double y_free = free.body_arrays(0).positions[3 * tip[0] + 1];
+  const double y_loaded = loaded.body_arrays(loaded.body("beam")).positions[3 * tip[0] + 1];
+  const double y_free = free.body_arrays(free.body("beam")).positions[3 * tip[0] + 1];
   EXPECT_GT(y_loaded - y_free, 1e-4) << "1 N up against the beam's weight (0.48 N)";
-  loaded.clear_applied_forces(0);
-  EXPECT_THROW(loaded.set_applied_forces(0, {100000}, {0, 1, 0}), InputError);
-  EXPECT_THROW(loaded.set_applied_forces(0, tip, {1.0}), InputError);
+  loaded.clear_applied_forces(loaded.body("beam"));
+  EXPECT_THROW(loaded.set_applied_forces(loaded.body("beam"), {100000}, {0, 1, 0}), InputError);
+  EXPECT_THROW(loaded.set_applied_forces(loaded.body("beam"), tip, {1.0}), InputError);
 }
 
 TEST(SteppingApi, LiveParametersChangeWithoutASwapOthersByOne) {
   Simulation simulation(beam(), plugins());
   simulation.step(10);
-  EXPECT_TRUE(simulation.set_param(0, "max_iterations", 50)) << "corotational_fem takes it live";
-  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50);
+  EXPECT_TRUE(simulation.set_param(simulation.body("beam"), "max_iterations", 50))
+      << "corotational_fem takes it live";
+  EXPECT_EQ(simulation.body_params(simulation.body("beam")).find("max_iterations")->number, 50);
   simulation.step(10);
   const size_t before = simulation.report().schedule.ticks;
-  EXPECT_FALSE(simulation.set_param(0, "restart_factor", 4))
+  EXPECT_FALSE(simulation.set_param(simulation.body("beam"), "restart_factor", 4))
       << "not live: a swap to the same model";
-  EXPECT_EQ(simulation.body_params(0).find("restart_factor")->number, 4);
-  EXPECT_EQ(simulation.body_params(0).find("max_iterations")->number, 50)
+  EXPECT_EQ(simulation.body_params(simulation.body("beam")).find("restart_factor")->number, 4);
+  EXPECT_EQ(simulation.body_params(simulation.body("beam")).find("max_iterations")->number, 50)
       << "the swap keeps the live change";
-  EXPECT_THROW(simulation.set_param(0, "no_such_parameter", 1), InputError);
-  EXPECT_THROW(simulation.set_param(0, "max_iterations", -3), InputError);
-  EXPECT_THROW(simulation.set_param(0, "max_iterations", 2.5), InputError);
+  EXPECT_THROW(simulation.set_param(simulation.body("beam"), "no_such_parameter", 1), InputError);
+  EXPECT_THROW(simulation.set_param(simulation.body("beam"), "max_iterations", -3), InputError);
+  EXPECT_THROW(simulation.set_param(simulation.body("beam"), "max_iterations", 2.5), InputError);
   simulation.step(10);
   EXPECT_EQ(simulation.report().schedule.ticks, before + 10);
   EXPECT_EQ(simulation.report().faults, 0u);
@@ -104,36 +105,35 @@ TEST(SteppingApi, LiveParametersChangeWithoutASwapOthersByOne) {
 TEST(SteppingApi, AWrittenStateIsWhatTheNextStepStartsFrom) {
   Simulation simulation(beam(), plugins());
   simulation.step(50);
-  const BodyArrays a = simulation.body_arrays(0);
+  const BodyArrays a = simulation.body_arrays(simulation.body("beam"));
   for (size_t i = 0; i < 3 * a.nodes; ++i) {
     a.positions[i] = a.rest_positions[i];
     a.velocities[i] = 0.0;
   }
-  simulation.state_written(0);
+  simulation.state_written(simulation.body("beam"));
   Simulation fresh(beam(), plugins());
   simulation.step(10);
   fresh.step(10);
-  const BodyArrays b = fresh.body_arrays(0);
+  const BodyArrays b = fresh.body_arrays(fresh.body("beam"));
   double difference = 0;
   for (size_t i = 0; i < 3 * a.nodes; ++i)
     difference = std::max(difference, std::fabs(a.positions[i] - b.positions[i]));
   EXPECT_LT(difference, 1e-12) << "from rest at rest velocity, 10 steps match a fresh start";
-  EXPECT_GT(simulation.kinetic_energy(0), 0.0);
+  EXPECT_GT(simulation.kinetic_energy(simulation.body("beam")), 0.0);
 }
 
 TEST(SteppingApi, StepStatusSaysWhatTheLastStepRaised) {
   Simulation simulation(beam(), plugins());
-  simulation.step(20);
-  EXPECT_EQ(simulation.step_status().model_bits & TACTA_STEP_FAULT_MASK, 0u);
-  EXPECT_FALSE(simulation.step_status().error) << "a clean beam raises no error";
-  BodyArrays a = simulation.body_arrays(0);
+  const TickStatus clean = simulation.step(20).status;
+  EXPECT_EQ(clean.model_bits & TACTA_STEP_FAULT_MASK, 0u);
+  EXPECT_FALSE(clean.error) << "a clean beam raises no error";
+  BodyArrays a = simulation.body_arrays(simulation.body("beam"));
   a.positions[3 * (a.nodes - 1)] = std::nan("");  // the free tip
-  simulation.state_written(0);
-  simulation.step(5);
-  EXPECT_TRUE(simulation.step_status().error) << "the body faulted and froze in these ticks";
-  EXPECT_NE(simulation.step_status().model_bits & TACTA_STEP_FAULT_MASK, 0u);
-  simulation.step(5);
-  EXPECT_FALSE(simulation.step_status().error) << "a frozen body raises nothing more";
+  simulation.state_written(simulation.body("beam"));
+  const TickStatus faulted = simulation.step(5).status;
+  EXPECT_TRUE(faulted.error) << "the body faulted and froze in these ticks";
+  EXPECT_NE(faulted.model_bits & TACTA_STEP_FAULT_MASK, 0u);
+  EXPECT_FALSE(simulation.step(5).status.error) << "a frozen body raises nothing more";
   EXPECT_EQ(simulation.report().faults, 1u);
 }
 
@@ -145,9 +145,9 @@ TEST(SteppingApi, WritesTheReportSoFar) {
   std::ifstream in(out + "/report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
   EXPECT_EQ(report["state_hash"], simulation.report().state_hash);
-  EXPECT_THROW(simulation.body_arrays(3), InputError);
-  EXPECT_EQ(simulation.body_index("beam"), 0);
-  EXPECT_EQ(simulation.body_index("nope"), -1);
+  EXPECT_THROW(simulation.body_arrays(BodyHandle{3, 0}), InputError);
+  EXPECT_EQ(simulation.body("beam").index, 0u);
+  EXPECT_THROW(simulation.body("nope"), InputError);
 }
 
 }  // namespace
@@ -173,7 +173,7 @@ bodies:
 )";
   Simulation simulation(scene_from_text(text, "threaded_beam"), plugins());
   simulation.step(ticks);
-  const BodyArrays a = simulation.body_arrays(0);
+  const BodyArrays a = simulation.body_arrays(simulation.body("beam"));
   return {a.positions, a.positions + 3 * a.nodes};
 }
 
@@ -185,7 +185,7 @@ TEST(SteppingApi, SnapshotIsTheStateNowAndRecordsNothing) {
   pictured.step(37);  // 37 ms: between two 60 Hz frames
   const Snapshot now = pictured.snapshot();
   EXPECT_NEAR(now.time_s, 0.037, 1e-12);
-  const BodyArrays state = pictured.body_arrays(0);
+  const BodyArrays state = pictured.body_arrays(pictured.body("beam"));
   ASSERT_EQ(now.bodies.size(), 1u);
   EXPECT_EQ(now.bodies[0].positions,
             std::vector<double>(state.positions, state.positions + 3 * state.nodes));

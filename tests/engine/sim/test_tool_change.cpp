@@ -35,7 +35,9 @@ collision: {broad_phase: bvh}
 
 constexpr double kTop_m = 0.1;
 
-double proxy_height(const Simulation& s) { return s.device_reading(0).proxy[1] - kTop_m; }
+double proxy_height(const Simulation& s) {
+  return s.device_reading(s.devices()[0]).proxy[1] - kTop_m;
+}
 
 TEST(ToolChange, SceneEventChangesTheProxyRadiusAtItsTime) {
   const std::string events = std::string(kPressedBlock) +
@@ -43,10 +45,10 @@ TEST(ToolChange, SceneEventChangesTheProxyRadiusAtItsTime) {
                              "{radius: 0.006}}}}]\n";
   Simulation simulation(scene_from_text(events, "tool_change_event"), plugins());
   simulation.step(399);
-  ASSERT_TRUE(simulation.device_reading(0).in_contact);
+  ASSERT_TRUE(simulation.device_reading(simulation.devices()[0]).in_contact);
   EXPECT_NEAR(proxy_height(simulation), 0.002, 1e-4) << "the first tool's radius above the top";
   simulation.step(401);
-  ASSERT_TRUE(simulation.device_reading(0).in_contact);
+  ASSERT_TRUE(simulation.device_reading(simulation.devices()[0]).in_contact);
   EXPECT_NEAR(proxy_height(simulation), 0.006, 1e-4) << "the new tool's radius above the top";
   const RunResult r = simulation.report();
   ASSERT_EQ(r.devices.size(), 1u);
@@ -57,17 +59,19 @@ TEST(ToolChange, SteppingApiChangesTheToolAtTheNextTick) {
   Simulation simulation(scene_from_text(kPressedBlock, "tool_change_api"), plugins());
   simulation.step(300);
   EXPECT_NEAR(proxy_height(simulation), 0.002, 1e-4);
-  simulation.change_tool(0, std::string("{capsule: {radius: 0.004, half_length: 0.01}}"));
+  simulation.change_tool(simulation.devices()[0],
+                         std::string("{capsule: {radius: 0.004, half_length: 0.01}}"));
   // One change waits at a time per device; the next tick takes it.
   try {
-    simulation.change_tool(0, std::string("{sphere: {radius: 0.001}}"));
+    simulation.change_tool(simulation.devices()[0], std::string("{sphere: {radius: 0.001}}"));
     ADD_FAILURE() << "a second change before the tick must be refused";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("still waiting"), std::string::npos) << e.what();
   }
   simulation.step(300);
   EXPECT_NEAR(proxy_height(simulation), 0.004, 1e-4);
-  simulation.change_tool(0, std::string("{sphere: {radius: 0.003}}"));  // taken: free again
+  simulation.change_tool(simulation.devices()[0],
+                         std::string("{sphere: {radius: 0.003}}"));  // taken: free again
   simulation.step(300);
   EXPECT_NEAR(proxy_height(simulation), 0.003, 1e-4);
   EXPECT_EQ(simulation.report().devices[0].tool_changes, 2u);
@@ -79,9 +83,10 @@ TEST(ToolChange, ChangedDuringARealtimeRun) {
   Simulation simulation(scene_from_text(kPressedBlock, "tool_change_realtime"), plugins());
   RealtimeRun run(simulation, 0.4);
   run.wait_until(0.1);
-  simulation.change_tool(0, std::string("{sphere: {radius: 0.004}}"));
+  simulation.change_tool(simulation.devices()[0], std::string("{sphere: {radius: 0.004}}"));
   run.wait_until(0.25);  // 150 ticks later: the first change was taken long ago
-  simulation.change_tool(0, std::string("{capsule: {radius: 0.003, half_length: 0.01}}"));
+  simulation.change_tool(simulation.devices()[0],
+                         std::string("{capsule: {radius: 0.003, half_length: 0.01}}"));
   const RunResult& result = run.join();
   EXPECT_EQ(result.schedule.ticks, 400u);
   ASSERT_EQ(result.devices.size(), 1u);
@@ -91,9 +96,13 @@ TEST(ToolChange, ChangedDuringARealtimeRun) {
 
 TEST(ToolChange, BadRequestsAreInputErrors) {
   Simulation simulation(scene_from_text(kPressedBlock, "tool_change_bad"), plugins());
-  EXPECT_THROW(simulation.change_tool(1, std::string("{sphere: {radius: 0.003}}")), InputError);
-  EXPECT_THROW(simulation.change_tool(0, std::string("{sphere: {radius: -1}}")), InputError);
-  EXPECT_THROW(simulation.change_tool(0, std::string("{cube: {}}")), InputError);
+  const DeviceHandle past{1, simulation.devices()[0].generation};
+  EXPECT_THROW(simulation.change_tool(past, std::string("{sphere: {radius: 0.003}}")), InputError);
+  EXPECT_THROW(
+      simulation.change_tool(simulation.devices()[0], std::string("{sphere: {radius: -1}}")),
+      InputError);
+  EXPECT_THROW(simulation.change_tool(simulation.devices()[0], std::string("{cube: {}}")),
+               InputError);
   const std::string unknown = std::string(kPressedBlock) +
                               "events: [{time: 0.1, change_tool: {device: pen, tool: {sphere: "
                               "{radius: 0.003}}}}]\n";

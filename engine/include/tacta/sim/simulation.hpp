@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "tacta/mesh.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
+#include "tacta/sim/handle.hpp"
 #include "tacta/sim/run_status.hpp"
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
@@ -102,17 +104,13 @@ struct DeviceReading {
   bool in_contact = false;
 };
 
-// A body's identity while bodies come and go: `index` is its body index (slots are never reused
-// within a Simulation), `generation` changes when the body is removed, so a handle kept past the
-// removal is detected as stale instead of reaching another body.
-struct BodyHandle {
-  uint32_t index = 0xffffffffu;
-  uint32_t generation = 0;
-  friend bool operator==(BodyHandle, BodyHandle) = default;
-};
-
+// The public face of a loaded scene, grouped: lifetime and run control, bodies, devices,
+// outputs. Bodies and devices are named by handles (tacta/sim/handle.hpp): a stale handle (its
+// body removed), a default one or one from another Simulation throws InputError naming it.
 class Simulation {
  public:
+  // ---- Lifetime and run control -------------------------------------------------------------
+
   // Builds everything the scene names; throws InputError, never leaves a half-built world.
   Simulation(const SceneDesc& scene, const PluginRegistry& plugins);
   ~Simulation();
@@ -123,76 +121,41 @@ class Simulation {
   // asked for), from the current time: on a fresh Simulation, the scene from t = 0. Outputs
   // written to options.out_dir cover everything since open.
   RunResult run(const RunOptions& options);
-
+  // Ends run() after the current tick. The request is consumed when that run() returns, so a
+  // later run() runs again (how the viewer pauses and plays on).
+  void request_stop() noexcept;
   // Stepping (lockstep, on the calling thread, never while run() is running). step(n) advances n
   // haptic ticks and returns how many ran (fewer when the run must end: every device finished)
-  // with what they raised (as step_status()).
+  // with what they raised (model, collision and device bits OR-ed, and whether one is an error,
+  // e.g. a body faulted and froze); report() has the counts.
   StepResult step(uint64_t ticks = 1);
   // Steps whole ticks until time() reaches `time_s` (to within half a tick); as step().
   StepResult advance_to(double time_s);
   double time() const noexcept;    // s, simulated: tick() * dt()
   uint64_t tick() const noexcept;  // haptic ticks run since open
-  // What the ticks of the last step()/advance_to() raised (model, collision and device bits,
-  // OR-ed, and whether one is an error, e.g. a body faulted and frozen); report() has the counts.
-  TickStatus step_status() const noexcept;
-  double dt() const noexcept;  // s, one haptic tick
-  // Frame observers for stepping (a window, a frame writer): told at each 1/render_rate of
-  // simulated time. Not owned; detach before destroying them.
-  void attach(FrameObserver* observer);
-  void detach(FrameObserver* observer);
-
-  // State between steps. Throws InputError for an index past body_count()/device_count().
-  BodyArrays body_arrays(size_t body);
-  // Tells the model that positions or velocities were written through body_arrays (its history,
-  // e.g. the previous position of central differences, restarts from them).
-  void state_written(size_t body);
-  const VolumeMesh& body_mesh(size_t body) const;  // rest mesh: tets, triangles (boundary), quads
-  // The triangles the body is drawn and touched through (its embedded surface, else the boundary)
-  // and their current vertex positions (3 per vertex, m).
-  const std::vector<uint32_t>& surface_triangles(size_t body) const;
-  std::vector<double> surface_positions(size_t body) const;
-  // A load (N) on `nodes`, added to gravity and contact for every step until cleared or replaced.
-  void set_applied_forces(size_t body, const std::vector<uint32_t>& nodes,
-                          const std::vector<double>& forces);
-  void clear_applied_forces(size_t body);
-  double kinetic_energy(size_t body) const;  // J
-  double elastic_energy(size_t body) const;  // J
-  // Changes one model parameter between steps: live when the schema marks it so (the model's
-  // live_params) and its set_param takes it, else by a swap to the same model with the new value.
-  // Throws InputError.
-  // Returns true when the change was live, false when it took a swap (applied at the next tick).
-  bool set_param(size_t body, const std::string& name, double value);
-  const ParamSet& body_params(size_t body) const;  // the model's parameters as last asked for
-  DeviceReading device_reading(size_t device) const;
-  // The state now, as the render task would draw it (positions, embedded surfaces, stress,
-  // devices), and what does not change: for a picture between steps or after run() (`tacta
-  // snapshot`, Python's Simulation.snapshot). Allocates; nothing is recorded.
-  Snapshot snapshot();
-  const SceneStatic& scene_static();
-  // The report so far: what run() returns, for everything since open.
-  RunResult report() const;
-  // Writes report.json, the CSV records and plots for everything since open into `dir`.
-  std::vector<std::string> write_outputs(const std::string& dir);
-  // Writes only report.json (no CSV records, no plots) into `dir`; returns its path.
-  std::string write_report(const std::string& dir);
-  int body_index(const std::string& name) const;  // -1 when there is none
-  int device_index(const std::string& name) const;
-  const std::string& device_name(size_t device) const;
+  double dt() const noexcept;      // s, one haptic tick
   const SceneDesc& scene() const;
+  // What the scene asks for that is legal but likely a mistake (a body with every node fixed),
+  // each naming the file, line and key; the caller prints them as warnings.
+  std::vector<std::string> load_warnings() const;
 
-  // From any thread but the haptic one, before or during run(): body `body` takes model `model`
-  // with `params` (validated against its schema; empty = the defaults) at the start of the next
-  // tick, positions and velocities carried over. The instance is built here, so this may
-  // allocate and throws InputError when the model refuses the body; the haptic thread only
-  // switches pointers. Also how the viewer changes a parameter (same model, new values).
-  void request_model_swap(size_t body, const std::string& model, const ParamSet& params);
+  // ---- Bodies ------------------------------------------------------------------------------
+  // Lookup. body(name) throws InputError (with a did-you-mean) for a name no body has; bodies()
+  // lists the live handles (pending or present, not removed) in the order the bodies came.
+  BodyHandle body(const std::string& name) const;
+  std::vector<BodyHandle> bodies() const;
+  bool body_alive(BodyHandle body) const noexcept;  // false once removal was requested
+  const std::string& body_name(BodyHandle body) const;
+  const std::string& body_model(BodyHandle body) const;  // the model asked for last
+  const ParamSet& body_params(BodyHandle body) const;    // the model's parameters as last asked for
+
   // Adding and removing bodies while the scene runs, from any one thread at a time (the caller
   // between steps, or another thread during run()). add_body builds the body here (mesh, model:
   // allocates; InputError for a bad description, a name in use, step_thread: own, or no free slot
   // of the scene's capacity.bodies) and it enters at the next tick boundary, on the thread that
-  // runs the tick; body_count() counts it from the call. remove_body takes the body out at the
-  // next boundary (it stops stepping, colliding and being touched: a device touching it gets
-  // zero force from that tick) and keeps it in the report; InputError for a stale handle.
+  // runs the tick; bodies() lists it from the call. remove_body takes the body out at the next
+  // boundary (it stops stepping, colliding and being touched: a device touching it gets zero
+  // force from that tick) and keeps it in the report; its handles are stale from the call.
   // Outside run() (before the first step or between steps) add_body also builds the body's
   // collision surface and render entries here, so from the boundary it enters at it collides,
   // is touched by devices and is in snapshots, frames and VTK, as a body the scene's `events`
@@ -203,32 +166,89 @@ class Simulation {
   // scene's folder).
   BodyHandle add_body(const std::string& yaml);
   void remove_body(BodyHandle body);
-  // Device `device`'s tool becomes `tool` at the next tick boundary (any one thread at a time,
-  // like add_body): the collision shape the tool carries and the haptic proxy's radius change,
-  // and the proxy starts afresh at the device's position. Builds the shape here (allocates;
-  // InputError for a bad shape, an index past device_count() or a change still waiting).
-  void change_tool(size_t device, const ShapeDesc& tool);
-  // The same from YAML text: a shape as a device's `tool` gives it ({sphere: {radius: 0.004}}).
-  void change_tool(size_t device, const std::string& yaml);
-  BodyHandle body_handle(size_t body) const;        // InputError for an index past body_count()
-  bool body_alive(BodyHandle body) const noexcept;  // false once removal was requested
-  size_t body_index(BodyHandle body) const;         // InputError when stale (names the body)
 
-  // Ends run() after the current tick. The request is consumed when that run() returns, so a
-  // later run() runs again (how the viewer pauses and plays on).
-  void request_stop() noexcept;
-  // From any thread, before or during run(): hands `values` to device `device`'s input entry
-  // (the mouse device: a target x, y, z in m). Lock-free in the plugin; false when the device
-  // takes no input. Throws InputError for an index past device_count().
-  bool device_input(size_t device, const double* values, uint32_t count);
-  size_t device_count() const;
-  const std::string& device_plugin(size_t device) const;  // the plugin's name, e.g. "mouse"
-  size_t body_count() const;
-  // What the scene asks for that is legal but likely a mistake (a body with every node fixed),
-  // each naming the file, line and key; the caller prints them as warnings.
-  std::vector<std::string> load_warnings() const;
-  const std::string& body_name(size_t body) const;
-  const std::string& body_model(size_t body) const;  // the model asked for last
+  // State between steps.
+  BodyArrays body_arrays(BodyHandle body);
+  // Tells the model that positions or velocities were written through body_arrays (its history,
+  // e.g. the previous position of central differences, restarts from them).
+  void state_written(BodyHandle body);
+  const VolumeMesh& body_mesh(BodyHandle body) const;  // rest mesh: tets, triangles, quads
+  // The triangles the body is drawn and touched through (its embedded surface, else the boundary)
+  // and their current vertex positions (3 per vertex, m).
+  const std::vector<uint32_t>& surface_triangles(BodyHandle body) const;
+  std::vector<double> surface_positions(BodyHandle body) const;
+  double kinetic_energy(BodyHandle body) const;  // J
+  double elastic_energy(BodyHandle body) const;  // J
+
+  // Loads: a force (N) on `nodes`, added to gravity and contact for every step until cleared or
+  // replaced.
+  void set_applied_forces(BodyHandle body, const std::vector<uint32_t>& nodes,
+                          const std::vector<double>& forces);
+  void clear_applied_forces(BodyHandle body);
+
+  // Models and parameters. set_param changes one numeric parameter between steps: live when the
+  // schema marks it so (the model's live_params) and its set_param takes it (returns true), else
+  // by a swap to the same model with the new value (returns false; applied at the next tick).
+  bool set_param(BodyHandle body, const std::string& name, double value);
+  // From any thread but the haptic one, before or during run(): the body takes model `model`
+  // with `params` (validated against its schema; empty = the defaults) at the start of the next
+  // tick, positions and velocities carried over. The instance is built here, so this may
+  // allocate and throws InputError when the model refuses the body; the haptic thread only
+  // switches pointers. Also how the viewer changes a parameter (same model, new values).
+  void request_model_swap(BodyHandle body, const std::string& model, const ParamSet& params);
+
+  // ---- Devices -----------------------------------------------------------------------------
+  // Lookup, as for bodies. Devices are fixed for a Simulation's life; their handles still carry
+  // the Simulation's salt, so one from another Simulation is refused.
+  DeviceHandle device(const std::string& name) const;
+  std::vector<DeviceHandle> devices() const;  // in scene order
+  const std::string& device_name(DeviceHandle device) const;
+  const std::string& device_plugin(DeviceHandle device) const;  // the plugin's name, e.g. "mouse"
+  // The last sample and the force last sent, read between steps.
+  DeviceReading device_reading(DeviceHandle device) const;
+  // From any thread, before or during run(): hands `values` to the device's input entry (the
+  // mouse device: a target x, y, z in m). Lock-free in the plugin; false when the device takes
+  // no input.
+  bool device_input(DeviceHandle device, const double* values, uint32_t count);
+  // The device's tool becomes `tool` at the next tick boundary (any one thread at a time, like
+  // add_body): the collision shape the tool carries and the haptic proxy's radius change, and
+  // the proxy starts afresh at the device's position. Builds the shape here (allocates;
+  // InputError for a bad shape or a change still waiting).
+  void change_tool(DeviceHandle device, const ShapeDesc& tool);
+  // The same from YAML text: a shape as a device's `tool` gives it ({sphere: {radius: 0.004}}).
+  void change_tool(DeviceHandle device, const std::string& yaml);
+
+  // ---- Outputs -----------------------------------------------------------------------------
+  // The state now, as the render task would draw it (positions, embedded surfaces, stress,
+  // devices), and what does not change: for a picture between steps or after run() (`tacta
+  // snapshot`, Python's Simulation.snapshot). Allocates; nothing is recorded.
+  Snapshot snapshot();
+  const SceneStatic& scene_static();
+  // The report so far: what run() returns, for everything since open. A handle's index is its
+  // row in report().bodies / report().devices.
+  RunResult report() const;
+  // Writes report.json, the CSV records and plots for everything since open into `dir`.
+  std::vector<std::string> write_outputs(const std::string& dir);
+  // Writes only report.json (no CSV records, no plots) into `dir`; returns its path.
+  std::string write_report(const std::string& dir);
+  // Frame observers for stepping (a window, a frame writer): told at each 1/render_rate of
+  // simulated time. Not owned; detach before destroying them. run() takes its own in RunOptions.
+  void attach(FrameObserver* observer);
+  void detach(FrameObserver* observer);
+
+  // ---- Checkpoint and restore (docs/ARCHITECTURE.md "Checkpoint and restore") ---------------
+  // The run's evolving state between steps (never during run()): time, every body's nodes,
+  // loads, model in use with its parameters and own state, faults, boundary motion; devices'
+  // samples, contact, couplings and plugin state; records and counters so far. A fresh
+  // Simulation of the same scene that restores it continues bit for bit. save_state throws
+  // InputError naming the body when a model cannot be saved; restore_state throws InputError
+  // saying what does not match (another scene, a body's node count, a newer version, damage).
+  std::vector<uint8_t> save_state() const;
+  void restore_state(std::span<const uint8_t> bytes);
+  void save_state(const std::string& path) const;
+  void restore_state(const std::string& path);
+  // What the last save or restore could not carry (live devices reconnect), one line each.
+  const std::vector<std::string>& checkpoint_notes() const noexcept;
 
  private:
   struct Impl;
