@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tacta/error.hpp"
+#include "tacta/log.hpp"
 #include "viewer.hpp"
 
 int main(int argc, char** argv) {
@@ -39,21 +40,20 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 ||
       options.width < 64 || options.height < 64) {
-    std::fprintf(stderr, "error: --size: expected WIDTHxHEIGHT of at least 64x64, found '%s'\n",
-                 size.c_str());
+    tacta::log_error("--size: expected WIDTHxHEIGHT of at least 64x64, found '" + size + "'");
     return 2;
   }
   try {
     tacta::view::Viewer viewer(options);
     return viewer.run();
   } catch (const tacta::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    tacta::log_error(e.what());
     return 2;
   } catch (const std::invalid_argument& e) {  // --script
-    std::fprintf(stderr, "error: %s\n", e.what());
+    tacta::log_error(e.what());
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    tacta::log_error(e.what());
     return 1;
   }
 }

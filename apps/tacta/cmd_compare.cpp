@@ -19,11 +19,11 @@ struct CompareArgs {
 };
 
 int compare_models(const CompareArgs& args) {
+  apply_quiet(args.quiet);
   PluginRegistry plugins;
   plugins.load();
   CompareOptions options = args.options;
-  if (!args.quiet)
-    options.note = [](const std::string& text) { std::fprintf(stderr, "%s\n", text.c_str()); };
+  options.note = [](const std::string& text) { log_info(text); };
   const CompareSummary summary = run_comparison(options, plugins);
   std::string warning;
   const std::vector<std::string> written = write_compare_outputs(options.out_dir, summary, warning);
@@ -32,7 +32,7 @@ int compare_models(const CompareArgs& args) {
     std::printf("  wrote %s, %s\n", written[0].c_str(), written[1].c_str());
     if (written.size() > 2) std::printf("  wrote %s\n", written[2].c_str());
   }
-  if (!warning.empty()) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  if (!warning.empty()) log_warning(warning);
 
   for (const CompareRow& r : summary.rows)
     if (r.faults > 0) return kExitFault;
@@ -62,7 +62,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--reference", args->options.reference,
                   "A --models entry to measure the others against: max displacement ratio and RMS "
                   "node distance at the end");
-  cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--quiet,-q", args->quiet, kQuietHelp);
   cmd->callback(
       [args, &exit_code] { exit_code = run_guarded([&] { return compare_models(*args); }); });
 }

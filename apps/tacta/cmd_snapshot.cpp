@@ -44,6 +44,7 @@ void check_args(const SnapshotArgs& args) {
 }
 
 int take_snapshot(const SnapshotArgs& args) {
+  apply_quiet(args.quiet);
   check_args(args);
   PluginRegistry plugins;
   plugins.load();
@@ -89,7 +90,7 @@ void add_snapshot_command(CLI::App& app, int& exit_code) {
                   "Picture height, pixels (default: the scene's output.frame_size)");
   cmd->add_option("--set", args->overrides,
                   "Override a scene key: key.path=value (bodies.*.model=tensor_mass)");
-  cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--quiet,-q", args->quiet, kQuietHelp);
   cmd->callback(
       [args, &exit_code] { exit_code = run_guarded([&] { return take_snapshot(*args); }); });
 }

@@ -34,20 +34,21 @@ int exec_sweep(const std::vector<std::string>& args) {
   for (std::string& w : words) argv.push_back(w.data());
   argv.push_back(nullptr);
   execvp(argv[0], argv.data());
-  std::fprintf(stderr, "error: tacta sweep: cannot run %s (%s); set TACTA_PYTHON\n", python.c_str(),
-               std::strerror(errno));
+  log_error("tacta sweep: cannot run " + python + " (" + std::strerror(errno) +
+            "); set TACTA_PYTHON");
   return kExitFault;
 #else
   (void)args;
-  std::fprintf(stderr, "error: tacta sweep needs the Python module: build with TACTA_BUILD_PYTHON=ON\n");
+  log_error("tacta sweep needs the Python module: build with TACTA_BUILD_PYTHON=ON");
   return kExitBadInput;
 #endif
 }
 
 void add_sweep_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
-      "sweep", "Run a scene over a grid of parameter sets on Dask: tacta sweep SCENE --grid "
-               "grid.yaml --out runs.csv [--scheduler ADDRESS] (python3 -m tacta.sweep; docs/SWEEPS.md)");
+      "sweep",
+      "Run a scene over a grid of parameter sets on Dask: tacta sweep SCENE --grid "
+      "grid.yaml --out runs.csv [--scheduler ADDRESS] (python3 -m tacta.sweep; docs/SWEEPS.md)");
   cmd->prefix_command();  // every argument, --help included, is the Python command's
   cmd->set_help_flag();
   cmd->callback([cmd, &exit_code] { exit_code = exec_sweep(cmd->remaining()); });

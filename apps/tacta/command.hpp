@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tacta/error.hpp"
+#include "tacta/log.hpp"
 
 namespace tacta::cli {
 
@@ -31,6 +32,12 @@ inline bool register_command(CommandFactory factory) {
   return true;
 }
 
+// -q: notes off, warnings and errors still on stderr (TACTA_LOG_LEVEL=error keeps warnings off).
+inline constexpr const char* kQuietHelp = "Print only warnings and errors";
+inline void apply_quiet(bool quiet) {
+  if (quiet && log_level() < LogLevel::warning) set_log_level(LogLevel::warning);
+}
+
 // Runs a command body and turns what it throws into the exit code: bad input (InputError: scene,
 // mesh, plugin) is 2, anything else at run time is 1; the message goes to stderr.
 template <class Fn>
@@ -38,10 +45,10 @@ int run_guarded(Fn&& body) {
   try {
     return body();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    log_error(e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    log_error(e.what());
     return kExitFault;
   }
 }

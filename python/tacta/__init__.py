@@ -18,10 +18,11 @@ if _os.path.isdir(_plots):
 
 from ._tacta import (  # noqa: E402
     Body, BodyHandle, Device, DeviceHandle, RenderError, SceneError, Simulation, __version__, compare, plugins,
+    set_log_handler, set_log_level,
 )
 
 __all__ = ["Body", "BodyHandle", "Device", "DeviceHandle", "RenderError", "SceneError", "Simulation", "compare",
-           "plugins", "sweep"]
+           "plugins", "set_log_handler", "set_log_level", "sweep"]
 
 
 def __getattr__(name):

@@ -7,11 +7,11 @@
 #include <dlfcn.h>
 #include <filesystem>
 #include <set>
-#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include "plugin/descriptor_check.hpp"
 #include "tacta/error.hpp"
+#include "tacta/log.hpp"
 
 namespace tacta {
 
@@ -70,10 +70,9 @@ tacta_status on_register(void* context, const tacta_descriptor* descriptor) {
 
 void on_log(void* context, int32_t level, const char* message) {
   const auto& reg = *static_cast<const Registration*>(context);
-  const spdlog::level::level_enum levels[] = {spdlog::level::debug, spdlog::level::info,
-                                              spdlog::level::warn, spdlog::level::err};
-  const auto lvl = levels[std::clamp(level, TACTA_LOG_DEBUG, TACTA_LOG_ERROR)];
-  spdlog::log(lvl, "{}: {}", reg.file, message ? message : "");
+  const LogLevel levels[] = {LogLevel::debug, LogLevel::info, LogLevel::warning, LogLevel::error};
+  log(levels[std::clamp(level, TACTA_LOG_DEBUG, TACTA_LOG_ERROR)],
+      reg.file + ": " + (message ? message : ""));
 }
 
 std::string canonical_or_same(const std::string& path) {
