@@ -66,6 +66,11 @@ uint64_t scene_fingerprint(const World& world) {
     w.text(scene.bodies[i].model);
     write_params(w, scene.bodies[i].model_params);
     w.pod(b.settings.period_s);
+    // The mesh, material and held nodes the body was built from (--set on any of them counts).
+    w.pod(b.shape.topology->material);
+    w.array(b.rest());
+    w.array(b.shape.topology->masses);
+    w.array(b.shape.topology->fixed);
   }
   w.pod(static_cast<uint64_t>(world.device_count()));
   for (size_t d = 0; d < world.device_count(); ++d) {
@@ -73,6 +78,9 @@ uint64_t scene_fingerprint(const World& world) {
     w.text(link.name);
     w.text(link.desc.plugin);
     write_params(w, link.desc.params);
+    w.pod(link.desc.coupling_stiffness);
+    w.pod(link.desc.coupling_damping);
+    w.pod(link.desc.tool.radius);
   }
   return fnv1a64(w.bytes().data(), w.bytes().size());
 }
@@ -197,19 +205,19 @@ std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
   std::vector<std::string> notes;
   out.pod(static_cast<uint64_t>(world.device_count()));
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
+    const DeviceComponents dev = world.device(d);
     const size_t at = out.begin_section(kDeviceSection);
-    out.text(slot.link.name);
-    out.pod(slot.link.sample);
-    out.pod(slot.link.state);
-    out.pod(slot.link.status_reason);
-    out.pod(slot.link.status_time_s);
-    out.pod(slot.contact);
-    out.pod(slot.stats);
-    out.pod(static_cast<uint8_t>(slot.link.device->has_state()));
-    out.blob(slot.link.device->save_state());
-    if (!slot.link.device->has_state())
-      notes.push_back("device '" + slot.link.name + "' (" + slot.link.desc.plugin +
+    out.text(dev.link.name);
+    out.pod(dev.link.sample);
+    out.pod(dev.link.state);
+    out.pod(dev.link.status_reason);
+    out.pod(dev.link.status_time_s);
+    out.pod(dev.contact);
+    out.pod(dev.stats);
+    out.pod(static_cast<uint8_t>(dev.link.device->has_state()));
+    out.blob(dev.link.device->save_state());
+    if (!dev.link.device->has_state())
+      notes.push_back("device '" + dev.link.name + "' (" + dev.link.desc.plugin +
                       ") is a live link: its state is not saved; a restore reconnects it");
     out.end_section(at);
   }
@@ -223,27 +231,27 @@ std::vector<std::string> load_devices(CheckpointReader& in, World& world) {
     in.fail(std::to_string(count) + " devices in the checkpoint, " +
             std::to_string(world.device_count()) + " in the scene");
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
-    CheckpointReader r = in.section(kDeviceSection, "device '" + slot.link.name + "'");
+    const DeviceComponents dev = world.device(d);
+    CheckpointReader r = in.section(kDeviceSection, "device '" + dev.link.name + "'");
     const std::string name = r.text("the device name");
-    if (name != slot.link.name)
+    if (name != dev.link.name)
       r.fail("device " + std::to_string(d) + " is '" + name + "' in the checkpoint, '" +
-             slot.link.name + "' in the scene");
-    r.pod_into(slot.link.sample, "the last sample");
-    r.pod_into(slot.link.state, "the connection state");
-    r.pod_into(slot.link.status_reason, "the status reason");
-    slot.link.status_reason.back() = '\0';
-    r.pod_into(slot.link.status_time_s, "the status time");
-    r.pod_into(slot.contact, "the contact");
-    r.pod_into(slot.stats, "the statistics");
+             dev.link.name + "' in the scene");
+    r.pod_into(dev.link.sample, "the last sample");
+    r.pod_into(dev.link.state, "the connection state");
+    r.pod_into(dev.link.status_reason, "the status reason");
+    dev.link.status_reason.back() = '\0';
+    r.pod_into(dev.link.status_time_s, "the status time");
+    r.pod_into(dev.contact, "the contact");
+    r.pod_into(dev.stats, "the statistics");
     const bool had_state = r.pod<uint8_t>("whether the plugin saved state") != 0;
     const std::span<const uint8_t> own = r.blob("the plugin's own state");
     std::string why;
-    if (had_state && slot.link.device->has_state() &&
-        !slot.link.device->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
+    if (had_state && dev.link.device->has_state() &&
+        !dev.link.device->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
       r.fail(why);
-    if (!slot.link.device->has_state())
-      notes.push_back("device '" + slot.link.name + "' (" + slot.link.desc.plugin +
+    if (!dev.link.device->has_state())
+      notes.push_back("device '" + dev.link.name + "' (" + dev.link.desc.plugin +
                       ") is a live link: restored connected afresh, its own state not restored");
     r.expect_end();
   }

@@ -10,14 +10,14 @@ namespace tacta {
 
 namespace {
 
-haptics::ContactRendererParams renderer_params(const DeviceSlot& slot, double proxy_radius) {
+haptics::ContactRendererParams renderer_params(const DeviceComponents& dev, double proxy_radius) {
   haptics::ContactRendererParams params;
   params.proxy.radius = proxy_radius;
-  params.coupling.stiffness = slot.link.desc.coupling_stiffness;
-  params.coupling.damping = slot.link.desc.coupling_damping;
-  params.passivity.controller_enabled = slot.link.desc.coupling_passivity;
-  params.first_contact_enabled = slot.link.desc.coupling_first_contact;
-  params.peak_force = slot.link.device->capabilities().peak_force;
+  params.coupling.stiffness = dev.link.desc.coupling_stiffness;
+  params.coupling.damping = dev.link.desc.coupling_damping;
+  params.passivity.controller_enabled = dev.link.desc.coupling_passivity;
+  params.first_contact_enabled = dev.link.desc.coupling_first_contact;
+  params.peak_force = dev.link.device->capabilities().peak_force;
   return params;
 }
 
@@ -37,34 +37,34 @@ HapticInteraction::HapticInteraction(World& world, CollisionContext& collision)
 void HapticInteraction::update_tools(World& world) noexcept {
   tools_start_ = std::chrono::steady_clock::now();
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
+    const DeviceComponents dev = world.device(d);
     Channel& ch = channels_[d];
     ch.rendering = false;
     if (const Tool& t = world.tool(d); t.revision != ch.tool_revision) {
       // A new tool: the proxy takes its radius and starts afresh where the device is, as after a
       // reconnection (no stored stretch is carried across the change).
-      ch.renderer = haptics::ContactRenderer(renderer_params(slot, t.proxy_radius));
+      ch.renderer = haptics::ContactRenderer(renderer_params(dev, t.proxy_radius));
       ch.started = false;
       ch.tool_revision = t.revision;
     }
-    ch.device = {slot.link.sample.position[0], slot.link.sample.position[1],
-                 slot.link.sample.position[2]};
-    ch.velocity = {slot.link.sample.velocity[0], slot.link.sample.velocity[1],
-                   slot.link.sample.velocity[2]};
+    ch.device = {dev.link.sample.position[0], dev.link.sample.position[1],
+                 dev.link.sample.position[2]};
+    ch.velocity = {dev.link.sample.velocity[0], dev.link.sample.velocity[1],
+                   dev.link.sample.velocity[2]};
     if (!ch.started) {
       ch.renderer.reset(ch.device);
       ch.started = true;
       // The tool starts where the proxy does: from the default origin, its first sweep would cut
       // through whatever lies between (contacts tens of mm deep for the collision response).
-      slot.contact.proxy = ch.renderer.proxy().position();
+      dev.contact.proxy = ch.renderer.proxy().position();
     }
     // A tool whose body was removed has nothing to touch: no force, and a fresh start if the
     // device goes on (its proxy would otherwise stay on a surface that is gone).
-    const bool body_gone = slot.contact.touched_body >= 0 &&
-                           !world.body(static_cast<size_t>(slot.contact.touched_body)).present();
-    if (slot.link.state != TACTA_DEVICE_CONNECTED || body_gone) {
-      slot.contact.force = {0, 0, 0};
-      slot.contact.in_contact = false;
+    const bool body_gone = dev.contact.touched_body >= 0 &&
+                           !world.body(static_cast<size_t>(dev.contact.touched_body)).present();
+    if (dev.link.state != TACTA_DEVICE_CONNECTED || body_gone) {
+      dev.contact.force = {0, 0, 0};
+      dev.contact.in_contact = false;
       ch.started =
           false;  // a device that comes back starts afresh where it is (no jump, no stored energy)
       continue;
@@ -72,8 +72,8 @@ void HapticInteraction::update_tools(World& world) noexcept {
     ch.rendering = true;
     tacta_collision_shape& tool = collision_.tool(d);
     for (int a = 0; a < 3; ++a)
-      tool.pose_start.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
-    prepare_local_model(world, ch, slot);
+      tool.pose_start.position[a] = dev.contact.proxy[static_cast<size_t>(a)];
+    prepare_local_model(world, ch, dev);
   }
 }
 
@@ -96,20 +96,20 @@ void HapticInteraction::couple(World& world, double time, double dt) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
     Channel& ch = channels_[d];
     if (!ch.rendering) continue;
-    const DeviceSlot slot = world.device(d);
+    const DeviceComponents dev = world.device(d);
     const haptics::ContactRendering out = ch.renderer.couple(time, ch.device, ch.velocity, dt);
     follow_local_model(world, ch, out, dt);
-    slot.contact.proxy = ch.renderer.proxy().position();
+    dev.contact.proxy = ch.renderer.proxy().position();
     tacta_collision_shape& tool = collision_.tool(d);
     for (int a = 0; a < 3; ++a)
-      tool.pose_end.position[a] = slot.contact.proxy[static_cast<size_t>(a)];
-    slot.contact.force = out.device_force;
-    slot.contact.in_contact = out.in_contact;
+      tool.pose_end.position[a] = dev.contact.proxy[static_cast<size_t>(a)];
+    dev.contact.force = out.device_force;
+    dev.contact.in_contact = out.in_contact;
     const haptics::ContactStats& st = ch.renderer.stats();
-    slot.stats.first_contact_peak_N = st.first_contact_peak;
-    slot.stats.steady_contact_N = st.steady_contact;
-    slot.stats.energy_injected_J = st.energy_injected;
-    slot.stats.first_contact_time_s = st.first_contact_time;
+    dev.stats.first_contact_peak_N = st.first_contact_peak;
+    dev.stats.steady_contact_N = st.steady_contact;
+    dev.stats.energy_injected_J = st.energy_injected;
+    dev.stats.first_contact_time_s = st.first_contact_time;
     if (out.in_contact) apply_reaction(world, out.contact, out.body_reaction);
   }
   collision_bits_ = collision_.take_bits();
@@ -177,9 +177,9 @@ void HapticInteraction::apply_reaction(World& world, const haptics::SurfaceHit& 
 }
 
 void HapticInteraction::prepare_local_model(World& world, Channel& ch,
-                                            const DeviceSlot& slot) noexcept {
+                                            const DeviceComponents& dev) noexcept {
   LocalModel& m = ch.local;
-  const int touched = m.body >= 0 ? m.body : slot.contact.touched_body;
+  const int touched = m.body >= 0 ? m.body : dev.contact.touched_body;
   if (touched < 0 || static_cast<size_t>(touched) >= world.body_count() ||
       !world.body(static_cast<size_t>(touched)).settings.own_thread) {
     ch.renderer.set_local_compliance({});
@@ -260,9 +260,9 @@ void HapticInteraction::follow_local_model(World& world, Channel& ch,
 
 void HapticInteraction::after_write(World& world) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
+    const DeviceComponents dev = world.device(d);
     channels_[d].renderer.override_sent(
-        {slot.contact.force[0], slot.contact.force[1], slot.contact.force[2]});
+        {dev.contact.force[0], dev.contact.force[1], dev.contact.force[2]});
   }
 }
 

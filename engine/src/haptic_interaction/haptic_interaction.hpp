@@ -80,7 +80,7 @@ class HapticInteraction {
   void apply_reaction(World& world, const haptics::SurfaceHit& hit,
                       const Vec3& force_on_body) noexcept;
   // Before the renderer's tick: take in a refresh of the worker body, set the local model.
-  void prepare_local_model(World& world, Channel& ch, const DeviceSlot& slot) noexcept;
+  void prepare_local_model(World& world, Channel& ch, const DeviceComponents& dev) noexcept;
   // After it: the force joins the period's impulse; a new contact records its onset point.
   void follow_local_model(World& world, Channel& ch, const haptics::ContactRendering& out,
                           double dt) noexcept;

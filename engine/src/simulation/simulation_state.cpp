@@ -77,10 +77,10 @@ RunResult Simulation::Impl::collect(const ScheduleResult& schedule) const {
   }
   result.state_hash = hash_positions(arrays);
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
-    result.devices.push_back({slot.link.name, slot.link.desc.plugin, slot.link.state,
-                              slot.stats.max_force_N, slot.stats.contact_ticks,
-                              slot.stats.reconnections, slot.link.device->counters(),
+    const DeviceComponents dev = world.device(d);
+    result.devices.push_back({dev.link.name, dev.link.desc.plugin, dev.link.state,
+                              dev.stats.max_force_N, dev.stats.contact_ticks,
+                              dev.stats.reconnections, dev.link.device->counters(),
                               world.tool(d).revision});
   }
   result.faults = loop.faults().rows().size();
@@ -238,15 +238,15 @@ bool Simulation::set_param(BodyHandle handle, const std::string& name, double va
 }
 
 DeviceReading Simulation::device_reading(DeviceHandle device) const {
-  const DeviceSlot slot = impl_->world.device(impl_->device_at(device));
+  const DeviceComponents dev = impl_->world.device(impl_->device_at(device));
   DeviceReading r;
   for (size_t k = 0; k < 3; ++k) {
-    r.position[k] = slot.link.sample.position[k];
-    r.proxy[k] = slot.contact.proxy[k];
-    r.force[k] = slot.contact.force[k];
+    r.position[k] = dev.link.sample.position[k];
+    r.proxy[k] = dev.contact.proxy[k];
+    r.force[k] = dev.contact.force[k];
   }
-  r.state = slot.link.state;
-  r.in_contact = slot.contact.in_contact;
+  r.state = dev.link.state;
+  r.in_contact = dev.contact.in_contact;
   return r;
 }
 

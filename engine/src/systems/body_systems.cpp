@@ -8,31 +8,31 @@ namespace {
 
 constexpr double kTimeSlack_s = 1e-12;  // s: a boundary due "now" despite rounding
 
-void swap_models(ModelSlot& slot, const BodySettings& settings, NodeState& nodes, NodeLoads& loads,
+void swap_models(BodyModel& model, const BodySettings& settings, NodeState& nodes, NodeLoads& loads,
                  double time, double haptic_dt) noexcept {
   const double dt = settings.step_dt(haptic_dt);
-  while (slot.next_swap < slot.swaps.size() &&
-         slot.swaps[slot.next_swap].time_s <= time + kTimeSlack_s) {
+  while (model.next_swap < model.swaps.size() &&
+         model.swaps[model.next_swap].time_s <= time + kTimeSlack_s) {
     // The scheduled instance was built at load time; the outgoing one is parked in its place
     // and destroyed with the world, so nothing is freed on the haptic thread.
-    std::swap(slot.instance, slot.swaps[slot.next_swap].model);
-    ++slot.next_swap;
-    slot.instance->begin(state_view(nodes, loads, time), dt);
+    std::swap(model.instance, model.swaps[model.next_swap].model);
+    ++model.next_swap;
+    model.instance->begin(state_view(nodes, loads, time), dt);
   }
-  ModelInstance* incoming = slot.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel);
+  ModelInstance* incoming = model.mailbox->incoming.exchange(nullptr, std::memory_order_acq_rel);
   if (incoming == nullptr) return;
-  ModelInstance* outgoing = slot.instance.release();
-  slot.instance.reset(incoming);
-  ModelInstance* head = slot.mailbox->retired.load(std::memory_order_relaxed);
+  ModelInstance* outgoing = model.instance.release();
+  model.instance.reset(incoming);
+  ModelInstance* head = model.mailbox->retired.load(std::memory_order_relaxed);
   do {
     outgoing->retired_next = head;
-  } while (!slot.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
-                                                        std::memory_order_relaxed));
-  if (slot.runtime_swaps.size() < slot.runtime_swaps.capacity())
-    slot.runtime_swaps.push_back({time, incoming->name()});
+  } while (!model.mailbox->retired.compare_exchange_weak(head, outgoing, std::memory_order_release,
+                                                         std::memory_order_relaxed));
+  if (model.runtime_swaps.size() < model.runtime_swaps.capacity())
+    model.runtime_swaps.push_back({time, incoming->name()});
   else
-    ++slot.runtime_swaps_unlisted;
-  slot.instance->begin(state_view(nodes, loads, time), dt);
+    ++model.runtime_swaps_unlisted;
+  model.instance->begin(state_view(nodes, loads, time), dt);
 }
 
 // A body on a worker: this tick's contact joins the period's impulse; at the body's boundary the
@@ -74,10 +74,10 @@ void start_contact_sums(World& world) noexcept {
 
 void take_model_swaps(World& world, double time) noexcept {
   const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
-  world.bodies_in_scene<ModelSlot, BodySettings, NodeState, NodeLoads>().each(
-      [&](ecs::Entity, InScene&, ModelSlot& slot, BodySettings& settings, NodeState& nodes,
+  world.bodies_in_scene<BodyModel, BodySettings, NodeState, NodeLoads>().each(
+      [&](ecs::Entity, InScene&, BodyModel& model, BodySettings& settings, NodeState& nodes,
           NodeLoads& loads) {
-        if (!settings.own_thread) swap_models(slot, settings, nodes, loads, time, haptic_dt);
+        if (!settings.own_thread) swap_models(model, settings, nodes, loads, time, haptic_dt);
       });
 }
 
@@ -86,10 +86,10 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
   const Vec3& g = world.scene().gravity;
   bool healthy = true;
   world
-      .bodies_in_scene<FaultState, BodySettings, StepProgress, ModelSlot, RestShape, NodeState,
+      .bodies_in_scene<FaultState, BodySettings, StepProgress, BodyModel, RestShape, NodeState,
                        NodeLoads, BodyConstraints>()
       .each([&](ecs::Entity e, InScene&, FaultState& fault, const BodySettings& settings,
-                StepProgress& progress, ModelSlot& model, RestShape& shape, NodeState& nodes,
+                StepProgress& progress, BodyModel& model, RestShape& shape, NodeState& nodes,
                 NodeLoads& loads, BodyConstraints& constraints) {
         if (fault.frozen) return;
         const size_t body = e.index;

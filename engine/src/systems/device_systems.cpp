@@ -14,9 +14,9 @@ namespace {
 // A removed body is gone for the device too, and a frozen one could not be trusted: a device
 // touching either renders nothing. A device that touches no body in particular is silenced by
 // any frozen body.
-bool touches_frozen_body(World& world, const DeviceSlot& slot) noexcept {
-  if (slot.contact.touched_body >= 0) {
-    const SoftBody b = world.body(static_cast<size_t>(slot.contact.touched_body));
+bool touches_frozen_body(World& world, const DeviceComponents& dev) noexcept {
+  if (dev.contact.touched_body >= 0) {
+    const SoftBody b = world.body(static_cast<size_t>(dev.contact.touched_body));
     return b.fault.frozen || !b.present();
   }
   bool any = false;
@@ -25,17 +25,17 @@ bool touches_frozen_body(World& world, const DeviceSlot& slot) noexcept {
   return any;
 }
 
-void log_sample(const DeviceSlot& slot, double sample_time, DeviceLogRecorder& log) noexcept {
+void log_sample(const DeviceComponents& dev, double sample_time, DeviceLogRecorder& log) noexcept {
   // Logged at the time the sample was read, so a replay at the same ticks is exact.
   DeviceLogSample logged;
   logged.time = sample_time;
   for (int a = 0; a < 3; ++a) {
-    logged.position[a] = slot.link.sample.position[a];
-    logged.velocity[a] = slot.link.sample.velocity[a];
-    logged.force[a] = slot.contact.force[static_cast<size_t>(a)];
+    logged.position[a] = dev.link.sample.position[a];
+    logged.velocity[a] = dev.link.sample.velocity[a];
+    logged.force[a] = dev.contact.force[static_cast<size_t>(a)];
   }
-  for (int a = 0; a < 4; ++a) logged.orientation[a] = slot.link.sample.orientation[a];
-  logged.buttons = slot.link.sample.buttons;
+  for (int a = 0; a < 4; ++a) logged.orientation[a] = dev.link.sample.orientation[a];
+  logged.buttons = dev.link.sample.buttons;
   log.record(logged);
 }
 
@@ -82,33 +82,33 @@ void write_devices(World& world, TickEvents& events, double time, double sample_
                    bool zero_force, DeviceLogRecorder* log) noexcept {
   world.registry().view<DeviceLink, DeviceContact, DeviceStats>().each(
       [&](ecs::Entity, DeviceLink& link, DeviceContact& contact, DeviceStats& st) {
-        const DeviceSlot slot{link, contact, st};
+        const DeviceComponents dev{link, contact, st};
         const size_t d = link.index;
         // From the faulting tick for as long as the body stays frozen.
-        const bool silent = zero_force || slot.link.state != TACTA_DEVICE_CONNECTED ||
-                            touches_frozen_body(world, slot);
-        if (silent && slot.link.state == TACTA_DEVICE_CONNECTED)
+        const bool silent = zero_force || dev.link.state != TACTA_DEVICE_CONNECTED ||
+                            touches_frozen_body(world, dev);
+        if (silent && dev.link.state == TACTA_DEVICE_CONNECTED)
           events.device_raised(d, kDeviceSilenced);
         if (silent) {
-          slot.contact.force = {0, 0, 0};
+          dev.contact.force = {0, 0, 0};
           ++st.zero_force_ticks;
         }
         // The device's declared peak is never exceeded, whatever the coupling asked for.
-        const double peak = slot.link.device->capabilities().peak_force;
-        const double magnitude = norm(slot.contact.force.data());
+        const double peak = dev.link.device->capabilities().peak_force;
+        const double magnitude = norm(dev.contact.force.data());
         if (peak > 0 && magnitude > peak) {
-          for (double& f : slot.contact.force) f *= peak / magnitude;
+          for (double& f : dev.contact.force) f *= peak / magnitude;
           ++st.clamped_ticks;
           events.device_raised(d, kDeviceClamped);
         }
         const double sent = std::min(magnitude, peak > 0 ? peak : magnitude);
         st.max_force_N = std::max(st.max_force_N, sent);
-        if (slot.contact.in_contact) ++st.contact_ticks;
-        if (d == 0 && log != nullptr) log_sample(slot, sample_time, *log);
-        if (slot.link.state == TACTA_DEVICE_CONNECTED) {
+        if (dev.contact.in_contact) ++st.contact_ticks;
+        if (d == 0 && log != nullptr) log_sample(dev, sample_time, *log);
+        if (dev.link.state == TACTA_DEVICE_CONNECTED) {
           tacta_device_command command{};
-          for (int a = 0; a < 3; ++a) command.force[a] = slot.contact.force[static_cast<size_t>(a)];
-          slot.link.device->write(time, command);
+          for (int a = 0; a < 3; ++a) command.force[a] = dev.contact.force[static_cast<size_t>(a)];
+          dev.link.device->write(time, command);
         }
       });
 }

@@ -155,10 +155,10 @@ void HapticLoop::device_raised(size_t device, uint32_t bit) noexcept {
 }
 
 void HapticLoop::device_stopped(size_t device, double time) noexcept {
-  const DeviceSlot slot = world_.device(device);
-  FaultRecord f{time, -1, static_cast<int>(device), static_cast<uint32_t>(slot.link.state), {}};
-  std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", slot.link.name.c_str(),
-                slot.link.status_reason.data());
+  const DeviceComponents dev = world_.device(device);
+  FaultRecord f{time, -1, static_cast<int>(device), static_cast<uint32_t>(dev.link.state), {}};
+  std::snprintf(f.reason.data(), f.reason.size(), "device '%.40s': %.150s", dev.link.name.c_str(),
+                dev.link.status_reason.data());
   faults_.push(f);
 }
 
@@ -250,13 +250,13 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
     bs.max_displacement_m = b.fault.max_displacement_m;
   }
   for (size_t d = 0; d < world_.device_count(); ++d) {
-    const DeviceSlot slot = world_.device(d);
+    const DeviceComponents dev = world_.device(d);
     DeviceSnapshot& ds = s.devices[d];
-    for (int a = 0; a < 3; ++a) ds.position[static_cast<size_t>(a)] = slot.link.sample.position[a];
-    ds.proxy = slot.contact.proxy;
-    ds.force = slot.contact.force;
-    ds.contact = slot.contact.in_contact;
-    ds.touched_body = slot.contact.touched_body;
+    for (int a = 0; a < 3; ++a) ds.position[static_cast<size_t>(a)] = dev.link.sample.position[a];
+    ds.proxy = dev.contact.proxy;
+    ds.force = dev.contact.force;
+    ds.contact = dev.contact.in_contact;
+    ds.touched_body = dev.contact.touched_body;
   }
 }
 

@@ -55,9 +55,9 @@ SceneStatic describe_scene(World& world) {
   s.haptic_rate_hz = world.scene().clock.haptic_rate_hz;
   for (size_t i = 0; i < world.body_count(); ++i) s.bodies.push_back(describe_body(world.body(i)));
   for (size_t d = 0; d < world.device_count(); ++d) {
-    const DeviceSlot slot = world.device(d);
+    const DeviceComponents dev = world.device(d);
     s.devices.push_back(
-        {slot.link.name, slot.link.desc.tool.radius, slot.link.device->capabilities().peak_force});
+        {dev.link.name, dev.link.desc.tool.radius, dev.link.device->capabilities().peak_force});
   }
   return s;
 }

@@ -106,7 +106,7 @@ struct RuntimeSwap {
   const char* model;  // the descriptor's name: lives as long as the plugin registry
 };
 
-struct ModelSlot {
+struct BodyModel {
   std::unique_ptr<ModelInstance> instance;
   std::vector<ScheduledSwap> swaps;  // sorted by time
   size_t next_swap = 0;

@@ -20,7 +20,7 @@ struct BodyParts {
   NodeLoads loads;
   RestShape shape;
   BodySurface surface;
-  ModelSlot model;
+  BodyModel model;
   BodySettings settings;
   StepProgress progress;
   BodyConstraints constraints;
@@ -41,7 +41,7 @@ struct SoftBody {
   NodeLoads& loads;
   RestShape& shape;
   BodySurface& surface;
-  ModelSlot& model;
+  BodyModel& model;
   const BodySettings& settings;
   StepProgress& progress;
   BodyConstraints& constraints;

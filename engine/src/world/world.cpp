@@ -130,7 +130,7 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   }
 }
 
-DeviceSlot World::device(size_t i) const noexcept {
+DeviceComponents World::device(size_t i) const noexcept {
   const uint32_t e = devices_[i].index;
   return {registry_.pool<DeviceLink>().at(e), registry_.pool<DeviceContact>().at(e),
           registry_.pool<DeviceStats>().at(e)};
@@ -145,7 +145,7 @@ SoftBody World::body(size_t i) const noexcept {
       registry_.pool<NodeLoads>().at(e),
       registry_.pool<RestShape>().at(e),
       registry_.pool<BodySurface>().at(registry_.pool<SurfaceLink>().at(e).surface.index),
-      registry_.pool<ModelSlot>().at(e),
+      registry_.pool<BodyModel>().at(e),
       registry_.pool<BodySettings>().at(e),
       registry_.pool<StepProgress>().at(e),
       registry_.pool<BodyConstraints>().at(e),
@@ -341,7 +341,7 @@ void World::leave(size_t slot, double time) noexcept {
 // later allocates nothing and never moves a component another thread holds.
 void World::reserve_body_components(size_t slots) {
   reserve_each<InScene, BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, SurfaceLink,
-               ModelSlot, BodySettings, StepProgress, BodyConstraints, FaultState, Recording>(
+               BodyModel, BodySettings, StepProgress, BodyConstraints, FaultState, Recording>(
       registry_, slots);
   registry_.reserve<BodySurface>(2 * slots);  // on the surface entities, after the bodies
 }
@@ -354,7 +354,7 @@ void World::emplace_body_components(ecs::Entity e) {
   registry_.emplace<NodeState>(e);
   registry_.emplace<NodeLoads>(e);
   registry_.emplace<RestShape>(e);
-  registry_.emplace<ModelSlot>(e);
+  registry_.emplace<BodyModel>(e);
   registry_.emplace<BodySettings>(e);
   registry_.emplace<StepProgress>(e);
   registry_.emplace<BodyConstraints>(e);

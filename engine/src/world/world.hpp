@@ -14,7 +14,7 @@
 #include "tacta/ecs.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
-#include "world/device_slot.hpp"
+#include "world/device_components.hpp"
 #include "world/entity_commands.hpp"
 #include "world/shape_components.hpp"
 #include "world/soft_body.hpp"
@@ -38,7 +38,7 @@ class World {
   const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
   // Device i's components. Their pools are made at load and never change, so other threads
   // (device input) reach a device without racing the tick's thread.
-  DeviceSlot device(size_t i) const noexcept;
+  DeviceComponents device(size_t i) const noexcept;
   int body_index(const std::string& name) const;
   // The tool device i carries (its own entity; DeviceLink::tool names it).
   Tool& tool(size_t d) const noexcept {

@@ -114,7 +114,7 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
   double previous = -1, angle_sum = 0;
   for (int k = 0; k < 2400; ++k) {
     h.tick();
-    const DeviceSlot slot = h.world.device(0);
+    const DeviceComponents dev = h.world.device(0);
     // Newton's third law through the embedding: the nodes get exactly minus the device force.
     const SoftBody body = h.world.body(0);
     for (size_t a = 0; a < 3; ++a) {
@@ -122,24 +122,24 @@ StrokeFeel feel_stroke(const std::string& sphere, const std::string& surface) {
       for (size_t n = 0; n < body.node_count(); ++n) sum += body.loads.contact_forces[3 * n + a];
       feel.worst_reaction_error_N =
           std::max(feel.worst_reaction_error_N,
-                   std::fabs(sum + (slot.contact.in_contact ? slot.contact.force[a] : 0.0)));
+                   std::fabs(sum + (dev.contact.in_contact ? dev.contact.force[a] : 0.0)));
     }
     const double t = static_cast<double>(k + 1) * h.dt;
     if (t < 0.6 || t > 2.1) continue;
     const double magnitude =
-        std::hypot(slot.contact.force[0], slot.contact.force[1], slot.contact.force[2]);
+        std::hypot(dev.contact.force[0], dev.contact.force[1], dev.contact.force[2]);
     if (previous >= 0)
       feel.largest_step_N = std::max(feel.largest_step_N, std::fabs(magnitude - previous));
     previous = magnitude;
-    if (!slot.contact.in_contact || !(magnitude > 0)) {
+    if (!dev.contact.in_contact || !(magnitude > 0)) {
       ++feel.contact_lost;
       continue;
     }
-    const double normal[3] = {slot.contact.proxy[0], slot.contact.proxy[1] - kCentreY,
-                              slot.contact.proxy[2]};
+    const double normal[3] = {dev.contact.proxy[0], dev.contact.proxy[1] - kCentreY,
+                              dev.contact.proxy[2]};
     const double length = std::hypot(normal[0], normal[1], normal[2]);
-    const double cosine = (slot.contact.force[0] * normal[0] + slot.contact.force[1] * normal[1] +
-                           slot.contact.force[2] * normal[2]) /
+    const double cosine = (dev.contact.force[0] * normal[0] + dev.contact.force[1] * normal[1] +
+                           dev.contact.force[2] * normal[2]) /
                           (magnitude * length);
     const double angle = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI;
     feel.worst_angle_deg = std::max(feel.worst_angle_deg, angle);

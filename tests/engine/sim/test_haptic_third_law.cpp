@@ -17,16 +17,16 @@ TEST(HapticContact, BodyReactionIsMinusTheDeviceForceEveryContactTick) {
   double worst_mismatch_N = 0, largest_force_N = 0;
   for (int k = 0; k < 400; ++k) {
     h.tick();
-    const DeviceSlot slot = h.world.device(0);
+    const DeviceComponents dev = h.world.device(0);
     const SoftBody body = h.world.body(0);
     double sum[3] = {0, 0, 0};
     for (size_t n = 0; n < body.node_count(); ++n)
       for (int a = 0; a < 3; ++a)
         sum[a] += body.loads.contact_forces[3 * n + static_cast<size_t>(a)];
-    const double f_norm = std::sqrt(slot.contact.force[0] * slot.contact.force[0] +
-                                    slot.contact.force[1] * slot.contact.force[1] +
-                                    slot.contact.force[2] * slot.contact.force[2]);
-    if (!slot.contact.in_contact) {
+    const double f_norm = std::sqrt(dev.contact.force[0] * dev.contact.force[0] +
+                                    dev.contact.force[1] * dev.contact.force[1] +
+                                    dev.contact.force[2] * dev.contact.force[2]);
+    if (!dev.contact.in_contact) {
       // Out of contact: no force either way.
       EXPECT_EQ(f_norm, 0.0) << "tick " << k;
       EXPECT_EQ(std::fabs(sum[0]) + std::fabs(sum[1]) + std::fabs(sum[2]), 0.0) << "tick " << k;
@@ -37,12 +37,12 @@ TEST(HapticContact, BodyReactionIsMinusTheDeviceForceEveryContactTick) {
     largest_force_N = std::max(largest_force_N, f_norm);
     double mismatch = 0;
     for (int a = 0; a < 3; ++a)
-      mismatch = std::max(mismatch, std::fabs(sum[a] + slot.contact.force[static_cast<size_t>(a)]));
+      mismatch = std::max(mismatch, std::fabs(sum[a] + dev.contact.force[static_cast<size_t>(a)]));
     worst_mismatch_N = std::max(worst_mismatch_N, mismatch);
     EXPECT_LE(mismatch, 1e-12 * std::max(1.0, f_norm))
         << "tick " << k << ": body got " << sum[0] << ", " << sum[1] << ", " << sum[2]
-        << " N, device " << slot.contact.force[0] << ", " << slot.contact.force[1] << ", "
-        << slot.contact.force[2] << " N";
+        << " N, device " << dev.contact.force[0] << ", " << dev.contact.force[1] << ", "
+        << dev.contact.force[2] << " N";
   }
   // The scene must actually press: a long contact with a force well above zero.
   EXPECT_GE(contact_ticks, 150);

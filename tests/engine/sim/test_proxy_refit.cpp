@@ -16,8 +16,8 @@ struct ProxyRun {
   ProxyRun(const std::string& refit, const std::vector<std::string>& overrides, size_t ticks) {
     std::vector<std::string> all = overrides;
     all.push_back("collision.proxy_refit=" + refit);
-    scene = load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(),
-                       all);
+    scene =
+        load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(), all);
     world = std::make_unique<World>(scene, plugins());
     collision = std::make_unique<CollisionContext>(*world, plugins());
     haptics = std::make_unique<HapticInteraction>(*world, *collision);
@@ -58,7 +58,7 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   for (size_t k = 0; k < ticks; ++k) {
     sliced.tick();
     whole.tick();
-    const DeviceSlot a = sliced.world->device(0), b = whole.world->device(0);
+    const DeviceComponents a = sliced.world->device(0), b = whole.world->device(0);
     ASSERT_EQ(a.contact.in_contact, b.contact.in_contact) << "tick " << k;
     contact_ticks += a.contact.in_contact ? 1 : 0;
     for (size_t i = 0; i < 3; ++i)
@@ -67,12 +67,13 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   const std::vector<double>& x = sliced.world->body(0).nodes.positions;
   const std::vector<double>& y = whole.world->body(0).nodes.positions;
   for (size_t i = 0; i < x.size(); ++i) worst_node = std::max(worst_node, std::fabs(x[i] - y[i]));
-  std::printf("%zu ticks, %zu in contact: worst force difference %.3g N, node %.3g m; %llu "
-              "slices, %llu whole refits (against %llu)\n",
-              ticks, contact_ticks, worst_force, worst_node,
-              static_cast<unsigned long long>(sliced.collision->proxy_slices()),
-              static_cast<unsigned long long>(sliced.collision->proxy_whole_refits()),
-              static_cast<unsigned long long>(whole.collision->proxy_whole_refits()));
+  std::printf(
+      "%zu ticks, %zu in contact: worst force difference %.3g N, node %.3g m; %llu "
+      "slices, %llu whole refits (against %llu)\n",
+      ticks, contact_ticks, worst_force, worst_node,
+      static_cast<unsigned long long>(sliced.collision->proxy_slices()),
+      static_cast<unsigned long long>(sliced.collision->proxy_whole_refits()),
+      static_cast<unsigned long long>(whole.collision->proxy_whole_refits()));
   EXPECT_GT(contact_ticks, ticks / 4);  // the stylus pressed the liver
   EXPECT_LT(worst_force, 1e-9);
   EXPECT_LT(worst_node, 1e-9);

@@ -116,14 +116,14 @@ TEST(SimulationFaults, FrozenStateIsTheStartOfTheFaultingTick) {
   EXPECT_DOUBLE_EQ(body.fault.time_s, kFaultTime_s);
   EXPECT_EQ(body.nodes.positions, start) << "positions are restored to the start of the tick";
   for (double v : body.nodes.velocities) ASSERT_EQ(v, 0.0);
-  const DeviceSlot slot = h.world.device(0);
-  EXPECT_EQ(slot.contact.force, (std::array<double, 3>{0, 0, 0})) << "zero force in the same tick";
-  EXPECT_EQ(slot.stats.zero_force_ticks, 1u);
+  const DeviceComponents dev = h.world.device(0);
+  EXPECT_EQ(dev.contact.force, (std::array<double, 3>{0, 0, 0})) << "zero force in the same tick";
+  EXPECT_EQ(dev.stats.zero_force_ticks, 1u);
   int moved = 0, forced = 0, first_forced = -1;
   for (int k = 201; k < 251; ++k) {
     h.tick();
     if (body.nodes.positions != start) ++moved;
-    if (slot.contact.force != std::array<double, 3>{0, 0, 0} && forced++ == 0) first_forced = k;
+    if (dev.contact.force != std::array<double, 3>{0, 0, 0} && forced++ == 0) first_forced = k;
   }
   EXPECT_EQ(moved, 0) << "ticks in which the frozen body moved";
   EXPECT_EQ(forced, 0) << "ticks after the fault that sent a force, the first at tick "

@@ -46,7 +46,7 @@ TEST(WorldEntities, EveryThingIsAnEntityWithItsComponents) {
   World& w = h.world;
   ASSERT_EQ(w.body_capacity(), 3u);
   // Every slot (used or not) has every body component, and an embedded surface entity.
-  EXPECT_EQ((count<BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, ModelSlot, BodySettings,
+  EXPECT_EQ((count<BodyInfo, BodyPresence, NodeState, NodeLoads, RestShape, BodyModel, BodySettings,
                    StepProgress, BodyConstraints, FaultState, Recording, SurfaceLink>(w)),
             3u);
   EXPECT_EQ(count<BodySurface>(w), 3u);

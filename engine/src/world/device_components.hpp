@@ -49,7 +49,7 @@ struct DeviceContact {
 };
 
 // One device's components by reference (World::device), for code that needs all of them.
-struct DeviceSlot {
+struct DeviceComponents {
   DeviceLink& link;
   DeviceContact& contact;
   DeviceStats& stats;
