@@ -7,6 +7,17 @@
 
 namespace tacta {
 
+namespace {
+
+// "unknown body 'x'; did you mean 'y'? (expected one of: ...)", or that the scene has none.
+std::string unknown(const std::string& noun, const std::string& name,
+                    const std::vector<std::string>& names) {
+  if (names.empty()) return "unknown " + noun + " '" + name + "': the scene has no " + noun;
+  return scene_detail::unknown_name_message(noun, name, names);
+}
+
+}  // namespace
+
 uint32_t Simulation::Impl::next_salt() noexcept {
   // Distinct per Simulation in a process; the golden-ratio step spreads consecutive ones apart.
   static std::atomic<uint32_t> count{0};
@@ -62,8 +73,7 @@ BodyHandle Simulation::body(const std::string& name) const {
                        "body '" + name + "' was removed");
     return h;
   }
-  throw InputError({world.scene().path, 0, 0, "bodies"},
-                   scene_detail::unknown_name_message("body", name, names));
+  throw InputError({world.scene().path, 0, 0, "bodies"}, unknown("body", name, names));
 }
 
 std::vector<BodyHandle> Simulation::bodies() const {
@@ -84,8 +94,7 @@ DeviceHandle Simulation::device(const std::string& name) const {
     if (world.device(d).link.name == name) return impl_->device_handle(d);
     names.push_back(world.device(d).link.name);
   }
-  throw InputError({world.scene().path, 0, 0, "devices"},
-                   scene_detail::unknown_name_message("device", name, names));
+  throw InputError({world.scene().path, 0, 0, "devices"}, unknown("device", name, names));
 }
 
 std::vector<DeviceHandle> Simulation::devices() const {

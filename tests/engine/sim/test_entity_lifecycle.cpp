@@ -121,7 +121,12 @@ TEST(EntityLifecycle, ForeignHandlesAndUnknownNamesAreRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean 'beam'"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(one.device("stylus"), InputError) << "the beam scene has no device";
+  try {
+    one.device("stylus");
+    FAIL() << "the beam scene has no device";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the scene has no device"), std::string::npos) << e.what();
+  }
   EXPECT_TRUE(one.devices().empty());
 }
 
