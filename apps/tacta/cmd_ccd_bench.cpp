@@ -14,6 +14,7 @@
 #include "tacta/ccd_queries.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
+#include "tacta/log.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
 
@@ -129,7 +130,7 @@ void add_ccd_bench_command(CLI::App& app, int& exit_code) {
     try {
       exit_code = run_bench(paths, repeat);
     } catch (const std::exception& e) {
-      std::cerr << "tacta ccd-bench: " << e.what() << "\n";
+      tacta::log_error(std::string("tacta ccd-bench: ") + e.what());
       exit_code = tacta::cli::kExitBadInput;
     }
   });

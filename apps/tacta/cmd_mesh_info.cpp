@@ -14,6 +14,7 @@
 
 #include "command.hpp"
 #include "tacta/error.hpp"
+#include "tacta/log.hpp"
 #include "tacta/mesh_build.hpp"
 #include "tacta/mesh_io.hpp"
 
@@ -193,7 +194,7 @@ void add_mesh_info_command(CLI::App& app, int& exit_code) {
     try {
       summary = summarize(options->file);
     } catch (const tacta::InputError& e) {
-      std::cerr << "tacta mesh-info: " << e.what() << "\n";
+      tacta::log_error(std::string("tacta mesh-info: ") + e.what());
       if (options->json) {
         print(Json{{"file", options->file}, {"error", e.what()}});
       }

@@ -11,6 +11,7 @@
 #include "tacta/collision_api.h"
 #include "tacta/error.hpp"
 #include "tacta/live_params.hpp"
+#include "tacta/log.hpp"
 #include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
 
@@ -195,7 +196,7 @@ void add_plugins_command(CLI::App& app, int& exit_code) {
     try {
       for (const auto& p : options->paths) registry.add_path(p);
     } catch (const tacta::InputError& e) {
-      std::cerr << "tacta plugins: " << e.what() << "\n";
+      tacta::log_error(std::string("tacta plugins: ") + e.what());
       exit_code = tacta::cli::kExitBadInput;
       return;
     }
