@@ -1,6 +1,7 @@
 // `tacta run SCENE`: loads a scene, runs it (lockstep by default, or realtime), writes the report,
 // records and plots to --out. Exit 0 ok, 1 a runtime fault (a body diverged, a device failed),
 // 2 bad input (scene, mesh, plugin).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -28,7 +29,10 @@ struct RunArgs {
   std::string replay;
   bool frames = false;
   bool quiet = false;
-  int haptic_cpu = -2;  // -2: as the scene says
+  int haptic_cpu = -2;        // -2: as the scene says
+  double checkpoint_at = -1;  // s: write a checkpoint at this simulated time
+  std::string checkpoint;     // the checkpoint file --checkpoint-at writes
+  std::string resume;         // a checkpoint to continue from
 };
 
 // CLI11's PositiveNumber prints the whole double range as its bound; say what a duration is.
@@ -43,6 +47,7 @@ const CLI::Validator kDurationSeconds(
     "SECONDS > 0");
 
 int run_scene(const RunArgs& args) {
+  apply_quiet(args.quiet);
   PluginRegistry plugins;
   plugins.load();
   RegistrySchemas schemas(plugins);
@@ -63,9 +68,7 @@ int run_scene(const RunArgs& args) {
   }
   SceneDesc scene = load_scene(args.scene, schemas, overrides);
   Simulation simulation(scene, plugins);
-  if (!args.quiet)
-    for (const std::string& warning : simulation.load_warnings())
-      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : simulation.load_warnings()) log_warning(warning);
   RunOptions options;
   options.out_dir = args.out;
   if (args.realtime) options.realtime = true;
@@ -79,10 +82,30 @@ int run_scene(const RunArgs& args) {
                                            scene.output.frame_width, scene.output.frame_height);
     options.observers.push_back(frames.get());
   }
+  if (!args.resume.empty()) {
+    simulation.restore_state(args.resume);
+    for (const std::string& note : simulation.checkpoint_notes()) log_warning(note);
+  }
+  // The rest of the scene's duration from where it stands (0 on a fresh run, the checkpoint's
+  // time on a resumed one); the outputs cover the whole run.
+  const double rest = std::max(0.0, scene.clock.duration_s - simulation.time());
+  if (args.checkpoint_at >= 0 && args.checkpoint_at > simulation.time()) {
+    RunOptions first = options;
+    first.out_dir.clear();
+    first.progress = false;
+    first.record_log.clear();
+    first.duration_s = std::min(rest, args.checkpoint_at - simulation.time());
+    simulation.run(first);
+    simulation.save_state(args.checkpoint);
+    for (const std::string& note : simulation.checkpoint_notes()) log_warning(note);
+    if (!args.quiet)
+      std::printf("checkpoint at t = %.6g s written to %s\n", simulation.time(),
+                  args.checkpoint.c_str());
+  }
+  options.duration_s = std::max(0.0, scene.clock.duration_s - simulation.time());
   const RunResult result = simulation.run(options);
   // A fault is an error: printed even with --quiet, on stderr, with the exit code 1.
-  for (const std::string& fault : result.fault_messages)
-    std::fprintf(stderr, "error: runtime fault: %s\n", fault.c_str());
+  for (const std::string& fault : result.fault_messages) log_error("runtime fault: " + fault);
   // One line per status bit kind seen (who x bit), warnings included, with its remedy.
   for (const std::string& line : result.status.lines) std::fprintf(stderr, "%s\n", line.c_str());
 
@@ -145,8 +168,20 @@ void add_run_command(CLI::App& app, int& exit_code) {
                   "Realtime: pin the haptic thread to this CPU and move other threads off it "
                   "(clock.haptic_cpu)")
       ->check(CLI::Range(-1, 1023));
+  CLI::Option* at = cmd->add_option(
+      "--checkpoint-at", args->checkpoint_at,
+      "Write a checkpoint (--checkpoint FILE) at this simulated time, s, and run on");
+  at->check(CLI::NonNegativeNumber);
+  CLI::Option* file = cmd->add_option("--checkpoint", args->checkpoint,
+                                      "The checkpoint file --checkpoint-at writes");
+  at->needs(file);
+  file->needs(at);
+  cmd->add_option("--resume", args->resume,
+                  "Continue from this checkpoint (of the same scene and --set) to the scene's "
+                  "duration")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--frames", args->frames, "Write PNG frames from the render task");
-  cmd->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--quiet,-q", args->quiet, kQuietHelp);
   cmd->callback([args, &exit_code] { exit_code = run_guarded([&] { return run_scene(*args); }); });
 }
 

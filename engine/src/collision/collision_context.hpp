@@ -61,6 +61,13 @@ class CollisionContext {
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;
+  // A restored run's hierarchies are first built where the saved run's were: at the bodies'
+  // initial state, as its first tick's whole refit did (a hierarchy keeps the shape it was built
+  // in until it degrades), before the checkpoint's state comes in.
+  void build_as_at_start(double dt) noexcept {
+    ++proxy_pass_;
+    refit(0.0, dt);
+  }
   // Before the haptic proxy's queries: with collision.proxy_refit sliced (and a broad phase that
   // offers update_elements) one slice of each surface is refit and the queries are widened by
   // what the rest may have moved (SurfaceFreshness); an embedded surface's vertices are brought

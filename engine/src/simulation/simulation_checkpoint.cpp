@@ -1,0 +1,91 @@
+// Simulation's checkpoint and restore (simulation.hpp): the header and fingerprint
+// (checkpoint/checkpoint_format.hpp), then bodies, devices, haptic channels, clock and records.
+#include <fstream>
+#include <iterator>
+
+#include "checkpoint/checkpoint_format.hpp"
+#include "checkpoint/world_state.hpp"
+#include "simulation/simulation_impl.hpp"
+
+namespace tacta {
+
+namespace {
+
+std::string hex(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+}  // namespace
+
+std::vector<uint8_t> Simulation::save_state() const {
+  Impl& impl = *impl_;
+  const SourceLocation where{impl.world.scene().path, 0, 0, "checkpoint"};
+  if (impl.running.load()) throw InputError(where, "save_state between steps only, not in run()");
+  ClockSession& session = impl.session();
+  CheckpointWriter out;
+  save_bodies(out, impl.world, {impl.requested_models, impl.requested_params});
+  impl.checkpoint_notes = save_devices(out, impl.world);
+  out.pod(static_cast<uint8_t>(impl.haptics != nullptr));
+  if (impl.haptics) impl.haptics->save_state(out);
+  session.save_state(out);
+  return frame_checkpoint(
+      {kCheckpointVersion, engine_abi_id(), scene_fingerprint(impl.world), session.tick()},
+      out.bytes());
+}
+
+void Simulation::restore_state(std::span<const uint8_t> bytes) {
+  Impl& impl = *impl_;
+  const std::string& scene = impl.world.scene().path;
+  if (impl.running.load())
+    throw InputError({scene, 0, 0, "checkpoint"}, "restore_state between steps only, not in run()");
+  std::span<const uint8_t> payload;
+  const CheckpointHeader header = read_checkpoint_header(bytes, "checkpoint", payload);
+  const uint64_t fingerprint = scene_fingerprint(impl.world);
+  CheckpointReader in(payload, "checkpoint");
+  if (header.fingerprint != fingerprint)
+    in.fail("it is for another scene (fingerprint " + hex(header.fingerprint) + "), this scene '" +
+            impl.world.scene().name + "' (" + scene + ") is " + hex(fingerprint) +
+            ": bodies, devices, models, parameters or rates differ");
+  // The session first: building it calls each model's begin(); the saved state comes after and
+  // no begin() follows it.
+  const bool fresh = !impl.clock || impl.clock->tick() == 0;
+  ClockSession& session = impl.session();
+  if (fresh && impl.collision) impl.collision->build_as_at_start(dt());
+  load_bodies(in, impl.world, impl.plugins, {impl.requested_models, impl.requested_params});
+  impl.checkpoint_notes = load_devices(in, impl.world);
+  const bool had_haptics = in.pod<uint8_t>("whether haptics ran") != 0;
+  if (had_haptics != (impl.haptics != nullptr))
+    in.fail("haptic channels in the checkpoint and in the scene differ");
+  if (impl.haptics) impl.haptics->load_state(in);
+  session.load_state(in);
+  in.expect_end();
+}
+
+void Simulation::save_state(const std::string& path) const {
+  const std::vector<uint8_t> bytes = save_state();
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file.write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+  if (!file) throw InputError({path, 0, 0, "checkpoint"}, "cannot write the checkpoint file");
+}
+
+void Simulation::restore_state(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError({path, 0, 0, "checkpoint"}, "cannot open the checkpoint file");
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)),
+                                   std::istreambuf_iterator<char>());
+  try {
+    restore_state(std::span<const uint8_t>(bytes));
+  } catch (const InputError& e) {
+    // The file's name in the message, not "checkpoint".
+    throw InputError({path, 0, 0, "checkpoint"}, e.what());
+  }
+}
+
+const std::vector<std::string>& Simulation::checkpoint_notes() const noexcept {
+  return impl_->checkpoint_notes;
+}
+
+}  // namespace tacta
