@@ -4,6 +4,7 @@
 #include <optional>
 #include <pybind11/stl.h>
 #include <random>
+#include <span>
 
 #include "bindings.hpp"
 #include "tacta/scene_loader.hpp"
@@ -174,7 +175,34 @@ void register_simulation(py::module_& m) {
             return h.sim->write_outputs(dir);
           },
           py::arg("dir"),
-          "Writes report.json, the CSV records and plots into dir; returns the files.");
+          "Writes report.json, the CSV records and plots into dir; returns the files.")
+      .def(
+          "checkpoint",
+          [](SimHolder& h, std::optional<std::string> path) {
+            const std::vector<uint8_t> bytes = h.sim->save_state();
+            if (path) h.sim->save_state(*path);
+            return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+          },
+          py::arg("path") = py::none(),
+          "The run's state between steps as bytes (also written to path when given): a fresh "
+          "Simulation of the same scene that restores it continues bit for bit. Raises "
+          "ValueError naming the body whose model cannot be saved.")
+      .def(
+          "restore",
+          [](SimHolder& h, const py::object& source) {
+            if (py::isinstance<py::bytes>(source)) {
+              const std::string bytes = source.cast<std::string>();
+              h.sim->restore_state(std::span<const uint8_t>(
+                  reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+            } else {
+              h.sim->restore_state(py::str(source).cast<std::string>());
+            }
+            return h.sim->checkpoint_notes();
+          },
+          py::arg("source"),
+          "Restores a checkpoint (bytes, or a path) taken from the same scene; returns notes on "
+          "what could not be carried (live devices reconnect). Raises ValueError saying what "
+          "does not match.");
 }
 
 }  // namespace tacta::python

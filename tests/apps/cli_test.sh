@@ -267,6 +267,29 @@ YAML
     run 2 run broken_formats.yaml --out out2
     expect_output "broken_off_index\.off:15: " "the mesh file and line from a scene"
     ;;
+  checkpoint_resume)
+    # The demo to 1.2 s straight, then with a checkpoint at 0.55 s (the stylus in contact) and a
+    # run resumed from it: the same final state hash; a checkpoint of another scene is refused.
+    demo="$src/scenes/liver_palpation.yaml"
+    hash_of() { grep -Eo '"state_hash": *"[0-9a-f]+"' "$1/report.json" | grep -Eo '[0-9a-f]{16}'; }
+    run 0 run "$demo" --lockstep --duration 1.2 --set output.plots=[] --set output.frames=false --out straight
+    run 0 run "$demo" --lockstep --duration 1.2 --set output.plots=[] --set output.frames=false \
+      --checkpoint-at 0.55 --checkpoint demo.ckpt --out first
+    expect_output "checkpoint at t = 0.55 s written to demo.ckpt" "where the checkpoint went"
+    expect_file demo.ckpt
+    run 0 run "$demo" --lockstep --duration 1.2 --set output.plots=[] --set output.frames=false \
+      --resume demo.ckpt --out resumed
+    [ -n "$(hash_of straight)" ] || fail "no state hash in the straight run's report.json"
+    [ "$(hash_of resumed)" = "$(hash_of straight)" ] ||
+      fail "resumed state hash $(hash_of resumed), straight $(hash_of straight)"
+    [ "$(hash_of first)" = "$(hash_of straight)" ] ||
+      fail "the run that wrote the checkpoint ends at $(hash_of first), straight $(hash_of straight)"
+    run 2 run "$demo" --lockstep --duration 1.2 --set bodies.*.model=mass_spring --resume demo.ckpt
+    expect_output "another scene" "a checkpoint of another scene refused"
+    head -c 1000 demo.ckpt >cut.ckpt
+    run 2 run "$demo" --lockstep --duration 1.2 --resume cut.ckpt
+    expect_output "cut\.ckpt.*truncated" "a truncated checkpoint refused, named"
+    ;;
   *)
     fail "unknown case"
     ;;

@@ -11,6 +11,8 @@ namespace tacta {
 
 namespace {
 
+constexpr const char* kBytesName = "checkpoint bytes";  // the input's name in errors
+
 std::string hex(uint64_t v) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
@@ -41,9 +43,9 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   if (impl.running.load())
     throw InputError({scene, 0, 0, "checkpoint"}, "restore_state between steps only, not in run()");
   std::span<const uint8_t> payload;
-  const CheckpointHeader header = read_checkpoint_header(bytes, "checkpoint", payload);
+  const CheckpointHeader header = read_checkpoint_header(bytes, kBytesName, payload);
   const uint64_t fingerprint = scene_fingerprint(impl.world);
-  CheckpointReader in(payload, "checkpoint");
+  CheckpointReader in(payload, kBytesName);
   if (header.fingerprint != fingerprint)
     in.fail("it is for another scene (fingerprint " + hex(header.fingerprint) + "), this scene '" +
             impl.world.scene().name + "' (" + scene + ") is " + hex(fingerprint) +
@@ -79,8 +81,11 @@ void Simulation::restore_state(const std::string& path) {
   try {
     restore_state(std::span<const uint8_t>(bytes));
   } catch (const InputError& e) {
-    // The file's name in the message, not "checkpoint".
-    throw InputError({path, 0, 0, "checkpoint"}, e.what());
+    // The file's name in the message instead of the bytes'.
+    std::string message = e.what();
+    const std::string prefix = std::string(kBytesName) + ": ";
+    if (message.starts_with(prefix)) message.erase(0, prefix.size());
+    throw InputError({path, 0, 0, ""}, message);
   }
 }
 
