@@ -32,6 +32,7 @@ case $mode in
     run 0 "$plugin"
     expect '^  PASS  force at rest: max \|f\| [^ ]+ N'
     expect '^  PASS  step on a worker thread'
+    expect '^  PASS  checkpoint: a fresh instance, .* 0 position/velocity doubles differ'
     grep -q '^  FAIL' "$out" && fail "a check failed"
     ;;
   broken)
@@ -43,6 +44,8 @@ case $mode in
       expect '^  FAIL  no allocation in step: [1-9][0-9]* heap allocations'
     fi
     expect '^  PASS  parameter schema'
+    # Neither save_state/load_state nor the NO_HISTORY claim: a restore could not continue it.
+    expect '^  FAIL  checkpoint: not checkpointable'
     ;;
   fails_exactly)
     expected=$(printf '%s\n' "${4:-}" | tr '|' '\n' | sed '/^$/d' | sort)

@@ -31,10 +31,12 @@ struct Case {
   double youngs_modulus = 3e4;  // Pa: soft enough for the explicit models at 1 ms
 };
 
+// e.g. "corotational_fem_preconditioner_incomplete_cholesky_refactor_interval_3": a test name.
 std::string label(const Case& c) {
   std::string text = c.model;
   for (const Setting& s : c.settings)
-    text += std::string(" ") + s.name + "=" + (s.text ? s.text : std::to_string(s.number));
+    text += std::string("_") + s.name + "_" +
+            (s.text ? s.text : std::to_string(static_cast<long>(s.number)));
   return text;
 }
 
@@ -233,6 +235,7 @@ const Case kCases[] = {
 #endif
 };
 
-INSTANTIATE_TEST_SUITE_P(EveryModel, ModelCheckpoint, ::testing::ValuesIn(kCases));
+INSTANTIATE_TEST_SUITE_P(EveryModel, ModelCheckpoint, ::testing::ValuesIn(kCases),
+                         [](const auto& param_info) { return label(param_info.param); });
 
 }  // namespace
