@@ -106,8 +106,14 @@ int run_scene(const RunArgs& args) {
   const RunResult result = simulation.run(options);
   // A fault is an error: printed even with --quiet, on stderr, with the exit code 1.
   for (const std::string& fault : result.fault_messages) log_error("runtime fault: " + fault);
-  // One line per status bit kind seen (who x bit), warnings included, with its remedy.
-  for (const std::string& line : result.status.lines) std::fprintf(stderr, "%s\n", line.c_str());
+  // One line per status bit kind seen (who x bit), warnings included, with its remedy; each line
+  // starts with its severity ("warning: " or "error: "), which the sink writes back.
+  for (const std::string& line : result.status.lines) {
+    const bool error = line.rfind("error: ", 0) == 0;
+    const size_t text = line.find(": ");
+    log(error ? LogLevel::error : LogLevel::warning,
+        text == std::string::npos ? line : line.substr(text + 2));
+  }
 
   if (!args.quiet) {
     std::printf(
