@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <spawn.h>
 #include <sstream>
 #include <string>
@@ -67,20 +68,9 @@ ViewRun run_view(std::vector<std::string> args, const fs::path& dir) {
   return run;
 }
 
-// The text after "key": up to the end of its line, without the trailing comma (the status JSON
-// has one key a line); empty when absent. (No std::regex: GCC 12 warns inside it under ASan.)
-std::string json_raw(const std::string& json, const std::string& key) {
-  const std::string label = "\"" + key + "\": ";
-  const size_t at = json.find(label);
-  if (at == std::string::npos) return "";
-  std::string value = json.substr(at + label.size(), json.find('\n', at) - at - label.size());
-  if (!value.empty() && value.back() == ',') value.pop_back();
-  return value;
-}
-
-double json_number(const std::string& json, const std::string& key) {
-  const std::string raw = json_raw(json, key);
-  return raw.empty() ? std::nan("") : std::strtod(raw.c_str(), nullptr);
+// The status file tacta-view wrote on exit, parsed (null when it is missing or not JSON).
+nlohmann::json read_status(const fs::path& file) {
+  return nlohmann::json::parse(read_text(file), nullptr, false);
 }
 
 // Fraction of pixels that differ from the top-left background pixel by more than 30/255.
@@ -106,21 +96,21 @@ TEST(TactaViewWindow, SwapsModelsAndPressesWithTheMouse) {
        "5:set liver max_iterations 40; 10:swap liver mass_spring; 15:press 0.012 15; 75:quit"},
       dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string status = read_text(dir / "status.json");
-  ASSERT_FALSE(status.empty()) << run.out << run.err;
-  EXPECT_GE(json_number(status, "frames"), 75);
-  EXPECT_EQ(json_number(status, "swaps_requested"), 2);
-  EXPECT_EQ(json_raw(status, "swap_history"),
-            R"(["liver -> corotational_fem", "liver -> mass_spring"])");
+  nlohmann::json status = read_status(dir / "status.json");
+  ASSERT_TRUE(status.is_object()) << run.out << run.err;
+  EXPECT_GE(status["frames"].get<int>(), 75);
+  EXPECT_EQ(status["swaps_requested"].get<int>(), 2);
+  EXPECT_EQ(status["swap_history"],
+            nlohmann::json({"liver -> corotational_fem", "liver -> mass_spring"}));
   // The haptic side runs the swapped model: the name comes from the last snapshot.
-  EXPECT_EQ(json_raw(status, "body_models"), R"(["mass_spring"])");
-  EXPECT_EQ(json_raw(status, "body_frozen"), "[false]");
-  EXPECT_EQ(json_raw(status, "mouse"), "true");
-  EXPECT_EQ(json_raw(status, "script_failures"), "[]");
-  EXPECT_EQ(json_raw(status, "run_error"), R"("")");
+  EXPECT_EQ(status["body_models"], nlohmann::json::array({"mass_spring"}));
+  EXPECT_EQ(status["body_frozen"], nlohmann::json::array({false}));
+  EXPECT_EQ(status["mouse"], true);
+  EXPECT_EQ(status["script_failures"], nlohmann::json::array());
+  EXPECT_EQ(status["run_error"], "");
   // The press reached the liver: the coupling rendered a force.
-  EXPECT_GT(json_number(status, "max_force_N"), 0.05) << status;
-  EXPECT_GT(json_number(status, "sim_time_s"), 0.1);
+  EXPECT_GT(status["max_force_N"].get<double>(), 0.05) << status;
+  EXPECT_GT(status["sim_time_s"].get<double>(), 0.1);
 
   const tacta::render::Image shot = tacta::render::read_png(dir / "view.png");
   EXPECT_EQ(shot.width, 640);
@@ -135,11 +125,12 @@ TEST(TactaViewWindow, PausedStartAdvancesOnlyBySteps) {
        "--status", (dir / "status.json").string(), "--script", "5:step; 10:step; 40:quit"},
       dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string status = read_text(dir / "status.json");
+  nlohmann::json status = read_status(dir / "status.json");
+  ASSERT_TRUE(status.is_object()) << run.out << run.err;
   // Three lockstep runs of one 1/60 s frame each (the first picture and two steps), nothing in
   // between although the window ran for 40 frames: 17 ticks of 1 ms each.
-  EXPECT_NEAR(json_number(status, "sim_time_s"), 3 * 0.017, 1.5e-3) << status;
-  EXPECT_EQ(json_raw(status, "mouse"), "false");  // the scene's own scripted stylus
+  EXPECT_NEAR(status["sim_time_s"].get<double>(), 3 * 0.017, 1.5e-3) << status;
+  EXPECT_EQ(status["mouse"], false);  // the scene's own scripted stylus
 }
 
 TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
@@ -149,19 +140,21 @@ TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
        (dir / "status.json").string(), "--script", "20:pause; 30:mark; 80:mark; 81:quit"},
       dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const std::string status = read_text(dir / "status.json");
+  nlohmann::json status = read_status(dir / "status.json");
+  ASSERT_TRUE(status.is_object()) << run.out << run.err;
   // (frame, simulated time shown) ten frames after the pause and fifty frames later: it played,
   // then the clock stood still while the window ran on (at least 50/60 s of wall time).
-  double mark_frame[2] = {0, 0}, mark_time[2] = {0, 0};
-  ASSERT_EQ(std::sscanf(json_raw(status, "marks").c_str(), "[[%lf, %lf], [%lf, %lf]]",
-                        &mark_frame[0], &mark_time[0], &mark_frame[1], &mark_time[1]),
-            4)
-      << status;
+  ASSERT_EQ(status["marks"].size(), 2u) << status;
+  double mark_frame[2], mark_time[2];
+  for (size_t m = 0; m < 2; ++m) {
+    mark_frame[m] = status["marks"][m][0].get<double>();
+    mark_time[m] = status["marks"][m][1].get<double>();
+  }
   EXPECT_EQ(mark_frame[0], 30);
   EXPECT_EQ(mark_frame[1], 80);
   EXPECT_GT(mark_time[0], 0.0) << status;
   EXPECT_EQ(mark_time[1], mark_time[0]) << status;
-  EXPECT_EQ(json_number(status, "sim_time_s"), mark_time[0]);
+  EXPECT_EQ(status["sim_time_s"].get<double>(), mark_time[0]);
 }
 
 TEST(TactaViewWindow, BadScriptIsBadInput) {
