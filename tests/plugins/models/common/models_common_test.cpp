@@ -2,10 +2,14 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "tacta/models/divergence_guard.hpp"
 #include "tacta/models/edge_graph.hpp"
 #include "tacta/models/lame.hpp"
+#include "tacta/models/state_blob.hpp"
 #include "tacta/models/test_meshes.hpp"
 #include "tacta/models/tet_geometry.hpp"
 
@@ -83,4 +87,61 @@ TEST(ModelsCommon, DivergenceGuardFlagsNaNAndStretch) {
   x = m.positions;
   v[4] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(guard.check(x.data(), v.data()), TACTA_STEP_NOT_FINITE);
+}
+
+// The checkpoint blob: what one field list writes it reads back; a blob of another model, layout
+// or mesh, a cut one, one with bytes past its end or with a vector of another length is refused
+// with a reason and leaves the fields as they were.
+struct BlobFields {
+  std::vector<double> history = {1.5, -2.25, 3.0};
+  uint64_t count = 7;
+  void fields(StateIo& io) {
+    io.vector(history, "history");
+    io.value(count, "count");
+  }
+};
+
+std::string load_error(const StateHeader& header, const std::vector<unsigned char>& blob,
+                       BlobFields& into) {
+  try {
+    load_state_blob(header, blob.data(), blob.size(), [&](StateIo& io) { into.fields(io); });
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(StateBlob, RoundTripsAndRefusesForeignOrDamagedBlobs) {
+  const StateHeader header{"toy_model", 2, 10, 4};
+  BlobFields saved;
+  std::vector<unsigned char> blob(
+      save_state_blob(header, nullptr, 0, [&](StateIo& io) { saved.fields(io); }));
+  ASSERT_EQ(
+      save_state_blob(header, blob.data(), blob.size(), [&](StateIo& io) { saved.fields(io); }),
+      blob.size());
+  BlobFields loaded;
+  loaded.history = {0, 0, 0};
+  loaded.count = 0;
+  EXPECT_EQ(load_error(header, blob, loaded), "");
+  EXPECT_EQ(loaded.history, saved.history);
+  EXPECT_EQ(loaded.count, 7u);
+
+  BlobFields untouched;
+  untouched.count = 99;
+  const auto refused = [&](const StateHeader& h, const std::vector<unsigned char>& b,
+                           const std::string& reason) {
+    const std::string why = load_error(h, b, untouched);
+    EXPECT_NE(why.find(reason), std::string::npos) << why;
+    EXPECT_EQ(untouched.count, 99u) << "a refused blob changed the instance";
+  };
+  refused({"other_model", 2, 10, 4}, blob, "model 'toy_model'");
+  refused({"toy_model", 3, 10, 4}, blob, "layout version 2");
+  refused({"toy_model", 2, 11, 4}, blob, "10 nodes and 4 elements");
+  refused(header, {blob.begin(), blob.end() - 1}, "the blob ends");
+  std::vector<unsigned char> longer = blob;
+  longer.push_back(0);
+  refused(header, longer, "1 bytes past its last field");
+  refused(header, std::vector<unsigned char>(blob.size(), 0xAB), "not a model state blob");
+  untouched.history.resize(4);
+  refused(header, blob, "'history' holds 3 values in the blob, this instance 4");
 }
