@@ -166,7 +166,7 @@ static inline uint32_t tacta_model_claims(const tacta_model_api* api, uint32_t a
   return api_size >= offsetof(tacta_model_api, claims) + sizeof(uint32_t) ? api->claims : 0u;
 }
 
-/* The checkpoint entries of a model table, NULL when the plugin has none or is older. */
+/* Whether a model table has both checkpoint entries (0: either is NULL, or the plugin is older). */
 static inline int tacta_model_has_state_entries(const tacta_model_api* api, uint32_t api_size) {
   return api_size >= offsetof(tacta_model_api, load_state) + sizeof(void*) &&
          api->save_state != NULL && api->load_state != NULL;
