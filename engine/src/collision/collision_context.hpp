@@ -67,6 +67,16 @@ class CollisionContext {
   void build_as_at_start(double dt) noexcept {
     ++proxy_pass_;
     refit(0.0, dt);
+    raised_bits_ = 0;  // the saved run counted them at its first tick
+  }
+  // Checkpoints: the proxy passes and refit counts so far (report.json collision.proxy_refits).
+  std::array<uint64_t, 3> proxy_counters() const noexcept {
+    return {proxy_pass_, proxy_whole_refits_, proxy_slices_};
+  }
+  void set_proxy_counters(const std::array<uint64_t, 3>& c) noexcept {
+    proxy_pass_ = c[0];
+    proxy_whole_refits_ = c[1];
+    proxy_slices_ = c[2];
   }
   // Before the haptic proxy's queries: with collision.proxy_refit sliced (and a broad phase that
   // offers update_elements) one slice of each surface is refit and the queries are widened by

@@ -1,5 +1,6 @@
 // Simulation's checkpoint and restore (simulation.hpp): the header and fingerprint
 // (checkpoint/checkpoint_format.hpp), then bodies, devices, haptic channels, clock and records.
+#include <array>
 #include <fstream>
 #include <iterator>
 
@@ -31,6 +32,7 @@ std::vector<uint8_t> Simulation::save_state() const {
   impl.checkpoint_notes = save_devices(out, impl.world);
   out.pod(static_cast<uint8_t>(impl.haptics != nullptr));
   if (impl.haptics) impl.haptics->save_state(out);
+  out.pod(impl.collision ? impl.collision->proxy_counters() : std::array<uint64_t, 3>{});
   session.save_state(out);
   return frame_checkpoint(
       {kCheckpointVersion, engine_abi_id(), scene_fingerprint(impl.world), session.tick()},
@@ -61,6 +63,8 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   if (had_haptics != (impl.haptics != nullptr))
     in.fail("haptic channels in the checkpoint and in the scene differ");
   if (impl.haptics) impl.haptics->load_state(in);
+  const auto counters = in.pod<std::array<uint64_t, 3>>("the proxy refit counters");
+  if (impl.collision) impl.collision->set_proxy_counters(counters);
   session.load_state(in);
   in.expect_end();
 }
