@@ -57,6 +57,10 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   const bool fresh = !impl.clock || impl.clock->tick() == 0;
   ClockSession& session = impl.session();
   if (fresh && impl.collision) impl.collision->build_as_at_start(dt());
+  // The scene's timed events the saved run took (bodies in or out, tool changes), as its ticks
+  // took them; the saved presence and state then come over them.
+  if (header.tick > 0)
+    impl.world.apply_entity_commands(static_cast<double>(header.tick - 1) * dt());
   load_bodies(in, impl.world, impl.plugins, {impl.requested_models, impl.requested_params});
   impl.checkpoint_notes = load_devices(in, impl.world);
   const bool had_haptics = in.pod<uint8_t>("whether haptics ran") != 0;

@@ -122,6 +122,15 @@ TEST(Checkpoint, DemoMidContact) {
     EXPECT_EQ(p[key], q[key]) << key;
 }
 
+// A checkpoint after the scene's timed tool change (0.5 s): the restore takes the scene's events
+// the saved run took, so the tool and its proxy go on as they did.
+TEST(Checkpoint, CarriesTheScenesTimedEvents) {
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/examples/tool_change.yaml", schemas(),
+                 {"output.plots=[]"});
+  check_resume(scene, 650, 900);
+}
+
 std::string restore_error(Simulation& sim, const std::vector<uint8_t>& bytes) {
   try {
     sim.restore_state(bytes);
