@@ -40,8 +40,7 @@ void CheckpointWriter::end_section(size_t at) {
 }
 
 void CheckpointReader::fail(const std::string& message) const {
-  throw InputError({where_, 0, 0, ""},
-                   context_.empty() ? message : context_ + ": " + message);
+  throw InputError({where_, 0, 0, ""}, context_.empty() ? message : context_ + ": " + message);
 }
 
 const uint8_t* CheckpointReader::take(uint64_t n, const char* what) {
