@@ -61,6 +61,8 @@ int run_scene(const RunArgs& args) {
   }
   if (args.haptic_cpu >= -1)
     overrides.push_back("clock.haptic_cpu=" + std::to_string(args.haptic_cpu));
+  // --resume FILE is clock.resume (a path typed here is relative to the working folder).
+  if (!args.resume.empty()) overrides.push_back("clock.resume=\"" + args.resume + "\"");
   if (!args.replay.empty()) {
     // The scene's device is replaced by a replay of the log, keeping its tool and coupling.
     overrides.push_back("devices.*.plugin=replay");
@@ -82,10 +84,8 @@ int run_scene(const RunArgs& args) {
                                            scene.output.frame_width, scene.output.frame_height);
     options.observers.push_back(frames.get());
   }
-  if (!args.resume.empty()) {
-    simulation.restore_state(args.resume);
+  if (!scene.clock.resume.empty())
     for (const std::string& note : simulation.checkpoint_notes()) log_warning(note);
-  }
   // The rest of the scene's duration from where it stands (0 on a fresh run, the checkpoint's
   // time on a resumed one); the outputs cover the whole run.
   const double rest = std::max(0.0, scene.clock.duration_s - simulation.time());

@@ -284,6 +284,13 @@ YAML
       fail "resumed state hash $(hash_of resumed), straight $(hash_of straight)"
     [ "$(hash_of first)" = "$(hash_of straight)" ] ||
       fail "the run that wrote the checkpoint ends at $(hash_of first), straight $(hash_of straight)"
+    # The scene key does what --resume does (a path in --set is relative to the working folder).
+    run 0 run "$demo" --lockstep --duration 1.2 --set output.plots=[] --set output.frames=false \
+      --set clock.resume=demo.ckpt --out keyed
+    [ "$(hash_of keyed)" = "$(hash_of straight)" ] ||
+      fail "clock.resume state hash $(hash_of keyed), straight $(hash_of straight)"
+    run 2 run "$demo" --lockstep --set clock.resume=absent.ckpt
+    expect_output "clock.resume.*no checkpoint file at" "an absent checkpoint named at its key"
     run 2 run "$demo" --lockstep --duration 1.2 --set bodies.*.model=mass_spring --resume demo.ckpt
     expect_output "another scene" "a checkpoint of another scene refused"
     head -c 1000 demo.ckpt >cut.ckpt

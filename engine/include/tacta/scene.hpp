@@ -222,6 +222,9 @@ struct ClockDesc {
   bool lock_memory = true;   // mlockall for the run
   bool shallow_idle = true;  // realtime: PM QoS keeps the CPUs out of deep idle states
   double spin_us = 50;       // us before each deadline spun instead of slept
+  // A checkpoint of this scene to continue from (Simulation::save_state, `--checkpoint-at`): the
+  // Simulation opens at its time. Absolute; empty: start at t = 0.
+  std::string resume;
 };
 
 // Empty when `duration_s` at `haptic_rate_hz` fits kMaxRunTicks trace rows (one a tick per

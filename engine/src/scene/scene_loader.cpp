@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <sched.h>
@@ -39,7 +40,7 @@ ClockDesc read_clock(const Field& field) {
   field.expect_map(
       "a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
   field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority",
-                    "haptic_cpu", "lock_memory", "spin_us", "shallow_idle"});
+                    "haptic_cpu", "lock_memory", "spin_us", "shallow_idle", "resume"});
   ClockDesc clock;
   if (auto f = field.get("mode"))
     clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
@@ -68,6 +69,12 @@ ClockDesc read_clock(const Field& field) {
   if (auto f = field.get("shallow_idle")) clock.shallow_idle = f->boolean();
   // 1 ms: a whole 1 kHz period; a longer spin would only burn the CPU.
   if (auto f = field.get("spin_us")) clock.spin_us = f->real(Range::closed(0, 1000));
+  if (auto f = field.get("resume")) {
+    clock.resume = f->file_path();
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(clock.resume, error))
+      f->fail("no checkpoint file at " + clock.resume);
+  }
   return clock;
 }
 

@@ -50,6 +50,8 @@ Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
     impl_->requested_models.push_back(impl_->world.body_desc(i).model);
     impl_->requested_params.push_back(impl_->world.body_desc(i).model_params);
   }
+  // clock.resume: the Simulation opens where the checkpoint stands, for every front end.
+  if (!scene.clock.resume.empty()) restore_state(scene.clock.resume);
 }
 
 BodyHandle Simulation::add_body(const BodyDesc& desc) {
