@@ -18,8 +18,10 @@ void StateIo::raw(void* data, size_t bytes, const char* name) {
     fail(std::string("the blob ends (") + std::to_string(size_) + " bytes) inside '" + name + "'");
     return;
   }
-  if (mode_ == Mode::kWrite) std::memcpy(bytes_ + used_, data, bytes);
-  if (mode_ == Mode::kRead) std::memcpy(data, bytes_ + used_, bytes);
+  // An empty field (an unused vector: its data() may be null) copies nothing; memcpy must not see
+  // a null pointer even for 0 bytes.
+  if (bytes > 0 && mode_ == Mode::kWrite) std::memcpy(bytes_ + used_, data, bytes);
+  if (bytes > 0 && mode_ == Mode::kRead) std::memcpy(data, bytes_ + used_, bytes);
   used_ += bytes;
 }
 
