@@ -1,19 +1,8 @@
 #include "checkpoint/checkpoint_format.hpp"
 
-#include <cstdio>
-
 #include "tacta/plugin.h"
 
 namespace tacta {
-
-uint64_t fnv1a64(const void* data, size_t size, uint64_t h) noexcept {
-  const auto* p = static_cast<const uint8_t*>(data);
-  for (size_t i = 0; i < size; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;  // FNV-1a 64 prime
-  }
-  return h;
-}
 
 uint64_t engine_abi_id() noexcept { return TACTA_ABI_ID; }
 
@@ -83,16 +72,6 @@ void CheckpointReader::expect_end() {
     fail(std::to_string(left()) + " bytes more than this engine reads (another layout)");
 }
 
-namespace {
-
-std::string hex(uint64_t v) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-  return text;
-}
-
-}  // namespace
-
 std::vector<uint8_t> frame_checkpoint(const CheckpointHeader& header,
                                       const std::vector<uint8_t>& payload) {
   CheckpointWriter w;
@@ -125,8 +104,8 @@ CheckpointHeader read_checkpoint_header(std::span<const uint8_t> bytes, const st
            std::to_string(kCheckpointVersion) + " and no longer read");
   h.engine_abi = r.pod<uint64_t>("the engine ABI id");
   if (h.engine_abi != engine_abi_id())
-    r.fail("written by an engine with ABI id " + hex(h.engine_abi) + ", this engine is " +
-           hex(engine_abi_id()));
+    r.fail("written by an engine with ABI id " + hex64(h.engine_abi) + ", this engine is " +
+           hex64(engine_abi_id()));
   h.fingerprint = r.pod<uint64_t>("the scene fingerprint");
   h.tick = r.pod<uint64_t>("the tick");
   const auto checksum = r.pod<uint64_t>("the checksum");

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tacta/error.hpp"
+#include "text/digest.hpp"
 
 namespace tacta {
 
@@ -19,9 +20,6 @@ inline constexpr char kCheckpointMagic[8] = {'T', 'A', 'C', 'T', 'A', 'C', 'K', 
 inline constexpr uint32_t kCheckpointVersion = 1;
 // magic, version, engine ABI id, fingerprint, tick, checksum, payload length.
 inline constexpr size_t kCheckpointHeaderBytes = 8 + 4 + 8 + 8 + 8 + 8 + 8;
-
-// FNV-1a 64 over bytes, continuing from `h`.
-uint64_t fnv1a64(const void* data, size_t size, uint64_t h = 1469598103934665603ull) noexcept;
 
 class CheckpointWriter {
  public:

@@ -33,16 +33,6 @@ void load_rows(CheckpointReader& in, Recorder<Row>& r, const char* what) {
   r.restore(std::move(rows), in.pod<uint64_t>(what));
 }
 
-template <class T>
-void save_each(CheckpointWriter& out, const std::vector<T>& items) {
-  out.array(items);
-}
-
-template <class T>
-void load_each(CheckpointReader& in, std::vector<T>& items, const char* what) {
-  in.array_exact(items, what);
-}
-
 }  // namespace
 
 void HapticLoop::save_state(CheckpointWriter& out) const {
@@ -55,8 +45,8 @@ void HapticLoop::save_state(CheckpointWriter& out) const {
   out.pod(next_record_s_);
   out.pod(tick_index_);
   out.pod(tick_time_);
-  save_each(out, body_status_);
-  save_each(out, device_status_);
+  out.array(body_status_);
+  out.array(device_status_);
   out.pod(collision_status_);
   out.end_section(at);
 }
@@ -71,8 +61,8 @@ void HapticLoop::load_state(CheckpointReader& outer) {
   in.pod_into(next_record_s_, "the next record time");
   in.pod_into(tick_index_, "the tick index");
   in.pod_into(tick_time_, "the tick time");
-  load_each(in, body_status_, "body status counters");
-  load_each(in, device_status_, "device status counters");
+  in.array_exact(body_status_, "body status counters");
+  in.array_exact(device_status_, "device status counters");
   in.pod_into(collision_status_, "the collision status counter");
   in.expect_end();
 }

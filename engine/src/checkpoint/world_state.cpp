@@ -189,8 +189,7 @@ void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugi
              b.model.instance->name() + "' here");
     const std::span<const uint8_t> own = r.blob("the model's own state");
     std::string why;
-    if (!b.model.instance->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
-      r.fail(why);
+    if (!b.model.instance->load_state(own, why)) r.fail(why);
     r.pod_into(b.progress, "step progress");
     r.pod_into(b.fault, "fault state");
     const std::vector<double> boundary = r.array<double>("boundary motion state", 1u << 28);
@@ -247,8 +246,7 @@ std::vector<std::string> load_devices(CheckpointReader& in, World& world) {
     const bool had_state = r.pod<uint8_t>("whether the plugin saved state") != 0;
     const std::span<const uint8_t> own = r.blob("the plugin's own state");
     std::string why;
-    if (had_state && dev.link.device->has_state() &&
-        !dev.link.device->load_state(std::vector<uint8_t>(own.begin(), own.end()), why))
+    if (had_state && dev.link.device->has_state() && !dev.link.device->load_state(own, why))
       r.fail(why);
     if (!dev.link.device->has_state())
       notes.push_back("device '" + dev.link.name + "' (" + dev.link.desc.plugin +

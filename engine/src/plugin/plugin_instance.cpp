@@ -15,6 +15,29 @@ std::string plugin_failure(const tacta_descriptor& d, const char* what, const ch
   return text;
 }
 
+// A plugin's save_state (model or device): the size asked first, then the bytes; a plugin whose
+// state grew between the two calls is asked again.
+template <class Save>
+std::vector<uint8_t> saved_state(Save&& save) {
+  std::vector<uint8_t> bytes(save(nullptr, 0));
+  while (true) {
+    const size_t size = save(bytes.data(), bytes.size());
+    if (size <= bytes.size()) {
+      bytes.resize(size);
+      return bytes;
+    }
+    bytes.resize(size);
+  }
+}
+
+// A plugin's load_state answer: true, or false with the plugin's reason in `why`.
+bool state_loaded(const tacta_descriptor& d, tacta_status status, const char* message,
+                  std::string& why) {
+  if (status == TACTA_OK) return true;
+  why = plugin_failure(d, "refused its state", message);
+  return false;
+}
+
 // parallel_for without an engine pool (a model created alone, e.g. by a test): the caller does all.
 void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t),
                 void* user) {
@@ -54,31 +77,21 @@ bool ModelInstance::can_save_state(std::string& why) const {
 
 std::vector<uint8_t> ModelInstance::save_state() {
   if (!tacta_model_has_state_entries(&api_, descriptor_.api_size)) return {};
-  std::vector<uint8_t> bytes(api_.save_state(instance_, nullptr, 0));
-  // The size asked first is the size written: a model whose state grew between the calls is
-  // asked again.
-  while (true) {
-    const size_t size = api_.save_state(instance_, bytes.data(), bytes.size());
-    if (size <= bytes.size()) {
-      bytes.resize(size);
-      return bytes;
-    }
-    bytes.resize(size);
-  }
+  return saved_state(
+      [this](void* bytes, size_t capacity) { return api_.save_state(instance_, bytes, capacity); });
 }
 
-bool ModelInstance::load_state(const std::vector<uint8_t>& bytes, std::string& why) {
+bool ModelInstance::load_state(std::span<const uint8_t> bytes, std::string& why) {
   if (!tacta_model_has_state_entries(&api_, descriptor_.api_size)) {
     if (bytes.empty()) return true;
     why = "model '" + std::string(descriptor_.name) + "' has no load_state for " +
           std::to_string(bytes.size()) + " bytes of state";
     return false;
   }
-  char message[256] = {};
-  if (api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message) == TACTA_OK)
-    return true;
-  why = "model '" + std::string(descriptor_.name) + "' refused its state: " + message;
-  return false;
+  char message[kMessageCapacity] = {};
+  return state_loaded(
+      descriptor_, api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message),
+      message, why);
 }
 
 std::vector<std::pair<std::string, double>> ModelInstance::counters() {
@@ -121,18 +134,16 @@ bool DeviceInstance::has_state() const noexcept {
 
 std::vector<uint8_t> DeviceInstance::save_state() {
   if (!has_state()) return {};
-  std::vector<uint8_t> bytes(api_.save_state(instance_, nullptr, 0));
-  bytes.resize(api_.save_state(instance_, bytes.data(), bytes.size()));
-  return bytes;
+  return saved_state(
+      [this](void* bytes, size_t capacity) { return api_.save_state(instance_, bytes, capacity); });
 }
 
-bool DeviceInstance::load_state(const std::vector<uint8_t>& bytes, std::string& why) {
+bool DeviceInstance::load_state(std::span<const uint8_t> bytes, std::string& why) {
   if (!has_state()) return true;  // a live link: it reconnects
-  char message[256] = {};
-  if (api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message) == TACTA_OK)
-    return true;
-  why = "device plugin '" + std::string(descriptor_.name) + "' refused its state: " + message;
-  return false;
+  char message[kMessageCapacity] = {};
+  return state_loaded(
+      descriptor_, api_.load_state(instance_, bytes.data(), bytes.size(), message, sizeof message),
+      message, why);
 }
 
 bool DeviceInstance::input(const double* values, uint32_t count) noexcept {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -82,7 +83,7 @@ class ModelInstance {
   bool can_save_state(std::string& why) const;
   std::vector<uint8_t> save_state();  // empty for a model that claims no history
   // Sets the instance's own state from what save_state wrote; false with the model's reason.
-  bool load_state(const std::vector<uint8_t>& bytes, std::string& why);
+  bool load_state(std::span<const uint8_t> bytes, std::string& why);
 
   // Link for the retired-instance stack of a runtime swap (see ModelMailbox).
   ModelInstance* retired_next = nullptr;
@@ -125,7 +126,7 @@ class DeviceInstance {
   // link, which reconnects instead). load_state: false with the plugin's reason.
   bool has_state() const noexcept;
   std::vector<uint8_t> save_state();
-  bool load_state(const std::vector<uint8_t>& bytes, std::string& why);
+  bool load_state(std::span<const uint8_t> bytes, std::string& why);
   // The plugin's counters for report.json (the optional `counters` entry); empty without it.
   std::vector<std::pair<std::string, double>> counters();
 

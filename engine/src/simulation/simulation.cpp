@@ -12,6 +12,7 @@
 #include "report/run_outputs.hpp"
 #include "simulation/simulation_impl.hpp"
 #include "tacta/sim/registry_schemas.hpp"
+#include "text/digest.hpp"
 
 namespace tacta {
 
@@ -28,17 +29,9 @@ void print_progress(double fraction) {
 }  // namespace
 
 std::string hash_positions(const std::vector<const std::vector<double>*>& arrays) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a 64 offset basis
-  for (const std::vector<double>* a : arrays) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(a->data());
-    for (size_t i = 0; i < a->size() * sizeof(double); ++i) {
-      h ^= bytes[i];
-      h *= 1099511628211ull;  // FNV-1a 64 prime
-    }
-  }
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
+  uint64_t h = fnv1a64(nullptr, 0);  // the offset basis
+  for (const std::vector<double>* a : arrays) h = fnv1a64(a->data(), a->size() * sizeof(double), h);
+  return hex64(h);
 }
 
 Simulation::Simulation(const SceneDesc& scene, const PluginRegistry& plugins)
@@ -66,7 +59,7 @@ BodyHandle Simulation::add_body(const BodyDesc& desc) {
   });
   impl_->requested_models.push_back(desc.model);
   impl_->requested_params.push_back(desc.model_params);
-  return {e.index, e.generation ^ impl_->salt};
+  return impl_->handle_of(e);
 }
 
 BodyHandle Simulation::add_body(const std::string& yaml) {
@@ -85,7 +78,7 @@ void Simulation::change_tool(DeviceHandle device, const std::string& yaml) {
 
 void Simulation::remove_body(BodyHandle body) {
   impl_->body_at(body);  // InputError naming a stale or foreign handle
-  impl_->world.remove_body({body.index, body.generation ^ impl_->salt});
+  impl_->world.remove_body(impl_->entity_of(body));
 }
 
 void Simulation::request_model_swap(BodyHandle handle, const std::string& model,

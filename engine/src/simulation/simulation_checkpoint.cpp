@@ -15,12 +15,6 @@ namespace {
 
 constexpr const char* kBytesName = "checkpoint bytes";  // the input's name in errors
 
-std::string hex(uint64_t v) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-  return text;
-}
-
 }  // namespace
 
 std::vector<uint8_t> Simulation::save_state() const {
@@ -50,9 +44,9 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   const uint64_t fingerprint = scene_fingerprint(impl.world);
   CheckpointReader in(payload, kBytesName);
   if (header.fingerprint != fingerprint)
-    in.fail("it is for another scene (fingerprint " + hex(header.fingerprint) + "), this scene '" +
-            impl.world.scene().name + "' (" + scene + ") is " + hex(fingerprint) +
-            ": bodies, devices, models, parameters or rates differ");
+    in.fail("it is for another scene (fingerprint " + hex64(header.fingerprint) +
+            "), this scene '" + impl.world.scene().name + "' (" + scene + ") is " +
+            hex64(fingerprint) + ": bodies, devices, models, parameters or rates differ");
   // The session first: building it calls each model's begin(); the saved state comes after and
   // no begin() follows it.
   const bool fresh = !impl.clock || impl.clock->tick() == 0;

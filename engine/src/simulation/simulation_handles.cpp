@@ -24,19 +24,13 @@ uint32_t Simulation::Impl::next_salt() noexcept {
   return (count.fetch_add(1, std::memory_order_relaxed) + 1) * 0x9e3779b9u;
 }
 
-BodyHandle Simulation::Impl::body_handle(size_t index) const {
-  const ecs::Entity e = world.body_handle(index);
-  return {e.index, e.generation ^ salt};
-}
-
 size_t Simulation::Impl::body_at(BodyHandle body) const {
   const SourceLocation where{world.scene().path, 0, 0, "bodies"};
   if (body.index >= world.body_count())
     throw InputError(where, "no body handle " + to_string(body) + " in this simulation (" +
                                 std::to_string(world.body_count()) +
                                 " body slots in use; a default handle names none)");
-  const ecs::Entity entity{body.index, body.generation ^ salt};
-  if (world.is_live(entity)) return body.index;
+  if (world.is_live(entity_of(body))) return body.index;
   const std::string& name = world.body(body.index).info.name;
   if (world.is_live(world.body_handle(body.index)))
     throw InputError(where, "body handle " + to_string(body) +
@@ -84,7 +78,7 @@ std::vector<BodyHandle> Simulation::bodies() const {
 }
 
 bool Simulation::body_alive(BodyHandle body) const noexcept {
-  return impl_->world.is_live({body.index, body.generation ^ impl_->salt});
+  return impl_->world.is_live(impl_->entity_of(body));
 }
 
 DeviceHandle Simulation::device(const std::string& name) const {

@@ -37,7 +37,7 @@ struct Simulation::Impl {
   std::unique_ptr<CollisionContext> collision;
   std::unique_ptr<HapticInteraction> haptics;
   std::unique_ptr<CollisionResponse> response;
-  std::unique_ptr<ClockSession> clock;  // built at the first step or run
+  std::unique_ptr<ClockSession> clock;        // built at the first step or run
   std::vector<std::string> checkpoint_notes;  // what the last save or restore could not carry
 
   ClockSession& session() {
@@ -49,7 +49,13 @@ struct Simulation::Impl {
   // Handles: a body's generation is the world's XOR this Simulation's salt, a device's is the
   // salt, so a handle from another Simulation fails the check (simulation_handles.cpp).
   const uint32_t salt;
-  BodyHandle body_handle(size_t index) const;
+  BodyHandle handle_of(ecs::Entity body) const noexcept {
+    return {body.index, body.generation ^ salt};
+  }
+  ecs::Entity entity_of(BodyHandle body) const noexcept {
+    return {body.index, body.generation ^ salt};
+  }
+  BodyHandle body_handle(size_t index) const { return handle_of(world.body_handle(index)); }
   DeviceHandle device_handle(size_t index) const noexcept {
     return {static_cast<uint32_t>(index), salt};
   }
