@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command.hpp"
@@ -12,6 +13,7 @@
 #include "tacta/error.hpp"
 #include "tacta/live_params.hpp"
 #include "tacta/log.hpp"
+#include "tacta/model_api.h"
 #include "tacta/param_defaults.hpp"
 #include "tacta/plugin_registry.hpp"
 
@@ -45,6 +47,36 @@ std::string collision_roles_text(const tacta_descriptor& d) {
       text += (text.empty() ? "" : ", ") + std::string(tacta_collision_role_name(1u << r));
   return (text.empty() ? std::string("none") : text) +
          (guessed ? " (guessed from its entries)" : "");
+}
+
+uint32_t model_claims(const tacta_descriptor& d) {
+  return tacta_model_claims(static_cast<const tacta_model_api*>(d.api), d.api_size);
+}
+
+// The TACTA_MODEL_CLAIM_* bits a model descriptor sets, by name ("topology_edits": it takes cuts).
+std::vector<std::string> model_claim_names(const tacta_descriptor& d) {
+  static constexpr std::pair<uint32_t, const char*> kNames[] = {
+      {TACTA_MODEL_CLAIM_ROTATION_INVARIANT, "rotation_invariant"},
+      {TACTA_MODEL_CLAIM_MOMENTUM, "momentum"},
+      {TACTA_MODEL_CLAIM_NO_HISTORY, "no_history"},
+      {TACTA_MODEL_CLAIM_TOPOLOGY_EDITS, "topology_edits"},
+  };
+  std::vector<std::string> names;
+  for (const auto& [bit, name] : kNames)
+    if (model_claims(d) & bit) names.emplace_back(name);
+  return names;
+}
+
+bool takes_cuts(const tacta_descriptor& d) {
+  return (model_claims(d) & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS) != 0;
+}
+
+// "momentum, topology_edits (takes cuts)"; "none (takes no cuts)" without any claim.
+std::string model_claims_text(const tacta_descriptor& d) {
+  std::string text;
+  for (const auto& name : model_claim_names(d)) text += (text.empty() ? "" : ", ") + name;
+  return (text.empty() ? std::string("none") : text) +
+         (takes_cuts(d) ? " (takes cuts)" : " (takes no cuts)");
 }
 
 std::string short_number(double v) {
@@ -98,6 +130,7 @@ void print_text(const tacta::PluginRegistry& registry) {
               << tacta_kind_name(d.kind) << " " << d.name << " " << version_text(d.version) << ": "
               << (d.description ? d.description : "") << "\n  file: " << e.file << "\n";
     if (d.kind == TACTA_KIND_COLLISION) std::cout << "  roles: " << collision_roles_text(d) << "\n";
+    if (d.kind == TACTA_KIND_MODEL) std::cout << "  claims: " << model_claims_text(d) << "\n";
     if (d.param_count == 0) std::cout << "  parameters: none\n";
     for (uint32_t i = 0; i < d.param_count; ++i)
       std::cout << "  - " << describe_param(d.params[i], tacta::is_live_param(d, d.params[i].name))
@@ -164,6 +197,10 @@ void print_json(const tacta::PluginRegistry& registry) {
       for (uint32_t r = 0; r < TACTA_COLLISION_ROLE_COUNT; ++r)
         if (roles & (1u << r)) names.push_back(tacta_collision_role_name(1u << r));
       plugin["roles_guessed"] = guessed != 0;
+    }
+    if (d.kind == TACTA_KIND_MODEL) {
+      plugin["claims"] = model_claim_names(d);
+      plugin["takes_cuts"] = takes_cuts(d);
     }
     Json& params = plugin["parameters"] = Json::array();
     for (uint32_t i = 0; i < d.param_count; ++i)

@@ -58,6 +58,8 @@ case "$case_name" in
     expect_output '--out' "the --out option"
     run 0 plugins
     expect_output 'tensor_mass' "the tensor_mass plugin"
+    expect_output '^  claims: momentum, topology_edits \(takes cuts\)$' "tensor_mass's claims"
+    expect_output '^  claims: no_history \(takes no cuts\)$' "fd_debunne's claims (no cuts)"
     run 0 mesh-info "$src/assets/meshes/liver.msh"
     expect_output '[0-9]+' "counts"
     run 0 mesh-info --help

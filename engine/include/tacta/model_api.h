@@ -109,6 +109,11 @@ typedef struct tacta_model_counter {
 /* step() reads nothing an earlier step wrote: positions, velocities and the parameters are the
  * whole state, so a checkpoint needs no save_state/load_state from this model. */
 #define TACTA_MODEL_CLAIM_NO_HISTORY (1u << 2)
+/* The model may be rebuilt mid-run on an edited mesh (cutting): create() on the new mesh, then
+ * begin() with the carried-over positions and velocities, continues correctly (the instance keeps
+ * no state that a rebuild on the new mesh would make wrong). The engine refuses cuts on bodies
+ * whose model does not claim it. */
+#define TACTA_MODEL_CLAIM_TOPOLOGY_EDITS (1u << 3)
 
 typedef struct tacta_model_api {
   /* required: build an instance for one body; may allocate. Writes a reason on failure. */

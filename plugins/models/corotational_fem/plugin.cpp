@@ -26,9 +26,11 @@ class CorotationalFemPlugin {
       "Corotational linear tetrahedral FEM, implicit Euler with Rayleigh damping (PCG or "
       "sparse Cholesky)";
   static constexpr uint32_t kVersion = 10000;
-  // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims =
-      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  // Forces depend on the deformation alone and sum to zero over each element. Rotations are
+  // taken from the positions each step and factorisations come from create(), so a rebuild on a
+  // cut mesh then begin() is exact.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT |
+                                      TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_TOPOLOGY_EDITS;
   // The solver's limits; rotation, solver and preconditioner size the buffers built at creation.
   static constexpr const char* kLiveParams = "max_iterations|tolerance|refactor_interval";
   static constexpr auto kParams = sparse::join_params(

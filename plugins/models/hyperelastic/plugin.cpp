@@ -34,9 +34,10 @@ class HyperelasticPlugin {
       "Hyperelastic tetrahedral FEM (Neo-Hookean, St Venant-Kirchhoff, Mooney-Rivlin), "
       "projected tangents, implicit Newton steps with line search, or static equilibrium";
   static constexpr uint32_t kVersion = 10000;
-  // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims =
-      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  // Forces depend on the deformation alone and sum to zero over each element. Rest data and
+  // solver structure come from create(), so a rebuild on a cut mesh then begin() is exact.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT |
+                                      TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_TOPOLOGY_EDITS;
   // Material and dynamic-step parameters; the static and linear solves come from sparse_solvers.
   static constexpr std::array<tacta_param_spec, 11> kModelParams = {
       sdk::choice_param("material", "neo_hookean|stvk|mooney_rivlin", 0,

@@ -25,9 +25,10 @@ class VbdPlugin {
       "Vertex Block Descent: implicit Euler by per-vertex 3x3 Newton steps over a graph "
       "colouring, matrix-free, parallel per colour (corotational or Neo-Hookean tets)";
   static constexpr uint32_t kVersion = 10000;
-  // Forces depend on the deformation alone and sum to zero over each element.
-  static constexpr uint32_t kClaims =
-      TACTA_MODEL_CLAIM_ROTATION_INVARIANT | TACTA_MODEL_CLAIM_MOMENTUM;
+  // Forces depend on the deformation alone and sum to zero over each element. Colouring, rest
+  // data and warm starts all come from create() and begin(), so a rebuild on a cut mesh is exact.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT |
+                                      TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_TOPOLOGY_EDITS;
   // How far each step converges; the energy and the guess decide buffers and history.
   static constexpr const char* kLiveParams = "iterations|chebyshev_rho";
   static constexpr std::array<tacta_param_spec, 4> kParams = {

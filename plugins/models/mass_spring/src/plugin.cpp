@@ -21,9 +21,10 @@ class MassSpringPlugin {
   static constexpr uint32_t kVersion = 10000;
   // Forces depend on the deformation alone and sum to zero over each element. No history: every
   // integrator starts each step from x and v alone (Baraff-Witkin's CG from dv = 0, Desbrun's
-  // factor fixed at creation).
+  // factor fixed at creation), so a rebuild on a cut mesh continues exactly.
   static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_ROTATION_INVARIANT |
-                                      TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_NO_HISTORY;
+                                      TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_NO_HISTORY |
+                                      TACTA_MODEL_CLAIM_TOPOLOGY_EDITS;
   static constexpr std::array<tacta_param_spec, 7> kParams = {
       tacta::sdk::choice_param("integrator", "symplectic_euler|implicit_euler|desbrun", 1,
                                "time integrator; implicit_euler is Baraff-Witkin (one Newton "

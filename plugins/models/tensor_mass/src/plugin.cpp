@@ -16,8 +16,9 @@ class TensorMassPlugin {
   static constexpr const char* kDescription =
       "Delingette et al.: linear tetrahedral FEM, K_ii per vertex and K_ij per edge";
   static constexpr uint32_t kVersion = 10000;
-  // Linear (small strain): a rigid rotation strains it, but K u sums to zero over the nodes.
-  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_MOMENTUM;
+  // Linear (small strain): a rigid rotation strains it, but K u sums to zero over the nodes. The
+  // only history (the previous position) is set again by begin(), so a cut mesh is a rebuild.
+  static constexpr uint32_t kClaims = TACTA_MODEL_CLAIM_MOMENTUM | TACTA_MODEL_CLAIM_TOPOLOGY_EDITS;
   static constexpr std::array<tacta_param_spec, 3> kParams = {
       tacta::sdk::choice_param("integrator", "central_difference|implicit_euler|auto", 2,
                                "explicit central differences, implicit Euler factorised at create "
