@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mesh/geometry.hpp"
+#include "mesh/tet_faces.hpp"
 #include "tacta/mesh_io.hpp"
 
 namespace tacta {
@@ -126,67 +127,6 @@ void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per
   }
 }
 
-void build_edges(VolumeMesh& mesh) {
-  std::vector<std::array<uint32_t, 2>> edges;
-  auto add = [&](uint32_t a, uint32_t b) { edges.push_back({std::min(a, b), std::max(a, b)}); };
-  if (mesh.dimension == 3) {
-    for (size_t t = 0; t < mesh.tet_count(); ++t) {
-      const uint32_t* v = &mesh.tets[4 * t];
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) add(v[i], v[j]);
-    }
-  } else if (!mesh.quads.empty()) {
-    for (size_t q = 0; q < mesh.quads.size() / 4; ++q)
-      for (size_t k = 0; k < 4; ++k) add(mesh.quads[4 * q + k], mesh.quads[4 * q + (k + 1) % 4]);
-  } else {
-    for (size_t t = 0; t < mesh.triangles.size() / 3; ++t)
-      for (size_t k = 0; k < 3; ++k)
-        add(mesh.triangles[3 * t + k], mesh.triangles[3 * t + (k + 1) % 3]);
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  mesh.edges.clear();
-  mesh.edges.reserve(2 * edges.size());
-  for (const auto& e : edges) mesh.edges.insert(mesh.edges.end(), e.begin(), e.end());
-}
-
-// Faces used by one tet only, each kept with the winding that points out of its tet.
-void build_boundary(VolumeMesh& mesh) {
-  // Outward faces of a positive tet (a, b, c, d).
-  static constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  struct Face {
-    std::array<uint32_t, 3> key;
-    uint32_t order;  // tet * 4 + local face: keeps the output in tet order
-  };
-  std::vector<Face> faces;
-  faces.reserve(4 * mesh.tet_count());
-  for (uint32_t t = 0; t < mesh.tet_count(); ++t) {
-    for (uint32_t f = 0; f < 4; ++f) {
-      std::array<uint32_t, 3> key;
-      for (int k = 0; k < 3; ++k)
-        key[static_cast<size_t>(k)] = mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])];
-      std::sort(key.begin(), key.end());
-      faces.push_back({key, 4 * t + f});
-    }
-  }
-  std::sort(faces.begin(), faces.end(), [](const Face& x, const Face& y) { return x.key < y.key; });
-  std::vector<uint32_t> single;
-  for (size_t i = 0; i < faces.size();) {
-    size_t j = i + 1;
-    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-    if (j - i == 1) single.push_back(faces[i].order);
-    i = j;
-  }
-  std::sort(single.begin(), single.end());
-  mesh.triangles.clear();
-  mesh.triangles.reserve(3 * single.size());
-  for (uint32_t order : single) {
-    uint32_t t = order / 4, f = order % 4;
-    for (int k = 0; k < 3; ++k)
-      mesh.triangles.push_back(mesh.tets[4 * t + static_cast<uint32_t>(kFaces[f][k])]);
-  }
-}
-
 }  // namespace
 
 void finalize(VolumeMesh& mesh, LoadReport* report) {
@@ -196,12 +136,12 @@ void finalize(VolumeMesh& mesh, LoadReport* report) {
   remove_unreferenced(mesh, r);
   if (mesh.dimension == 3) {
     orient_tets(mesh, r);
-    build_boundary(mesh);
+    mesh_detail::build_boundary(mesh);
   } else {
     orient_planar(mesh, mesh.quads, 4, "quad");
     orient_planar(mesh, mesh.triangles, 3, "triangle");
   }
-  build_edges(mesh);
+  mesh_detail::build_edges(mesh);
 }
 
 }  // namespace tacta
