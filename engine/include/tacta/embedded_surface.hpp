@@ -29,6 +29,8 @@ struct EmbeddedSurface {
   std::vector<double> positions;
   std::vector<double>
       normals;  // 3 per vertex: unit, area-weighted, at the last update_embedded_surface
+  // 1 per triangle: 1 when a cut made it (drawn in the cut colour); empty while never cut
+  std::vector<uint8_t> cut_triangles;
   size_t extrapolated_vertices = 0;  // vertices outside every tet, bound to the nearest one
   std::string source;                // file it came from, for messages
   size_t vertex_count() const { return rest_positions.size() / 3; }

@@ -11,6 +11,7 @@
 #include "tacta/error.hpp"
 #include "tacta/param_set.hpp"
 #include "tacta/plugin.h"
+#include "tacta/sim/cut.hpp"
 
 namespace tacta {
 
@@ -197,13 +198,22 @@ struct ToolChangeDesc {
   ShapeDesc tool;
 };
 
+// A cut a scene makes at an event's time (tacta/sim/cut.hpp): the blade's swept surface.
+struct CutEventDesc {
+  std::string body;
+  CutMode mode = CutMode::kSeparate;
+  std::vector<double> triangles;  // 9 per triangle: three corners, m, world frame
+  SourceLocation where;
+};
+
 // Something that changes the scene while it runs (scene key `events`): exactly one of `add` (a
-// whole body, as under `bodies`), `remove` (a body's name) and `change_tool`.
+// whole body, as under `bodies`), `remove` (a body's name), `change_tool` and `cut`.
 struct BodyEventDesc {
   double time = 0;  // s, simulated
   std::optional<BodyDesc> add;
   std::string remove;
   std::optional<ToolChangeDesc> change_tool;
+  std::optional<CutEventDesc> cut;
   SourceLocation where;
 };
 

@@ -96,6 +96,10 @@ void save_bodies(CheckpointWriter& out, World& world, const RequestedModels& req
     if (b.settings.own_thread)
       throw InputError(where, "cannot checkpoint body '" + b.info.name +
                                   "': it steps on its own thread (step_thread: own)");
+    if (b.shape.cuts.revision > 0)
+      throw InputError(where, "cannot checkpoint body '" + b.info.name + "': it was cut (" +
+                                  std::to_string(b.shape.cuts.revision) +
+                                  " revisions of its mesh); checkpoints hold uncut bodies only");
     if (b.model.mailbox->incoming.load() != nullptr)
       throw InputError(where, "cannot checkpoint body '" + b.info.name +
                                   "' while a model swap waits for the next tick: step once");

@@ -270,18 +270,23 @@ void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
   surface_of_body_[body] = static_cast<int>(surfaces_.size());
   body_of_surface_.push_back(static_cast<int>(body));
   surfaces_.push_back(s);
+  freshness_.push_back(fresh_surface(body, s));
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  covered_.push_back({kInf, kInf, kInf, -kInf, -kInf, -kInf});
+  last_distance_.push_back(0.0);
+  patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
+}
+
+SurfaceFreshness CollisionContext::fresh_surface(size_t body, const tacta_collision_surface& s) {
   // A margin of a fraction of a mean edge adds few triangles to a query; one of a few mean edges
   // adds many: cheaper to refit the whole surface then.
   const SoftBody b = world_.body(body);
   const double weight_bound = embedded_[body] ? embedded_[body]->weight_bound() : 1.0;
   const double edge = mean_edge_length(s);
-  freshness_.emplace_back(b.node_count(), s.triangle_count, weight_bound,
-                          kMarginTargetPerEdge * edge, kMarginCapPerEdge * edge);
-  freshness_.back().reset(b.nodes.positions.data());
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  covered_.push_back({kInf, kInf, kInf, -kInf, -kInf, -kInf});
-  last_distance_.push_back(0.0);
-  patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
+  SurfaceFreshness fresh(b.node_count(), s.triangle_count, weight_bound,
+                         kMarginTargetPerEdge * edge, kMarginCapPerEdge * edge);
+  fresh.reset(b.nodes.positions.data());
+  return fresh;
 }
 
 void CollisionContext::prepare_plugins(const SourceLocation& where) {
@@ -308,6 +313,21 @@ void CollisionContext::add_surface(size_t body) {
   const CollisionDesc& c = world_.scene().collision;
   if (c.enabled) check_thickness(c, world_, {s}, {static_cast<int>(body)});
   append(body, s);
+  prepare_plugins({world_.scene().path, 0, 0, "collision"});
+}
+
+void CollisionContext::replace_surface(size_t body) {
+  if (body >= surface_of_body_.size() || surface_of_body_[body] < 0) return;
+  const auto k = static_cast<size_t>(surface_of_body_[body]);
+  tacta_collision_surface s{};
+  embedded_[body].reset();
+  if (!describe_body(body, s)) return;  // a cut keeps the body's triangles: not reached
+  surfaces_[k] = s;
+  freshness_[k] = fresh_surface(body, s);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  covered_[k] = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
+  last_distance_[k] = 0.0;
+  patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
   prepare_plugins({world_.scene().path, 0, 0, "collision"});
 }
 

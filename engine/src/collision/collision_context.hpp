@@ -58,6 +58,10 @@ class CollisionContext {
   // plugins prepare again (allocates). The surface stays out of every query and contact until
   // the body enters at a tick boundary, as an event's body is until its time.
   void add_surface(size_t body);
+  // A body whose mesh a cut changed: its surface is described again from the new mesh (or
+  // embedded surface) and the plugins prepare again (allocates; between ticks, on the thread
+  // that runs them). The hierarchies are rebuilt at the next refit.
+  void replace_surface(size_t body);
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;
@@ -131,6 +135,8 @@ class CollisionContext {
   uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
   bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
   void append(size_t body, const tacta_collision_surface& s);
+  // The proxy's freshness bookkeeping for body's surface `s`, current as of its nodes now.
+  SurfaceFreshness fresh_surface(size_t body, const tacta_collision_surface& s);
   void prepare_plugins(const SourceLocation& where);
   void sync_tools() noexcept;  // Tool components -> the packed view
   template <class Add>

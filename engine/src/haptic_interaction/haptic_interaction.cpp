@@ -273,4 +273,10 @@ uint32_t CollisionResponse::respond(double time, double dt) noexcept {
   return bits;
 }
 
+void HapticInteraction::surface_changed(World& world, size_t body) noexcept {
+  for (size_t d = 0; d < channels_.size(); ++d)
+    if (world.device(d).contact.touched_body == static_cast<int>(body))
+      channels_[d].renderer.surface_changed();
+}
+
 }  // namespace tacta

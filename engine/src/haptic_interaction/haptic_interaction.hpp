@@ -41,6 +41,9 @@ class HapticInteraction {
   // The renderer's energy observers integrate the force each device really held.
   void after_write(World& world) noexcept;
   const HapticParts& parts() const noexcept { return parts_; }
+  // Body `body`'s surface was made again by a cut (between ticks): proxies touching it let go of
+  // their contact triangle and find the new surface at the next tick.
+  void surface_changed(World& world, size_t body) noexcept;
   // Checkpoints: each device's channel (proxy, first contact, coupling, passivity, local model)
   // as plain bytes (checkpoint/loop_state.cpp). Between ticks only.
   void save_state(CheckpointWriter& out) const;

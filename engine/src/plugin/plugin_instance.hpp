@@ -14,6 +14,7 @@
 #include "tacta/device_api.h"
 #include "tacta/error.hpp"
 #include "tacta/model_api.h"
+#include "tacta/param_set.hpp"
 #include "tacta/scene.hpp"
 
 namespace tacta {
@@ -30,6 +31,13 @@ class ModelInstance {
 
   const char* name() const noexcept { return descriptor_.name; }
   const tacta_descriptor& descriptor() const noexcept { return descriptor_; }
+  uint32_t claims() const noexcept {
+    return tacta_model_claims(&api_, static_cast<uint32_t>(descriptor_.api_size));
+  }
+  // The completed parameters the instance was built with (World::make_model sets them), so a
+  // rebuild on another mesh (a cut) makes the same model.
+  const ParamSet& params() const noexcept { return params_; }
+  void set_params(ParamSet params) { params_ = std::move(params); }
   uint32_t step(tacta_body_state& state, double dt) noexcept {
     return api_.step(instance_, &state, dt);
   }
@@ -92,6 +100,7 @@ class ModelInstance {
  private:
   const tacta_descriptor& descriptor_;
   const tacta_model_api& api_;
+  ParamSet params_;
   ScratchArena arena_;  // outlives the instance: freed after destroy()
   tacta_host_services services_{};
   void* instance_ = nullptr;

@@ -66,6 +66,8 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   if (impl.collision) impl.collision->set_proxy_counters(counters);
   session.load_state(in);
   in.expect_end();
+  // The saved run had made (or been refused) every cut due by its time; a cut body is never saved.
+  impl.scene_cuts->skip_past(session.time());
 }
 
 void Simulation::save_state(const std::string& path) const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,26 @@
 
 namespace tacta {
 
+// The scene's cut events, made between lockstep ticks (simulation_cut.cpp).
+class SceneCuts final : public BetweenTicks {
+ public:
+  using Cut = std::function<CutSummary(size_t slot, std::span<const double>, CutMode)>;
+  // Checks every event's body can be cut (InputError at the event otherwise); `cut` makes one.
+  SceneCuts(const World& world, Cut cut);
+  double next_due_s() const noexcept override;
+  void run_due(double time) override;
+  uint64_t refused() const noexcept { return refused_; }
+  // A restored run: the events due by `time` (s) were the saved run's.
+  void skip_past(double time) noexcept;
+
+ private:
+  const World& world_;
+  Cut cut_;
+  std::vector<const BodyEventDesc*> events_;  // by time
+  size_t next_ = 0;
+  uint64_t refused_ = 0;
+};
+
 struct Simulation::Impl {
   Impl(const SceneDesc& scene, const PluginRegistry& registry)
       : world(scene, registry), plugins(registry), salt(next_salt()) {
@@ -27,6 +48,9 @@ struct Simulation::Impl {
         haptics = std::make_unique<HapticInteraction>(world, *collision);
       if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
     }
+    scene_cuts =
+        std::make_unique<SceneCuts>(world, [this](size_t slot, std::span<const double> blade,
+                                                  CutMode mode) { return cut(slot, blade, mode); });
   }
   World world;
   const PluginRegistry& plugins;
@@ -39,12 +63,18 @@ struct Simulation::Impl {
   std::unique_ptr<CollisionResponse> response;
   std::unique_ptr<ClockSession> clock;        // built at the first step or run
   std::vector<std::string> checkpoint_notes;  // what the last save or restore could not carry
+  std::unique_ptr<SceneCuts> scene_cuts;
 
   ClockSession& session() {
-    if (!clock) clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
+    if (!clock) {
+      clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
+      clock->set_between_ticks(scene_cuts.get());
+    }
     return *clock;
   }
   RunResult collect(const ScheduleResult& schedule) const;
+  // Cuts body `slot` and brings collision, haptics and rendering up to date (simulation_cut.cpp).
+  CutSummary cut(size_t slot, std::span<const double> triangles, CutMode mode);
   static uint32_t next_salt() noexcept;
   // Handles: a body's generation is the world's XOR this Simulation's salt, a device's is the
   // salt, so a handle from another Simulation fails the check (simulation_handles.cpp).

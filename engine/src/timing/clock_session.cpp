@@ -15,7 +15,8 @@ using SteadyClock = std::chrono::steady_clock;
 // run_schedule counts its ticks from 0; this puts them on the session's clock (tick `base` on).
 class OffsetTask final : public HapticTask {
  public:
-  OffsetTask(HapticLoop& loop, uint64_t base, double dt) : loop_(loop), base_(base), dt_(dt) {}
+  OffsetTask(HapticLoop& loop, uint64_t base, double dt, BetweenTicks* between)
+      : loop_(loop), base_(base), dt_(dt), between_(between) {}
   bool tick(uint64_t index, double, double dt) noexcept override {
     // Time from the tick index, not by accumulation, so long sessions do not drift.
     return loop_.tick(base_ + index, static_cast<double>(base_ + index) * dt_, dt);
@@ -24,11 +25,16 @@ class OffsetTask final : public HapticTask {
     const auto index = static_cast<uint64_t>(std::llround(time / dt_));
     loop_.publish(static_cast<double>(base_ + index) * dt_);
   }
+  void between_ticks(double time) override {
+    const double at = time + static_cast<double>(base_) * dt_;
+    if (between_ != nullptr && at + 0.5 * dt_ >= between_->next_due_s()) between_->run_due(at);
+  }
 
  private:
   HapticLoop& loop_;
   uint64_t base_;
   double dt_;
+  BetweenTicks* between_;
 };
 
 }  // namespace
@@ -37,10 +43,19 @@ namespace {
 
 BodyStatic describe_body(const SoftBody& b) {
   const VolumeMesh& m = b.shape.topology->mesh;
-  BodyStatic bs{b.info.name, m.positions, m.triangles, m.tets, m.quads, {}, m.dimension, {}, {}};
+  BodyStatic bs;
+  bs.name = b.info.name;
+  bs.rest_positions = m.positions;
+  bs.triangles = m.triangles;
+  bs.tets = m.tets;
+  bs.quads = m.quads;
+  bs.dimension = m.dimension;
+  bs.revision = b.shape.cuts.revision;
+  bs.cut_triangles = b.shape.cut_triangles;
   if (b.surface.mesh) {
     bs.surface_rest_positions = b.surface.mesh->rest_positions;
     bs.surface_triangles = b.surface.mesh->triangles;
+    bs.surface_cut_triangles = b.surface.mesh->cut_triangles;
   }
   for (uint32_t n = 0; n < b.shape.topology->fixed.size(); ++n)
     if (b.shape.topology->fixed[n]) bs.fixed_nodes.push_back(n);
@@ -102,6 +117,14 @@ void ClockSession::add_body(size_t slot) {
   }
 }
 
+void ClockSession::body_reshaped(size_t slot) {
+  if (slot >= scene_static_.bodies.size()) return;
+  const SoftBody b = world_.body(slot);
+  scene_static_.bodies[slot] = describe_body(b);
+  const BodySnapshot prototype = HapticLoop::body_prototype(b);
+  snapshots_.for_each_slot([&](Snapshot& s) { s.bodies[slot] = prototype; });
+}
+
 void ClockSession::reserve(uint64_t ticks) {
   loop_.reserve(ticks, static_cast<double>(ticks) * dt_);
   step_ms_.grow(ticks, kMaxRunTicks);
@@ -141,6 +164,8 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
     step_ms_.record(std::chrono::duration<double, std::milli>(SteadyClock::now() - t0).count());
     step_status_.merge(loop_.last_status());
     ++tick_;
+    if (between_ != nullptr && time() + 0.5 * dt_ >= between_->next_due_s())
+      between_->run_due(time());
     if (frame_clock_.due(time()) || !keep_going) {
       loop_.publish(time());
       render_.frame(time());
@@ -159,7 +184,13 @@ ScheduleResult ClockSession::run(const ScheduleOptions& options) {
       static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
   reserve(ticks + 1);
   start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
-  OffsetTask task(loop_, tick_, dt_);
+  if (options.mode == ClockMode::Realtime && between_ != nullptr &&
+      between_->next_due_s() <= time() + options.duration_s)
+    throw InputError({world_.scene().path, 0, 0, "events"},
+                     "the scene cuts a body at " + std::to_string(between_->next_due_s()) +
+                         " s: cut events run on the lockstep clock only (a realtime tick must "
+                         "not allocate); run with --lockstep");
+  OffsetTask task(loop_, tick_, dt_, between_);
   last_run_ = run_schedule(task, render_, options);
   tick_ += last_run_.ticks;
   frames_ += last_run_.frames;

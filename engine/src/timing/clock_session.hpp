@@ -36,6 +36,17 @@ class ObserverRenderTask final : public RenderTask {
   const SceneStatic& scene_;
 };
 
+// Work the thread that runs lockstep ticks does between two of them (Simulation's cut events).
+class BetweenTicks {
+ public:
+  virtual ~BetweenTicks() = default;
+  // s: the earliest time something is due; infinity when nothing is.
+  virtual double next_due_s() const noexcept = 0;
+  // Does what is due by `time` (s); may allocate. What cannot be done is reported (a warning),
+  // not thrown: the run goes on.
+  virtual void run_due(double time) = 0;
+};
+
 class ClockSession {
  public:
   // Calls each model's begin() with the body's initial state; `haptics` and `response` may be null.
@@ -55,6 +66,13 @@ class ClockSession {
   // A body added between steps (lockstep, not during run()): its render description and snapshot
   // entries are made here (allocates), so frames, VTK and observers show it once it enters.
   void add_body(size_t slot);
+  // A body a cut reshaped (between steps): its render description and snapshot entries are made
+  // again for its new mesh (allocates); observers see the new revision from the next frame.
+  void body_reshaped(size_t slot);
+
+  // What runs between lockstep ticks (not owned; null: nothing). A realtime run() with work
+  // still due is refused (InputError): its ticks run on a thread that must not allocate.
+  void set_between_ticks(BetweenTicks* work) noexcept { between_ = work; }
 
   // Checkpoints: the clock (tick, frames, the next frame boundary) and the loop's state
   // (checkpoint/loop_state.cpp). Between steps only.
@@ -92,6 +110,7 @@ class ClockSession {
   ScheduleResult last_run_;  // the last run()'s schedule figures
   uint64_t frames_ = 0;
   int workers_mode_ = -1;  // -1 none, 0 realtime, 1 lockstep
+  BetweenTicks* between_ = nullptr;
 };
 
 SceneStatic describe_scene(World& world);

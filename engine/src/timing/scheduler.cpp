@@ -49,6 +49,7 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
     recorder.record(ms_between(t0, t1));
     ++result.ticks;
     const double end_time = static_cast<double>(k + 1) * dt;
+    haptic.between_ticks(end_time);
     if (frames.due(end_time) || k + 1 == ticks || !keep_going) {
       haptic.publish(end_time);
       render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);

@@ -66,8 +66,21 @@ struct NodeLoads {
   std::vector<double> applied_forces;   // N, set through the stepping API; empty: none
 };
 
+// What the cuts so far did to a body (world/body_cut.hpp).
+struct CutTotals {
+  uint32_t revision = 0;  // cuts that changed the mesh; 0: the mesh the scene loaded
+  uint64_t tets_removed = 0, nodes_removed = 0, nodes_added = 0, faces_separated = 0;
+  uint64_t cuts_missed = 0;     // blades that met no tet
+  double removed_mass_kg = 0;   // removal: the mass the removed tets carried
+  double removed_energy_J = 0;  // kinetic + elastic the removed material took with it
+};
+
 struct RestShape {
   std::unique_ptr<BodyTopology> topology;
+  // Per boundary triangle of topology->mesh: 1 when a cut exposed it (drawn in the cut colour);
+  // empty while the body was never cut.
+  std::vector<uint8_t> cut_triangles;
+  CutTotals cuts;
   const std::vector<double>& rest() const { return topology->mesh.positions; }
 };
 

@@ -8,8 +8,6 @@
 
 namespace tacta {
 
-namespace {
-
 tacta_mesh_view make_view(const VolumeMesh& m) {
   tacta_mesh_view v{};
   v.node_count = static_cast<uint32_t>(m.node_count());
@@ -25,6 +23,8 @@ tacta_mesh_view make_view(const VolumeMesh& m) {
   v.dimension = m.dimension;
   return v;
 }
+
+namespace {
 
 tacta_material make_material(const MaterialDesc& d) {
   return {d.youngs_modulus, d.poisson_ratio, d.density,           d.lame_lambda,

@@ -66,6 +66,9 @@ double begin_model(const SoftBody& body, double time, double haptic_dt) noexcept
 // J: ½ Σ m v² over the nodes (lumped masses).
 double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept;
 
+// The plugin view of a mesh: pointers into its arrays (valid while the mesh lives, unmoved).
+tacta_mesh_view make_view(const VolumeMesh& mesh);
+
 // Resolves a model plugin by name and builds its instance for this body. Throws InputError.
 using ModelFactory = std::function<std::unique_ptr<ModelInstance>(
     const std::string& model, const ParamSet& params, const BodyTopology& topology, double dt,

@@ -378,7 +378,9 @@ std::unique_ptr<ModelInstance> World::make_model(const std::string& model, const
   setup.params = values.data();
   setup.param_count = values.size();
   setup.dt = dt > 0 ? dt : kSetupDt;
-  return std::make_unique<ModelInstance>(*found->descriptor, setup, where, jobs_.get());
+  auto instance = std::make_unique<ModelInstance>(*found->descriptor, setup, where, jobs_.get());
+  instance->set_params(values);
+  return instance;
 }
 
 }  // namespace tacta

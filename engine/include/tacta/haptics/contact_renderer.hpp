@@ -75,6 +75,8 @@ class ContactRenderer {
   void set_local_compliance(const LocalCompliance& local) noexcept { local_ = local; }
   // The touched surface jumped by `displacement` (m) before this tick (GodObjectProxy::carry).
   void carry_proxy(const Vec3& displacement) noexcept { proxy_.carry(displacement); }
+  // The touched surface was cut (GodObjectProxy::surface_changed).
+  void surface_changed() noexcept { proxy_.surface_changed(); }
   const ContactStats& stats() const noexcept { return stats_; }
   const GodObjectProxy& proxy() const noexcept { return proxy_; }
   const PassivityController& passivity() const noexcept { return passivity_; }

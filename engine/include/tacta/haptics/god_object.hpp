@@ -40,6 +40,11 @@ class GodObjectProxy {
     contact_.point = add(contact_.point, displacement);
   }
 
+  // The touched surface's triangles were made again (a cut): the contact's triangle and weights
+  // mean nothing now. The proxy stays where it is and finds the surface again by its next sweep
+  // towards the device, so the force goes on without a jump where material is left.
+  void surface_changed() noexcept { in_contact_ = false; }
+
   const Vec3& position() const noexcept { return position_; }
   // m/s: the device's velocity in free space, its tangential part while sliding in contact.
   const Vec3& velocity() const noexcept { return velocity_; }

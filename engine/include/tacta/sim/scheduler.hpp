@@ -22,6 +22,9 @@ class HapticTask {
   virtual bool tick(uint64_t index, double time, double dt) noexcept = 0;
   // Called at each frame boundary of simulated time, on the haptic thread: publish a snapshot.
   virtual void publish(double time) noexcept = 0;
+  // Lockstep only, after each tick and before its frame, with the time the tick ended at (s):
+  // work no tick may do (a scene's cuts allocate and rebuild), on the one thread of the run.
+  virtual void between_ticks(double /*time*/) {}
 };
 
 // What the render thread runs at the frame rate: take the newest snapshot and draw or save it.

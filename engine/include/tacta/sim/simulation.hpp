@@ -18,6 +18,7 @@
 #include "tacta/mesh.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene.hpp"
+#include "tacta/sim/cut.hpp"
 #include "tacta/sim/handle.hpp"
 #include "tacta/sim/run_status.hpp"
 #include "tacta/sim/scheduler.hpp"
@@ -84,8 +85,8 @@ struct RunResult {
   int exit_code = 0;  // 0 ok, 1 runtime fault or error bit
 };
 
-// One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed
-// (bodies are never re-allocated after load). Write positions and velocities only between steps.
+// One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed or
+// the body is cut (a cut gives it new arrays; ask again after it). Write positions and velocities only between steps.
 struct BodyArrays {
   size_t nodes = 0;
   double* positions = nullptr;             // 3 per node, m
@@ -196,6 +197,16 @@ class Simulation {
   // allocate and throws InputError when the model refuses the body; the haptic thread only
   // switches pointers. Also how the viewer changes a parameter (same model, new values).
   void request_model_swap(BodyHandle body, const std::string& model, const ParamSet& params);
+
+  // Cutting (docs/ARCHITECTURE.md "Cutting"), between steps only (never during run()): a blade's
+  // swept surface, `triangles` (9 doubles each: three corners, m, world frame), cuts `body` as it
+  // stands now. Removal takes out the tets it passes through; separation opens the faces it
+  // crosses. Everything derived from the mesh follows at once (masses, the model, fixed nodes,
+  // probes, the embedded surface, collision, snapshots, VTK). InputError for a model that does not
+  // take topology edits (tacta plugins lists which do), a body stepping on its own thread, a
+  // removal that would leave no tet, or a triangle count not a multiple of 9 doubles.
+  CutSummary cut(BodyHandle body, std::span<const double> triangles, CutMode mode);
+  uint32_t body_revision(BodyHandle body) const;  // cuts that changed the body so far
 
   // ---- Devices -----------------------------------------------------------------------------
   // Lookup, as for bodies. Devices are fixed for a Simulation's life; their handles still carry

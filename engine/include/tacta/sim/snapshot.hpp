@@ -48,6 +48,12 @@ struct BodyStatic {
   // The embedded surface (tacta/embedded_surface.hpp), drawn instead of `triangles` when present.
   std::vector<double> surface_rest_positions;  // 3 per surface vertex, m
   std::vector<uint32_t> surface_triangles;     // 3 per triangle (outward)
+  // Cuts: the mesh's revision (0: as loaded; each cut that changed it adds 1, and every array
+  // above is then the new mesh's), and per triangle of `triangles` / `surface_triangles` 1 when a
+  // cut exposed it (empty when never cut).
+  uint32_t revision = 0;
+  std::vector<uint8_t> cut_triangles;
+  std::vector<uint8_t> surface_cut_triangles;
 };
 
 struct DeviceStatic {

@@ -1,0 +1,86 @@
+// Simulation::cut and the scene's cut events: a cut is made on the thread that runs the ticks,
+// between two of them (world/body_cut.hpp), then the collision surface, the haptic proxies and
+// the render description follow the body's new mesh.
+#include <algorithm>
+#include <limits>
+#include <utility>
+
+#include "simulation/simulation_impl.hpp"
+#include "tacta/log.hpp"
+#include "world/body_cut.hpp"
+
+namespace tacta {
+
+CutSummary Simulation::Impl::cut(size_t slot, std::span<const double> triangles, CutMode mode) {
+  const double time = clock ? clock->time() : 0.0;
+  const CutSummary summary = cut_body(world, slot, triangles, mode, time);
+  if (!summary.changed) return summary;
+  if (collision) collision->replace_surface(slot);
+  if (haptics) haptics->surface_changed(world, slot);
+  if (clock) clock->body_reshaped(slot);
+  return summary;
+}
+
+CutSummary Simulation::cut(BodyHandle body, std::span<const double> triangles, CutMode mode) {
+  const size_t slot = impl_->body_at(body);
+  if (impl_->running.load())
+    throw InputError({impl_->world.scene().path, 0, 0, "cut"},
+                     "cut: a body is cut between steps, not while run() runs");
+  return impl_->cut(slot, triangles, mode);
+}
+
+uint32_t Simulation::body_revision(BodyHandle body) const {
+  return impl_->world.body(impl_->body_at(body)).shape.cuts.revision;
+}
+
+SceneCuts::SceneCuts(const World& world, Cut cut) : world_(world), cut_(std::move(cut)) {
+  for (const BodyEventDesc& e : world.scene().events) {
+    if (!e.cut) continue;
+    // What makes a body uncuttable is known at load: say so now, at the event, not mid-run.
+    const int slot = world.body_index(e.cut->body);
+    if (slot < 0) continue;  // a body an earlier event adds: checked when the cut comes
+    const SoftBody b = world.body(static_cast<size_t>(slot));
+    if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
+      throw InputError(e.cut->where,
+                       "body '" + b.info.name + "' is cut at " + std::to_string(e.time) +
+                           " s but its model '" + b.model.instance->name() +
+                           "' does not take topology edits (`tacta plugins` lists the models "
+                           "that do)");
+    if (b.settings.own_thread || b.constraints.boundary)
+      throw InputError(e.cut->where, "body '" + b.info.name +
+                                         "' cannot be cut: it steps on its own thread or has "
+                                         "prescribed motion or plates");
+    events_.push_back(&e);
+  }
+  std::stable_sort(
+      events_.begin(), events_.end(),
+      [](const BodyEventDesc* a, const BodyEventDesc* b) { return a->time < b->time; });
+}
+
+double SceneCuts::next_due_s() const noexcept {
+  return next_ < events_.size() ? events_[next_]->time : std::numeric_limits<double>::infinity();
+}
+
+void SceneCuts::skip_past(double time) noexcept {
+  const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
+  while (next_ < events_.size() && events_[next_]->time <= time + half_tick) ++next_;
+}
+
+void SceneCuts::run_due(double time) {
+  const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
+  for (; next_ < events_.size() && events_[next_]->time <= time + half_tick; ++next_) {
+    const CutEventDesc& cut = *events_[next_]->cut;
+    const int slot = world_.body_index(cut.body);
+    try {
+      if (slot < 0 || !world_.body(static_cast<size_t>(slot)).present())
+        throw InputError(cut.where, "body '" + cut.body + "' is not in the scene");
+      cut_(static_cast<size_t>(slot), cut.triangles, cut.mode);
+    } catch (const InputError& e) {
+      ++refused_;
+      log_warning(std::string("the cut at ") + std::to_string(events_[next_]->time) +
+                  " s was not made: " + e.what());
+    }
+  }
+}
+
+}  // namespace tacta
