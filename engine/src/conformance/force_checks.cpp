@@ -11,17 +11,8 @@ namespace tacta::conformance {
 
 namespace {
 
-// Of E h^2: what round-off leaves at rest and under rigid motion (the in-tree models stay below
-// 1e-15 of it), and the least a 1 % stretch must push (they give about 1e-2).
-constexpr double kRoundOff = 1e-9;
+// Of E h^2: the least a 1 % stretch must push (the in-tree models give about 1e-2).
 constexpr double kResponse = 1e-4;
-
-double max_norm(const std::vector<double>& f) {
-  double worst = 0;
-  for (size_t i = 0; i < f.size(); i += 3)
-    worst = std::max(worst, std::hypot(f[i], f[i + 1], f[i + 2]));
-  return worst;
-}
 
 // Builds a fresh instance and measures the elastic forces at positions(rest).
 template <class Shape>
@@ -37,7 +28,7 @@ CheckResult largest_force(const char* name, const tacta_descriptor& model, doubl
                           auto&& shape) {
   std::string how;
   double scale = 0;
-  const double worst = max_norm(forces_at(model, shape, how, scale));
+  const double worst = largest_node_force(forces_at(model, shape, how, scale));
   const double limit = fraction * scale;
   return {name, "max |f| " + figure(worst) + " N (" + how + "), limit " + figure(limit) + " N",
           worst <= limit ? Verdict::Pass : Verdict::Fail};
@@ -53,7 +44,8 @@ uint32_t claims_of(const tacta_descriptor& model) {
 }
 
 CheckResult check_force_at_rest(const tacta_descriptor& model) {
-  return largest_force("force at rest", model, kRoundOff, [](std::vector<double> x) { return x; });
+  return largest_force("force at rest", model, kForceRoundOff,
+                       [](std::vector<double> x) { return x; });
 }
 
 CheckResult check_stretch_response(const tacta_descriptor& model) {
@@ -63,7 +55,7 @@ CheckResult check_stretch_response(const tacta_descriptor& model) {
     for (double& c : x) c = kCentre + 1.01 * (c - kCentre);
     return x;
   };
-  const double worst = max_norm(forces_at(model, stretched, how, scale));
+  const double worst = largest_node_force(forces_at(model, stretched, how, scale));
   const double least = kResponse * scale;
   // Without it every other force check passes on a model that pushes nothing at all.
   return {"stretch response",
@@ -73,7 +65,7 @@ CheckResult check_stretch_response(const tacta_descriptor& model) {
 }
 
 CheckResult check_rigid_translation(const tacta_descriptor& model) {
-  return largest_force("rigid translation", model, kRoundOff, [](std::vector<double> x) {
+  return largest_force("rigid translation", model, kForceRoundOff, [](std::vector<double> x) {
     for (size_t i = 0; i < x.size(); i += 3) {
       x[i] += 0.3;
       x[i + 1] -= 0.2;
@@ -90,7 +82,7 @@ CheckResult check_rigid_rotation(const tacta_descriptor& model) {
   // 40 degrees about (1, 2, 3) / |(1, 2, 3)| through the centre (Rodrigues' formula).
   const double angle = 40.0 * M_PI / 180.0, c = std::cos(angle), s = std::sin(angle);
   const double n = std::sqrt(14.0), a[3] = {1 / n, 2 / n, 3 / n};
-  return largest_force("rigid rotation", model, kRoundOff, [&](std::vector<double> x) {
+  return largest_force("rigid rotation", model, kForceRoundOff, [&](std::vector<double> x) {
     for (size_t i = 0; i < x.size(); i += 3) {
       const double p[3] = {x[i] - kCentre, x[i + 1] - kCentre, x[i + 2] - kCentre};
       const double dot = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
@@ -124,7 +116,7 @@ CheckResult check_net_force(const tacta_descriptor& model) {
     total += std::abs(f[i]);
   }
   const double size = std::hypot(net[0], net[1], net[2]),
-               limit = kRoundOff * std::max(total, 1e-300);
+               limit = kForceRoundOff * std::max(total, 1e-300);
   return {"net internal force",
           "|sum f| " + figure(size) + " N over sum |f| " + figure(total) + " N (" + how +
               "), limit " + figure(limit) + " N",

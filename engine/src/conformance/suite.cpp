@@ -50,6 +50,7 @@ std::vector<CheckResult> check_model(const tacta_descriptor& model, const Alloca
       {"step on a worker thread", [&] { return check_worker_thread(model); }},
       {"live parameters", [&] { return check_live_params(model); }},
       {"checkpoint", [&] { return check_checkpoint(model); }},
+      {"topology edits", [&] { return check_topology_edits(model); }},
   };
   for (const auto& [name, check] : checks) results.push_back(guarded(name, check));
   return results;

@@ -1,5 +1,7 @@
 #include "conformance/test_body.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "tacta/mesh_build.hpp"
@@ -21,6 +23,26 @@ tacta_model_setup TestBody::setup() const {
           nullptr};
 }
 
+namespace {
+
+// The plugin's view of body.mesh (pointers into it: set again whenever the mesh changes).
+void point_view_at_mesh(TestBody& body) {
+  const VolumeMesh& m = body.mesh;
+  body.view = {static_cast<uint32_t>(m.node_count()),
+               m.positions.data(),
+               static_cast<uint32_t>(m.tet_count()),
+               m.tets.data(),
+               static_cast<uint32_t>(m.triangles.size() / 3),
+               m.triangles.data(),
+               static_cast<uint32_t>(m.quads.size() / 4),
+               m.quads.data(),
+               static_cast<uint32_t>(m.edges.size() / 2),
+               m.edges.data(),
+               m.dimension};
+}
+
+}  // namespace
+
 std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool clamped) {
   auto body = std::make_unique<TestBody>();
   body->mesh = make_box_grid({0.1, 0.1, 0.1}, {2, 2, 2}, {0.0, 0.0, 0.0});
@@ -34,20 +56,24 @@ std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool cla
   if (clamped)
     for (size_t n = 0; n < body->fixed.size(); ++n)
       body->fixed[n] = body->mesh.positions[3 * n + 2] == 0.0;
-  const VolumeMesh& m = body->mesh;
-  body->view = {static_cast<uint32_t>(m.node_count()),
-                m.positions.data(),
-                static_cast<uint32_t>(m.tet_count()),
-                m.tets.data(),
-                static_cast<uint32_t>(m.triangles.size() / 3),
-                m.triangles.data(),
-                static_cast<uint32_t>(m.quads.size() / 4),
-                m.quads.data(),
-                static_cast<uint32_t>(m.edges.size() / 2),
-                m.edges.data(),
-                m.dimension};
+  point_view_at_mesh(*body);
   body->params = defaults_of(model);
   return body;
+}
+
+std::unique_ptr<TestBody> edited_test_body(const TestBody& body, VolumeMesh mesh,
+                                           const std::vector<uint32_t>& node_source) {
+  auto edited = std::make_unique<TestBody>();
+  edited->mesh = std::move(mesh);
+  edited->material = body.material;
+  edited->params = body.params;
+  edited->dt = body.dt;
+  edited->cell = body.cell;
+  edited->masses = lumped_masses(edited->mesh, body.material.density);
+  edited->fixed.resize(node_source.size());
+  for (size_t n = 0; n < node_source.size(); ++n) edited->fixed[n] = body.fixed[node_source[n]];
+  point_view_at_mesh(*edited);
+  return edited;
 }
 
 std::unique_ptr<ModelInstance> create_model(const tacta_descriptor& model, const TestBody& body) {
@@ -73,6 +99,13 @@ std::vector<double> elastic_forces(ModelInstance& model, const TestBody& body,
   for (size_t i = 0; i < forces.size(); ++i)
     forces[i] = body.masses[i / 3] * (s.x[i] - positions[i]) / (body.dt * body.dt);
   return forces;
+}
+
+double largest_node_force(const std::vector<double>& forces) {
+  double worst = 0;
+  for (size_t i = 0; i + 2 < forces.size(); i += 3)
+    worst = std::max(worst, std::hypot(forces[i], forces[i + 1], forces[i + 2]));
+  return worst;
 }
 
 std::string figure(double value) {

@@ -33,6 +33,11 @@ struct TestBody {
 // clamped: the nodes of the z = 0 face are held (a cantilever under gravity, for the step checks).
 std::unique_ptr<TestBody> make_test_body(const tacta_descriptor& model, bool clamped);
 
+// `body` on an edited mesh (a cut): the same material, parameters and dt, masses lumped from
+// `mesh`, and each new node fixed when the old node it continues (node_source) was.
+std::unique_ptr<TestBody> edited_test_body(const TestBody& body, VolumeMesh mesh,
+                                           const std::vector<uint32_t>& node_source);
+
 // A model instance for the body; throws InputError naming the test cube when create() refuses.
 std::unique_ptr<ModelInstance> create_model(const tacta_descriptor& model, const TestBody& body);
 
@@ -50,6 +55,9 @@ struct NodeState {
 // measured through one step from rest with no load, as m dx / dt^2. `how` names which was used.
 std::vector<double> elastic_forces(ModelInstance& model, const TestBody& body,
                                    const std::vector<double>& positions, std::string& how);
+
+// The largest per-node force magnitude in `forces` (3 per node), N.
+double largest_node_force(const std::vector<double>& forces);
 
 // "%.2g" of a number, for figures.
 std::string figure(double value);
