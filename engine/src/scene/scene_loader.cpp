@@ -114,9 +114,6 @@ OutputDesc read_output(const Field& field) {
   return output;
 }
 
-namespace {
-
-// Fails on the second of two items with one name (bodies, devices, obstacles).
 void check_unique(const std::vector<Field>& items, const std::vector<std::string>& names,
                   const char* what) {
   for (size_t i = 0; i < names.size(); ++i)
@@ -126,56 +123,7 @@ void check_unique(const std::vector<Field>& items, const std::vector<std::string
                                       "' (first used by " + items[j].path() + ")");
 }
 
-// `change_tool: {device, tool}`: the device must be one of the scene's.
-ToolChangeDesc read_tool_change(const Field& field, const std::vector<DeviceDesc>& devices) {
-  field.expect_map("a map {device: device name, tool: a shape}");
-  field.check_keys({"device", "tool"});
-  ToolChangeDesc change;
-  const Field device = field.require("device");
-  change.device = device.text();
-  if (std::none_of(devices.begin(), devices.end(),
-                   [&](const DeviceDesc& d) { return d.name == change.device; }))
-    device.fail("no device named '" + change.device + "' among the scene's devices");
-  change.tool = read_shape(field.require("tool"));
-  return change;
-}
-
-// `events`: bodies entering ({time, add: {a body}}) or leaving ({time, remove: name}) and tools
-// changed ({time, change_tool: {device, tool}}) while the scene runs, kept in time order. Names
-// stay unique across bodies and added ones.
-void read_events(const Field& field, const std::vector<Field>& body_items, SceneDesc& scene) {
-  std::vector<Field> named = body_items;
-  std::vector<std::string> names;
-  for (const BodyDesc& b : scene.bodies) names.push_back(b.name);
-  for (const Field& item : field.items("a list of events {time, add | remove | change_tool}")) {
-    item.expect_map(
-        "an event: a map {time, add: {a body}}, {time, remove: body name} or {time, change_tool: "
-        "{device, tool}}");
-    item.check_keys({"time", "add", "remove", "change_tool"});
-    BodyEventDesc event;
-    event.time = item.require("time").real(Range::non_negative());
-    event.where = item.where();
-    const std::string what = exactly_one_of(item, {"add", "remove", "change_tool"});
-    if (what == "change_tool") {
-      event.change_tool = read_tool_change(item.require("change_tool"), scene.devices);
-    } else if (what == "add") {
-      event.add = read_body(item.require("add"));
-      named.push_back(item.require("add"));
-      names.push_back(event.add->name);
-      check_unique(named, names, "body");
-    } else {
-      const Field f = item.require("remove");
-      event.remove = f.text();
-      if (std::find(names.begin(), names.end(), event.remove) == names.end())
-        f.fail("no body named '" + event.remove +
-               "' among the scene's bodies and the events' adds");
-    }
-    if (!scene.events.empty() && event.time < scene.events.back().time)
-      item.require("time").fail(
-          "events are listed in time order (this one is earlier than the one before)");
-    scene.events.push_back(std::move(event));
-  }
-}
+namespace {
 
 namespace {
 // 64: past any core count a workstation running a haptic loop has. `auto`: the CPUs this

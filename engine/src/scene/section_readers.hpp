@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "scene/yaml_field.hpp"
@@ -36,5 +37,13 @@ void read_boundary(const Field& body_field, BodyDesc& body, std::optional<uint64
 
 // The one key of `allowed` that `field` (a map) holds; fails when it holds none or several.
 std::string exactly_one_of(const Field& field, const std::vector<std::string>& allowed);
+
+// Fails on the second of two items with one name (bodies, devices, obstacles).
+void check_unique(const std::vector<Field>& items, const std::vector<std::string>& names,
+                  const char* what);
+
+// The scene's `events` (event_reader.cpp), after its bodies and devices are read; `body_items`
+// are the fields of scene.bodies.
+void read_events(const Field& field, const std::vector<Field>& body_items, SceneDesc& scene);
 
 }  // namespace tacta::scene_detail
