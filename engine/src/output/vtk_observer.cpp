@@ -26,7 +26,8 @@ class VtkObserver final : public FrameObserver {
     for (size_t i = 0; i < scene.bodies.size(); ++i) {
       const BodyStatic& b = scene.bodies[i];
       const BodySnapshot& s = snapshot.bodies[i];
-      if (!s.present) continue;  // not in the scene yet, or removed
+      if (!s.present) continue;                          // not in the scene yet, or removed
+      displacement_[i].resize(b.rest_positions.size());  // a cut changes the node count
       for (size_t k = 0; k < displacement_[i].size(); ++k)
         displacement_[i][k] = s.positions[k] - b.rest_positions[k];
       output::VtkGrid grid;
@@ -44,6 +45,7 @@ class VtkObserver final : public FrameObserver {
       if (b.surface_triangles.empty() ||
           s.surface_positions.size() != b.surface_rest_positions.size())
         continue;
+      surface_displacement_[i].resize(s.surface_positions.size());
       for (size_t k = 0; k < s.surface_positions.size(); ++k)
         surface_displacement_[i][k] = s.surface_positions[k] - b.surface_rest_positions[k];
       output::VtkGrid surface;

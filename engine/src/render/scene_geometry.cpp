@@ -72,9 +72,14 @@ void append_body(const BodyDraw& body, size_t body_index, double marker_m, DrawL
     fail(body_index, "fixed_positions must hold 3 values a node");
 
   const std::vector<Vec3d> normals = vertex_normals(body.positions, body.triangles);
-  for (uint32_t index : body.triangles) {
+  if (!body.cut_triangles.empty() && body.cut_triangles.size() * 3 != body.triangles.size())
+    fail(body_index, "cut_triangles must hold one flag a triangle");
+  for (size_t k = 0; k < body.triangles.size(); ++k) {
+    const uint32_t index = body.triangles[k];
+    const bool cut = !body.cut_triangles.empty() && body.cut_triangles[k / 3] != 0;
     const Rgb colour =
-        body.scalar.empty()
+        cut ? body.cut_colour
+        : body.scalar.empty()
             ? body.base_colour
             : colour_map(normalise_scalar(body.scalar[index], body.scalar_min, body.scalar_max));
     out.triangles.push_back({to_f(vertex(body.positions, index)), to_f(normals[index]), colour});

@@ -51,6 +51,7 @@ RenderFrame make_render_frame(const SceneStatic& scene, const Snapshot& snapshot
     const std::vector<double>& rest = embedded ? b.surface_rest_positions : b.rest_positions;
     d.positions = embedded ? s.surface_positions : s.positions;
     d.triangles = embedded ? b.surface_triangles : b.triangles;
+    d.cut_triangles = embedded ? b.surface_cut_triangles : b.cut_triangles;
     d.wireframe = style.wireframe;
     if (style.colour_by_displacement) {
       d.scalar.resize(d.positions.size() / 3);

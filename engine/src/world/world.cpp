@@ -58,6 +58,7 @@ World::World(const SceneDesc& scene, const PluginRegistry& plugins)
   std::vector<std::string> names;
   for (const BodyDesc& b : scene_.bodies) names.push_back(b.name);
   for (const BodyEventDesc& e : scene_.events) {
+    if (e.cut) continue;  // cuts are Simulation's (simulation_cut.cpp), between lockstep ticks
     EntityCommand c{e.add ? EntityCommand::kAddBody : EntityCommand::kRemoveBody, 0, e.time};
     if (e.change_tool) {  // built with the devices, below
       timed_.push_back({EntityCommand::kChangeTool, 0, e.time,

@@ -32,6 +32,10 @@ struct BodyDraw {
   double scalar_min = 0;
   double scalar_max = 1;
   Rgb base_colour{0.80f, 0.55f, 0.45f};
+  // Per triangle: 1 when a cut exposed it, drawn in cut_colour (the wound, not the skin); empty:
+  // none.
+  std::vector<uint8_t> cut_triangles;
+  Rgb cut_colour{0.55f, 0.08f, 0.10f};
   bool wireframe = false;               // draw the triangle edges on top
   std::vector<double> fixed_positions;  // 3 per fixed node, m: drawn as small dark cubes
 };
