@@ -83,6 +83,7 @@ void register_errors(py::module_& m);
 void register_handles(py::module_& m);
 void register_simulation(py::module_& m);
 void register_bodies(py::module_& m);
+void register_cut(py::module_& m);
 void register_devices(py::module_& m);
 void register_snapshot(py::module_& m);
 void register_compare(py::module_& m);

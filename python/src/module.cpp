@@ -121,6 +121,7 @@ PYBIND11_MODULE(_tacta, m) {
   register_handles(m);
   register_simulation(m);
   register_bodies(m);
+  register_cut(m);
   register_devices(m);
   register_snapshot(m);
   register_compare(m);
