@@ -49,6 +49,9 @@ std::string check_input(const VolumeMesh& rest, std::span<const uint8_t> rest_cu
     return "the cut was given " + std::to_string(positions.size()) +
            " position numbers for a body of " + std::to_string(rest.node_count()) +
            " nodes (3 per node expected)";
+  for (size_t i = 0; i < positions.size(); i += 3)
+    if (!is_finite(point_at(&positions[i], 0)))
+      return "node " + std::to_string(i / 3) + " of the body is not at a finite position";
   if (triangles.size() % 9 != 0) return "blade triangles need 9 numbers each";
   if (!rest_cut.empty() && rest_cut.size() != rest.triangles.size() / 3)
     return "the cut marks have " + std::to_string(rest_cut.size()) + " entries for " +

@@ -53,9 +53,10 @@ struct TopologyEdit {
 // boundary triangle, or empty): they stay marked in the edit's cut_triangle. A blade that misses
 // the body gives an edit with changed() false (the mesh as it was, every node and tet its own
 // source). A removal that would leave no tet, or input that does not fit (positions or marks of
-// the wrong size, a mesh that is not a finalized tet mesh), changes nothing and sets `refused`
-// with the reason. Allocates; O(tets log tets + blade triangles * tets) cheap box tests, exact
-// tests only where boxes meet (48,000 tets, a 2-triangle blade: about 70 ms at -O2).
+// the wrong size, a node at a NaN or infinite position, a mesh that is not a finalized tet
+// mesh), changes nothing and sets `refused` with the reason. Allocates; O(tets log tets + blade
+// triangles * tets) cheap box tests, exact tests only where boxes meet (48,000 tets, a
+// 2-triangle blade: about 70 ms at -O2).
 struct CutResult {
   TopologyEdit edit;
   std::string refused;  // empty: the edit may be installed

@@ -141,6 +141,11 @@ TEST(CutRemove, BadInputIsRefusedNotACrash) {
   EXPECT_FALSE(cut_mesh(mesh, {}, mesh.positions, ragged, CutMode::kRemove).refused.empty());
   const std::vector<uint8_t> marks(3, 0);
   EXPECT_FALSE(cut_mesh(mesh, marks, mesh.positions, blade, CutMode::kSeparate).refused.empty());
+  std::vector<double> lost = mesh.positions;
+  lost[7] = std::nan("");
+  const CutResult nan_node = cut_mesh(mesh, {}, lost, blade, CutMode::kRemove);
+  EXPECT_NE(nan_node.refused.find("node 2"), std::string::npos) << nan_node.refused;
+  EXPECT_EQ(nan_node.edit.mesh.tets, mesh.tets);
   // A flat or non-finite blade triangle cuts nothing.
   std::vector<double> flat = {1.5, 0, 0, 1.5, 2, 2, 1.5, 1, 1};
   EXPECT_FALSE(cut_mesh(mesh, {}, mesh.positions, flat, CutMode::kRemove).edit.changed());
