@@ -68,7 +68,10 @@ void expect_carried(const CutSurface& cut, const TopologyEdit& edit) {
 
 TEST(CutSurface, SeparationCarriesTheSurfaceAndClosesTheCut) {
   const VolumeMesh mesh = box_with_fine_surface();
-  const EmbeddedSurface before = make_embedded_surface(mesh);
+  EmbeddedSurface before = make_embedded_surface(mesh);
+  before.corner_uvs.resize(6 * before.triangle_count());
+  for (size_t i = 0; i < before.corner_uvs.size(); ++i)
+    before.corner_uvs[i] = static_cast<double>(i / 6);
   const CutResult r =
       cut_mesh(mesh, {}, mesh.positions, test::tilted_blade(2.13, 0.1, 0.05), CutMode::kSeparate);
   ASSERT_TRUE(r.edit.changed());
@@ -79,6 +82,12 @@ TEST(CutSurface, SeparationCarriesTheSurfaceAndClosesTheCut) {
   const size_t kept = cut.surface.triangle_count() - test::marked(cut.cut_triangle);
   EXPECT_LT(kept, before.triangle_count());  // the triangles straddling the cut went
   EXPECT_GT(kept, before.triangle_count() * 3 / 4);
+  // Kept triangles keep their texture coordinates, in their old order; cut faces get zeros.
+  ASSERT_EQ(cut.surface.corner_uvs.size(), 6 * cut.surface.triangle_count());
+  for (size_t t = 1; t < kept; ++t)
+    EXPECT_LT(cut.surface.corner_uvs[6 * (t - 1)], cut.surface.corner_uvs[6 * t]);
+  for (size_t i = 6 * kept; i < cut.surface.corner_uvs.size(); ++i)
+    EXPECT_EQ(cut.surface.corner_uvs[i], 0.0);
   for (size_t t = 0; t < cut.surface.triangle_count(); ++t) {
     if (!cut.cut_triangle[t]) {
       ASSERT_LT(t, kept) << "kept triangles come first";
