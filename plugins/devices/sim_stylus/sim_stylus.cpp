@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "button_schedule.hpp"
 #include "hand_script.hpp"
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
@@ -68,7 +69,7 @@ class SimStylus {
       "Simulated Phantom Omni class stylus moved by a scripted hand impedance (closed loop)";
   static constexpr uint32_t kVersion = 10000;
   static constexpr double kBig = 1e6;
-  static constexpr std::array<tacta_param_spec, 22> kParams{{
+  static constexpr std::array<tacta_param_spec, 23> kParams{{
       sdk::vector_param("workspace_origin", "m", 3, "0 0 0", -kBig, kBig,
                         "centre of the device workspace in the world"),
       sdk::choice_param("pattern", "waypoints|tap|stroke|palpation", 0,
@@ -107,12 +108,16 @@ class SimStylus {
                       "the stylus stops at the workspace box, as at a mechanical limit"),
       sdk::bool_param("palpation_repeat", false,
                       "palpation: after the last point, travel back to the first and start over"),
+      sdk::vector_param("button_times", "s", 2, "", -kBig, kBig,
+                        "press, release, press, release, ... ascending: button 0 is held from "
+                        "each press until its release (a blade tool cuts while it is held)"),
   }};
 
   explicit SimStylus(const tacta_device_setup& setup)
       : params_(kParams, setup.params, setup.param_count),
         origin_(to_point(params_.vector("workspace_origin"), {0, 0, 0})),
         script_(settings()),
+        button_schedule_(params_.vector("button_times")),
         mass_(params_.real("hand_mass")),
         stiffness_(params_.real("hand_stiffness")),
         damping_(params_.real("hand_damping")),
@@ -233,12 +238,13 @@ class SimStylus {
     }
     sample.orientation[0] = 1.0;
     sample.orientation[1] = sample.orientation[2] = sample.orientation[3] = 0.0;
-    sample.buttons = 0;
+    sample.buttons = button_schedule_.buttons(time);
   }
 
   sdk::Params params_;  // views setup's arrays: used only during construction
   Point origin_;
   HandScript script_;
+  ButtonSchedule button_schedule_;
   double mass_, stiffness_, damping_, resolution_, noise_std_;
   bool limit_to_workspace_;
   GaussianNoise noise_;

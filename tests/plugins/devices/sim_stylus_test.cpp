@@ -246,6 +246,43 @@ TEST_F(SimStylusTest, BadScriptIsRefusedAtCreateWithAReason) {
   EXPECT_NE(device.message().find("waypoint 1"), std::string::npos) << device.message();
 }
 
+// button_times: bit 0 is set from each press until its release, whatever the hand does.
+TEST_F(SimStylusTest, ButtonHeldFromEachPressUntilItsRelease) {
+  params.vector("button_times", {0.1, 0.2, 0.35, 0.5})
+      .vector("palpation_points", {0.0, 0.0, 0.0})
+      .vector("waypoints", {0.0, 0.0, 0.0, 0.0, 1.0, 0.01, 0.0, 0.0});
+  for (int pattern = 0; pattern < 4; ++pattern) {
+    SCOPED_TRACE(pattern);
+    params.number("pattern", pattern);
+    DeviceInstance device(api, params.setup());
+    ASSERT_EQ(device.create_status(), TACTA_OK) << device.message();
+    int held = 0;
+    for (int n = 0; n <= 600; ++n) {
+      const double t = n * kTick;
+      const bool expected = (t >= 0.1 && t < 0.2) || (t >= 0.35 && t < 0.5);
+      tacta_device_sample s{};
+      device.read(t, s);
+      ASSERT_EQ(s.buttons, expected ? 1u : 0u) << "t = " << t << " s";
+      held += expected;
+    }
+    EXPECT_EQ(held, 250);  // 100 + 150 ticks: the windows are half open
+  }
+  params.vector("button_times", {});
+  DeviceInstance plain(api, params.setup());
+  EXPECT_EQ(plain.read(0.15).buttons, 0u);  // none by default
+}
+
+TEST_F(SimStylusTest, BadButtonTimesAreRefusedAtCreateWithAReason) {
+  params.vector("button_times", {0.1, 0.2, 0.3});
+  DeviceInstance odd(api, params.setup());
+  EXPECT_EQ(odd.create_status(), TACTA_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(odd.message().find("in pairs"), std::string::npos) << odd.message();
+  params.vector("button_times", {0.1, 0.3, 0.2, 0.4});
+  DeviceInstance unordered(api, params.setup());
+  EXPECT_EQ(unordered.create_status(), TACTA_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(unordered.message().find("button_times[2]"), std::string::npos) << unordered.message();
+}
+
 TEST_F(SimStylusTest, ReportsDisconnected) {
   DeviceInstance device(api, params.setup());
   device.disconnect();
