@@ -127,6 +127,17 @@ struct BodyDesc {
   SourceLocation where;
 };
 
+// A device's tool as a blade (`tool.blade`): the edge, in the device's frame (m, from the sampled
+// position, turned by the sampled orientation), cuts every body it sweeps through while button
+// `button` is held; what it swept is cut every `interval_s` and when the button is let go.
+struct BladeDesc {
+  std::array<Vec3, 2> edge{Vec3{0, 0, 0}, Vec3{0, -0.02, 0}};
+  uint32_t button = 0;  // bit of the device sample's buttons
+  CutMode mode = CutMode::kSeparate;
+  double interval_s = 0.01;  // s: the latency from the sweep to the cut, at most
+  SourceLocation where;
+};
+
 // A rigid tool carried by a device (the stylus tip) or a static obstacle.
 struct ShapeDesc {
   enum class Kind { Sphere, Capsule, Box, Plane, Mesh } kind = Kind::Sphere;
@@ -138,6 +149,7 @@ struct ShapeDesc {
   std::string path;                  // Mesh: convex hull of this file
   SourceLocation path_where;         // Mesh: the scene's `file` key, for messages
   Vec3 position{0, 0, 0};            // m
+  std::optional<BladeDesc> blade;    // a device's tool only: it cuts (tool.blade)
 };
 
 struct DeviceDesc {

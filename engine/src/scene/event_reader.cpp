@@ -33,7 +33,7 @@ ToolChangeDesc read_tool_change(const Field& field, const std::vector<DeviceDesc
   if (std::none_of(devices.begin(), devices.end(),
                    [&](const DeviceDesc& d) { return d.name == change.device; }))
     device.fail("no device named '" + change.device + "' among the scene's devices");
-  change.tool = read_shape(field.require("tool"));
+  change.tool = read_shape(field.require("tool"), true);
   return change;
 }
 

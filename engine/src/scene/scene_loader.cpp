@@ -281,7 +281,7 @@ ShapeDesc load_shape_from_string(const std::string& text, const std::string& vir
                                  const SchemaLookup& schemas) {
   using namespace scene_detail;
   return read_text(text, virtual_path, schemas, [](LoadContext& context, YAML::Node& root) {
-    return read_shape(Field(context, root, "", YAML::Mark::null_mark()));
+    return read_shape(Field(context, root, "", YAML::Mark::null_mark()), true);
   });
 }
 

@@ -14,7 +14,8 @@ MaterialDesc read_material(const Field& field);
 MeshSourceDesc read_mesh_source(const Field& field);
 BodyDesc read_body(const Field& field);
 
-ShapeDesc read_shape(const Field& field);
+// A device's tool (`tool`: true) may carry a blade; an obstacle's shape may not.
+ShapeDesc read_shape(const Field& field, bool tool = false);
 DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies);
 ObstacleDesc read_obstacle(const Field& field);
 CollisionDesc read_collision(const Field& field);

@@ -38,9 +38,39 @@ void read_position(const Field& shape, ShapeDesc& out) {
 
 }  // namespace
 
-ShapeDesc read_shape(const Field& field) {
-  field.expect_map("a shape: a map with one of sphere, capsule, box, plane, mesh");
-  field.check_keys({"sphere", "capsule", "box", "plane", "mesh"});
+// `blade: {edge: [[x, y, z], [x, y, z]], button, mode, interval}` (device frame, m; s).
+BladeDesc read_blade(const Field& field) {
+  field.expect_map(
+      "a map {edge: [[x, y, z], [x, y, z]] (m, device frame), button, mode: separate | remove, "
+      "interval (s)}");
+  field.check_keys({"edge", "button", "mode", "interval"});
+  BladeDesc blade;
+  blade.where = field.where();
+  if (auto f = field.get("edge")) {
+    const std::vector<Field> ends =
+        f->items("the blade's two end points [[x, y, z], [x, y, z]] (m)");
+    if (ends.size() != 2) f->fail_expected("two end points [[x, y, z], [x, y, z]] (m)");
+    blade.edge = {ends[0].vec3(), ends[1].vec3()};
+    if (!(norm(sub(blade.edge[1], blade.edge[0])) > 0))
+      f->fail_expected("two different end points (a blade of length > 0)");
+  }
+  if (auto f = field.get("button")) blade.button = static_cast<uint32_t>(f->integer(0, 31));
+  if (auto f = field.get("mode"))
+    parse_cut_mode(f->choice({cut_mode_name(CutMode::kRemove), cut_mode_name(CutMode::kSeparate)}),
+                   blade.mode);
+  // Past a second, a cut lags the hand too far to follow it; 1 ms is a cut at every tick.
+  if (auto f = field.get("interval")) blade.interval_s = f->real(Range::closed(0.001, 1.0));
+  return blade;
+}
+
+ShapeDesc read_shape(const Field& field, bool tool) {
+  field.expect_map(tool ? "a tool: a map with one of sphere, capsule, box, plane, mesh, and blade "
+                          "when it cuts"
+                        : "a shape: a map with one of sphere, capsule, box, plane, mesh");
+  if (tool)
+    field.check_keys({"sphere", "capsule", "box", "plane", "mesh", "blade"});
+  else
+    field.check_keys({"sphere", "capsule", "box", "plane", "mesh"});
   const std::string kind = exactly_one_of(field, {"sphere", "capsule", "box", "plane", "mesh"});
   const Field body = field.require(kind);
   ShapeDesc shape;
@@ -80,6 +110,7 @@ ShapeDesc read_shape(const Field& field) {
     shape.path_where = file.where();
   }
   if (kind != "plane") read_position(body, shape);
+  if (auto f = field.get("blade"); f && tool) shape.blade = read_blade(*f);
   return shape;
 }
 
@@ -95,7 +126,7 @@ DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies) 
   PluginRef plugin = read_plugin(field.require("plugin"), TACTA_KIND_DEVICE, params);
   device.plugin = std::move(plugin.name);
   device.params = std::move(plugin.params);
-  if (auto f = field.get("tool")) device.tool = read_shape(*f);
+  if (auto f = field.get("tool")) device.tool = read_shape(*f, true);
   if (auto f = field.get("coupling")) {
     f->expect_map("a map {stiffness, damping, passivity, first_contact}");
     f->check_keys({"stiffness", "damping", "passivity", "first_contact"});

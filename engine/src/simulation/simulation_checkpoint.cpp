@@ -67,7 +67,7 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   session.load_state(in);
   in.expect_end();
   // The saved run had made (or been refused) every cut due by its time; a cut body is never saved.
-  impl.scene_cuts->skip_past(session.time());
+  impl.lockstep_cuts->skip_past(session.time());
 }
 
 void Simulation::save_state(const std::string& path) const {

@@ -33,23 +33,24 @@ uint32_t Simulation::body_revision(BodyHandle body) const {
   return impl_->world.body(impl_->body_at(body)).shape.cuts.revision;
 }
 
-SceneCuts::SceneCuts(const World& world, Cut cut) : world_(world), cut_(std::move(cut)) {
+LockstepCuts::LockstepCuts(World& world, Cut cut) : world_(world), cut_(std::move(cut)) {
   for (const BodyEventDesc& e : world.scene().events) {
     if (!e.cut) continue;
     // What makes a body uncuttable is known at load: say so now, at the event, not mid-run.
     const int slot = world.body_index(e.cut->body);
-    if (slot < 0) continue;  // a body an earlier event adds: checked when the cut comes
-    const SoftBody b = world.body(static_cast<size_t>(slot));
-    if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
-      throw InputError(e.cut->where,
-                       "body '" + b.info.name + "' is cut at " + std::to_string(e.time) +
-                           " s but its model '" + b.model.instance->name() +
-                           "' does not take topology edits (`tacta plugins` lists the models "
-                           "that do)");
-    if (b.settings.own_thread || b.constraints.boundary)
-      throw InputError(e.cut->where, "body '" + b.info.name +
-                                         "' cannot be cut: it steps on its own thread or has "
-                                         "prescribed motion or plates");
+    if (slot >= 0) {  // else a body an earlier event adds: checked when the cut comes
+      const SoftBody b = world.body(static_cast<size_t>(slot));
+      if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
+        throw InputError(e.cut->where,
+                         "body '" + b.info.name + "' is cut at " + std::to_string(e.time) +
+                             " s but its model '" + b.model.instance->name() +
+                             "' does not take topology edits (`tacta plugins` lists the models "
+                             "that do)");
+      if (b.settings.own_thread || b.constraints.boundary)
+        throw InputError(e.cut->where, "body '" + b.info.name +
+                                           "' cannot be cut: it steps on its own thread or has "
+                                           "prescribed motion or plates");
+    }
     events_.push_back(&e);
   }
   std::stable_sort(
@@ -57,16 +58,38 @@ SceneCuts::SceneCuts(const World& world, Cut cut) : world_(world), cut_(std::mov
       [](const BodyEventDesc* a, const BodyEventDesc* b) { return a->time < b->time; });
 }
 
-double SceneCuts::next_due_s() const noexcept {
-  return next_ < events_.size() ? events_[next_]->time : std::numeric_limits<double>::infinity();
+double LockstepCuts::next_due_s() const noexcept {
+  double due =
+      next_ < events_.size() ? events_[next_]->time : std::numeric_limits<double>::infinity();
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    const BladeSweep& blade = world_.tool(d).blade;
+    if (blade.first_s < 0) continue;
+    due = std::min(due, blade.released ? 0.0 : blade.first_s + blade.desc.interval_s);
+  }
+  return due;
 }
 
-void SceneCuts::skip_past(double time) noexcept {
+void LockstepCuts::skip_past(double time) noexcept {
   const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
   while (next_ < events_.size() && events_[next_]->time <= time + half_tick) ++next_;
 }
 
-void SceneCuts::run_due(double time) {
+std::string LockstepCuts::realtime_problem(double from_s, double to_s) const {
+  for (size_t d = 0; d < world_.device_count(); ++d)
+    if (world_.tool(d).blade.enabled)
+      return "device '" + world_.device(d).link.name +
+             "' holds a blade: cuts are made between lockstep ticks only (a realtime tick must "
+             "not allocate); run with --lockstep";
+  for (size_t e = next_; e < events_.size(); ++e)
+    if (events_[e]->time >= from_s && events_[e]->time <= to_s)
+      return "the scene cuts body '" + events_[e]->cut->body + "' at " +
+             std::to_string(events_[e]->time) +
+             " s: cuts are made between lockstep ticks only (a realtime tick must not allocate); "
+             "run with --lockstep";
+  return {};
+}
+
+void LockstepCuts::run_due(double time) {
   const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
   for (; next_ < events_.size() && events_[next_]->time <= time + half_tick; ++next_) {
     const CutEventDesc& cut = *events_[next_]->cut;
@@ -76,11 +99,39 @@ void SceneCuts::run_due(double time) {
         throw InputError(cut.where, "body '" + cut.body + "' is not in the scene");
       cut_(static_cast<size_t>(slot), cut.triangles, cut.mode);
     } catch (const InputError& e) {
-      ++refused_;
       log_warning(std::string("the cut at ") + std::to_string(events_[next_]->time) +
                   " s was not made: " + e.what());
     }
   }
+  for (size_t d = 0; d < world_.device_count(); ++d) {
+    BladeSweep& blade = world_.tool(d).blade;
+    if (blade.first_s >= 0 &&
+        (blade.released || blade.first_s + blade.desc.interval_s <= time + half_tick))
+      cut_sweep(d, blade);
+  }
+}
+
+// The bodies a blade cuts: the one its device touches (`touches`), else every body in the scene
+// whose model takes topology edits (a blade passing others by cuts nothing).
+void LockstepCuts::cut_sweep(size_t device, BladeSweep& blade) {
+  const std::string& touches = world_.device(device).link.desc.touches;
+  for (size_t slot = 0; slot < world_.body_count(); ++slot) {
+    const SoftBody b = world_.body(slot);
+    if (!b.present() || (!touches.empty() && b.info.name != touches)) continue;
+    if (touches.empty() && !(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
+      continue;
+    try {
+      if (cut_(slot, blade.swept, blade.desc.mode).changed) ++blade.cuts;
+    } catch (const InputError& e) {
+      ++blade.cuts_refused;
+      if (blade.cuts_refused == 1)  // once per blade: a refusal repeats at every sweep
+        log_warning("device '" + world_.device(device).link.name +
+                    "': its blade's cut was not made: " + e.what());
+    }
+  }
+  blade.swept.clear();  // keeps its capacity: the tick adds to it without allocating
+  blade.first_s = -1;
+  blade.released = false;
 }
 
 }  // namespace tacta

@@ -18,24 +18,28 @@
 
 namespace tacta {
 
-// The scene's cut events, made between lockstep ticks (simulation_cut.cpp).
-class SceneCuts final : public BetweenTicks {
+// The cuts made between lockstep ticks (simulation_cut.cpp): the scene's cut events, and what
+// the devices' blades swept (each blade's sweep is cut `interval` after it began, and when its
+// button is let go).
+class LockstepCuts final : public BetweenTicks {
  public:
   using Cut = std::function<CutSummary(size_t slot, std::span<const double>, CutMode)>;
   // Checks every event's body can be cut (InputError at the event otherwise); `cut` makes one.
-  SceneCuts(const World& world, Cut cut);
+  LockstepCuts(World& world, Cut cut);
   double next_due_s() const noexcept override;
   void run_due(double time) override;
-  uint64_t refused() const noexcept { return refused_; }
   // A restored run: the events due by `time` (s) were the saved run's.
   void skip_past(double time) noexcept;
+  // Why a realtime run from `from_s` to `to_s` (s) cannot be made (a cut would fall in it, or a
+  // device's tool is a blade); empty when it can.
+  std::string realtime_problem(double from_s, double to_s) const;
 
  private:
-  const World& world_;
+  void cut_sweep(size_t device, BladeSweep& blade);
+  World& world_;
   Cut cut_;
   std::vector<const BodyEventDesc*> events_;  // by time
   size_t next_ = 0;
-  uint64_t refused_ = 0;
 };
 
 struct Simulation::Impl {
@@ -48,9 +52,10 @@ struct Simulation::Impl {
         haptics = std::make_unique<HapticInteraction>(world, *collision);
       if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
     }
-    scene_cuts =
-        std::make_unique<SceneCuts>(world, [this](size_t slot, std::span<const double> blade,
-                                                  CutMode mode) { return cut(slot, blade, mode); });
+    lockstep_cuts = std::make_unique<LockstepCuts>(
+        world, [this](size_t slot, std::span<const double> blade, CutMode mode) {
+          return cut(slot, blade, mode);
+        });
   }
   World world;
   const PluginRegistry& plugins;
@@ -63,12 +68,12 @@ struct Simulation::Impl {
   std::unique_ptr<CollisionResponse> response;
   std::unique_ptr<ClockSession> clock;        // built at the first step or run
   std::vector<std::string> checkpoint_notes;  // what the last save or restore could not carry
-  std::unique_ptr<SceneCuts> scene_cuts;
+  std::unique_ptr<LockstepCuts> lockstep_cuts;
 
   ClockSession& session() {
     if (!clock) {
       clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
-      clock->set_between_ticks(scene_cuts.get());
+      clock->set_between_ticks(lockstep_cuts.get());
     }
     return *clock;
   }

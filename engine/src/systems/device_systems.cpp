@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "systems/status_bits.hpp"
+#include "tacta/sdk/pose.hpp"
 #include "tacta/vec3.hpp"
 
 namespace tacta {
@@ -125,6 +126,37 @@ void trace_devices(World& world, double time, double last_tick_ms,
         }
         trace.push(row);
       });
+}
+
+void sweep_blades(World& world, double time) noexcept {
+  for (size_t d = 0; d < world.device_count(); ++d) {
+    BladeSweep& blade = world.tool(d).blade;
+    if (!blade.enabled) continue;
+    const DeviceComponents dev = world.device(d);
+    const tacta_device_sample& sample = dev.link.sample;
+    const bool pressed =
+        dev.link.state == TACTA_DEVICE_CONNECTED && (sample.buttons >> blade.desc.button & 1u) != 0;
+    std::array<Vec3, 2> ends;
+    for (size_t k = 0; k < 2; ++k) {
+      double turned[3];
+      sdk::rotate(sample.orientation, blade.desc.edge[k].data(), false, turned);
+      for (size_t a = 0; a < 3; ++a) ends[k][a] = sample.position[a] + turned[a];
+    }
+    if (pressed && blade.held) {
+      // The quad the edge swept this tick, as two triangles (last a, last b, b) and (last a, b, a).
+      const std::array<Vec3, 6> corners{blade.last[0], blade.last[1], ends[1],
+                                        blade.last[0], ends[1],       ends[0]};
+      if (blade.swept.size() + 18 <= blade.swept.capacity()) {
+        for (const Vec3& c : corners) blade.swept.insert(blade.swept.end(), c.begin(), c.end());
+        if (blade.first_s < 0) blade.first_s = time;
+      } else {
+        blade.dropped += 2;
+      }
+    }
+    if (!pressed && blade.held) blade.released = true;
+    blade.held = pressed;
+    blade.last = ends;
+  }
 }
 
 }  // namespace tacta

@@ -14,6 +14,11 @@ namespace tacta {
 // A device that faults, finishes or sends a non-finite position stops here.
 void read_devices(World& world, TickEvents& events, double time) noexcept;
 
+// Each blade tool whose button is held adds what its edge swept since the last tick (two
+// triangles, world frame, from the device's sampled pose: the hand, not the proxy held on the
+// surface) to its sweep; letting the button go marks the sweep for cutting.
+void sweep_blades(World& world, double time) noexcept;
+
 // Sends each device its force at `time`: zero after any fault this tick (`zero_force`), while it
 // touches a frozen or removed body, or when it is not connected; clamped to its peak. The first
 // device's sample and sent force go to `log` (may be null), stamped `sample_time`.

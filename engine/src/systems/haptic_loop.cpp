@@ -95,6 +95,7 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   world_.apply_entity_commands(time);
   take_model_swaps(world_, time);
   read_devices(world_, *this, time);
+  sweep_blades(world_, time);
   const auto read_done = Clock::now();
   start_contact_sums(world_);
   if (haptics_ != nullptr) {

@@ -184,12 +184,6 @@ ScheduleResult ClockSession::run(const ScheduleOptions& options) {
       static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
   reserve(ticks + 1);
   start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
-  if (options.mode == ClockMode::Realtime && between_ != nullptr &&
-      between_->next_due_s() <= time() + options.duration_s)
-    throw InputError({world_.scene().path, 0, 0, "events"},
-                     "the scene cuts a body at " + std::to_string(between_->next_due_s()) +
-                         " s: cut events run on the lockstep clock only (a realtime tick must "
-                         "not allocate); run with --lockstep");
   OffsetTask task(loop_, tick_, dt_, between_);
   last_run_ = run_schedule(task, render_, options);
   tick_ += last_run_.ticks;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "collision/collision_context.hpp"
@@ -70,8 +71,8 @@ class ClockSession {
   // again for its new mesh (allocates); observers see the new revision from the next frame.
   void body_reshaped(size_t slot);
 
-  // What runs between lockstep ticks (not owned; null: nothing). A realtime run() with work
-  // still due is refused (InputError): its ticks run on a thread that must not allocate.
+  // What runs between lockstep ticks (not owned; null: nothing). A realtime run never calls it:
+  // its ticks run on a thread that must not allocate (Simulation::run refuses such a run).
   void set_between_ticks(BetweenTicks* work) noexcept { between_ = work; }
 
   // Checkpoints: the clock (tick, frames, the next frame boundary) and the loop's state

@@ -75,8 +75,16 @@ struct CutTotals {
   double removed_energy_J = 0;  // kinetic + elastic the removed material took with it
 };
 
+// A body's arrays from before a cut, kept until the World closes: pointers the stepping API handed
+// out (BodyArrays, Python's array views) stay readable, holding the state at the cut.
+struct RetiredArrays {
+  std::unique_ptr<BodyTopology> topology;
+  std::vector<double> positions, velocities;
+};
+
 struct RestShape {
   std::unique_ptr<BodyTopology> topology;
+  std::vector<RetiredArrays> retired;  // one per cut that changed the mesh
   // Per boundary triangle of topology->mesh: 1 when a cut exposed it (drawn in the cut colour);
   // empty while the body was never cut.
   std::vector<uint8_t> cut_triangles;

@@ -176,8 +176,9 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   if (b.recording.probe_node)
     b.recording.probe_node = carried_node(*b.recording.probe_node, copy, old.mesh, mesh);
   for (Probe& p : b.recording.probes) carry_probe(p, old.mesh, edit, new_tet_of_old);
-  b.nodes.positions = carried(b.nodes.positions, edit);
-  b.nodes.velocities = carried(b.nodes.velocities, edit);
+  RetiredArrays retired;
+  retired.positions = std::exchange(b.nodes.positions, carried(b.nodes.positions, edit));
+  retired.velocities = std::exchange(b.nodes.velocities, carried(b.nodes.velocities, edit));
   b.nodes.step_start = carried(b.nodes.step_start, edit);
   const size_t n = edit.node_source.size();
   b.loads.external_forces.assign(3 * n, 0.0);
@@ -200,7 +201,8 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
     for (double m : topology->masses) after += m;
     return before - after;
   }();
-  b.shape.topology = std::move(topology);
+  retired.topology = std::exchange(b.shape.topology, std::move(topology));
+  b.shape.retired.push_back(std::move(retired));
   b.shape.cut_triangles = std::move(cut_triangles);
   if (surface) {
     update_embedded_surface(*surface, b.nodes.positions.data());

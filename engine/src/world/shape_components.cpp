@@ -48,7 +48,13 @@ RigidShape build_rigid_shape(const ShapeDesc& d, uint32_t id) {
 }
 
 Tool build_tool(const ShapeDesc& desc, uint32_t id, uint32_t device) {
-  return Tool{build_rigid_shape(desc, id), device, desc.radius, 0};
+  Tool tool{build_rigid_shape(desc, id), device, desc.radius, 0, {}};
+  if (desc.blade) {
+    tool.blade.enabled = true;
+    tool.blade.desc = *desc.blade;
+    tool.blade.swept.reserve(9 * BladeSweep::kCapacityTriangles);
+  }
+  return tool;
 }
 
 }  // namespace tacta

@@ -25,11 +25,28 @@ struct Collider {
 
 // The shape a device carries into the scene (`devices[].tool`); its pose follows the device's
 // proxy each tick (HapticInteraction).
+// A tool's blade (ShapeDesc::blade) and what its edge swept since the last cut: the tick adds
+// two triangles a tick while the button is held (no allocation: `swept` is reserved when the tool
+// is built); the cut itself is made between ticks (Simulation's lockstep cuts).
+struct BladeSweep {
+  static constexpr size_t kCapacityTriangles = 4096;  // 2 s of sweeping at 1 kHz
+  bool enabled = false;
+  BladeDesc desc;
+  bool held = false;           // the button was down at the last tick
+  std::array<Vec3, 2> last{};  // the edge's ends at the last tick, m, world
+  std::vector<double> swept;   // 9 per triangle, m, world
+  double first_s = -1;         // s: when the oldest triangle in `swept` was added; -1: none
+  bool released = false;       // the button was let go since the last cut
+  uint64_t dropped = 0;        // triangles past the capacity, never cut
+  uint64_t cuts = 0, cuts_refused = 0;  // cuts made from this blade's sweeps, and refused
+};
+
 struct Tool {
   RigidShape rigid;
   uint32_t device = 0;      // index in the scene's devices
   double proxy_radius = 0;  // m: the haptic proxy's sphere (the shape's `radius`)
   uint32_t revision = 0;    // tools changed while the scene ran (report: tool_changes)
+  BladeSweep blade;
 };
 
 // A tool built to replace a device's while the scene runs (World::change_tool, a scene event).

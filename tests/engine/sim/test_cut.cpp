@@ -53,7 +53,12 @@ TEST(Cut, SeparationKeepsTheMassAndRemovalLosesTheRemovedTets) {
   const double density = 1000, cell_volume = 0.01 * 0.01 * 0.01;
   ASSERT_NEAR(mass, density * 0.1 * 0.02 * 0.02, 1e-12 * mass);
 
+  const BodyArrays before = sim.body_arrays(beam);
+  const std::vector<double> positions_before(before.positions, before.positions + 3 * before.nodes);
   const CutSummary split = sim.cut(beam, plane_x(0.05), CutMode::kSeparate);
+  // Arrays handed out before the cut stay readable, holding the state at the cut.
+  EXPECT_TRUE(std::equal(positions_before.begin(), positions_before.end(), before.positions));
+  EXPECT_NE(sim.body_arrays(beam).positions, before.positions);
   EXPECT_TRUE(split.changed);
   EXPECT_EQ(split.revision, 1u);
   EXPECT_EQ(split.faces_separated, 2u * 2 * 2);  // two triangles per cell face, 2 x 2 cells
@@ -194,6 +199,69 @@ events:
   const std::string text((std::istreambuf_iterator<char>(last)), std::istreambuf_iterator<char>());
   const size_t nodes = sim.body_arrays(sim.body("beam")).nodes;
   EXPECT_NE(text.find("NumberOfPoints=\"" + std::to_string(nodes) + "\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tacta::simtest
+
+namespace tacta::simtest {
+namespace {
+
+// A scalpel from a device: sim_stylus holds button 0 while its hand sweeps a vertical blade along
+// y through the beam at x = 0.05 (a cell face: the cut parts the beam there). The coupling is
+// soft so the hand passes through the beam as a surgeon's would.
+TEST(Cut, ABladeHeldByADeviceCutsTheBeamInTwoAndRunsRepeatably) {
+  const std::string device = R"(
+devices:
+  - name: scalpel
+    plugin: sim_stylus
+    params:
+      workspace_origin: [0.05, 0.01, 0.05]
+      limit_to_workspace: false
+      waypoints: [0, 0.05, -0.02, 0.03,  0.05, 0.05, -0.02, 0.03,  0.15, 0.05, 0.045, 0.03]
+      button_times: [0.04, 0.17]
+    tool: {sphere: {radius: 0.001}, blade: {edge: [[0, 0, 0], [0, 0, -0.1]], button: 0}}
+    coupling: {stiffness: 5, damping: 0.01}
+    touches: beam
+)";
+  auto run = [&](const std::string& out) {
+    Simulation sim(scene_from_text(beam_scene("corotational_fem", device), "cut_beam"), plugins());
+    RunOptions options;
+    options.out_dir = out;
+    options.duration_s = 0.25;
+    const RunResult r = sim.run(options);
+    EXPECT_EQ(r.faults, 0u);
+    EXPECT_GT(sim.body_revision(sim.body("beam")), 0u);
+    // In two: no tet joins a node of the clamped end to one of the tip.
+    const VolumeMesh& mesh = sim.body_mesh(sim.body("beam"));
+    std::vector<uint32_t> parent(mesh.node_count());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](uint32_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (size_t t = 0; t < mesh.tet_count(); ++t)
+      for (int c = 1; c < 4; ++c) parent[root(mesh.tets[4 * t + c])] = root(mesh.tets[4 * t]);
+    uint32_t tip = 0, clamp = 0;
+    for (uint32_t n = 0; n < mesh.node_count(); ++n) {
+      if (mesh.positions[3 * n] > mesh.positions[3 * tip]) tip = n;
+      if (mesh.positions[3 * n] < mesh.positions[3 * clamp]) clamp = n;
+    }
+    EXPECT_NE(root(tip), root(clamp));
+    std::ifstream in(out + "/report.json");
+    const nlohmann::json report = nlohmann::json::parse(in);
+    EXPECT_GT(report["devices"][0]["blade"]["cuts"].get<int>(), 0);
+    EXPECT_EQ(report["devices"][0]["blade"]["cuts_refused"], 0);
+    return r.state_hash;
+  };
+  EXPECT_EQ(run(fresh_dir("blade_a")), run(fresh_dir("blade_b")));
+
+  // A realtime run with a blade is refused before it starts.
+  Simulation sim(scene_from_text(beam_scene("corotational_fem", device), "cut_beam"), plugins());
+  RunOptions realtime;
+  realtime.realtime = true;
+  realtime.duration_s = 0.01;
+  EXPECT_THROW(sim.run(realtime), InputError);
 }
 
 }  // namespace

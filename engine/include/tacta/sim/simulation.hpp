@@ -85,8 +85,10 @@ struct RunResult {
   int exit_code = 0;  // 0 ok, 1 runtime fault or error bit
 };
 
-// One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed or
-// the body is cut (a cut gives it new arrays; ask again after it). Write positions and velocities only between steps.
+// One body's node arrays, borrowed from the engine: valid until the Simulation is destroyed
+// (bodies are never re-allocated after load). A cut gives the body new arrays: those taken before
+// it stay readable, holding the state at the cut, but no longer follow the body; ask again after
+// a cut. Write positions and velocities only between steps.
 struct BodyArrays {
   size_t nodes = 0;
   double* positions = nullptr;             // 3 per node, m
