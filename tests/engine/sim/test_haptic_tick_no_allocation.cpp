@@ -2,8 +2,13 @@
 // god-object proxy's surface queries and (second case) collision detection and response, over
 // the shipped liver palpation scene through its first press. malloc and friends are interposed
 // in this executable (tests/support/allocation_counter.hpp); skipped under the sanitizers.
+// Last case: the ticks after a cut (made between ticks, as Simulation::cut, scene cut events and
+// blades make it) allocate nothing either.
+#include <span>
+
 #include "allocation_counter.hpp"
 #include "sim_test_support.hpp"
+#include "world/body_cut.hpp"
 
 namespace tacta::simtest {
 namespace {
@@ -132,6 +137,57 @@ TEST(HapticTickAllocations, ToolChangeAtATickBoundary) {
   const tacta_pose& pose = h.world.tool(0).rigid.shape.pose_end;  // follows the proxy
   for (int a = 0; a < 3; ++a)
     EXPECT_EQ(pose.position[a], h.world.device(0).contact.proxy[static_cast<size_t>(a)]);
+}
+
+// A cut as Simulation::Impl::cut makes it between two ticks (simulation/simulation_cut.cpp): the
+// body's mesh and everything derived from it, the collision surface, the proxies, the snapshot
+// entries the render task fills.
+void cut_between_ticks(LoopHarness& h, std::span<const double> blade, CutMode mode) {
+  ASSERT_TRUE(cut_body(h.world, 0, blade, mode, static_cast<double>(h.next) * h.dt).changed);
+  h.collision.replace_surface(0);
+  h.haptics.surface_changed(h.world, 0);
+  const BodySnapshot prototype = HapticLoop::body_prototype(h.world.body(0));
+  h.snapshots.for_each_slot([&](Snapshot& s) { s.bodies[0] = prototype; });
+}
+
+// The liver is cut while the stylus presses it (a separation along the incision of
+// scenes/examples/liver_incision.yaml, then a removal across the right lobe): the cut allocates
+// (it rebuilds the mesh, model, surface and buffers, and begins the new model); the ticks after
+// it, from the very first, allocate nothing, with a snapshot now and then.
+TEST(HapticTickAllocations, TicksAfterACut) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
+  const SceneDesc scene =
+      load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas());
+  LoopHarness h(scene, 2000);
+  const auto count_ticks = [&](int ticks) {
+    g_allocations = 0;
+    g_counting = true;
+    for (int i = 0; i < ticks; ++i) {
+      h.tick();
+      if (i % 16 == 0) h.loop.publish(static_cast<double>(h.next) * h.dt);
+    }
+    g_counting = false;
+    return g_allocations;
+  };
+  // At 0.5 s the stylus is over the first point, pressing from 0.4 s.
+  for (int i = 0; i < 500; ++i) h.tick();
+  const std::vector<double> incision = {-0.0635, 0.095, -0.1, -0.0635, 0.2,   -0.1,
+                                        -0.0635, 0.2,   0.1,  -0.0635, 0.095, -0.1,
+                                        -0.0635, 0.2,   0.1,  -0.0635, 0.095, 0.1};
+  cut_between_ticks(h, incision, CutMode::kSeparate);
+  const uint64_t contacts = h.world.device(0).stats.contact_ticks;
+  const long after_separation = count_ticks(300);
+  const uint64_t contacts_after_separation = h.world.device(0).stats.contact_ticks - contacts;
+  const std::vector<double> notch = {0.0, 0.12, -0.1, 0.0, 0.2, -0.1, 0.0, 0.2,  0.1,
+                                     0.0, 0.12, -0.1, 0.0, 0.2, 0.1,  0.0, 0.12, 0.1};
+  cut_between_ticks(h, notch, CutMode::kRemove);
+  const long after_removal = count_ticks(300);
+  EXPECT_EQ(after_separation, 0) << "heap allocations in the 300 ticks after the separation";
+  EXPECT_EQ(after_removal, 0) << "heap allocations in the 300 ticks after the removal";
+  EXPECT_GT(contacts_after_separation, 100u)
+      << "the counted ticks must include the stylus pressing";
+  EXPECT_EQ(h.world.body(0).shape.cuts.revision, 2u);
+  EXPECT_FALSE(h.world.body(0).fault.frozen);
 }
 
 }  // namespace
