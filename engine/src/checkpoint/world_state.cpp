@@ -209,6 +209,10 @@ std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
   out.pod(static_cast<uint64_t>(world.device_count()));
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceComponents dev = world.device(d);
+    if (world.tool(d).blade.enabled)
+      throw InputError({world.scene().path, 0, 0, "devices." + dev.link.name + ".tool.blade"},
+                       "cannot checkpoint device '" + dev.link.name +
+                           "': its tool is a blade (a sweep in progress is not saved)");
     const size_t at = out.begin_section(kDeviceSection);
     out.text(dev.link.name);
     out.pod(dev.link.sample);

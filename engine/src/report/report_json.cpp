@@ -189,10 +189,10 @@ Json device_entry(const World& world, const RunStatus& status, size_t d) {
   }
   j["reconnections"] = st.reconnections;
   j["tool_changes"] = world.tool(d).revision;
-  if (const BladeSweep& blade = world.tool(d).blade; blade.enabled)
-    j["blade"] = {{"cuts", blade.cuts},
-                  {"cuts_refused", blade.cuts_refused},
-                  {"triangles_dropped", blade.dropped}};
+  if (const DeviceStats& stats = world.device(d).stats; stats.held_blade)
+    j["blade"] = {{"cuts", stats.blade_cuts},
+                  {"cuts_refused", stats.blade_cuts_refused},
+                  {"triangles_dropped", stats.blade_triangles_dropped}};
   if (d < status.devices.size()) j["status"] = status_bits(status.devices[d]);
   // The plugin's own figures (network devices: packets, drops, watchdog trips, round trip).
   const auto counters = s.device->counters();

@@ -114,19 +114,19 @@ void LockstepCuts::run_due(double time) {
 // The bodies a blade cuts: the one its device touches (`touches`), else every body in the scene
 // whose model takes topology edits (a blade passing others by cuts nothing).
 void LockstepCuts::cut_sweep(size_t device, BladeSweep& blade) {
-  const std::string& touches = world_.device(device).link.desc.touches;
+  const DeviceComponents dev = world_.device(device);
+  const std::string& touches = dev.link.desc.touches;
+  dev.stats.blade_triangles_dropped += std::exchange(blade.dropped, 0);
   for (size_t slot = 0; slot < world_.body_count(); ++slot) {
     const SoftBody b = world_.body(slot);
     if (!b.present() || (!touches.empty() && b.info.name != touches)) continue;
     if (touches.empty() && !(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
       continue;
     try {
-      if (cut_(slot, blade.swept, blade.desc.mode).changed) ++blade.cuts;
+      if (cut_(slot, blade.swept, blade.desc.mode).changed) ++dev.stats.blade_cuts;
     } catch (const InputError& e) {
-      ++blade.cuts_refused;
-      if (blade.cuts_refused == 1)  // once per blade: a refusal repeats at every sweep
-        log_warning("device '" + world_.device(device).link.name +
-                    "': its blade's cut was not made: " + e.what());
+      if (dev.stats.blade_cuts_refused++ == 0)  // once: a refusal repeats at every sweep
+        log_warning("device '" + dev.link.name + "': its blade's cut was not made: " + e.what());
     }
   }
   blade.swept.clear();  // keeps its capacity: the tick adds to it without allocating

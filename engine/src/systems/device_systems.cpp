@@ -133,6 +133,7 @@ void sweep_blades(World& world, double time) noexcept {
     BladeSweep& blade = world.tool(d).blade;
     if (!blade.enabled) continue;
     const DeviceComponents dev = world.device(d);
+    dev.stats.held_blade = true;
     const tacta_device_sample& sample = dev.link.sample;
     const bool pressed =
         dev.link.state == TACTA_DEVICE_CONNECTED && (sample.buttons >> blade.desc.button & 1u) != 0;

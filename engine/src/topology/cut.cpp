@@ -100,6 +100,27 @@ std::vector<uint8_t> tets_cut(const VolumeMesh& rest, std::span<const double> po
 struct Removal {
   std::vector<uint32_t> tets, node_source, tet_source;
 };
+// The crack's faces whose nodes all remain, in the new numbering (node_source: new -> old).
+std::vector<FaceNodes> renumbered(std::span<const FaceNodes> crack,
+                                  const std::vector<uint32_t>& node_source, size_t old_nodes) {
+  std::vector<uint32_t> new_index(old_nodes, UINT32_MAX);
+  for (uint32_t n = 0; n < node_source.size(); ++n) new_index[node_source[n]] = n;
+  std::vector<FaceNodes> out;
+  for (const FaceNodes& face : crack) {
+    FaceNodes now;
+    bool kept = true;
+    for (size_t k = 0; k < 3; ++k) {
+      kept = kept && face[k] < old_nodes && new_index[face[k]] != UINT32_MAX;
+      now[k] = kept ? new_index[face[k]] : 0;
+    }
+    if (!kept) continue;
+    std::sort(now.begin(), now.end());
+    out.push_back(now);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 Removal remove_tets(const VolumeMesh& rest, const std::vector<uint8_t>& cut) {
   Removal r;
   std::vector<uint32_t> new_index(rest.node_count(), UINT32_MAX);
@@ -147,6 +168,7 @@ Lists make_lists(size_t items, ForEach&& for_each) {
 struct Separation {
   std::vector<uint32_t> tets, node_source;
   size_t faces_separated = 0;
+  std::vector<FaceNodes> crack;  // crossed faces still closed, new numbering, sorted
 };
 
 // Separation: the new tets once every node on a crossed face is given one copy per group of
@@ -209,15 +231,23 @@ Separation separate(const VolumeMesh& rest, const std::vector<SharedFace>& faces
     std::sort(key.begin(), key.end());
     return key;
   };
-  for (const SharedFace& f : faces)
-    if (f.crossed && new_key(f.first) != new_key(f.second)) ++s.faces_separated;
+  for (const SharedFace& f : faces) {
+    if (!f.crossed) continue;
+    const FaceNodes a = new_key(f.first), b = new_key(f.second);
+    if (a != b)
+      ++s.faces_separated;
+    else
+      s.crack.push_back(a);
+  }
+  std::sort(s.crack.begin(), s.crack.end());
   return s;
 }
 
 // The tets' shared faces, each marked crossed when the segment between its tets' centroids
 // (deformed) passes through a blade triangle; empty with `problem` set when a face has 3 tets.
 std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const double> positions,
-                                      const Blade& blade, std::string& problem) {
+                                      const Blade& blade, std::span<const FaceNodes> crack,
+                                      std::string& problem) {
   const std::vector<TetFace> all = mesh_detail::sorted_tet_faces(rest.tets);
   std::vector<SharedFace> faces;
   for (size_t i = 0; i < all.size();) {
@@ -227,7 +257,9 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
       problem = "a face of the mesh is shared by more than two tets";
       return {};
     }
-    if (j - i == 2) faces.push_back({all[i].order, all[i + 1].order});
+    if (j - i == 2)
+      faces.push_back({all[i].order, all[i + 1].order,
+                       std::binary_search(crack.begin(), crack.end(), all[i].key)});
     i = j;
   }
   std::vector<Vec3> centroid(rest.tet_count());
@@ -236,6 +268,7 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
     centroid[t] = scaled(add(add(x[0], x[1]), add(x[2], x[3])), 0.25);
   }
   for (SharedFace& f : faces) {
+    if (f.crossed) continue;  // an earlier stroke's
     const Vec3 &p = centroid[f.first / 4], &q = centroid[f.second / 4];
     Box box = Box::empty();
     box.include(p), box.include(q);
@@ -289,7 +322,7 @@ void build_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut,
 
 CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_triangle,
                    std::span<const double> positions, std::span<const double> triangles,
-                   CutMode mode) {
+                   CutMode mode, std::span<const FaceNodes> crack) {
   CutResult result;
   result.refused = check_input(rest, rest_cut_triangle, positions, triangles);
   if (!result.refused.empty()) {
@@ -304,9 +337,11 @@ CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_tri
     if (removed == rest.tet_count()) result.refused = "the cut would remove every tet of the body";
     if (removed == 0 || removed == rest.tet_count()) {
       edit = unchanged(rest, rest_cut_triangle);
+      result.crack.assign(crack.begin(), crack.end());
       return result;
     }
     Removal r = remove_tets(rest, cut);
+    result.crack = renumbered(crack, r.node_source, rest.node_count());
     edit.node_source = std::move(r.node_source);
     edit.tet_source = std::move(r.tet_source);
     edit.tets_removed = removed;
@@ -314,7 +349,8 @@ CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_tri
     build_mesh(rest, rest_cut_triangle, std::move(r.tets), edit);
     return result;
   }
-  const std::vector<SharedFace> faces = crossed_faces(rest, positions, blade, result.refused);
+  const std::vector<SharedFace> faces =
+      crossed_faces(rest, positions, blade, crack, result.refused);
   if (!result.refused.empty()) {
     edit = unchanged(rest, rest_cut_triangle);
     return result;
@@ -322,6 +358,7 @@ CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_tri
   const bool any =
       std::any_of(faces.begin(), faces.end(), [](const SharedFace& f) { return f.crossed; });
   Separation s = any ? separate(rest, faces) : Separation{};
+  result.crack = std::move(s.crack);
   if (s.faces_separated == 0) {
     edit = unchanged(rest, rest_cut_triangle);
     return result;

@@ -4,6 +4,7 @@
 // result at a tick boundary (world/topology_revision). Units: metres.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -57,13 +58,22 @@ struct TopologyEdit {
 // mesh), changes nothing and sets `refused` with the reason. Allocates; O(tets log tets + blade
 // triangles * tets) cheap box tests, exact tests only where boxes meet (48,000 tets, a
 // 2-triangle blade: about 70 ms at -O2).
+//
+// A crack: separation opens a crossed face only once the faces crossed around one of its nodes
+// sever the node's tets into groups, so a blade drawn in strokes (a device's sweep, cut every few
+// ms) leaves crossed faces closed at first. `crack` (sorted node triples in rest's numbering)
+// lists the faces earlier strokes crossed that are still closed: they count as crossed again.
+// The result's `crack` is this stroke's and the earlier ones' faces still closed after the edit,
+// sorted, in the edited mesh's numbering: hand it to the next cut. Removal keeps it, renumbered.
+using FaceNodes = std::array<uint32_t, 3>;
 struct CutResult {
   TopologyEdit edit;
   std::string refused;  // empty: the edit may be installed
+  std::vector<FaceNodes> crack;
 };
 CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_triangle,
                    std::span<const double> positions, std::span<const double> triangles,
-                   CutMode mode);
+                   CutMode mode, std::span<const FaceNodes> crack = {});
 
 // What is wrong with an edited mesh, one line per kind of fault with a count and the first
 // offender (empty: nothing): a tet with volume <= 0 at rest (6 V below 1e-12 of its longest edge

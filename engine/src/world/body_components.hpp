@@ -85,6 +85,9 @@ struct RetiredArrays {
 struct RestShape {
   std::unique_ptr<BodyTopology> topology;
   std::vector<RetiredArrays> retired;  // one per cut that changed the mesh
+  // Faces a blade crossed that have not opened yet (sorted node triples): the next cut counts them
+  // crossed again, so an incision made in strokes opens as its faces' nodes are severed.
+  std::vector<std::array<uint32_t, 3>> crack;
   // Per boundary triangle of topology->mesh: 1 when a cut exposed it (drawn in the cut colour);
   // empty while the body was never cut.
   std::vector<uint8_t> cut_triangles;

@@ -123,10 +123,12 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   if (const std::string why = refusal(b); !why.empty()) throw InputError(where, "cut: " + why);
 
   BodyTopology& old = *b.shape.topology;
-  CutResult result = cut_mesh(old.mesh, b.shape.cut_triangles, b.nodes.positions, triangles, mode);
+  CutResult result =
+      cut_mesh(old.mesh, b.shape.cut_triangles, b.nodes.positions, triangles, mode, b.shape.crack);
   if (!result.refused.empty()) throw InputError(where, "cut: " + result.refused);
   CutSummary summary;
   if (!result.edit.changed()) {
+    b.shape.crack = std::move(result.crack);
     ++b.shape.cuts.cuts_missed;
     summary.revision = b.shape.cuts.revision;
     summary.tets = old.mesh.tet_count();
@@ -204,6 +206,7 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   retired.topology = std::exchange(b.shape.topology, std::move(topology));
   b.shape.retired.push_back(std::move(retired));
   b.shape.cut_triangles = std::move(cut_triangles);
+  b.shape.crack = std::move(result.crack);
   if (surface) {
     update_embedded_surface(*surface, b.nodes.positions.data());
     b.surface.mesh = std::move(surface);

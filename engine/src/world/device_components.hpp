@@ -24,6 +24,10 @@ struct DeviceStats {
   uint64_t zero_force_ticks = 0;  // ticks forced to zero force by a fault or disconnection
   uint64_t clamped_ticks = 0;     // ticks whose force was clamped to the peak
   uint64_t reconnections = 0;     // times a disconnected device came back (a network link)
+  // Blades the device held (tool.blade), over every tool it carried: cuts made from their sweeps,
+  // refused, and swept triangles past a sweep's capacity.
+  uint64_t blade_cuts = 0, blade_cuts_refused = 0, blade_triangles_dropped = 0;
+  bool held_blade = false;
 };
 
 // The device plugin and what it last said: its instance, the last sample, the connection state

@@ -37,8 +37,7 @@ struct BladeSweep {
   std::vector<double> swept;   // 9 per triangle, m, world
   double first_s = -1;         // s: when the oldest triangle in `swept` was added; -1: none
   bool released = false;       // the button was let go since the last cut
-  uint64_t dropped = 0;        // triangles past the capacity, never cut
-  uint64_t cuts = 0, cuts_refused = 0;  // cuts made from this blade's sweeps, and refused
+  uint64_t dropped = 0;        // triangles past the capacity since the last cut, never cut
 };
 
 struct Tool {

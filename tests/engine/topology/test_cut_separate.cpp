@@ -206,3 +206,49 @@ TEST(CutSeparate, DeformedNodesPlaceTheBlade) {
 
 }  // namespace
 }  // namespace tacta
+
+namespace tacta {
+namespace {
+
+// An incision in strokes (a device's blade is cut every few ms): a slit in the grid plane x = 2
+// of an 8 x 8 x 8 box, z in [1, 3] (clear of the box's faces), drawn as 40 strips of y. A strip
+// alone severs no node's tets (an interior node on the plane is severed only once every face
+// around it is crossed), so its faces stay closed; carried over as the crack, they open once the
+// strips around them are drawn. The strokes end as the whole slit cut at once would.
+TEST(CutSeparate, AnIncisionInStrokesOpensAsOneCutWould) {
+  const VolumeMesh box = make_box_grid({4, 4, 4}, {8, 8, 8}, {0, 0, 0});
+  auto strokes = [&](bool remember, size_t& opened) {
+    VolumeMesh mesh = box;
+    std::vector<uint8_t> marks;
+    std::vector<FaceNodes> crack;
+    opened = 0;
+    for (int k = 0; k < 40; ++k) {
+      const double y0 = -0.5 + 0.125 * k, y1 = y0 + 0.125;
+      const CutResult r =
+          cut_mesh(mesh, marks, mesh.positions, test::tilted_blade(2, 0, 0, y0, y1, 1, 3),
+                   CutMode::kSeparate, crack);
+      EXPECT_TRUE(r.refused.empty()) << r.refused;
+      EXPECT_TRUE(std::is_sorted(r.crack.begin(), r.crack.end()));
+      if (remember) crack = r.crack;
+      if (!r.edit.changed()) continue;
+      opened += r.edit.faces_separated;
+      mesh = r.edit.mesh;
+      marks = r.edit.cut_triangle;
+    }
+    EXPECT_TRUE(topology_problems(mesh).empty());
+    return mesh;
+  };
+  const CutResult once = cut_mesh(box, {}, box.positions, test::tilted_blade(2, 0, 0, -1, 5, 1, 3),
+                                  CutMode::kSeparate);
+  ASSERT_GT(once.edit.faces_separated, 0u);
+  size_t opened = 0;
+  const VolumeMesh cut = strokes(true, opened);
+  EXPECT_EQ(opened, once.edit.faces_separated);
+  EXPECT_EQ(cut.node_count(), once.edit.mesh.node_count());
+  size_t opened_without = 0;  // the same strokes, each forgetting the last
+  strokes(false, opened_without);
+  EXPECT_LT(opened_without, opened);
+}
+
+}  // namespace
+}  // namespace tacta
