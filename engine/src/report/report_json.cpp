@@ -119,14 +119,17 @@ Json body_entry(const World& world, const RunResult& result, size_t i) {
     for (const auto& [name, value] : b.model_counters) counters[name] = value;
   }
   if (const CutTotals& c = body.shape.cuts; c.revision > 0 || c.cuts_missed > 0)
-    j["cuts"] = {{"revision", c.revision},
-                 {"tets_removed", c.tets_removed},
-                 {"nodes_removed", c.nodes_removed},
-                 {"nodes_added", c.nodes_added},
-                 {"faces_separated", c.faces_separated},
-                 {"blades_missed", c.cuts_missed},
-                 {"removed_mass_kg", c.removed_mass_kg},
-                 {"removed_energy_J", c.removed_energy_J}};
+    j["cuts"] = {
+        {"revision", c.revision},
+        {"tets_removed", c.tets_removed},
+        {"nodes_removed", c.nodes_removed},
+        {"nodes_added", c.nodes_added},
+        {"faces_separated", c.faces_separated},
+        {"blades_missed", c.cuts_missed},
+        {"removed_mass_kg", c.removed_mass_kg},
+        {"removed_energy_J", c.removed_energy_J},
+        {"wall_ms_mean", c.wall_ms_total / static_cast<double>(c.revision + c.cuts_missed)},
+        {"wall_ms_max", c.wall_ms_max}};
   j["step_thread"] = b.own_thread ? "own" : "haptic";
   j["step_rate_hz"] = b.step_rate_hz;
   if (body.surface.mesh) {  // what the body was drawn, touched and collided through

@@ -2,6 +2,7 @@
 // between two of them (world/body_cut.hpp), then the collision surface, the haptic proxies and
 // the render description follow the body's new mesh.
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <utility>
 
@@ -12,12 +13,19 @@
 namespace tacta {
 
 CutSummary Simulation::Impl::cut(size_t slot, std::span<const double> triangles, CutMode mode) {
+  const auto start = std::chrono::steady_clock::now();
   const double time = clock ? clock->time() : 0.0;
   const CutSummary summary = cut_body(world, slot, triangles, mode, time);
-  if (!summary.changed) return summary;
-  if (collision) collision->replace_surface(slot);
-  if (haptics) haptics->surface_changed(world, slot);
-  if (clock) clock->body_reshaped(slot);
+  if (summary.changed) {
+    if (collision) collision->replace_surface(slot);
+    if (haptics) haptics->surface_changed(world, slot);
+    if (clock) clock->body_reshaped(slot);
+  }
+  CutTotals& totals = world.body(slot).shape.cuts;
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  totals.wall_ms_total += ms;
+  totals.wall_ms_max = std::max(totals.wall_ms_max, ms);
   return summary;
 }
 

@@ -73,6 +73,9 @@ struct CutTotals {
   uint64_t cuts_missed = 0;     // blades that met no tet
   double removed_mass_kg = 0;   // removal: the mass the removed tets carried
   double removed_energy_J = 0;  // kinetic + elastic the removed material took with it
+  // Wall time of the cuts made (the edit, the rebuilds, collision and render), ms: a cut runs
+  // between two ticks, so this is what it adds to the tick it follows.
+  double wall_ms_total = 0, wall_ms_max = 0;
 };
 
 // A body's arrays from before a cut, kept until the World closes: pointers the stepping API handed
