@@ -47,9 +47,7 @@ CutEventDesc read_cut(const Field& field, const std::vector<std::string>& bodies
   CutEventDesc cut;
   cut.where = field.where();
   cut.body = known_body(field.require("body"), bodies);
-  if (auto f = field.get("mode"))
-    parse_cut_mode(f->choice({cut_mode_name(CutMode::kRemove), cut_mode_name(CutMode::kSeparate)}),
-                   cut.mode);
+  if (auto f = field.get("mode")) cut.mode = read_cut_mode(*f);
   const std::string key = exactly_one_of(field, {"triangles", "quad"});
   const Field blade = field.require(key);
   const std::vector<Field> points = blade.items("a list of points [x, y, z]");

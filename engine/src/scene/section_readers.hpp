@@ -14,6 +14,9 @@ MaterialDesc read_material(const Field& field);
 MeshSourceDesc read_mesh_source(const Field& field);
 BodyDesc read_body(const Field& field);
 
+// A cut's `mode`: remove | separate.
+CutMode read_cut_mode(const Field& field);
+
 // A device's tool (`tool`: true) may carry a blade; an obstacle's shape may not.
 ShapeDesc read_shape(const Field& field, bool tool = false);
 DeviceDesc read_device(const Field& field, const std::vector<BodyDesc>& bodies);

@@ -38,6 +38,13 @@ void read_position(const Field& shape, ShapeDesc& out) {
 
 }  // namespace
 
+CutMode read_cut_mode(const Field& field) {
+  CutMode mode = CutMode::kSeparate;
+  parse_cut_mode(field.choice({cut_mode_name(CutMode::kRemove), cut_mode_name(CutMode::kSeparate)}),
+                 mode);
+  return mode;
+}
+
 // `blade: {edge: [[x, y, z], [x, y, z]], button, mode, interval}` (device frame, m; s).
 BladeDesc read_blade(const Field& field) {
   field.expect_map(
@@ -55,9 +62,7 @@ BladeDesc read_blade(const Field& field) {
       f->fail_expected("two different end points (a blade of length > 0)");
   }
   if (auto f = field.get("button")) blade.button = static_cast<uint32_t>(f->integer(0, 31));
-  if (auto f = field.get("mode"))
-    parse_cut_mode(f->choice({cut_mode_name(CutMode::kRemove), cut_mode_name(CutMode::kSeparate)}),
-                   blade.mode);
+  if (auto f = field.get("mode")) blade.mode = read_cut_mode(*f);
   // Past a second, a cut lags the hand too far to follow it; 1 ms is a cut at every tick.
   if (auto f = field.get("interval")) blade.interval_s = f->real(Range::closed(0.001, 1.0));
   return blade;
