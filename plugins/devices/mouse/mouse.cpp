@@ -3,14 +3,17 @@
 // that target by a hand impedance (spring and damper, as sim_stylus's scripted hand), and the
 // force written to the device acts on the same mass, so the rendered force pushes back on the
 // motion (closed loop): pressing into a body, the stylus stops near its surface like a hand
-// that meets resistance. Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
+// that meets resistance. A fourth input value sets the sample's buttons (a bit mask, such as
+// the viewer's cut key holding a blade's button). Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
 // about 1 N/mm usable stiffness at 1 kHz; numbers in docs/REFERENCES.md).
 //
-// Each instance keeps its own target: the host feeds it through Simulation::device_input, which
+// Each instance keeps its own target and buttons: the host feeds it through Simulation::device_input, which
 // calls input() with the instance the simulation owns. input() with a NULL instance is ignored.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 
 #include "tacta/sdk/device.hpp"
 #include "tacta_devices/omni_profile.hpp"
@@ -24,6 +27,7 @@ using Point = std::array<double, 3>;
 
 constexpr double kTeleportGap = 1.0;  // s; a longer gap (or time going back) restarts at the target
 constexpr int kMaxSubsteps = 100000;
+constexpr double kMaxButtons = 4294967295.0;  // 32 button bits (tacta_device_sample::buttons)
 
 Point to_point(std::span<const double> v, Point fallback) {
   return v.size() >= 3 ? Point{v[0], v[1], v[2]} : fallback;
@@ -66,11 +70,17 @@ class MouseDevice {
     if (damping_ > 0.0) max_substep_ = std::min(max_substep_, 0.5 * mass_ / damping_);
   }
 
-  // Host thread (the viewer's), while the haptic thread may be in read(): the slot is lock-free.
+  // Host thread (the viewer's), while the haptic thread may be in read(): the slot and the
+  // buttons are lock-free. x, y, z (m) move the target; a fourth value, the buttons as a bit
+  // mask (a whole number 0 to 2^32 - 1), replaces the sample's buttons; with three they stay.
+  // A non-finite target or a mask that is not such a number is ignored.
   static void input(MouseDevice* self, const double* values, uint32_t count) noexcept {
     if (self == nullptr || values == nullptr || count < 3) return;
     const Point p{values[0], values[1], values[2]};
     if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) self->target_.store(p);
+    if (count >= 4 && values[3] >= 0.0 && values[3] <= kMaxButtons &&
+        values[3] == std::floor(values[3]))
+      self->buttons_.store(static_cast<uint32_t>(values[3]), std::memory_order_release);
   }
 
   void connect() { connected_ = true; }
@@ -93,7 +103,7 @@ class MouseDevice {
     }
     sample.orientation[0] = 1.0;
     sample.orientation[1] = sample.orientation[2] = sample.orientation[3] = 0.0;
-    sample.buttons = 0;
+    sample.buttons = buttons_.load(std::memory_order_acquire);
     return connected_ ? TACTA_DEVICE_CONNECTED : TACTA_DEVICE_DISCONNECTED;
   }
 
@@ -105,7 +115,8 @@ class MouseDevice {
     return devices::omni_capabilities(origin_, 3);
   }
 
-  // Checkpoints: the stylus's motion and held force (the target is the host's input, fed anew).
+  // Checkpoints: the stylus's motion and held force (the target and the buttons are the host's
+  // input, fed anew).
   size_t save_state(void* bytes, size_t capacity) const noexcept {
     return devices::save_fields(bytes, capacity, started_, last_time_, position_, velocity_,
                                 force_);
@@ -135,7 +146,8 @@ class MouseDevice {
       }
   }
 
-  devices::SeqlockSlot<3> target_;  // host thread -> haptic thread
+  devices::SeqlockSlot<3> target_;    // host thread -> haptic thread
+  std::atomic<uint32_t> buttons_{0};  // host thread -> haptic thread: bit i = button i held
   Point start_{}, origin_{};
   bool limit_to_workspace_ = false;
   double mass_ = 0.1, stiffness_ = 300, damping_ = 11;

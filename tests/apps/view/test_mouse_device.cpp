@@ -92,6 +92,43 @@ TEST(MouseDevice, FollowsTheFedTargetAndYieldsToTheRenderedForce) {
   EXPECT_DOUBLE_EQ(mouse.read(0.0).position[1], 0.10);
 }
 
+TEST(MouseDevice, AFourthInputValueSetsTheButtonsAndThreeKeepThem) {
+  testing::LoadedPlugin plugin("tacta_mouse.so");
+  MouseInstance mouse(plugin);
+  MouseInstance other(plugin);
+  EXPECT_EQ(other.read(0.0).buttons, 0u) << "no button held before any input";
+
+  const double held[4] = {0.01, 0.12, -0.02, 1.0};  // button 0 held (a blade's default bit)
+  mouse.api.input(mouse.instance, held, 4);
+  tacta_device_sample s = mouse.read(0.0);  // first read: at rest on the target
+  EXPECT_EQ(s.buttons, 1u);
+  EXPECT_DOUBLE_EQ(s.position[1], 0.12) << "the target moves with the same input";
+  EXPECT_EQ(other.read(0.001).buttons, 0u) << "each instance has its own buttons";
+
+  const double moved[3] = {0.02, 0.12, -0.02};
+  mouse.api.input(mouse.instance, moved, 3);
+  EXPECT_EQ(mouse.read(0.002).buttons, 1u) << "three values keep the buttons held";
+
+  const double bits[4] = {0.02, 0.12, -0.02, 5.0};  // buttons 0 and 2
+  mouse.api.input(mouse.instance, bits, 4);
+  EXPECT_EQ(mouse.read(0.003).buttons, 5u);
+
+  // A mask that is not a whole number from 0 to 2^32 - 1 is ignored (the buttons stay as they
+  // were); the target in the same input still moves.
+  for (const double bad : {-1.0, 0.5, 4294967296.0, std::nan(""), HUGE_VAL}) {
+    const double input[4] = {0.03, 0.12, -0.02, bad};
+    mouse.api.input(mouse.instance, input, 4);
+    EXPECT_EQ(mouse.read(0.004).buttons, 5u) << "mask " << bad;
+  }
+  const double top[4] = {0.03, 0.12, -0.02, 4294967295.0};
+  mouse.api.input(mouse.instance, top, 4);
+  EXPECT_EQ(mouse.read(0.005).buttons, 0xFFFFFFFFu);
+
+  const double released[4] = {0.03, 0.12, -0.02, 0.0};
+  mouse.api.input(mouse.instance, released, 4);
+  EXPECT_EQ(mouse.read(0.006).buttons, 0u);
+}
+
 TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
   testing::LoadedPlugin plugin("tacta_mouse.so");
   MouseInstance mouse(plugin);
