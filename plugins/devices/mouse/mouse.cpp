@@ -4,11 +4,13 @@
 // force written to the device acts on the same mass, so the rendered force pushes back on the
 // motion (closed loop): pressing into a body, the stylus stops near its surface like a hand
 // that meets resistance. A fourth input value sets the sample's buttons (a bit mask, such as
-// the viewer's cut key holding a blade's button). Capabilities are the Phantom Omni's (peak 3.3 N, continuous 0.88 N,
-// about 1 N/mm usable stiffness at 1 kHz; numbers in docs/REFERENCES.md).
+// the viewer's cut key holding a blade's button). Capabilities are the Phantom Omni's (peak
+// 3.3 N, continuous 0.88 N, about 1 N/mm usable stiffness at 1 kHz; numbers in
+// docs/REFERENCES.md).
 //
-// Each instance keeps its own target and buttons: the host feeds it through Simulation::device_input, which
-// calls input() with the instance the simulation owns. input() with a NULL instance is ignored.
+// Each instance keeps its own target and buttons: the host feeds them through
+// Simulation::device_input, which calls input() with the instance the simulation owns. input()
+// with a NULL instance is ignored.
 #include <algorithm>
 #include <array>
 #include <atomic>
