@@ -11,6 +11,12 @@ void MouseTool::feed(const Vec3d& target) const {
   if (feed_) feed_(target);
 }
 
+void MouseTool::set_buttons(uint32_t buttons) {
+  buttons_ = buttons;
+  const double values[4] = {target_[0], target_[1], target_[2], static_cast<double>(buttons)};
+  if (feed_) feed_(values);
+}
+
 void MouseTool::update(const PointerState& pointer, const Camera& camera,
                        const Viewport& viewport) {
   const bool pressed = pointer.left_down && !was_down_;

@@ -26,8 +26,9 @@ double number(const ScriptAction& a, size_t i) {
 
 std::vector<ScriptAction> parse_script(const std::string& text) {
   const std::vector<std::pair<std::string, size_t>> arity{
-      {"swap", 2}, {"set", 3},  {"play", 0},  {"pause", 0},   {"step", 0}, {"quit", 0},
-      {"mark", 0}, {"drag", 3}, {"press", 2}, {"release", 0}, {"wheel", 1}};
+      {"swap", 2},  {"set", 3},     {"play", 0}, {"pause", 0}, {"step", 0},
+      {"quit", 0},  {"mark", 0},    {"drag", 3}, {"press", 2}, {"release", 0},
+      {"wheel", 1}, {"keydown", 1}, {"keyup", 1}};
   std::vector<ScriptAction> actions;
   std::istringstream entries(text);
   for (std::string entry; std::getline(entries, entry, ';');) {
@@ -53,11 +54,14 @@ std::vector<ScriptAction> parse_script(const std::string& text) {
     if (known == arity.end())
       throw std::invalid_argument(
           "--script: '" + entry + "': unknown verb '" + a.verb +
-          "' (swap, set, play, pause, step, quit, mark, drag, press, release, wheel)");
+          "' (swap, set, play, pause, step, quit, mark, drag, press, release, wheel, keydown, "
+          "keyup)");
     if (a.args.size() != known->second)
       throw std::invalid_argument("--script: '" + entry + "': '" + a.verb + "' takes " +
                                   std::to_string(known->second) + " arguments");
-    const size_t first_number = a.verb == "swap" || a.verb == "set" ? 2 : 0;  // after the names
+    const size_t first_number = a.verb == "swap" || a.verb == "set"        ? 2  // after the names
+                                : a.verb == "keydown" || a.verb == "keyup" ? 1  // a key's name
+                                                                           : 0;
     for (size_t i = first_number; i < a.args.size(); ++i) number(a, i);
     actions.push_back(std::move(a));
   }
@@ -104,6 +108,8 @@ std::optional<PointerState> ScriptPlayer::advance(int frame, ScriptHost& host) {
       host.quit();
     else if (a.verb == "mark")
       host.mark();
+    else if (a.verb == "keydown" || a.verb == "keyup")
+      ok = host.key(a.args[0], a.verb == "keydown");
     else if (a.verb == "release") {
       track_.clear();
       if (pointer_) pointer_->left_down = false;

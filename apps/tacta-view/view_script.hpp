@@ -7,7 +7,8 @@
 //        mark (records the simulated time shown, for the status file) |
 //        drag DX DY FRAMES (pixels from the mouse target's pixel, released at the end) |
 //        press DEPTH FRAMES (drags the target onto the line of sight of the bodies' highest rest
-//        point lowered by DEPTH m, and holds) | release | wheel NOTCHES
+//        point lowered by DEPTH m, and holds) | release | wheel NOTCHES |
+//        keydown KEY | keyup KEY (holds and lets go a key: C, the cut key)
 #pragma once
 
 #include <array>
@@ -42,6 +43,8 @@ class ScriptHost {
   virtual std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const = 0;
   virtual Vec3d mouse_target() const = 0;
   virtual Vec3d top_point() const = 0;  // m, the highest rest node of the bodies
+  // Holds (down) or lets go a key as the keyboard would; false for a key the window ignores.
+  virtual bool key(const std::string& name, bool down) = 0;
 };
 
 class ScriptPlayer {

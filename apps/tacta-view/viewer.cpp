@@ -1,5 +1,6 @@
 #include "viewer.hpp"
 
+#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <imgui.h>
 #include <thread>
 
+#include "blade_scene.hpp"
 #include "tacta/log.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
@@ -63,8 +65,9 @@ MouseTool::Feed mouse_feed(Simulation& simulation) {
   for (const DeviceHandle d : simulation.devices())
     if (simulation.device_plugin(d) == "mouse") mice.push_back(d);
   if (mice.empty()) return {};
-  return [&simulation, mice](const Vec3d& target) {
-    for (const DeviceHandle d : mice) simulation.device_input(d, target.data(), 3);
+  return [&simulation, mice](std::span<const double> values) {
+    for (const DeviceHandle d : mice)
+      simulation.device_input(d, values.data(), static_cast<uint32_t>(values.size()));
   };
 }
 
@@ -84,13 +87,17 @@ Viewer::Viewer(const ViewerOptions& options)
       models_(std::make_unique<ModelPanel>(plugins_, *simulation_, scene_desc_)) {
   for (const DeviceDesc& d : scene_desc_.devices)
     mouse_driven_ = mouse_driven_ || d.plugin == "mouse";
+  cut_buttons_ = cut_key_buttons(scene_desc_);
+  lockstep_reason_ = lockstep_play_reason(scene_desc_);
   if (!options.script.empty()) script_.emplace(parse_script(options.script));
   const double frame_period = 1.0 / scene_desc_.clock.render_rate_hz;
-  session_ =
-      std::make_unique<SimSession>(*simulation_, frame_period, [this](const SceneStatic& scene) {
+  session_ = std::make_unique<SimSession>(
+      *simulation_, frame_period,
+      [this](const SceneStatic& scene) {
         if (mouse_driven_)
           mouse_.feed(placement(scene).start);  // before the first tick reads the device
-      });
+      },
+      !lockstep_reason_.empty());
   if (options.paused)
     session_->step();  // one frame, for a first picture
   else
@@ -105,6 +112,18 @@ bool Viewer::swap(const std::string& body, const std::string& model) {
 
 bool Viewer::set_param(const std::string& body, const std::string& name, double value) {
   return models_->set_param(body, name, value);
+}
+
+bool Viewer::key(const std::string& name, bool down) {
+  if (name != "c" && name != "C") return false;  // the cut key is the only one scripts hold
+  script_cut_key_ = down;
+  return true;
+}
+
+void Viewer::update_cut_key(bool held) {
+  const uint32_t buttons = held ? cut_buttons_ : 0;
+  if (buttons != mouse_.buttons()) mouse_.set_buttons(buttons);
+  if (buttons != 0) ++cut_frames_;
 }
 
 std::optional<std::array<double, 2>> Viewer::pixel_of(const Vec3d& point) const {
@@ -136,6 +155,12 @@ void Viewer::draw_panel(double frame_ms) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::Checkbox("Wireframe", &style_.wireframe);
+  if (!lockstep_reason_.empty()) {  // wrapped: the reason names a device or a body
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Play: paced lockstep steps, as %s (cuts are made between lockstep ticks)",
+                       lockstep_reason_.c_str());
+    ImGui::PopStyleColor();
+  }
   const std::string error = session_->error();
   if (!error.empty())
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "run stopped: %s", error.c_str());
@@ -146,6 +171,12 @@ void Viewer::draw_panel(double frame_ms) {
       const Vec3d& t = mouse_.target();
       ImGui::Text("mouse target %.1f %.1f %.1f mm", 1e3 * t[0], 1e3 * t[1], 1e3 * t[2]);
       ImGui::TextDisabled("left drag: move on the view plane; wheel: depth");
+      if (cut_buttons_ != 0) {
+        if (mouse_.buttons() != 0)
+          ImGui::TextColored(ImVec4(1, 0.5f, 0.3f, 1), "cutting (C held)");
+        else
+          ImGui::TextDisabled("hold C to cut with the blade");
+      }
     } else {
       ImGui::TextDisabled(scene_desc_.devices.empty()
                               ? "no device"
@@ -184,7 +215,7 @@ int Viewer::run() {
     last = now;
 
     if (!have_scene_ && session_->scene(scene_)) on_scene(scene_);
-    if (session_->take_latest(snapshot_)) {
+    if (session_->take_latest(snapshot_, scene_, scene_version_)) {
       have_snapshot_ = true;
       double force = 0;
       if (!snapshot_.devices.empty()) {
@@ -213,11 +244,19 @@ int Viewer::run() {
                              io.WantCaptureMouse};
     }
     if (mouse_driven_ && have_scene_) {
+      // The cut key: C held (not while a text field has the keyboard) or held by the script.
+      const bool c_down =
+          !io.WantCaptureKeyboard &&
+          glfwGetKey(static_cast<GLFWwindow*>(window.native_handle()), GLFW_KEY_C) == GLFW_PRESS;
+      update_cut_key(c_down || script_cut_key_);
+      if (mouse_.buttons() != 0) frame.overlay_lines.emplace_back("cutting (C held)");
       mouse_.update(*pointer, camera_, viewport_);
+      const ImU32 ring = mouse_.buttons() != 0 ? IM_COL32(255, 90, 60, 255)
+                         : mouse_.dragging()   ? IM_COL32(255, 220, 80, 255)
+                                               : IM_COL32(120, 200, 255, 255);
       if (const auto at = project(camera_, viewport_, mouse_.target()))  // the target, as a ring
         ImGui::GetBackgroundDrawList()->AddCircle(
-            ImVec2(static_cast<float>((*at)[0]), static_cast<float>((*at)[1])), 7.0f,
-            mouse_.dragging() ? IM_COL32(255, 220, 80, 255) : IM_COL32(120, 200, 255, 255), 0,
+            ImVec2(static_cast<float>((*at)[0]), static_cast<float>((*at)[1])), 7.0f, ring, 0,
             2.0f);
     }
     draw_panel(frame_ms);
@@ -265,6 +304,10 @@ void Viewer::write_status(const std::string& path, double wall_time_s) const {
       s.body_models.push_back(b.model);
       s.body_frozen.push_back(b.frozen);
     }
+  if (have_scene_)
+    for (const BodyStatic& b : scene_.bodies) s.body_revisions.push_back(b.revision);
+  s.lockstep_play = !lockstep_reason_.empty();
+  s.cut_key_frames = cut_frames_;
   s.max_force_N = max_force_N_;
   s.mouse = mouse_driven_ && mouse_.available();
   s.mouse_target = mouse_.target();

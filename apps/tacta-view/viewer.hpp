@@ -53,9 +53,11 @@ class Viewer final : public ScriptHost {
   std::optional<std::array<double, 2>> pixel_of(const Vec3d& point) const override;
   Vec3d mouse_target() const override { return mouse_.target(); }
   Vec3d top_point() const override { return top_point_; }
+  bool key(const std::string& name, bool down) override;
 
  private:
   void on_scene(const SceneStatic& scene);  // the first time the session hands it over
+  void update_cut_key(bool held);           // feeds the blade's button to the mouse devices
   void draw_panel(double frame_ms);
   void write_status(const std::string& path, double wall_time_s) const;
 
@@ -72,15 +74,20 @@ class Viewer final : public ScriptHost {
 
   SceneStatic scene_;
   bool have_scene_ = false;
+  uint64_t scene_version_ = 0;  // of scene_, as the session counts them (cuts, added bodies)
   Snapshot snapshot_;
   bool have_snapshot_ = false;
   render::SnapshotStyle style_;
   render::Camera camera_;
   Viewport viewport_;
   Vec3d top_point_{0, 0, 0};
-  bool mouse_driven_ = false;  // a device of the scene is the mouse plugin
-  RingPlot<300> force_plot_;   // N, one sample a new snapshot
-  RingPlot<300> tick_plot_;    // ms
+  bool mouse_driven_ = false;    // a device of the scene is the mouse plugin
+  uint32_t cut_buttons_ = 0;     // held while the cut key is down (0: no mouse device has a blade)
+  std::string lockstep_reason_;  // why Play steps in lockstep (empty: realtime runs)
+  bool script_cut_key_ = false;  // the script holds C
+  int cut_frames_ = 0;           // frames shown with the cut key held
+  RingPlot<300> force_plot_;     // N, one sample a new snapshot
+  RingPlot<300> tick_plot_;      // ms
   double max_force_N_ = 0;
   int frames_ = 0;
   bool quit_requested_ = false;

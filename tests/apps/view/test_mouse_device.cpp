@@ -132,8 +132,9 @@ TEST(MouseDevice, AFourthInputValueSetsTheButtonsAndThreeKeepThem) {
 TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
   testing::LoadedPlugin plugin("tacta_mouse.so");
   MouseInstance mouse(plugin);
-  MouseTool tool(
-      [&mouse](const Vec3d& target) { mouse.api.input(mouse.instance, target.data(), 3); });
+  MouseTool tool([&mouse](std::span<const double> values) {
+    mouse.api.input(mouse.instance, values.data(), static_cast<uint32_t>(values.size()));
+  });
   ASSERT_TRUE(tool.available());
   EXPECT_FALSE(MouseTool({}).available()) << "no feed: a scene without a mouse device";
   Camera camera;
@@ -156,6 +157,29 @@ TEST(MouseTool, DragMovesTheTargetOnTheFacingPlaneAndFeedsTheDevice) {
   const tacta_device_sample s = mouse.read(0.0);
   EXPECT_NEAR(s.position[1], tool.target()[1], 1e-12);
   EXPECT_NEAR(s.position[2], tool.target()[2], 1e-12);
+}
+
+// The window's cut key: set_buttons feeds the target and the buttons (4 values); a later move
+// feeds the target alone (3 values), so the device keeps the button held while the mouse drags.
+TEST(MouseTool, HeldButtonsReachTheDeviceAndOutlastMoves) {
+  testing::LoadedPlugin plugin("tacta_mouse.so");
+  MouseInstance mouse(plugin);
+  MouseTool tool([&mouse](std::span<const double> values) {
+    mouse.api.input(mouse.instance, values.data(), static_cast<uint32_t>(values.size()));
+  });
+  tool.set_target({0, 0.1, 0});
+  EXPECT_EQ(mouse.read(0.0).buttons, 0u);
+  tool.set_buttons(1);  // C down over a blade on button 0
+  EXPECT_EQ(tool.buttons(), 1u);
+  EXPECT_EQ(mouse.read(0.001).buttons, 1u);
+  tool.set_target({0.01, 0.1, 0});
+  tacta_device_sample s = mouse.read(0.5);
+  EXPECT_EQ(s.buttons, 1u);
+  EXPECT_NEAR(s.position[0], 0.01, 1e-4) << "the buttons' feed did not move the target";
+  tool.set_buttons(0);  // C up
+  s = mouse.read(0.501);
+  EXPECT_EQ(s.buttons, 0u);
+  EXPECT_NEAR(s.position[0], 0.01, 1e-4);
 }
 
 }  // namespace

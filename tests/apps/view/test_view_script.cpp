@@ -28,6 +28,10 @@ class FakeHost final : public ScriptHost {
   }
   Vec3d mouse_target() const override { return {0, 0.05, 0}; }
   Vec3d top_point() const override { return {0.01, 0.03, 0}; }
+  bool key(const std::string& name, bool down) override {
+    calls.push_back((down ? "keydown " : "keyup ") + name);
+    return name == "c";
+  }
   std::vector<std::string> calls;
 };
 
@@ -56,6 +60,7 @@ TEST(ViewScript, BadEntriesNameWhatWasExpected) {
   EXPECT_NE(message_of("4:swap liver").find("takes 2 arguments"), std::string::npos);
   EXPECT_NE(message_of("4:wheel lots").find("must be a number"), std::string::npos);
   EXPECT_NE(message_of("4:set liver damping x").find("must be a number"), std::string::npos);
+  EXPECT_NE(message_of("4:keydown").find("takes 1 arguments"), std::string::npos);
 }
 
 TEST(ViewScript, DragPlaysALinearTrackAndReleases) {
@@ -103,6 +108,16 @@ TEST(ViewScript, ActionsReachTheHostAndRefusalsAreKept) {
                                                   "set liver damping 3.000000", "pause", "step",
                                                   "play", "mark", "quit"}));
   EXPECT_EQ(player.failures(), (std::vector<std::string>{"1:swap"}));
+}
+
+// The cut key: held and let go by name, a key the window ignores is a refusal; the pointer is
+// left to the hand (a key is not a pointer action).
+TEST(ViewScript, KeysAreHeldAndLetGoByName) {
+  FakeHost host;
+  ScriptPlayer player(parse_script("2:keydown c; 6:keyup c; 7:keydown q"));
+  for (int frame = 0; frame < 10; ++frame) EXPECT_FALSE(player.advance(frame, host).has_value());
+  EXPECT_EQ(host.calls, (std::vector<std::string>{"keydown c", "keyup c", "keydown q"}));
+  EXPECT_EQ(player.failures(), (std::vector<std::string>{"7:keydown"}));
 }
 
 }  // namespace

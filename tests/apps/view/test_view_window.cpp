@@ -1,7 +1,8 @@
 // tacta-view driven under a virtual X server (the test binary runs inside xvfb-run): the
 // liver palpation scene with the mouse as its device, a scripted model swap, a parameter change
-// and a press with the mouse; then start-paused stepping. Checks the screenshot is a real
-// picture and the status JSON the viewer writes on exit.
+// and a press with the mouse; then start-paused stepping; then cutting with the mouse's blade
+// while the script holds C. Checks the screenshot is a real picture and the status JSON the
+// viewer writes on exit.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -133,28 +134,70 @@ TEST(TactaViewWindow, PausedStartAdvancesOnlyBySteps) {
   EXPECT_EQ(status["mouse"], false);  // the scene's own scripted stylus
 }
 
+// Realtime play (liver_palpation) and paced lockstep play (mouse_scalpel: a blade) alike.
 TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
-  const fs::path dir = fresh_dir("pause");
-  const ViewRun run = run_view(
-      {"scenes/liver_palpation.yaml", "--size", "320x240", "--quit-after", "60", "--status",
-       (dir / "status.json").string(), "--script", "20:pause; 30:mark; 80:mark; 81:quit"},
-      dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  nlohmann::json status = read_status(dir / "status.json");
-  ASSERT_TRUE(status.is_object()) << run.out << run.err;
-  // (frame, simulated time shown) ten frames after the pause and fifty frames later: it played,
-  // then the clock stood still while the window ran on (at least 50/60 s of wall time).
-  ASSERT_EQ(status["marks"].size(), 2u) << status;
-  double mark_frame[2], mark_time[2];
-  for (size_t m = 0; m < 2; ++m) {
-    mark_frame[m] = status["marks"][m][0].get<double>();
-    mark_time[m] = status["marks"][m][1].get<double>();
+  for (const std::string scene : {"liver_palpation.yaml", "examples/mouse_scalpel.yaml"}) {
+    const fs::path dir = fresh_dir("pause_" + fs::path(scene).stem().string());
+    const ViewRun run = run_view({"scenes/" + scene, "--size", "320x240", "--quit-after", "60",
+                                  "--status", (dir / "status.json").string(), "--script",
+                                  "20:pause; 30:mark; 80:mark; 81:step; 90:mark; 91:quit"},
+                                 dir);
+    ASSERT_EQ(run.exit_code, 0) << scene << run.err;
+    nlohmann::json status = read_status(dir / "status.json");
+    ASSERT_TRUE(status.is_object()) << run.out << run.err;
+    // (frame, simulated time shown) ten frames after the pause and fifty frames later: it
+    // played, then the clock stood still while the window ran on (at least 50/60 s of wall
+    // time); then one Step: a whole frame period, 17 ticks of 1 ms (a stop request left over
+    // from the pause would end it after one tick, before any frame).
+    ASSERT_EQ(status["marks"].size(), 3u) << status;
+    double mark_frame[3], mark_time[3];
+    for (size_t m = 0; m < 3; ++m) {
+      mark_frame[m] = status["marks"][m][0].get<double>();
+      mark_time[m] = status["marks"][m][1].get<double>();
+    }
+    EXPECT_EQ(mark_frame[0], 30);
+    EXPECT_EQ(mark_frame[1], 80);
+    EXPECT_GT(mark_time[0], 0.0) << scene << status;
+    EXPECT_EQ(mark_time[1], mark_time[0]) << scene << status;
+    // The time shown is the last frame the step published: a frame boundary (every 1/60 s) in
+    // its 17 ticks, 16 or 17 ms on.
+    EXPECT_GE(mark_time[2] - mark_time[1], 0.016 - 1e-9) << scene << status;
+    EXPECT_LE(mark_time[2] - mark_time[1], 0.017 + 1e-9) << scene << status;
+    EXPECT_EQ(status["sim_time_s"].get<double>(), mark_time[2]);
+    EXPECT_EQ(status["lockstep_play"], scene != "liver_palpation.yaml");
   }
-  EXPECT_EQ(mark_frame[0], 30);
-  EXPECT_EQ(mark_frame[1], 80);
-  EXPECT_GT(mark_time[0], 0.0) << status;
-  EXPECT_EQ(mark_time[1], mark_time[0]) << status;
-  EXPECT_EQ(status["sim_time_s"].get<double>(), mark_time[0]);
+}
+
+// scenes/examples/mouse_scalpel.yaml: the mouse holds a blade, so Play steps in paced lockstep
+// (a realtime run refuses blades). The stylus is pressed onto the liver's top, then dragged
+// sideways: with C held (the script's keydown) the blade's button is held and the liver is cut
+// (its mesh revision moves on); the same drag without C cuts nothing.
+TEST(TactaViewWindow, HoldingCCutsWithTheMouseBlade) {
+  const std::string press = "5:press 0.01 20; 28:release; ";
+  for (const bool hold_c : {true, false}) {
+    const fs::path dir = fresh_dir(hold_c ? "cut_with_c" : "drag_without_c");
+    const std::string script = hold_c
+                                   ? press + "30:keydown c; 32:drag 120 0 50; 90:keyup c; 100:quit"
+                                   : press + "32:drag 120 0 50; 100:quit";
+    const ViewRun run =
+        run_view({"scenes/examples/mouse_scalpel.yaml", "--size", "640x400", "--quit-after", "60",
+                  "--status", (dir / "status.json").string(), "--script", script},
+                 dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    nlohmann::json status = read_status(dir / "status.json");
+    ASSERT_TRUE(status.is_object()) << run.out << run.err;
+    EXPECT_EQ(status["run_error"], "") << "a realtime run would refuse the blade";
+    EXPECT_EQ(status["lockstep_play"], true);
+    EXPECT_EQ(status["script_failures"], nlohmann::json::array());
+    ASSERT_EQ(status["body_revisions"].size(), 1u) << status;
+    if (hold_c) {
+      EXPECT_GE(status["cut_key_frames"].get<int>(), 60) << status;  // frames 30 to 89
+      EXPECT_GT(status["body_revisions"][0].get<int>(), 0) << status;
+    } else {
+      EXPECT_EQ(status["cut_key_frames"].get<int>(), 0) << status;
+      EXPECT_EQ(status["body_revisions"][0].get<int>(), 0) << status;
+    }
+  }
 }
 
 TEST(TactaViewWindow, BadScriptIsBadInput) {
