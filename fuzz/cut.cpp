@@ -1,11 +1,11 @@
-// Fuzzes cutting's topology core (engine/src/topology/cut.hpp): a small box grid or ball, its
+// Fuzzes cutting's topology core (engine/src/topology/cut_mesh.hpp): a small box grid or ball, its
 // nodes moved at random, then a few cuts in either mode with blades the bytes choose (random
 // triangles, planes on grid faces or through nodes, flat or non-finite triangles). After each
 // cut every invariant that holds for any blade is checked, and a broken one aborts: the mesh
 // passes topology_problems, sources are in range and every tet keeps its nodes (or their copies),
 // the volume is kept (separation) or less the removed tets' exactly (removal), and the embedded
 // surface carried over the cut is sized right and still gives back its rest positions.
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

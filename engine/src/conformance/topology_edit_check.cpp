@@ -9,7 +9,7 @@
 
 #include "conformance/checks.hpp"
 #include "conformance/test_body.hpp"
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 namespace tacta::conformance {
 

@@ -1,6 +1,6 @@
 // cut_mesh: which tets a blade removes, or which faces it opens and which nodes that splits, and
 // the new rest mesh built from the result.
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 #include <algorithm>
 #include <numeric>

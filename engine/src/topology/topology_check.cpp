@@ -8,7 +8,7 @@
 
 #include "mesh/tet_faces.hpp"
 #include "tacta/vec3.hpp"
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 namespace tacta {
 

@@ -10,7 +10,7 @@
 #include "mesh/geometry.hpp"
 #include "tacta/error.hpp"
 #include "tacta/mesh_io.hpp"
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 namespace tacta {
 

@@ -1,4 +1,4 @@
-// A cut applied to one body of the world: the topology edit (topology/cut.hpp) computed against
+// A cut applied to one body of the world: the topology edit (topology/cut_mesh.hpp) computed against
 // the body's current shape, and everything derived from its mesh made again from the edit, on the
 // thread that runs the ticks, between two ticks. What lies outside the world (the collision
 // surface, the haptic proxies, the render description) is brought up to date by the caller

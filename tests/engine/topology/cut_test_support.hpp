@@ -9,7 +9,7 @@
 
 #include "mesh/geometry.hpp"
 #include "tacta/mesh_build.hpp"
-#include "topology/cut.hpp"
+#include "topology/cut_mesh.hpp"
 
 namespace tacta::test {
 
