@@ -62,8 +62,8 @@ uint32_t carried_node(uint32_t old, const std::vector<int64_t>& copy, const Volu
 // A probe follows its tet into the edited mesh (corner by corner through node_source); a probe
 // whose tet was removed is bound to the remaining tet whose centroid is nearest at rest, with the
 // extrapolated weights of its rest point there.
-void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const TopologyEdit& edit,
-                 const std::vector<int64_t>& new_tet_of_old) {
+void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const VolumeMesh& mesh,
+                 const TopologyEdit& edit, const std::vector<int64_t>& new_tet_of_old) {
   std::array<uint32_t, 4> sorted = probe.nodes;
   std::sort(sorted.begin(), sorted.end());
   for (size_t t = 0; t < old_mesh.tet_count(); ++t) {
@@ -71,7 +71,7 @@ void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const TopologyEdit& e
     std::copy_n(&old_mesh.tets[4 * t], 4, corners.begin());
     std::sort(corners.begin(), corners.end());
     if (corners != sorted || new_tet_of_old[t] < 0) continue;
-    const uint32_t* now = &edit.mesh.tets[4 * static_cast<size_t>(new_tet_of_old[t])];
+    const uint32_t* now = &mesh.tets[4 * static_cast<size_t>(new_tet_of_old[t])];
     for (uint32_t& node : probe.nodes)
       for (int c = 0; c < 4; ++c)
         if (edit.node_source[now[c]] == node) {
@@ -80,7 +80,6 @@ void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const TopologyEdit& e
         }
     return;
   }
-  const VolumeMesh& mesh = edit.mesh;
   size_t best = 0;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
@@ -177,7 +176,7 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   for (uint32_t& n : b.recording.recorded_nodes) n = carried_node(n, copy, old.mesh, mesh);
   if (b.recording.probe_node)
     b.recording.probe_node = carried_node(*b.recording.probe_node, copy, old.mesh, mesh);
-  for (Probe& p : b.recording.probes) carry_probe(p, old.mesh, edit, new_tet_of_old);
+  for (Probe& p : b.recording.probes) carry_probe(p, old.mesh, mesh, edit, new_tet_of_old);
   RetiredArrays retired;
   retired.positions = std::exchange(b.nodes.positions, carried(b.nodes.positions, edit));
   retired.velocities = std::exchange(b.nodes.velocities, carried(b.nodes.velocities, edit));
