@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <initializer_list>
 #include <string>
 
 #include "tacta/scene_loader.hpp"
@@ -81,6 +82,18 @@ inline InputError load_error(const std::string& text,
   }
   ADD_FAILURE() << "the scene loaded, but an InputError was expected";
   return InputError(SourceLocation{}, "no error");
+}
+
+// The error names the test scene's file, `line` and `key_path`, and says each fragment.
+inline void expect_at(const InputError& e, int line, const std::string& key_path,
+                      std::initializer_list<std::string> fragments) {
+  EXPECT_EQ(e.where().file, "/scenes/test.yaml");
+  EXPECT_EQ(e.where().line, line) << e.what();
+  EXPECT_EQ(e.where().key_path, key_path) << e.what();
+  const std::string message = e.what();
+  for (const std::string& fragment : fragments)
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "'" << fragment << "' not in: " << message;
 }
 
 // A small valid body used as the base of many tests.

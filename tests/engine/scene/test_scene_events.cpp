@@ -16,14 +16,7 @@ std::string with_events(const std::string& events) {
 // The error's key path and line, and each fragment in its message.
 void expect_error(const std::string& events, int line, const std::string& key_path,
                   std::initializer_list<std::string> fragments) {
-  const InputError e = load_error(with_events(events));
-  EXPECT_EQ(e.where().file, "/scenes/test.yaml");
-  EXPECT_EQ(e.where().line, line) << e.what();
-  EXPECT_EQ(e.where().key_path, key_path) << e.what();
-  const std::string message = e.what();
-  for (const std::string& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "'" << fragment << "' not in: " << message;
+  expect_at(load_error(with_events(events)), line, key_path, fragments);
 }
 
 TEST(SceneEvents, CutTrianglesAreReadAsNineNumbersEach) {

@@ -10,17 +10,6 @@
 namespace tacta::testing {
 namespace {
 
-void expect_at(const InputError& e, int line, const std::string& key_path,
-               std::initializer_list<std::string> fragments) {
-  EXPECT_EQ(e.where().file, "/scenes/test.yaml") << e.what();
-  EXPECT_EQ(e.where().line, line) << e.what();
-  EXPECT_EQ(e.where().key_path, key_path) << e.what();
-  const std::string message = e.what();
-  for (const std::string& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "'" << fragment << "' not in: " << message;
-}
-
 TEST(SceneLimits, DurationBoundedByTheTicksTheRecordsHold) {
   // 1e9 s at 1 kHz used to reach std::bad_alloc when the recorders reserved for it.
   expect_at(load_error(yaml(kMinimalScene) + "clock: {duration_s: 1e9}\n"), 6, "clock.duration_s",
