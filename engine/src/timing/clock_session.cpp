@@ -26,8 +26,7 @@ class OffsetTask final : public HapticTask {
     loop_.publish(static_cast<double>(base_ + index) * dt_);
   }
   void between_ticks(double time) override {
-    const double at = time + static_cast<double>(base_) * dt_;
-    if (between_ != nullptr && at + 0.5 * dt_ >= between_->next_due_s()) between_->run_due(at);
+    if (between_ != nullptr) between_->after_tick(time + static_cast<double>(base_) * dt_, dt_);
   }
 
  private:
@@ -164,8 +163,7 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
     step_ms_.record(std::chrono::duration<double, std::milli>(SteadyClock::now() - t0).count());
     step_status_.merge(loop_.last_status());
     ++tick_;
-    if (between_ != nullptr && time() + 0.5 * dt_ >= between_->next_due_s())
-      between_->run_due(time());
+    if (between_ != nullptr) between_->after_tick(time(), dt_);
     if (frame_clock_.due(time()) || !keep_going) {
       loop_.publish(time());
       render_.frame(time());

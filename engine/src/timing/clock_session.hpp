@@ -46,6 +46,10 @@ class BetweenTicks {
   // Does what is due by `time` (s); may allocate. What cannot be done is reported (a warning),
   // not thrown: the run goes on.
   virtual void run_due(double time) = 0;
+  // After a tick that ended at `time` (s), of `dt` (s): what is due by then, to half a tick.
+  void after_tick(double time, double dt) {
+    if (time + 0.5 * dt >= next_due_s()) run_due(time);
+  }
 };
 
 class ClockSession {
