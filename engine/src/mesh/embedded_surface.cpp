@@ -37,7 +37,6 @@ std::array<double, 4> weights_in(const VolumeMesh& mesh, size_t t, const Vec3& p
 
 double lowest(const double* w) { return std::min({w[0], w[1], w[2], w[3]}); }
 double lowest(const std::array<double, 4>& w) { return lowest(w.data()); }
-constexpr double kInside = -1e-9;  // barycentric round-off still counts as inside
 
 // Tets bucketed by the grid cells their boxes overlap (cells at least a mean tet wide, at most
 // 128 a side), so that binding a vertex looks at the tets near it, not at all of them.
@@ -175,7 +174,7 @@ Embedding bind_surface_to_tets(const SurfaceMesh& surface, const VolumeMesh& mes
       const std::array<double, 4> w = weights_in(mesh, t, p);
       if (lowest(w) > best) best = lowest(w), best_weights = w, best_tet = t;
     }
-    if (best < kInside) ++outside;
+    if (best < mesh_detail::kInsideWeight) ++outside;
     e.element[v] = best_tet;
     std::copy(best_weights.begin(), best_weights.end(),
               e.weights.begin() + static_cast<std::ptrdiff_t>(4 * v));
@@ -210,7 +209,7 @@ EmbeddedSurface make_embedded_surface(const VolumeMesh& mesh) {
                                                  " past the mesh's " +
                                                  std::to_string(mesh.tet_count()));
     for (size_t k = 0; k < 4; ++k) s.nodes[4 * v + k] = mesh.tets[4 * size_t{s.tet[v]} + k];
-    if (lowest(&s.weights[4 * v]) < kInside) ++s.extrapolated_vertices;
+    if (lowest(&s.weights[4 * v]) < mesh_detail::kInsideWeight) ++s.extrapolated_vertices;
   }
   for (uint32_t i : s.triangles)
     if (i >= count)

@@ -16,8 +16,6 @@ namespace {
 
 using mesh_detail::point;
 
-constexpr double kZeroVolume = 1e-12;  // |6V| below this times (longest edge)^3 is a flat tet
-
 [[noreturn]] void fail(const VolumeMesh& mesh, const std::string& message) {
   throw InputError({mesh.source, 0, 0, ""}, message);
 }
@@ -87,7 +85,7 @@ void orient_tets(VolumeMesh& mesh, LoadReport& report) {
     double six_volume = triple(sub(b, a), sub(c, a), sub(d, a));
     double longest = std::max({distance(b, a), distance(c, a), distance(d, a), distance(c, b),
                                distance(d, b), distance(d, c)});
-    if (!(std::abs(six_volume) > kZeroVolume * longest * longest * longest)) {
+    if (!(std::abs(six_volume) > mesh_detail::kFlatVolume * longest * longest * longest)) {
       fail(mesh, "tet " + std::to_string(t) + " (nodes " + std::to_string(v[0]) + " " +
                      std::to_string(v[1]) + " " + std::to_string(v[2]) + " " +
                      std::to_string(v[3]) + ", counted from 0) has zero volume");
@@ -121,7 +119,7 @@ void orient_planar(VolumeMesh& mesh, std::vector<uint32_t>& elements, size_t per
       twice_area += p[0] * q[1] - q[0] * p[1];
       longest = std::max(longest, distance(q, p));
     }
-    if (!(std::abs(twice_area) > kZeroVolume * longest * longest))
+    if (!(std::abs(twice_area) > mesh_detail::kFlatVolume * longest * longest))
       fail(mesh, std::string(what) + " " + std::to_string(e) + " has zero area");
     if (twice_area < 0) std::reverse(v, v + per);
   }

@@ -14,6 +14,12 @@ inline Vec3 point(const std::vector<double>& positions, uint32_t i) {
   return point_at(positions.data(), i);
 }
 
+// |6 V| below this times (longest edge)^3 is a flat tet, |2 A| below it times (longest edge)^2 a
+// flat planar element (finalize refuses them; a cut's checks use the same bound).
+inline constexpr double kFlatVolume = 1e-12;
+// A barycentric weight above this still counts as inside (round-off), at binding and after a cut.
+inline constexpr double kInsideWeight = -1e-9;
+
 // Barycentric weights of p in tet (a, b, c, d); they sum to 1 and reproduce p (also outside).
 inline std::array<double, 4> barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c,
                                          const Vec3& d) {

@@ -46,19 +46,10 @@ LockstepCuts::LockstepCuts(World& world, Cut cut) : world_(world), cut_(std::mov
     if (!e.cut) continue;
     // What makes a body uncuttable is known at load: say so now, at the event, not mid-run.
     const int slot = world.body_index(e.cut->body);
-    if (slot >= 0) {  // else a body an earlier event adds: checked when the cut comes
-      const SoftBody b = world.body(static_cast<size_t>(slot));
-      if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
-        throw InputError(e.cut->where,
-                         "body '" + b.info.name + "' is cut at " + std::to_string(e.time) +
-                             " s but its model '" + b.model.instance->name() +
-                             "' does not take topology edits (`tacta plugins` lists the models "
-                             "that do)");
-      if (b.settings.own_thread || b.constraints.boundary)
-        throw InputError(e.cut->where, "body '" + b.info.name +
-                                           "' cannot be cut: it steps on its own thread or has "
-                                           "prescribed motion or plates");
-    }
+    if (slot >= 0)  // else a body an earlier event adds: checked when the cut comes
+      if (const std::string why = cut_unsupported(world.body(static_cast<size_t>(slot)));
+          !why.empty())
+        throw InputError(e.cut->where, "the cut at " + std::to_string(e.time) + " s: " + why);
     events_.push_back(&e);
   }
   std::stable_sort(

@@ -1,13 +1,12 @@
 // cut_mesh: which tets a blade removes, or which faces it opens and which nodes that splits, and
 // the new rest mesh built from the result.
-#include "topology/cut_mesh.hpp"
-
 #include <algorithm>
 #include <numeric>
 
 #include "mesh/tet_faces.hpp"
 #include "tacta/vec3.hpp"
 #include "topology/blade.hpp"
+#include "topology/cut_mesh.hpp"
 
 namespace tacta {
 
@@ -38,6 +37,7 @@ TopologyEdit unchanged(const VolumeMesh& rest, std::span<const uint8_t> rest_cut
     edit.cut_triangle.assign(rest_cut.begin(), rest_cut.end());
   else
     edit.cut_triangle.assign(rest.triangles.size() / 3, 0);
+  edit.exposed.assign(rest.triangles.size() / 3, 0);
   return edit;
 }
 
@@ -52,7 +52,9 @@ std::string check_input(const VolumeMesh& rest, std::span<const uint8_t> rest_cu
   for (size_t i = 0; i < positions.size(); i += 3)
     if (!is_finite(point_at(&positions[i], 0)))
       return "node " + std::to_string(i / 3) + " of the body is not at a finite position";
-  if (triangles.size() % 9 != 0) return "blade triangles need 9 numbers each";
+  if (triangles.size() % 9 != 0)
+    return "expected 9 numbers per blade triangle (three corners x, y, z in m), found " +
+           std::to_string(triangles.size()) + " numbers";
   if (!rest_cut.empty() && rest_cut.size() != rest.triangles.size() / 3)
     return "the cut marks have " + std::to_string(rest_cut.size()) + " entries for " +
            std::to_string(rest.triangles.size() / 3) + " boundary triangles";
@@ -308,13 +310,17 @@ void build_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut,
   std::sort(old_faces.begin(), old_faces.end());
   const size_t count = mesh.triangles.size() / 3;
   edit.cut_triangle.assign(count, 1);  // a face not on the old boundary was inside: exposed
+  edit.exposed.assign(count, 1);
   for (size_t i = 0; i < count; ++i) {
     std::array<uint32_t, 3> key;
     for (size_t k = 0; k < 3; ++k) key[k] = edit.node_source[mesh.triangles[3 * i + k]];
     std::sort(key.begin(), key.end());
     const auto at =
         std::lower_bound(old_faces.begin(), old_faces.end(), std::make_pair(key, uint8_t{0}));
-    if (at != old_faces.end() && at->first == key) edit.cut_triangle[i] = at->second;
+    if (at != old_faces.end() && at->first == key) {
+      edit.cut_triangle[i] = at->second;
+      edit.exposed[i] = 0;
+    }
   }
 }
 

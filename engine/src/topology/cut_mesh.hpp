@@ -40,11 +40,12 @@ struct TopologyEdit {
   // per new boundary triangle: 1 when a cut exposed it (this one, or an earlier one marked in
   // rest_cut_triangle)
   std::vector<uint8_t> cut_triangle;
-  size_t tets_removed = 0;     // removal
-  size_t nodes_removed = 0;    // removal: nodes left in no tet
-  size_t nodes_added = 0;      // separation: copies made
-  size_t faces_separated = 0;  // separation: interior faces opened (a crossed face whose tets
-                               // still share its 3 nodes, deep inside a crack, is not)
+  std::vector<uint8_t> exposed;  // per new boundary triangle: 1 when this edit exposed it
+  size_t tets_removed = 0;       // removal
+  size_t nodes_removed = 0;      // removal: nodes left in no tet
+  size_t nodes_added = 0;        // separation: copies made
+  size_t faces_separated = 0;    // separation: interior faces opened (a crossed face whose tets
+                                 // still share its 3 nodes, deep inside a crack, is not)
   bool changed() const noexcept { return tets_removed > 0 || faces_separated > 0; }
 };
 

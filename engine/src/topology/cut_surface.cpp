@@ -14,12 +14,8 @@ namespace {
 
 using Key = std::array<uint32_t, 3>;
 
-constexpr double kInside = -1e-9;  // barycentric round-off still counts as inside (as at binding)
-
-Key sorted_key(const uint32_t* v, const std::vector<uint32_t>* through = nullptr) {
+Key sorted_key(const uint32_t* v) {
   Key key = {v[0], v[1], v[2]};
-  if (through)
-    for (uint32_t& n : key) n = (*through)[n];
   std::sort(key.begin(), key.end());
   return key;
 }
@@ -114,17 +110,11 @@ CutSurface cut_embedded_surface(const EmbeddedSurface& old, std::span<const uint
     out.cut_triangle.push_back(old_cut.size() == old.triangle_count() ? old_cut[t] : 0);
   }
 
-  // The faces this cut exposed: boundary faces whose source nodes were no face of the old boundary.
-  std::vector<Key> old_boundary(old_mesh.triangles.size() / 3);
-  for (size_t i = 0; i < old_boundary.size(); ++i)
-    old_boundary[i] = sorted_key(&old_mesh.triangles[3 * i]);
-  std::sort(old_boundary.begin(), old_boundary.end());
+  // The faces this cut exposed (the edit's `exposed` boundary triangles), bound to their tet.
   const std::vector<mesh_detail::TetFace> faces = mesh_detail::sorted_tet_faces(mesh.tets);
   for (size_t i = 0; i < mesh.triangles.size() / 3; ++i) {
+    if (i >= edit.exposed.size() || !edit.exposed[i]) continue;
     const uint32_t* v = &mesh.triangles[3 * i];
-    if (std::binary_search(old_boundary.begin(), old_boundary.end(),
-                           sorted_key(v, &edit.node_source)))
-      continue;
     const Key key = sorted_key(v);
     const auto face =
         std::lower_bound(faces.begin(), faces.end(), key,
@@ -142,7 +132,7 @@ CutSurface cut_embedded_surface(const EmbeddedSurface& old, std::span<const uint
   }
 
   for (size_t v = 0; v < s.vertex_count(); ++v)
-    if (*std::min_element(&s.weights[4 * v], &s.weights[4 * v] + 4) < kInside)
+    if (*std::min_element(&s.weights[4 * v], &s.weights[4 * v] + 4) < mesh_detail::kInsideWeight)
       ++s.extrapolated_vertices;
   s.positions = s.rest_positions;
   s.normals.assign(s.rest_positions.size(), 0.0);

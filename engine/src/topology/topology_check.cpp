@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/geometry.hpp"
 #include "mesh/tet_faces.hpp"
 #include "tacta/vec3.hpp"
 #include "topology/cut_mesh.hpp"
@@ -16,8 +17,6 @@ namespace {
 
 using mesh_detail::kTetFaces;
 using mesh_detail::TetFace;
-
-constexpr double kFlat = 1e-12;  // 6 V below this times (longest edge)^3: flat, as finalize says
 
 // "3 tets have ... (first: tet 7)" when count > 0.
 void report(std::vector<std::string>& problems, size_t count, const std::string& what,
@@ -162,7 +161,7 @@ std::vector<std::string> topology_problems(const VolumeMesh& mesh) {
     for (size_t i = 0; i < 4; ++i)
       for (size_t j = i + 1; j < 4; ++j) longest = std::max(longest, distance(x[i], x[j]));
     const double six_volume = triple(sub(x[1], x[0]), sub(x[2], x[0]), sub(x[3], x[0]));
-    if (!(six_volume > kFlat * longest * longest * longest) && flat++ == 0)
+    if (!(six_volume > mesh_detail::kFlatVolume * longest * longest * longest) && flat++ == 0)
       first_flat = "tet " + std::to_string(t);
   }
   report(problems, flat, "tets have no positive volume at rest", first_flat);

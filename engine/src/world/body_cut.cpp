@@ -16,22 +16,13 @@ namespace tacta {
 
 namespace {
 
-// Why body `b` cannot be cut now; empty when it can.
+// Why body `b` cannot be cut now (cut_unsupported, or a state that passes); empty when it can.
 std::string refusal(const SoftBody& b) {
-  const std::string name = "body '" + b.info.name + "'";
-  if (!b.present()) return name + " is not in the scene";
-  if (b.settings.own_thread)
-    return name + " steps on its own thread (step_thread: own): cutting it is not supported";
-  if (b.constraints.boundary)
-    return name + " has prescribed motion or plates: cutting it is not supported";
-  if (b.shape.topology->mesh.dimension != 3 || b.shape.topology->mesh.tets.empty())
-    return name + " has no tetrahedra to cut";
-  if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
-    return name + "'s model '" + b.model.instance->name() +
-           "' does not take topology edits (no TACTA_MODEL_CLAIM_TOPOLOGY_EDITS; `tacta plugins` "
-           "lists the models that do)";
+  if (!b.present()) return "body '" + b.info.name + "' is not in the scene";
+  if (std::string why = cut_unsupported(b); !why.empty()) return why;
   if (b.model.mailbox->incoming.load() != nullptr)
-    return name + " has a model swap waiting for the next tick: step once, then cut";
+    return "body '" + b.info.name +
+           "' has a model swap waiting for the next tick: step once, then cut";
   return {};
 }
 
@@ -108,15 +99,23 @@ std::vector<double> carried(const std::vector<double>& old, const TopologyEdit& 
 
 }  // namespace
 
+std::string cut_unsupported(const SoftBody& b) {
+  const std::string name = "body '" + b.info.name + "'";
+  if (b.settings.own_thread)
+    return name + " steps on its own thread (step_thread: own): cutting it is not supported";
+  if (b.constraints.boundary)
+    return name + " has prescribed motion or plates: cutting it is not supported";
+  if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
+    return name + "'s model '" + b.model.instance->name() +
+           "' does not take topology edits (no TACTA_MODEL_CLAIM_TOPOLOGY_EDITS; `tacta plugins` "
+           "lists the models that do)";
+  return {};
+}
+
 CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
                     double time) {
   const SoftBody b = world.body(slot);
   const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
-  if (triangles.size() % 9 != 0)
-    throw InputError(where,
-                     "cut: expected 9 numbers per blade triangle (three corners x, y, z in "
-                     "m), found " +
-                         std::to_string(triangles.size()) + " numbers");
   for (double v : triangles)
     if (!std::isfinite(v)) throw InputError(where, "cut: a blade corner is not a finite number");
   if (const std::string why = refusal(b); !why.empty()) throw InputError(where, "cut: " + why);
