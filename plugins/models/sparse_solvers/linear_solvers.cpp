@@ -325,6 +325,9 @@ struct CholeskySolver::Ldlt
   void factorize_preordered_upper(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& a) {
     this->template factorize_preordered<true>(a);
   }
+  // factorize_preordered resizes the diagonal to the matrix's size (a no-op once it has it):
+  // sized here, a step's factorisation allocates nothing for it.
+  void size_diagonal(Eigen::Index n) { this->m_diag.resize(n); }
 };
 
 CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::make_unique<Ldlt>()) {
@@ -371,12 +374,7 @@ CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::ma
   ldlt_->analyzePattern(permuted_upper_);
   rhs_.resize(n);
   solution_.resize(n);
-  // One factorisation of the identity now, so Eigen sizes its diagonal here and not in a step.
-  for (int col = 0; col < n; ++col)
-    for (Eigen::SparseMatrix<double, Eigen::ColMajor, int>::InnerIterator it(permuted_upper_, col);
-         it; ++it)
-      it.valueRef() = it.row() == col ? 1.0 : 0.0;
-  ldlt_->factorize_preordered_upper(permuted_upper_);
+  ldlt_->size_diagonal(n);
 }
 
 CholeskySolver::~CholeskySolver() = default;
