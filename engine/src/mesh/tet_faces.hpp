@@ -20,6 +20,11 @@ struct TetFace {
   uint32_t tet() const { return order / 4; }
 };
 
+// Whether two faces have the same nodes (element by element: std::array's == calls memcmp).
+inline bool same_face(const TetFace& x, const TetFace& y) {
+  return x.key[0] == y.key[0] && x.key[1] == y.key[1] && x.key[2] == y.key[2];
+}
+
 // Every face of every tet (4 per tet in `tets`), sorted by key and then order: the tets that share
 // a face are neighbours in the result, in tet order.
 std::vector<TetFace> sorted_tet_faces(const std::vector<uint32_t>& tets);
