@@ -322,6 +322,14 @@ SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x
 struct CholeskySolver::Ldlt
     : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Upper,
                                    Eigen::NaturalOrdering<int>> {
+  // The symbolic analysis of the upper triangle as it is (no permutation). analyzePattern() would
+  // first copy the matrix twice: its natural-ordering test compares NaturalOrdering<int> with
+  // NaturalOrdering<Index>, which differ, so it takes the reordering path with an empty order.
+  void analyze_preordered_upper(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& a) {
+    this->m_P.resize(0);
+    this->m_Pinv.resize(0);
+    this->analyzePattern_preordered(a, true);
+  }
   void factorize_preordered_upper(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& a) {
     this->template factorize_preordered<true>(a);
   }
@@ -330,48 +338,95 @@ struct CholeskySolver::Ldlt
   void size_diagonal(Eigen::Index n) { this->m_diag.resize(n); }
 };
 
+namespace {
+
+using ScalarPattern = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// The scalar pattern (3 unknowns per node) of the full symmetric matrix whose upper block
+// triangle is `pattern`, built in compressed columns with ascending rows: what setFromTriplets
+// makes of every entry and its mirror. The values (1) are not used.
+ScalarPattern full_scalar_pattern(const BlockSparseMatrix& pattern) {
+  const uint32_t nodes = pattern.node_count();
+  const auto starts = pattern.row_starts(), columns = pattern.columns();
+  const auto lower_starts = pattern.lower_starts(), lower_rows = pattern.lower_rows();
+  ScalarPattern full(3 * static_cast<int>(nodes), 3 * static_cast<int>(nodes));
+  int* outer = full.outerIndexPtr();
+  outer[0] = 0;
+  for (uint32_t j = 0; j < nodes; ++j) {
+    const int neighbours =
+        static_cast<int>(lower_starts[j + 1] - lower_starts[j] + starts[j + 1] - starts[j]);
+    for (uint32_t c = 0; c < 3; ++c) outer[3 * j + c + 1] = outer[3 * j + c] + 3 * neighbours;
+  }
+  full.resizeNonZeros(outer[3 * nodes]);
+  std::fill_n(full.valuePtr(), full.nonZeros(), 1.0);
+  int* inner = full.innerIndexPtr();
+  for (uint32_t j = 0; j < nodes; ++j)
+    for (uint32_t c = 0; c < 3; ++c) {
+      // Node j's neighbours ascending: the lower triangle's (i < j), then its row (i >= j).
+      int* at = inner + outer[3 * j + c];
+      for (uint32_t k = lower_starts[j]; k < lower_starts[j + 1]; ++k)
+        for (int r = 0; r < 3; ++r) *at++ = 3 * static_cast<int>(lower_rows[k]) + r;
+      for (uint32_t k = starts[j]; k < starts[j + 1]; ++k)
+        for (int r = 0; r < 3; ++r) *at++ = 3 * static_cast<int>(columns[k]) + r;
+    }
+  return full;
+}
+
+}  // namespace
+
 CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::make_unique<Ldlt>()) {
   const int n = 3 * static_cast<int>(pattern.node_count());
   const auto starts = pattern.row_starts();
   const auto columns = pattern.columns();
-  // Scalar pattern of the full symmetric matrix, for the fill-reducing ordering.
-  std::vector<Eigen::Triplet<double, int>> entries;
-  entries.reserve(18 * columns.size());
-  for (uint32_t i = 0; i < pattern.node_count(); ++i)
-    for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          const int row = 3 * static_cast<int>(i) + r, col = 3 * static_cast<int>(columns[k]) + c;
-          entries.emplace_back(row, col, 1.0);
-          if (row != col) entries.emplace_back(col, row, 1.0);
-        }
-  Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
-  full.setFromTriplets(entries.begin(), entries.end());  // duplicates on diagonal blocks: summed
+  // The fill-reducing order. The pattern is already symmetric with its diagonal: AMDOrdering()
+  // would first form A^T + A, the same pattern, so its minimum-degree step is called directly.
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
-  Eigen::AMDOrdering<int>()(full, order);
+  {
+    ScalarPattern full = full_scalar_pattern(pattern);
+    Eigen::internal::minimum_degree_ordering(full, order);
+  }
   new_index_.resize(n);
   for (int p = 0; p < n; ++p) new_index_[order.indices()[p]] = p;
-  // Upper triangle in the new numbering; each stored value is, for now, the index of its source
-  // in the block values. A diagonal block holds both (r, c) and (c, r): take one of them.
-  std::vector<Eigen::Triplet<double, int>> upper;
-  upper.reserve(9 * columns.size());
-  for (uint32_t i = 0; i < pattern.node_count(); ++i)
-    for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          const int row = new_index_[3 * i + r];
-          const int col = new_index_[3 * columns[k] + c];
-          if (columns[k] == i && row > col) continue;
-          upper.emplace_back(std::min(row, col), std::max(row, col),
-                             static_cast<double>(9 * k + 3 * r + c));
-        }
+  // Upper triangle in the new numbering, built in compressed columns with ascending rows (what
+  // setFromTriplets would make), with the index of each entry's source in the block values. A
+  // diagonal block holds both (r, c) and (c, r): take one of them.
+  struct Entry {
+    int row;
+    uint32_t source;
+  };
+  const auto for_each_entry = [&](auto&& take) {
+    for (uint32_t i = 0; i < pattern.node_count(); ++i)
+      for (uint32_t k = starts[i]; k < starts[i + 1]; ++k)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) {
+            const int row = new_index_[3 * i + r];
+            const int col = new_index_[3 * columns[k] + c];
+            if (columns[k] == i && row > col) continue;
+            take(std::max(row, col), Entry{std::min(row, col), 9 * k + 3 * r + c});
+          }
+  };
   permuted_upper_.resize(n, n);
-  permuted_upper_.setFromTriplets(upper.begin(), upper.end());
-  permuted_upper_.makeCompressed();
-  value_source_.resize(permuted_upper_.nonZeros());
-  for (Eigen::Index s = 0; s < permuted_upper_.nonZeros(); ++s)
-    value_source_[s] = static_cast<uint32_t>(permuted_upper_.valuePtr()[s]);
-  ldlt_->analyzePattern(permuted_upper_);
+  int* outer = permuted_upper_.outerIndexPtr();
+  std::fill_n(outer, n + 1, 0);
+  for_each_entry([&](int col, const Entry&) { ++outer[col + 1]; });
+  for (int col = 0; col < n; ++col) outer[col + 1] += outer[col];
+  std::vector<Entry> entries(static_cast<size_t>(outer[n]));
+  {
+    std::vector<int> fill(outer, outer + n);
+    for_each_entry([&](int col, const Entry& e) { entries[fill[col]++] = e; });
+  }
+  permuted_upper_.resizeNonZeros(outer[n]);
+  std::fill_n(permuted_upper_.valuePtr(), outer[n], 0.0);
+  value_source_.resize(entries.size());
+  for (int col = 0; col < n; ++col) {
+    std::sort(entries.begin() + outer[col], entries.begin() + outer[col + 1],
+              [](const Entry& x, const Entry& y) { return x.row < y.row; });
+    for (int s = outer[col]; s < outer[col + 1]; ++s) {
+      permuted_upper_.innerIndexPtr()[s] = entries[s].row;
+      value_source_[s] = entries[s].source;
+    }
+  }
+  ldlt_->analyze_preordered_upper(permuted_upper_);
   rhs_.resize(n);
   solution_.resize(n);
   ldlt_->size_diagonal(n);
