@@ -17,7 +17,7 @@
 namespace tacta {
 
 inline constexpr char kCheckpointMagic[8] = {'T', 'A', 'C', 'T', 'A', 'C', 'K', 'P'};
-inline constexpr uint32_t kCheckpointVersion = 1;
+inline constexpr uint32_t kCheckpointVersion = 2;  // 2: cut bodies' shapes, blades' sweeps
 // magic, version, engine ABI id, fingerprint, tick, checksum, payload length.
 inline constexpr size_t kCheckpointHeaderBytes = 8 + 4 + 8 + 8 + 8 + 8 + 8;
 

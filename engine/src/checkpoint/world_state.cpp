@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "checkpoint/shape_state.hpp"
+
 namespace tacta {
 
 namespace {
@@ -61,16 +63,18 @@ uint64_t scene_fingerprint(const World& world) {
   for (size_t i = 0; i < scene.bodies.size(); ++i) {
     const SoftBody b = world.body(i);
     w.text(b.info.name);
-    w.pod(static_cast<uint64_t>(b.node_count()));
-    w.pod(static_cast<uint64_t>(b.shape.topology->mesh.tets.size()));
+    // The mesh, material and held nodes the body was built from (--set on any of them counts),
+    // before any cut.
+    const BodyTopology& loaded = b.shape.loaded();
+    w.pod(static_cast<uint64_t>(loaded.mesh.node_count()));
+    w.pod(static_cast<uint64_t>(loaded.mesh.tets.size()));
     w.text(scene.bodies[i].model);
     write_params(w, scene.bodies[i].model_params);
     w.pod(b.settings.period_s);
-    // The mesh, material and held nodes the body was built from (--set on any of them counts).
-    w.pod(b.shape.topology->material);
-    w.array(b.rest());
-    w.array(b.shape.topology->masses);
-    w.array(b.shape.topology->fixed);
+    w.pod(loaded.material);
+    w.array(loaded.mesh.positions);
+    w.array(loaded.masses);
+    w.array(loaded.fixed);
   }
   w.pod(static_cast<uint64_t>(world.device_count()));
   for (size_t d = 0; d < world.device_count(); ++d) {
@@ -96,15 +100,12 @@ void save_bodies(CheckpointWriter& out, World& world, const RequestedModels& req
     if (b.settings.own_thread)
       throw InputError(where, "cannot checkpoint body '" + b.info.name +
                                   "': it steps on its own thread (step_thread: own)");
-    if (b.shape.cuts.revision > 0)
-      throw InputError(where, "cannot checkpoint body '" + b.info.name + "': it was cut (" +
-                                  std::to_string(b.shape.cuts.revision) +
-                                  " revisions of its mesh); checkpoints hold uncut bodies only");
     if (b.model.mailbox->incoming.load() != nullptr)
       throw InputError(where, "cannot checkpoint body '" + b.info.name +
                                   "' while a model swap waits for the next tick: step once");
     const size_t at = out.begin_section(kBodySection);
     out.text(b.info.name);
+    save_shape(out, b);
     out.pod(b.presence);
     out.array(b.nodes.positions);
     out.array(b.nodes.velocities);
@@ -132,8 +133,9 @@ void save_bodies(CheckpointWriter& out, World& world, const RequestedModels& req
   }
 }
 
-void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugins,
-                 const RequestedModels& requested) {
+std::vector<size_t> load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugins,
+                                const RequestedModels& requested) {
+  std::vector<size_t> reshaped;
   const auto count = in.pod<uint64_t>("the body count");
   if (count != world.body_count())
     in.fail(std::to_string(count) + " bodies in the checkpoint, " +
@@ -147,12 +149,15 @@ void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugi
     if (name != b.info.name)
       r.fail("body " + std::to_string(i) + " is '" + name + "' in the checkpoint, '" + b.info.name +
              "' in the scene");
+    const bool reshape = load_shape(r, world, i);
+    if (reshape) reshaped.push_back(i);
     r.pod_into(b.presence, "presence");
     r.array_exact(b.nodes.positions, "node positions (3 per node)");
     r.array_exact(b.nodes.velocities, "node velocities (3 per node)");
     r.array_exact(b.nodes.step_start, "step start positions (3 per node)");
     r.array_exact(b.loads.external_forces, "external forces (3 per node)");
     r.array_exact(b.loads.contact_forces, "contact forces (3 per node)");
+    if (reshape) shape_positions_loaded(b);
     b.loads.applied_forces = r.array<double>("applied forces", b.nodes.positions.size());
     if (!b.loads.applied_forces.empty() &&
         b.loads.applied_forces.size() != b.nodes.positions.size())
@@ -202,6 +207,7 @@ void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugi
              " numbers does not match the scene's managed nodes");
     r.expect_end();
   }
+  return reshaped;
 }
 
 std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
@@ -209,10 +215,6 @@ std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
   out.pod(static_cast<uint64_t>(world.device_count()));
   for (size_t d = 0; d < world.device_count(); ++d) {
     const DeviceComponents dev = world.device(d);
-    if (world.tool(d).blade.enabled)
-      throw InputError({world.scene().path, 0, 0, "devices." + dev.link.name + ".tool.blade"},
-                       "cannot checkpoint device '" + dev.link.name +
-                           "': its tool is a blade (a sweep in progress is not saved)");
     const size_t at = out.begin_section(kDeviceSection);
     out.text(dev.link.name);
     out.pod(dev.link.sample);
@@ -221,6 +223,14 @@ std::vector<std::string> save_devices(CheckpointWriter& out, World& world) {
     out.pod(dev.link.status_time_s);
     out.pod(dev.contact);
     out.pod(dev.stats);
+    const BladeSweep& blade = world.tool(d).blade;  // a sweep in progress is cut after a restore
+    out.pod(static_cast<uint8_t>(blade.enabled));
+    out.pod(static_cast<uint8_t>(blade.held));
+    out.pod(blade.last);
+    out.array(blade.swept);
+    out.pod(blade.first_s);
+    out.pod(static_cast<uint8_t>(blade.released));
+    out.pod(blade.dropped);
     out.pod(static_cast<uint8_t>(dev.link.device->has_state()));
     out.blob(dev.link.device->save_state());
     if (!dev.link.device->has_state())
@@ -251,6 +261,19 @@ std::vector<std::string> load_devices(CheckpointReader& in, World& world) {
     r.pod_into(dev.link.status_time_s, "the status time");
     r.pod_into(dev.contact, "the contact");
     r.pod_into(dev.stats, "the statistics");
+    BladeSweep& blade = world.tool(d).blade;
+    if ((r.pod<uint8_t>("whether the tool is a blade") != 0) != blade.enabled)
+      r.fail("device '" + dev.link.name + "''s tool is a blade in one of the checkpoint and the " +
+             "scene, not the other");
+    blade.held = r.pod<uint8_t>("whether the blade's button was held") != 0;
+    r.pod_into(blade.last, "the blade's last edge");
+    const std::vector<double> swept =
+        r.array<double>("the blade's sweep", 9 * BladeSweep::kCapacityTriangles);
+    if (swept.size() % 9 != 0) r.fail("the blade's sweep is not 9 numbers a triangle");
+    blade.swept.assign(swept.begin(), swept.end());  // within the capacity the tick relies on
+    r.pod_into(blade.first_s, "when the blade's sweep began");
+    blade.released = r.pod<uint8_t>("whether the blade's button was let go") != 0;
+    r.pod_into(blade.dropped, "the blade's dropped triangles");
     const bool had_state = r.pod<uint8_t>("whether the plugin saved state") != 0;
     const std::span<const uint8_t> own = r.blob("the plugin's own state");
     std::string why;

@@ -2,7 +2,8 @@
 // presence, model in use with its parameters and own state, step progress, fault, boundary
 // motion); per device its sample, connection, contact, statistics and the plugin's own state.
 // What the scene fixes (mesh, material, schedule, limits) is not saved: the restoring
-// Simulation builds it from the same scene, which the fingerprint checks.
+// Simulation builds it from the same scene, which the fingerprint checks; a body's mesh is saved
+// once a cut changed it (checkpoint/shape_state.hpp).
 #pragma once
 
 #include <cstdint>
@@ -29,8 +30,10 @@ struct RequestedModels {
 // Throws InputError naming the body when it cannot be saved (a model with no state entries and
 // no NO_HISTORY claim, a body on its own thread, a swap still waiting).
 void save_bodies(CheckpointWriter& out, World& world, const RequestedModels& requested);
-void load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugins,
-                 const RequestedModels& requested);
+// Returns the bodies given another shape (a cut one, or the scene's again): their collision
+// surface, proxies and render description must follow.
+std::vector<size_t> load_bodies(CheckpointReader& in, World& world, const PluginRegistry& plugins,
+                                const RequestedModels& requested);
 // Returns a note per device that cannot carry its state (a live link: it reconnects).
 std::vector<std::string> save_devices(CheckpointWriter& out, World& world);
 std::vector<std::string> load_devices(CheckpointReader& in, World& world);

@@ -56,7 +56,12 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   // took them; the saved presence and state then come over them.
   if (header.tick > 0)
     impl.world.apply_entity_commands(static_cast<double>(header.tick - 1) * dt());
-  load_bodies(in, impl.world, impl.plugins, {impl.requested_models, impl.requested_params});
+  for (size_t slot :
+       load_bodies(in, impl.world, impl.plugins, {impl.requested_models, impl.requested_params})) {
+    if (impl.collision) impl.collision->replace_surface(slot);
+    if (impl.haptics) impl.haptics->surface_changed(impl.world, slot);
+    session.body_reshaped(slot);
+  }
   impl.checkpoint_notes = load_devices(in, impl.world);
   const bool had_haptics = in.pod<uint8_t>("whether haptics ran") != 0;
   if (had_haptics != (impl.haptics != nullptr))
@@ -66,7 +71,8 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   if (impl.collision) impl.collision->set_proxy_counters(counters);
   session.load_state(in);
   in.expect_end();
-  // The saved run had made (or been refused) every cut due by its time; a cut body is never saved.
+  // The saved run had made (or been refused) every cut due by its time: its bodies' shapes came
+  // with it.
   impl.lockstep_cuts->skip_past(session.time());
 }
 

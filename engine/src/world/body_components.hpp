@@ -83,6 +83,7 @@ struct CutTotals {
 struct RetiredArrays {
   std::unique_ptr<BodyTopology> topology;
   std::vector<double> positions, velocities;
+  std::unique_ptr<EmbeddedSurface> surface;  // the embedded surface before (null: none)
 };
 
 struct RestShape {
@@ -96,6 +97,10 @@ struct RestShape {
   std::vector<uint8_t> cut_triangles;
   CutTotals cuts;
   const std::vector<double>& rest() const { return topology->mesh.positions; }
+  // The topology the scene loaded (before any cut), which checkpoints fingerprint.
+  const BodyTopology& loaded() const {
+    return retired.empty() ? *topology : *retired.front().topology;
+  }
 };
 
 // The embedded surface entity of a body slot (made at load, one per slot): the surface the body

@@ -138,77 +138,56 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   const double energy_before =
       b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
 
-  // The new topology, and the model rebuilt on it (throws before anything is replaced).
-  auto topology = std::make_unique<BodyTopology>();
-  topology->material = old.material;
-  topology->load = old.load;
-  topology->masses = lumped_masses(edit.mesh, old.material.density);
-  topology->fixed.resize(edit.node_source.size());
+  // The new shape, and the models rebuilt on it (throws before anything is replaced).
+  NewShape shape;
+  shape.topology = std::make_unique<BodyTopology>();
+  BodyTopology& topology = *shape.topology;
+  topology.material = old.material;
+  topology.load = old.load;
+  topology.masses = lumped_masses(edit.mesh, old.material.density);
+  topology.fixed.resize(edit.node_source.size());
   for (size_t n = 0; n < edit.node_source.size(); ++n)
-    topology->fixed[n] = old.fixed[edit.node_source[n]];
-  std::vector<uint8_t> cut_triangles = std::move(edit.cut_triangle);
-  std::unique_ptr<EmbeddedSurface> surface;
+    topology.fixed[n] = old.fixed[edit.node_source[n]];
+  shape.cut_triangles = std::move(edit.cut_triangle);
+  shape.crack = std::move(result.crack);
   if (b.surface.mesh) {
     CutSurface s =
         cut_embedded_surface(*b.surface.mesh, b.surface.mesh->cut_triangles, old.mesh, edit);
-    surface = std::make_unique<EmbeddedSurface>(std::move(s.surface));
-    surface->cut_triangles = std::move(s.cut_triangle);
+    shape.surface = std::make_unique<EmbeddedSurface>(std::move(s.surface));
+    shape.surface->cut_triangles = std::move(s.cut_triangle);
   }
   std::vector<int64_t> new_tet_of_old(old.mesh.tet_count(), -1);
   for (size_t t = 0; t < edit.tet_source.size(); ++t)
     new_tet_of_old[edit.tet_source[t]] = int64_t(t);
   const std::vector<int64_t> copy = first_copies(edit, old.mesh.node_count());
-  topology->mesh = std::move(edit.mesh);
-  topology->view = make_view(topology->mesh);
-  const double dt = b.step_dt(haptic_dt);
-  std::unique_ptr<ModelInstance> model =
-      world.make_model(b.model.instance->name(), b.model.instance->params(), *topology, dt,
-                       {where.file, 0, 0, where.key_path + ".model"});
-  std::vector<std::unique_ptr<ModelInstance>> future_swaps;
-  for (size_t s = b.model.next_swap; s < b.model.swaps.size(); ++s)
-    future_swaps.push_back(world.make_model(b.model.swaps[s].model->name(),
-                                            b.model.swaps[s].model->params(), *topology, dt,
-                                            {where.file, 0, 0, where.key_path + ".model"}));
+  topology.mesh = std::move(edit.mesh);
+  topology.view = make_view(topology.mesh);
+  ShapeModels models = make_shape_models(world, b, topology, where);
 
   // From here on nothing throws: the body takes the new arrays.
-  const VolumeMesh& mesh = topology->mesh;
+  const VolumeMesh& mesh = topology.mesh;
   for (uint32_t& n : b.recording.recorded_nodes) n = carried_node(n, copy, old.mesh, mesh);
   if (b.recording.probe_node)
     b.recording.probe_node = carried_node(*b.recording.probe_node, copy, old.mesh, mesh);
   for (Probe& p : b.recording.probes) carry_probe(p, old.mesh, mesh, edit, new_tet_of_old);
-  RetiredArrays retired;
-  retired.positions = std::exchange(b.nodes.positions, carried(b.nodes.positions, edit));
-  retired.velocities = std::exchange(b.nodes.velocities, carried(b.nodes.velocities, edit));
-  b.nodes.step_start = carried(b.nodes.step_start, edit);
   const size_t n = edit.node_source.size();
-  b.loads.external_forces.assign(3 * n, 0.0);
-  b.loads.contact_forces.assign(3 * n, 0.0);
+  std::vector<double> applied;
   if (!b.loads.applied_forces.empty()) {
     // A force on a split node stays on its first copy, so the total applied stays the same.
-    std::vector<double> applied(3 * n, 0.0);
+    applied.assign(3 * n, 0.0);
     for (size_t o = 0; o < copy.size(); ++o)
       if (copy[o] >= 0)
         std::copy_n(&b.loads.applied_forces[3 * o], 3, &applied[3 * size_t(copy[o])]);
-    b.loads.applied_forces = std::move(applied);
   }
-  for (size_t s = 0; s < b.model.next_swap; ++s) b.model.swaps[s].model.reset();  // outgoing
-  for (size_t s = b.model.next_swap, k = 0; s < b.model.swaps.size(); ++s, ++k)
-    b.model.swaps[s].model = std::move(future_swaps[k]);
-  b.model.instance = std::move(model);  // the old instance goes before the topology it reads
   const double removed_mass = [&] {
     double before = 0, after = 0;
     for (double m : old.masses) before += m;
-    for (double m : topology->masses) after += m;
+    for (double m : topology.masses) after += m;
     return before - after;
   }();
-  retired.topology = std::exchange(b.shape.topology, std::move(topology));
-  b.shape.retired.push_back(std::move(retired));
-  b.shape.cut_triangles = std::move(cut_triangles);
-  b.shape.crack = std::move(result.crack);
-  if (surface) {
-    update_embedded_surface(*surface, b.nodes.positions.data());
-    b.surface.mesh = std::move(surface);
-  }
+  install_shape(b, std::move(shape), std::move(models), carried(b.nodes.positions, edit),
+                carried(b.nodes.velocities, edit), carried(b.nodes.step_start, edit));
+  b.loads.applied_forces = std::move(applied);
 
   CutTotals& totals = b.shape.cuts;
   ++totals.revision;
@@ -229,6 +208,41 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   summary.tets = b.shape.topology->mesh.tet_count();
   summary.nodes = b.node_count();
   return summary;
+}
+
+ShapeModels make_shape_models(World& world, const SoftBody& b, const BodyTopology& topology,
+                              const SourceLocation& where) {
+  const double dt = b.step_dt(1.0 / world.scene().clock.haptic_rate_hz);
+  const SourceLocation at{where.file, 0, 0, where.key_path + ".model"};
+  ShapeModels models;
+  models.instance =
+      world.make_model(b.model.instance->name(), b.model.instance->params(), topology, dt, at);
+  for (size_t s = b.model.next_swap; s < b.model.swaps.size(); ++s)
+    models.future_swaps.push_back(world.make_model(
+        b.model.swaps[s].model->name(), b.model.swaps[s].model->params(), topology, dt, at));
+  return models;
+}
+
+void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
+                   std::vector<double> positions, std::vector<double> velocities,
+                   std::vector<double> step_start) {
+  RetiredArrays retired;
+  retired.positions = std::exchange(b.nodes.positions, std::move(positions));
+  retired.velocities = std::exchange(b.nodes.velocities, std::move(velocities));
+  b.nodes.step_start = std::move(step_start);
+  b.loads.external_forces.assign(b.nodes.positions.size(), 0.0);
+  b.loads.contact_forces.assign(b.nodes.positions.size(), 0.0);
+  b.loads.applied_forces.clear();
+  for (size_t s = 0; s < b.model.next_swap; ++s) b.model.swaps[s].model.reset();  // outgoing
+  for (size_t s = b.model.next_swap, k = 0; s < b.model.swaps.size(); ++s, ++k)
+    b.model.swaps[s].model = std::move(models.future_swaps[k]);
+  b.model.instance = std::move(models.instance);  // the old instance goes before its topology
+  retired.topology = std::exchange(b.shape.topology, std::move(shape.topology));
+  retired.surface = std::exchange(b.surface.mesh, std::move(shape.surface));
+  b.shape.retired.push_back(std::move(retired));
+  b.shape.cut_triangles = std::move(shape.cut_triangles);
+  b.shape.crack = std::move(shape.crack);
+  if (b.surface.mesh) update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
 }
 
 }  // namespace tacta

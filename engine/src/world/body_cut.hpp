@@ -5,9 +5,12 @@
 // (Simulation::cut).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tacta/sim/cut.hpp"
 #include "world/world.hpp"
@@ -28,5 +31,32 @@ std::string cut_unsupported(const SoftBody& b);
 
 CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
                     double time);
+
+// What a body's shape becomes (from a cut or a checkpoint): the rest mesh with its masses and
+// held nodes, the boundary triangles cuts made (1 each; empty: none), the crack, and the embedded
+// surface (null: the body has none).
+struct NewShape {
+  std::unique_ptr<BodyTopology> topology;
+  std::unique_ptr<EmbeddedSurface> surface;
+  std::vector<uint8_t> cut_triangles;
+  std::vector<std::array<uint32_t, 3>> crack;
+};
+
+// Body `b`'s models made on `topology` with the parameters of the ones it has: the instance in
+// use and the scheduled swaps still to come. Throws InputError at `where` (nothing changed).
+struct ShapeModels {
+  std::unique_ptr<ModelInstance> instance;
+  std::vector<std::unique_ptr<ModelInstance>> future_swaps;
+};
+ShapeModels make_shape_models(World& world, const SoftBody& b, const BodyTopology& topology,
+                              const SourceLocation& where);
+
+// Gives body `b` the new shape, its models (not begun) and node arrays (3 per node of the new
+// mesh; the loads become zero, the applied forces are the caller's); the old topology, arrays
+// and surface are kept as RetiredArrays. The embedded surface is made current from `positions`.
+// Allocates; throws nothing.
+void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
+                   std::vector<double> positions, std::vector<double> velocities,
+                   std::vector<double> step_start);
 
 }  // namespace tacta

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cut_beam_scene.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
@@ -51,13 +52,6 @@ inline std::string press_waypoints(double x, double bottom_y) {
   return "[0, " + std::to_string(x) + ", 0.115, 0,   0.15, " + std::to_string(x) + ", " +
          std::to_string(bottom_y) + ", 0]";
 }
-
-// Two triangles covering the plane x = `x` from y0 to y1 (m), z well past the cube.
-inline std::vector<double> quad_x(double x, double y0, double y1) {
-  return {x, y0, -1, x, y1, -1, x, y1, 1,  //
-          x, y0, -1, x, y1, 1,  x, y0, 1};
-}
-inline std::vector<double> plane_x(double x) { return quad_x(x, -1, 1); }
 
 inline double norm(const double v[3]) { return std::hypot(v[0], v[1], v[2]); }
 

@@ -158,8 +158,8 @@ TEST(Checkpoint, RefusesAnotherSceneDamageTruncationAndANewerVersion) {
   EXPECT_NE(restore_error(fresh, damaged).find("damaged"), std::string::npos)
       << restore_error(fresh, damaged);
   std::vector<uint8_t> newer = bytes;
-  newer[8] = 2;  // the format version follows the 8-byte magic
-  EXPECT_NE(restore_error(fresh, newer).find("version 2 is newer than this engine's 1"),
+  newer[8] = 3;  // the format version follows the 8-byte magic
+  EXPECT_NE(restore_error(fresh, newer).find("version 3 is newer than this engine's 2"),
             std::string::npos)
       << restore_error(fresh, newer);
   std::vector<uint8_t> not_one = bytes;

@@ -11,35 +11,11 @@
 #include <numeric>
 #include <vector>
 
+#include "cut_beam_scene.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
 namespace {
-
-// A 0.1 x 0.02 x 0.02 m beam along x, 10 x 2 x 2 cells, clamped at x = 0, gravity along -z and
-// no mass-proportional damping (that would slow a free piece's fall: -alpha M v is no internal
-// force).
-std::string beam_scene(const std::string& model, const std::string& extra = "") {
-  return R"(
-name: cut_beam
-gravity: [0, 0, -9.81]
-clock: {duration_s: 0.2}
-output: {frames: false, vtk: false}
-bodies:
-  - name: beam
-    mesh: {beam_grid: {size: [0.1, 0.02, 0.02], cells: [10, 2, 2]}}
-    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 1000, rayleigh_mass: 0}
-    model: )" +
-         model + R"(
-    fixed: [{box: {min: [-1, -1, -1], max: [0.0001, 1, 1]}}]
-)" + extra;
-}
-
-// Two triangles covering the plane x = `x` well past the beam.
-std::vector<double> plane_x(double x) {
-  return {x, -1, -1, x, 1, -1, x, 1,  1,  //
-          x, -1, -1, x, 1, 1,  x, -1, 1};
-}
 
 double total_mass(Simulation& sim, BodyHandle body) {
   const BodyArrays a = sim.body_arrays(body);
@@ -198,8 +174,6 @@ TEST(Cut, RefusesWhatItCannotDo) {
     along.insert(along.end(), {-1, y, -1, 1, y, -1, 1, y, 1, -1, y, -1, 1, y, 1, -1, y, 1});
   EXPECT_THROW(sim.cut(beam, along, CutMode::kRemove), InputError);
   EXPECT_EQ(sim.body_revision(beam), 0u);
-  sim.cut(beam, plane_x(0.05), CutMode::kSeparate);
-  EXPECT_THROW(sim.save_state(), InputError);  // checkpoints hold uncut bodies only
 }
 
 // A scene's cut event runs between lockstep ticks: report.json counts it, VTK writes the new mesh.
@@ -243,23 +217,9 @@ events:
 namespace tacta::simtest {
 namespace {
 
-// A scalpel from a device: sim_stylus holds button 0 while its hand sweeps a vertical blade along
-// y through the beam at x = 0.05 (a cell face: the cut parts the beam there). The coupling is
-// soft so the hand passes through the beam as a surgeon's would.
+// The scalpel (cut_beam_scene.hpp) parts the beam at x = 0.05.
 TEST(Cut, ABladeHeldByADeviceCutsTheBeamInTwoAndRunsRepeatably) {
-  const std::string device = R"(
-devices:
-  - name: scalpel
-    plugin: sim_stylus
-    params:
-      workspace_origin: [0.05, 0.01, 0.05]
-      limit_to_workspace: false
-      waypoints: [0, 0.05, -0.02, 0.03,  0.05, 0.05, -0.02, 0.03,  0.15, 0.05, 0.045, 0.03]
-      button_times: [0.04, 0.17]
-    tool: {sphere: {radius: 0.001}, blade: {edge: [[0, 0, 0], [0, 0, -0.1]], button: 0}}
-    coupling: {stiffness: 5, damping: 0.01}
-    touches: beam
-)";
+  const std::string device = kScalpelDevice;
   auto run = [&](const std::string& out) {
     Simulation sim(scene_from_text(beam_scene("corotational_fem", device), "cut_beam"), plugins());
     RunOptions options;

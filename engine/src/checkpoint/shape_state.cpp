@@ -1,0 +1,211 @@
+#include "checkpoint/shape_state.hpp"
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tacta/embedded_surface.hpp"
+#include "tacta/mesh_io.hpp"
+#include "topology/cut_mesh.hpp"
+#include "world/body_cut.hpp"
+
+namespace tacta {
+
+namespace {
+
+// Bounds on a saved array's length before it is read (the reader also checks it against the
+// bytes left, so a forged length cannot allocate past the checkpoint's own size).
+constexpr uint64_t kMaxEntries = uint64_t{1} << 28;
+
+void save_surface(CheckpointWriter& out, const EmbeddedSurface& s) {
+  out.array(s.triangles);
+  out.array(s.corner_uvs);
+  out.array(s.rest_positions);
+  out.array(s.tet);
+  out.array(s.nodes);
+  out.array(s.weights);
+  out.array(s.cut_triangles);
+  out.pod(static_cast<uint64_t>(s.extrapolated_vertices));
+  out.text(s.source);
+}
+
+bool all_finite(const std::vector<double>& values) {
+  for (double v : values)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// What is wrong with a saved embedded surface against the mesh it follows; empty: nothing.
+std::string surface_problem(const EmbeddedSurface& s, const VolumeMesh& mesh) {
+  const size_t v = s.vertex_count(), t = s.triangle_count();
+  if (s.triangles.size() % 3 != 0 || s.rest_positions.size() % 3 != 0 || s.tet.size() != v ||
+      s.nodes.size() != 4 * v || s.weights.size() != 4 * v ||
+      (!s.corner_uvs.empty() && s.corner_uvs.size() != 6 * t) ||
+      (!s.cut_triangles.empty() && s.cut_triangles.size() != t))
+    return "array sizes that do not agree (" + std::to_string(v) + " vertices, " +
+           std::to_string(t) + " triangles)";
+  for (uint32_t corner : s.triangles)
+    if (corner >= v) return "a triangle corner past its " + std::to_string(v) + " vertices";
+  for (size_t i = 0; i < v; ++i) {
+    if (s.tet[i] >= mesh.tet_count())
+      return "vertex " + std::to_string(i) + " bound to a tet past the mesh's";
+    for (size_t c = 0; c < 4; ++c)
+      if (s.nodes[4 * i + c] != mesh.tets[4 * size_t{s.tet[i]} + c])
+        return "vertex " + std::to_string(i) + "'s nodes are not its tet's";
+  }
+  if (!all_finite(s.rest_positions) || !all_finite(s.weights) || !all_finite(s.corner_uvs))
+    return "a number that is not finite";
+  return {};
+}
+
+std::unique_ptr<EmbeddedSurface> read_surface(CheckpointReader& in, const VolumeMesh& mesh) {
+  auto s = std::make_unique<EmbeddedSurface>();
+  s->triangles = in.array<uint32_t>("the surface's triangles", kMaxEntries);
+  s->corner_uvs = in.array<double>("the surface's corner uvs", kMaxEntries);
+  s->rest_positions = in.array<double>("the surface's rest positions", kMaxEntries);
+  s->tet = in.array<uint32_t>("the surface's tets", kMaxEntries);
+  s->nodes = in.array<uint32_t>("the surface's tet nodes", kMaxEntries);
+  s->weights = in.array<double>("the surface's weights", kMaxEntries);
+  s->cut_triangles = in.array<uint8_t>("the surface's cut triangles", kMaxEntries);
+  s->extrapolated_vertices = in.pod<uint64_t>("the surface's extrapolated vertex count");
+  s->source = in.text("the surface's source");
+  if (const std::string why = surface_problem(*s, mesh); !why.empty())
+    in.fail("the cut body's embedded surface: " + why);
+  s->positions.assign(s->rest_positions.size(), 0.0);
+  s->normals.assign(s->rest_positions.size(), 0.0);
+  return s;
+}
+
+// The saved cut topology, checked whole before it is used.
+NewShape read_cut_shape(CheckpointReader& in, const BodyTopology& current) {
+  NewShape shape;
+  shape.topology = std::make_unique<BodyTopology>();
+  BodyTopology& t = *shape.topology;
+  t.material = current.material;
+  t.load = current.load;
+  t.mesh.source = current.mesh.source;
+  t.mesh.positions = in.array<double>("the cut mesh's rest positions", kMaxEntries);
+  t.mesh.tets = in.array<uint32_t>("the cut mesh's tets", kMaxEntries);
+  t.mesh.triangles = in.array<uint32_t>("the cut mesh's boundary", kMaxEntries);
+  t.mesh.edges = in.array<uint32_t>("the cut mesh's edges", kMaxEntries);
+  t.fixed = in.array<uint8_t>("the cut mesh's held nodes", kMaxEntries);
+  shape.cut_triangles = in.array<uint8_t>("the cut faces' tags", kMaxEntries);
+  if (!all_finite(t.mesh.positions)) in.fail("the cut mesh: a rest position is not finite");
+  if (const std::vector<std::string> problems = topology_problems(t.mesh); !problems.empty())
+    in.fail("the cut mesh: " + problems.front());
+  const size_t nodes = t.mesh.node_count();
+  if (t.fixed.size() != nodes)
+    in.fail("the cut mesh: " + std::to_string(t.fixed.size()) + " held-node flags for " +
+            std::to_string(nodes) + " nodes");
+  if (!shape.cut_triangles.empty() && shape.cut_triangles.size() != t.mesh.triangles.size() / 3)
+    in.fail("the cut mesh: " + std::to_string(shape.cut_triangles.size()) + " cut-face tags for " +
+            std::to_string(t.mesh.triangles.size() / 3) + " boundary triangles");
+  t.masses = lumped_masses(t.mesh, t.material.density);
+  if (in.pod<uint8_t>("whether the cut body has an embedded surface") != 0)
+    shape.surface = read_surface(in, t.mesh);
+  return shape;
+}
+
+// The shape the scene loaded, for a body cut since whose checkpoint predates any cut.
+NewShape loaded_shape(const SoftBody& b) {
+  NewShape shape;
+  shape.topology = std::make_unique<BodyTopology>();
+  const BodyTopology& loaded = b.shape.loaded();
+  shape.topology->mesh = loaded.mesh;
+  shape.topology->material = loaded.material;
+  shape.topology->load = loaded.load;
+  shape.topology->masses = loaded.masses;
+  shape.topology->fixed = loaded.fixed;
+  if (const EmbeddedSurface* surface = b.shape.retired.front().surface.get())
+    shape.surface = std::make_unique<EmbeddedSurface>(*surface);
+  return shape;
+}
+
+}  // namespace
+
+void save_shape(CheckpointWriter& out, const SoftBody& b) {
+  out.pod(b.shape.cuts);
+  out.array(b.recording.recorded_nodes);
+  out.pod(static_cast<uint8_t>(b.recording.probe_node.has_value()));
+  out.pod(b.recording.probe_node.value_or(0));
+  out.pod(static_cast<uint64_t>(b.recording.probes.size()));
+  for (const Probe& p : b.recording.probes) {
+    out.pod(p.nodes);
+    out.pod(p.weights);
+  }
+  out.array(b.shape.crack);  // a blade's crossed faces not open yet: an uncut body may have some
+  if (b.shape.cuts.revision == 0) return;
+  const BodyTopology& t = *b.shape.topology;
+  out.array(t.mesh.positions);
+  out.array(t.mesh.tets);
+  out.array(t.mesh.triangles);
+  out.array(t.mesh.edges);
+  out.array(t.fixed);
+  out.array(b.shape.cut_triangles);
+  out.pod(static_cast<uint8_t>(b.surface.mesh != nullptr));
+  if (b.surface.mesh) save_surface(out, *b.surface.mesh);
+}
+
+bool load_shape(CheckpointReader& in, World& world, size_t slot) {
+  const SoftBody b = world.body(slot);
+  const auto totals = in.pod<CutTotals>("the body's cut totals");
+  std::vector<uint32_t> recorded = in.array<uint32_t>("the recorded nodes", kMaxEntries);
+  if (recorded.size() != b.recording.recorded_nodes.size())
+    in.fail(std::to_string(recorded.size()) + " recorded nodes in the checkpoint, " +
+            std::to_string(b.recording.recorded_nodes.size()) + " in the scene");
+  const bool has_probe_node = in.pod<uint8_t>("whether a probe node is recorded") != 0;
+  const auto probe_node = in.pod<uint32_t>("the probe node");
+  if (has_probe_node != b.recording.probe_node.has_value())
+    in.fail("a probe node in one of the checkpoint and the scene, not the other");
+  const auto probe_count = in.pod<uint64_t>("the probe count");
+  if (probe_count != b.recording.probes.size())
+    in.fail(std::to_string(probe_count) + " probes in the checkpoint, " +
+            std::to_string(b.recording.probes.size()) + " in the scene");
+  std::vector<Probe> probes = b.recording.probes;
+  for (Probe& p : probes) {
+    p.nodes = in.pod<std::array<uint32_t, 4>>("a probe's nodes");
+    p.weights = in.pod<std::array<double, 4>>("a probe's weights");
+  }
+  std::vector<std::array<uint32_t, 3>> crack =
+      in.array<std::array<uint32_t, 3>>("the crack", kMaxEntries);
+
+  NewShape shape;
+  if (totals.revision > 0)
+    shape = read_cut_shape(in, *b.shape.topology);
+  else if (b.shape.cuts.revision > 0)
+    shape = loaded_shape(b);
+  const size_t nodes = shape.topology ? shape.topology->mesh.node_count() : b.node_count();
+  auto past = [&](uint32_t n) { return n >= nodes; };
+  bool bad = has_probe_node && past(probe_node);
+  for (uint32_t n : recorded) bad = bad || past(n);
+  for (const auto& face : crack)
+    for (uint32_t n : face) bad = bad || past(n);
+  for (const Probe& p : probes)
+    for (size_t c = 0; c < 4; ++c) bad = bad || past(p.nodes[c]) || !std::isfinite(p.weights[c]);
+  if (bad)
+    in.fail("a recorded node, probe or crack face names a node past the body's " +
+            std::to_string(nodes));
+
+  const bool reshape = shape.topology != nullptr;
+  if (reshape) {
+    shape.topology->view = make_view(shape.topology->mesh);
+    const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
+    ShapeModels models = make_shape_models(world, b, *shape.topology, where);
+    const std::vector<double> zero(3 * nodes, 0.0);
+    install_shape(b, std::move(shape), std::move(models), zero, zero, zero);
+  }
+  b.shape.cuts = totals;
+  b.shape.crack = std::move(crack);
+  b.recording.recorded_nodes = std::move(recorded);
+  if (has_probe_node) b.recording.probe_node = probe_node;
+  b.recording.probes = std::move(probes);
+  return reshape;
+}
+
+void shape_positions_loaded(const SoftBody& b) {
+  if (b.surface.mesh) update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
+}
+
+}  // namespace tacta
