@@ -16,6 +16,14 @@
 namespace tacta {
 
 namespace {
+// Resized with room for a quarter more: a cut adds a few vertices at a time, and growing past
+// the capacity moves the whole buffer to fresh pages (milliseconds between two ticks).
+template <class T>
+void resize_with_room(std::vector<T>& v, size_t count) {
+  if (count > v.capacity()) v.reserve(count + count / 4);
+  v.resize(count);
+}
+
 constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x the mean surface edge
 constexpr double kMarginTargetPerEdge = 0.25;  // proxy query margin kept below this x mean edge,
 constexpr double kMarginCapPerEdge = 3.0;      // and never past this (whole refit)
@@ -301,8 +309,8 @@ void CollisionContext::prepare_plugins(const SourceLocation& where) {
   }
   size_t vertices = 0;
   for (const auto& s : surfaces_) vertices += s.vertex_count;
-  pairs_.resize(16384 + 16 * vertices);
-  contacts_.resize(4096 + 4 * vertices);
+  resize_with_room(pairs_, 16384 + 16 * vertices);
+  resize_with_room(contacts_, 4096 + 4 * vertices);
   refitted_once_ = false;  // the plugins' hierarchies are built again at the next refit
 }
 

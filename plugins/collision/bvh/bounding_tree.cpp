@@ -9,6 +9,16 @@
 
 namespace tacta::collision {
 namespace {
+// `count` copies of `value`, with room for a quarter more: a cut adds a few triangles at a time,
+// and an array assigned past its capacity moves to fresh pages at every cut.
+template <class T>
+void assign_with_room(std::vector<T>& v, size_t count, const T& value) {
+  if (count > v.capacity()) {
+    v.clear();  // assign overwrites everything: nothing to copy
+    v.reserve(count + count / 4);
+  }
+  v.assign(count, value);
+}
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -73,11 +83,11 @@ bool overlaps(const Obb& a, const Obb& b) noexcept {
 
 void BoundingTree::reserve(uint32_t element_count) {
   const uint32_t nodes = element_count == 0 ? 0 : 2 * element_count - 1;
-  nodes_.assign(nodes, Node{});
-  volumes_.assign(nodes, Obb{});
-  order_.assign(element_count, 0);
-  element_boxes_.assign(element_count, Aabb{});
-  centroids_.assign(element_count, {});
+  assign_with_room(nodes_, nodes, Node{});
+  assign_with_room(volumes_, nodes, Obb{});
+  assign_with_room(order_, element_count, uint32_t{0});
+  assign_with_room(element_boxes_, element_count, Aabb{});
+  assign_with_room(centroids_, element_count, decltype(centroids_)::value_type{});
   element_count_ = element_count;
   node_count_ = 0;
   built_ = false;
