@@ -155,6 +155,12 @@ const std::vector<ModelCase>& sweep_cases() {
   static const std::vector<ModelCase> cases = [] {
     std::vector<ModelCase> list = {
         {"corotational_fem", "tacta_corotational_fem.so", "corotational_fem", {}, 20},
+        // Its CG, products and preconditioner on the workers too (off by default: BENCHMARKS).
+        {"corotational_fem_threaded_solve",
+         "tacta_corotational_fem.so",
+         "corotational_fem",
+         {{"threaded_solve", 1, nullptr}},
+         20},
         {"hyperelastic", "tacta_hyperelastic.so", "hyperelastic", {}, 20},
         {"tensor_mass", "tacta_tensor_mass.so", "tensor_mass", {}, 20},
         {"vbd", "tacta_vbd.so", "vbd", {}, 20},
