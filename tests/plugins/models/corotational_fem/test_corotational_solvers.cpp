@@ -1,7 +1,9 @@
 // The block incomplete Cholesky preconditioner and the CG that uses it: exact where IC(0) has no
 // fill to drop (one tet), the same solution as sparse Cholesky on a bent beam's system in fewer
-// iterations than block Jacobi, and the same trajectory as Cholesky when stepping.
+// iterations than block Jacobi, and the same trajectory as Cholesky when stepping. The LDL^T
+// symbolic analysis gives Eigen's elimination tree and column counts.
 #include <Eigen/Core>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -9,6 +11,7 @@
 
 #include "corotational_test_support.hpp"
 #include "incomplete_cholesky.hpp"
+#include "ldlt_symbolic.hpp"
 #include "linear_solvers.hpp"
 #include "padded_blocks.hpp"
 
@@ -92,6 +95,37 @@ struct BeamSystem {
         rhs[3 * i + c] = mesh.fixed[i] ? 0.0 : std::sin(0.7 * i + c) * mesh.masses[i];
   }
 };
+
+// Eigen's own analysis, with its elimination tree and column counts in view.
+struct EigenAnalysis : Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>,
+                                             Eigen::Upper, Eigen::NaturalOrdering<int>> {
+  const VectorI& parent() const { return m_parent; }
+  const VectorI& below() const { return m_nonZerosPerCol; }
+};
+
+TEST(LdltSymbolic, SameTreeAndColumnCountsAsEigen) {
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 60; ++trial) {
+    // Random upper triangles, from a forest of a few entries to dense, with the diagonal.
+    const int n = 1 + static_cast<int>(random() % 80);
+    const double density = (trial % 6 + 1) / 12.0;
+    std::bernoulli_distribution entry(density * density);
+    std::vector<Eigen::Triplet<double, int>> upper;
+    for (int c = 0; c < n; ++c)
+      for (int r = 0; r <= c; ++r)
+        if (r == c || entry(random)) upper.emplace_back(r, c, 1.0);
+    Eigen::SparseMatrix<double, Eigen::ColMajor, int> a(n, n);
+    a.setFromTriplets(upper.begin(), upper.end());
+    EigenAnalysis eigen;
+    eigen.analyzePattern(a);
+    std::vector<int> parent(n), below(n);
+    sparse::ldlt_symbolic(n, a.outerIndexPtr(), a.innerIndexPtr(), parent, below);
+    for (int j = 0; j < n; ++j) {
+      ASSERT_EQ(parent[j], eigen.parent()[j]) << "trial " << trial << ", column " << j;
+      ASSERT_EQ(below[j], eigen.below()[j]) << "trial " << trial << ", column " << j;
+    }
+  }
+}
 
 TEST(PaddedBlocks, ProductMatchesTheBlockMatrix) {
   BeamSystem system;
