@@ -18,11 +18,11 @@
 #include "collision/collision_context.hpp"
 #include "haptic_interaction/haptic_interaction.hpp"
 #include "systems/haptic_loop.hpp"
-#include "world/world.hpp"
 #include "tacta/plugin_registry.hpp"
 #include "tacta/scene_loader.hpp"
 #include "tacta/sim/registry_schemas.hpp"
 #include "tacta/sim/simulation.hpp"
+#include "world/world.hpp"
 
 namespace tacta::simtest {
 
@@ -60,6 +60,13 @@ inline std::string fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+// A checkpoint of `scene` after `ticks` lockstep ticks, from a Simulation closed after it.
+inline std::vector<uint8_t> checkpoint_after(const SceneDesc& scene, uint64_t ticks) {
+  Simulation first(scene, plugins());
+  first.step(ticks);
+  return first.save_state();
 }
 
 inline RunResult run_scene(const SceneDesc& scene, const RunOptions& options = {}) {

@@ -54,14 +54,8 @@ void expect_same_run(Simulation& straight, Simulation& resumed) {
 void check_resume(const SceneDesc& scene, uint64_t m, uint64_t n) {
   Simulation straight(scene, plugins());
   straight.step(n);
-  std::vector<uint8_t> bytes;
-  {
-    Simulation first(scene, plugins());
-    first.step(m);
-    bytes = first.save_state();
-  }
   Simulation resumed(scene, plugins());
-  resumed.restore_state(bytes);
+  resumed.restore_state(checkpoint_after(scene, m));
   EXPECT_EQ(resumed.tick(), m);
   resumed.step(n - m);
   expect_same_run(straight, resumed);
