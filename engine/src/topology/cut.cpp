@@ -63,9 +63,11 @@ std::string check_input(const VolumeMesh& rest, std::span<const uint8_t> rest_cu
   return {};
 }
 
-// The blade's triangles near the body and the padding (m) box tests use.
+// The blade's triangles near the body, the box around them all, and the padding (m) box tests
+// use. A box that misses `reach` misses every triangle's box: one test instead of one a triangle.
 struct Blade {
   std::vector<BladeTriangle> triangles;
+  Box reach = Box::empty();
   double pad = 0;
 };
 Blade near_blade(std::span<const double> positions, std::span<const double> triangles) {
@@ -76,7 +78,10 @@ Blade near_blade(std::span<const double> positions, std::span<const double> tria
   Blade blade;
   blade.pad = kRoundOff * extent;
   for (const BladeTriangle& t : topology_detail::cutting_triangles(triangles))
-    if (t.box.meets(body, blade.pad)) blade.triangles.push_back(t);
+    if (t.box.meets(body, blade.pad)) {
+      blade.triangles.push_back(t);
+      blade.reach.include(t.box.lo), blade.reach.include(t.box.hi);
+    }
   return blade;
 }
 
@@ -88,6 +93,7 @@ std::vector<uint8_t> tets_cut(const VolumeMesh& rest, std::span<const double> po
     const std::array<Vec3, 4> x = tet_points(positions, &rest.tets[4 * t]);
     Box box = Box::empty();
     for (const Vec3& p : x) box.include(p);
+    if (!blade.reach.meets(box, blade.pad)) continue;
     for (const BladeTriangle& triangle : blade.triangles) {
       if (triangle.box.meets(box, blade.pad) &&
           topology_detail::triangle_meets_tet_interior(triangle, x)) {
@@ -254,7 +260,7 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
   std::vector<SharedFace> faces;
   for (size_t i = 0; i < all.size();) {
     size_t j = i + 1;
-    while (j < all.size() && all[j].key == all[i].key) ++j;
+    while (j < all.size() && mesh_detail::same_face(all[j], all[i])) ++j;
     if (j - i > 2) {
       problem = "a face of the mesh is shared by more than two tets";
       return {};
@@ -274,6 +280,7 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
     const Vec3 &p = centroid[f.first / 4], &q = centroid[f.second / 4];
     Box box = Box::empty();
     box.include(p), box.include(q);
+    if (!blade.reach.meets(box, blade.pad)) continue;
     for (const BladeTriangle& triangle : blade.triangles) {
       if (triangle.box.meets(box, blade.pad) &&
           topology_detail::segment_crosses_triangle(p, q, triangle)) {
