@@ -11,25 +11,36 @@ namespace tacta::models::sparse {
 BlockSparseMatrix::BlockSparseMatrix(uint32_t node_count, std::span<const uint32_t> tets,
                                      std::span<const uint32_t> extra_pairs)
     : node_count_(node_count) {
-  std::vector<std::vector<uint32_t>> upper(node_count);  // columns j >= i of row i
-  for (uint32_t i = 0; i < node_count; ++i) upper[i].push_back(i);
-  for (size_t e = 0; e + 3 < tets.size(); e += 4)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        if (tets[e + a] < tets[e + b]) upper[tets[e + a]].push_back(tets[e + b]);
-  for (size_t p = 0; p + 1 < extra_pairs.size(); p += 2) {
-    const uint32_t i = std::min(extra_pairs[p], extra_pairs[p + 1]);
-    upper[i].push_back(std::max(extra_pairs[p], extra_pairs[p + 1]));
+  // Every pair (i, j >= i) that shares an element, the diagonal and the extra pairs, gathered
+  // row by row in one array (a count, then a fill), then each row sorted without duplicates.
+  const auto for_each_pair = [&](auto&& add) {
+    for (uint32_t i = 0; i < node_count; ++i) add(i, i);
+    for (size_t e = 0; e + 3 < tets.size(); e += 4)
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          if (tets[e + a] < tets[e + b]) add(tets[e + a], tets[e + b]);
+    for (size_t p = 0; p + 1 < extra_pairs.size(); p += 2)
+      add(std::min(extra_pairs[p], extra_pairs[p + 1]),
+          std::max(extra_pairs[p], extra_pairs[p + 1]));
+  };
+  std::vector<uint32_t> start(size_t{node_count} + 1, 0);
+  for_each_pair([&](uint32_t i, uint32_t) { ++start[i + 1]; });
+  for (uint32_t i = 0; i < node_count; ++i) start[i + 1] += start[i];
+  std::vector<uint32_t> pairs(start.back());
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for_each_pair([&](uint32_t i, uint32_t j) { pairs[fill[i]++] = j; });
   }
   row_starts_.resize(node_count + 1, 0);
+  uint32_t kept = 0;  // pairs[0, kept): the rows done, compacted
   for (uint32_t i = 0; i < node_count; ++i) {
-    auto& list = upper[i];
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    row_starts_[i + 1] = row_starts_[i] + static_cast<uint32_t>(list.size());
+    const auto begin = pairs.begin() + start[i], end = pairs.begin() + start[i + 1];
+    std::sort(begin, end);
+    const auto last = std::unique(begin, end);
+    for (auto j = begin; j != last; ++j) pairs[kept++] = *j;
+    row_starts_[i + 1] = kept;
   }
-  columns_.reserve(row_starts_.back());
-  for (const auto& list : upper) columns_.insert(columns_.end(), list.begin(), list.end());
+  columns_.assign(pairs.begin(), pairs.begin() + kept);
   static constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
   static constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
   const size_t element_count = tets.size() / 4;
@@ -106,7 +117,7 @@ TACTA_HOT_PATH double BlockSparseMatrix::multiply(const double* x, double* y, si
 }
 
 TACTA_HOT_PATH double BlockSparseMatrix::multiply_rows(const double* x, double* y, uint32_t begin,
-                                                      uint32_t end, size_t stride) const {
+                                                       uint32_t end, size_t stride) const {
   const double* v = values_.data();
   double x_dot_y = 0.0;
   for (uint32_t i = begin; i < end; ++i) {
