@@ -16,13 +16,12 @@ using V3 = Eigen::Vector3d;
 // K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I), g the shape gradients. With it
 // 2D - K is positive definite, the condition for the engine's per-node (Jacobi) updates of the
 // managed nodes, and for the sweep between them and the model's solve, to converge.
-std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh,
-                                                   const MaterialDesc& material) {
+std::vector<std::array<double, 3>> stiffness_bound(const VolumeMesh& mesh, double lambda,
+                                                   double mu) {
   std::vector<std::array<double, 3>> bound(mesh.node_count(), std::array<double, 3>{});
   const auto x = [&](uint32_t i) {
     return V3(mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]);
   };
-  const double lambda = material.lame_lambda, mu = material.lame_mu;
   for (size_t t = 0; t < mesh.tet_count(); ++t) {
     const uint32_t* n = &mesh.tets[4 * t];
     Mat3 edges;
@@ -106,6 +105,8 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
   m.rest_ = mesh.positions;
   m.alpha_ = material.rayleigh_mass;
   m.beta_ = material.rayleigh_stiffness;
+  m.lambda_ = material.lame_lambda;
+  m.mu_ = material.lame_mu;
   const size_t n = mesh.node_count();
   // Per node and axis: the series that drives it (-1: free); a later entry wins on its axes,
   // and a `fixed` node stays fixed.
@@ -138,7 +139,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
             desc.where,
             "prescribed/plates: nodes with free axes (per-axis constraints, plates) need a "
             "tetrahedral mesh");
-      if (stiffness.empty()) stiffness = stiffness_bound(mesh, material);
+      if (stiffness.empty()) stiffness = stiffness_bound(mesh, m.lambda_, m.mu_);
       Managed node;
       node.node = i;
       node.series = s;
@@ -152,6 +153,38 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::build(const BodyDesc& desc, cons
     fixed[i] = 1;  // the model holds it; the engine moves it
   }
   m.forces_.assign(3 * n, 0.0);
+  return motion;
+}
+
+std::unique_ptr<BoundaryMotion> BoundaryMotion::carried(std::span<const uint32_t> node_source,
+                                                        const VolumeMesh& mesh,
+                                                        std::span<const double> masses) const {
+  auto motion = std::unique_ptr<BoundaryMotion>(new BoundaryMotion());
+  BoundaryMotion& m = *motion;
+  m.rest_ = mesh.positions;
+  m.series_ = series_;
+  m.plates_ = plates_;
+  m.alpha_ = alpha_, m.beta_ = beta_, m.lambda_ = lambda_, m.mu_ = mu_;
+  // Per old node: its entry in held_ or managed_ (-1: not moved); both lists are in node order.
+  std::vector<int64_t> held_at(rest_.size() / 3, -1), managed_at(rest_.size() / 3, -1);
+  for (size_t i = 0; i < held_.size(); ++i) held_at[held_[i].node] = int64_t(i);
+  for (size_t i = 0; i < managed_.size(); ++i) managed_at[managed_[i].node] = int64_t(i);
+  const std::vector<std::array<double, 3>> stiffness =
+      managed_.empty() ? std::vector<std::array<double, 3>>{} : stiffness_bound(mesh, lambda_, mu_);
+  for (uint32_t n = 0; n < node_source.size(); ++n) {
+    const uint32_t old = node_source[n];
+    if (held_at[old] >= 0) {
+      m.held_.push_back(held_[size_t(held_at[old])]);
+      m.held_.back().node = n;
+    } else if (managed_at[old] >= 0) {
+      m.managed_.push_back(managed_[size_t(managed_at[old])]);
+      Managed& node = m.managed_.back();
+      node.node = n;
+      node.stiffness = stiffness[n];
+      node.mass = masses[n];
+    }
+  }
+  m.forces_.assign(3 * size_t(mesh.node_count()), 0.0);
   return motion;
 }
 

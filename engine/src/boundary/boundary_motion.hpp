@@ -52,6 +52,13 @@ class BoundaryMotion {
                                                std::span<const double> masses,
                                                std::vector<uint8_t>& fixed);
 
+  // The same motion on a cut body's mesh (topology/cut_mesh.hpp's TopologyEdit): each copy of a
+  // moved node is moved as it was (its series, plate, saved velocity, stuck anchor), a removed
+  // node's motion goes; the managed nodes' masses are `masses` and their stiffness bound is
+  // computed again on `mesh`. Allocates (between ticks).
+  std::unique_ptr<BoundaryMotion> carried(std::span<const uint32_t> node_source,
+                                          const VolumeMesh& mesh,
+                                          std::span<const double> masses) const;
   // Whether after_step needs the model's internal forces (some node has free components).
   bool needs_internal_forces() const noexcept { return !managed_.empty(); }
   size_t held_count() const noexcept { return held_.size(); }
@@ -102,6 +109,7 @@ class BoundaryMotion {
   std::vector<Plate> plates_;
   std::vector<double> forces_;   // 3 per node, N: the model's internal forces (sized at load)
   double alpha_ = 0, beta_ = 0;  // Rayleigh damping of the body's material
+  double lambda_ = 0, mu_ = 0;   // its Lame parameters, Pa (the managed nodes' stiffness bound)
 };
 
 }  // namespace tacta

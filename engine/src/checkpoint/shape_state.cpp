@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,7 +80,7 @@ std::unique_ptr<EmbeddedSurface> read_surface(CheckpointReader& in, const Volume
 }
 
 // The saved cut topology, checked whole before it is used.
-NewShape read_cut_shape(CheckpointReader& in, const BodyTopology& current) {
+NewShape read_cut_shape(CheckpointReader& in, const BodyTopology& current, size_t loaded_nodes) {
   NewShape shape;
   shape.topology = std::make_unique<BodyTopology>();
   BodyTopology& t = *shape.topology;
@@ -92,6 +93,7 @@ NewShape read_cut_shape(CheckpointReader& in, const BodyTopology& current) {
   t.mesh.edges = in.array<uint32_t>("the cut mesh's edges", kMaxEntries);
   t.fixed = in.array<uint8_t>("the cut mesh's held nodes", kMaxEntries);
   shape.cut_triangles = in.array<uint8_t>("the cut faces' tags", kMaxEntries);
+  shape.loaded_node = in.array<uint32_t>("the cut mesh's loaded nodes", kMaxEntries);
   if (!all_finite(t.mesh.positions)) in.fail("the cut mesh: a rest position is not finite");
   if (const std::vector<std::string> problems = topology_problems(t.mesh); !problems.empty())
     in.fail("the cut mesh: " + problems.front());
@@ -102,6 +104,11 @@ NewShape read_cut_shape(CheckpointReader& in, const BodyTopology& current) {
   if (!shape.cut_triangles.empty() && shape.cut_triangles.size() != t.mesh.triangles.size() / 3)
     in.fail("the cut mesh: " + std::to_string(shape.cut_triangles.size()) + " cut-face tags for " +
             std::to_string(t.mesh.triangles.size() / 3) + " boundary triangles");
+  if (shape.loaded_node.size() != nodes)
+    in.fail("the cut mesh: " + std::to_string(shape.loaded_node.size()) + " loaded nodes for " +
+            std::to_string(nodes) + " nodes");
+  for (uint32_t n : shape.loaded_node)
+    if (n >= loaded_nodes) in.fail("the cut mesh: a node copies one past the loaded mesh's");
   t.masses = lumped_masses(t.mesh, t.material.density);
   if (in.pod<uint8_t>("whether the cut body has an embedded surface") != 0)
     shape.surface = read_surface(in, t.mesh);
@@ -144,6 +151,7 @@ void save_shape(CheckpointWriter& out, const SoftBody& b) {
   out.array(t.mesh.edges);
   out.array(t.fixed);
   out.array(b.shape.cut_triangles);
+  out.array(b.shape.loaded_node);
   out.pod(static_cast<uint8_t>(b.surface.mesh != nullptr));
   if (b.surface.mesh) save_surface(out, *b.surface.mesh);
 }
@@ -173,7 +181,7 @@ bool load_shape(CheckpointReader& in, World& world, size_t slot) {
 
   NewShape shape;
   if (totals.revision > 0)
-    shape = read_cut_shape(in, *b.shape.topology);
+    shape = read_cut_shape(in, *b.shape.topology, b.shape.loaded().mesh.node_count());
   else if (b.shape.cuts.revision > 0)
     shape = loaded_shape(b);
   const size_t nodes = shape.topology ? shape.topology->mesh.node_count() : b.node_count();
@@ -191,6 +199,18 @@ bool load_shape(CheckpointReader& in, World& world, size_t slot) {
   const bool reshape = shape.topology != nullptr;
   if (reshape) {
     shape.topology->view = make_view(shape.topology->mesh);
+    // The scene's boundary motion (the one loaded, kept when cuts replaced it) on the new mesh.
+    const BoundaryMotion* loaded_motion = b.shape.retired.empty()
+                                              ? b.constraints.boundary.get()
+                                              : b.shape.retired.front().boundary.get();
+    if (loaded_motion != nullptr) {
+      std::vector<uint32_t> source = shape.loaded_node;
+      if (source.empty()) {  // the loaded mesh itself
+        source.resize(nodes);
+        std::iota(source.begin(), source.end(), 0u);
+      }
+      shape.boundary = loaded_motion->carried(source, shape.topology->mesh, shape.topology->masses);
+    }
     const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
     ShapeModels models = make_shape_models(world, b, *shape.topology, where);
     const std::vector<double> zero(3 * nodes, 0.0);

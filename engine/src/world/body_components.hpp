@@ -84,6 +84,7 @@ struct RetiredArrays {
   std::unique_ptr<BodyTopology> topology;
   std::vector<double> positions, velocities;
   std::unique_ptr<EmbeddedSurface> surface;  // the embedded surface before (null: none)
+  std::unique_ptr<BoundaryMotion> boundary;  // the boundary motion before (null: none)
 };
 
 struct RestShape {
@@ -95,6 +96,9 @@ struct RestShape {
   // Per boundary triangle of topology->mesh: 1 when a cut exposed it (drawn in the cut colour);
   // empty while the body was never cut.
   std::vector<uint8_t> cut_triangles;
+  // Per node: the node of the mesh the scene loaded that it is a copy of (empty while never cut),
+  // for what the scene set per node (prescribed motion, plates).
+  std::vector<uint32_t> loaded_node;
   CutTotals cuts;
   const std::vector<double>& rest() const { return topology->mesh.positions; }
   // The topology the scene loaded (before any cut), which checkpoints fingerprint.

@@ -103,8 +103,6 @@ std::string cut_unsupported(const SoftBody& b) {
   const std::string name = "body '" + b.info.name + "'";
   if (b.settings.own_thread)
     return name + " steps on its own thread (step_thread: own): cutting it is not supported";
-  if (b.constraints.boundary)
-    return name + " has prescribed motion or plates: cutting it is not supported";
   if (!(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
     return name + "'s model '" + b.model.instance->name() +
            "' does not take topology edits (no TACTA_MODEL_CLAIM_TOPOLOGY_EDITS; `tacta plugins` "
@@ -162,6 +160,13 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   const std::vector<int64_t> copy = first_copies(edit, old.mesh.node_count());
   topology.mesh = std::move(edit.mesh);
   topology.view = make_view(topology.mesh);
+  shape.loaded_node.resize(edit.node_source.size());
+  for (size_t n = 0; n < edit.node_source.size(); ++n)
+    shape.loaded_node[n] = b.shape.loaded_node.empty() ? edit.node_source[n]
+                                                       : b.shape.loaded_node[edit.node_source[n]];
+  if (b.constraints.boundary)
+    shape.boundary =
+        b.constraints.boundary->carried(edit.node_source, topology.mesh, topology.masses);
   ShapeModels models = make_shape_models(world, b, topology, where);
 
   // From here on nothing throws: the body takes the new arrays.
@@ -239,9 +244,11 @@ void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
   b.model.instance = std::move(models.instance);  // the old instance goes before its topology
   retired.topology = std::exchange(b.shape.topology, std::move(shape.topology));
   retired.surface = std::exchange(b.surface.mesh, std::move(shape.surface));
+  retired.boundary = std::exchange(b.constraints.boundary, std::move(shape.boundary));
   b.shape.retired.push_back(std::move(retired));
   b.shape.cut_triangles = std::move(shape.cut_triangles);
   b.shape.crack = std::move(shape.crack);
+  b.shape.loaded_node = std::move(shape.loaded_node);
   if (b.surface.mesh) update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
 }
 

@@ -22,10 +22,10 @@ namespace tacta {
 // parameters of the one in use, then begun from the carried-over state), node state and loads,
 // recorded nodes, probes and embedded surface. Allocates. Throws InputError (nothing changed)
 // when the body cannot be cut: a model without TACTA_MODEL_CLAIM_TOPOLOGY_EDITS, a body on its
-// own thread or with prescribed motion or plates, a model swap waiting, and what cut_mesh refuses
+// own thread, a model swap waiting, and what cut_mesh refuses
 // (a planar mesh, blade numbers not 9 a triangle, a removal that would take every tet).
-// Why body `b` can never be cut as the scene set it up (its own thread, prescribed motion or
-// plates, a model without TACTA_MODEL_CLAIM_TOPOLOGY_EDITS); empty when it can. A scene's cut
+// Why body `b` can never be cut as the scene set it up (its own thread, a model without
+// TACTA_MODEL_CLAIM_TOPOLOGY_EDITS); empty when it can. A scene's cut
 // events are checked by it at load, every cut again when it comes.
 std::string cut_unsupported(const SoftBody& b);
 
@@ -33,13 +33,16 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
                     double time);
 
 // What a body's shape becomes (from a cut or a checkpoint): the rest mesh with its masses and
-// held nodes, the boundary triangles cuts made (1 each; empty: none), the crack, and the embedded
-// surface (null: the body has none).
+// held nodes, the boundary triangles cuts made (1 each; empty: none), the crack, per node the
+// loaded mesh's node it copies, the embedded surface and the boundary motion on the new mesh
+// (null: the body has none).
 struct NewShape {
   std::unique_ptr<BodyTopology> topology;
   std::unique_ptr<EmbeddedSurface> surface;
   std::vector<uint8_t> cut_triangles;
   std::vector<std::array<uint32_t, 3>> crack;
+  std::vector<uint32_t> loaded_node;
+  std::unique_ptr<BoundaryMotion> boundary;
 };
 
 // Body `b`'s models made on `topology` with the parameters of the ones it has: the instance in

@@ -34,6 +34,17 @@ inline std::vector<double> quad_x(double x, double y0, double y1) {
 // The plane x = `x`, well past the bodies cut.
 inline std::vector<double> plane_x(double x) { return quad_x(x, -1, 1); }
 
+// Body keys for beam_scene's `extra`: the nodes of the cell face x = 0.05 slide in x and z only
+// (y held at rest), and the tip face x = 0.1 is lifted 5 mm along z over 0.2 s.
+inline const char* const kPrescribedBeam = R"(
+    prescribed:
+      - region: {box: {min: [0.0499, -1, -1], max: [0.0501, 1, 1]}}
+        axes: [y]
+        displacement: [0, 0, 0]
+      - region: {box: {min: [0.0999, -1, -1], max: [1, 1, 1]}}
+        displacement: {ramp: {to: [0, 0, 0.005], duration_s: 0.2}}
+)";
+
 // A scalpel from a device: sim_stylus holds button 0 from 0.04 to 0.17 s while its hand sweeps a
 // vertical blade along y through the beam at x = 0.05 (a cell face: the cut parts the beam
 // there). The coupling is soft so the hand passes through the beam as a surgeon's would.

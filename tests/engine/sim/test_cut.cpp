@@ -162,6 +162,42 @@ TEST(Cut, EveryClaimingModelStepsOnAfterACut) {
   }
 }
 
+// A separation through nodes the scene moves: each copy is moved as its node was. The cell face
+// x = 0.05 (y held, x and z sliding) is split by the cut; the lifted tip face is not.
+TEST(Cut, PrescribedAndSlidingNodesKeepTheirMotionThroughACut) {
+  Simulation sim(scene_from_text(beam_scene("corotational_fem", kPrescribedBeam), "cut_beam"),
+                 plugins());
+  const BodyHandle beam = sim.body("beam");
+  sim.advance_to(0.05);
+  const size_t nodes_before = sim.body_arrays(beam).nodes;
+  ASSERT_EQ(sim.cut(beam, plane_x(0.05), CutMode::kSeparate).nodes_added, 9u);
+  sim.advance_to(0.15);
+  EXPECT_EQ(sim.report().faults, 0u);
+  const BodyArrays a = sim.body_arrays(beam);
+  const std::vector<double>& rest = sim.body_mesh(beam).positions;
+  ASSERT_EQ(a.nodes, nodes_before + 9);
+  size_t sliding = 0, tip = 0;
+  double slid = 0;  // the sliding nodes' largest motion along x and z, m
+  for (size_t n = 0; n < a.nodes; ++n) {
+    if (std::abs(rest[3 * n] - 0.05) < 1e-9) {
+      ++sliding;
+      EXPECT_NEAR(a.positions[3 * n + 1], rest[3 * n + 1], 1e-12) << "node " << n;
+      slid = std::max({slid, std::abs(a.positions[3 * n] - rest[3 * n]),
+                       std::abs(a.positions[3 * n + 2] - rest[3 * n + 2])});
+    }
+    if (std::abs(rest[3 * n] - 0.1) < 1e-9) {
+      ++tip;
+      const double lift = 0.005 * sim.time() / 0.2;  // the ramp at this time, m
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(a.positions[3 * n + k], rest[3 * n + k] + (k == 2 ? lift : 0.0), 1e-12)
+            << "node " << n << " axis " << k;
+    }
+  }
+  EXPECT_EQ(sliding, 18u) << "the face's 9 nodes and their 9 copies";
+  EXPECT_EQ(tip, 9u);
+  EXPECT_GT(slid, 1e-5) << "the sliding nodes move on their free axes";
+}
+
 TEST(Cut, RefusesWhatItCannotDo) {
   Simulation sim(scene_from_text(beam_scene("corotational_fem"), "cut_beam"), plugins());
   const BodyHandle beam = sim.body("beam");
