@@ -359,7 +359,7 @@ namespace {
 
 // The scalar pattern (3 unknowns per node) of the full symmetric matrix whose upper block
 // triangle is `pattern`, built in compressed columns with ascending rows: what setFromTriplets
-// makes of every entry and its mirror. The values (1) are not used.
+// makes of every entry and its mirror. The values are left unset: the ordering reads the pattern.
 ColumnMatrix full_scalar_pattern(const BlockSparseMatrix& pattern) {
   const uint32_t nodes = pattern.node_count();
   const auto starts = pattern.row_starts(), columns = pattern.columns();
@@ -372,8 +372,11 @@ ColumnMatrix full_scalar_pattern(const BlockSparseMatrix& pattern) {
         static_cast<int>(lower_starts[j + 1] - lower_starts[j] + starts[j + 1] - starts[j]);
     for (uint32_t c = 0; c < 3; ++c) outer[3 * j + c + 1] = outer[3 * j + c] + 3 * neighbours;
   }
-  full.resizeNonZeros(outer[3 * nodes]);
-  std::fill_n(full.valuePtr(), full.nonZeros(), 1.0);
+  // Eigen's minimum-degree ordering first grows the storage to this for its workspace: reserved
+  // now, it is not moved to fresh memory there.
+  const int entries = outer[3 * nodes];
+  full.data().reserve(entries + entries / 5 + 2 * full.cols());
+  full.resizeNonZeros(entries);
   int* inner = full.innerIndexPtr();
   for (uint32_t j = 0; j < nodes; ++j)
     for (uint32_t c = 0; c < 3; ++c) {
