@@ -60,10 +60,14 @@ void build_boundary(VolumeMesh& mesh) {
     if (j - i == 1) single.push_back(faces[i].order);
     i = j;
   }
-  std::sort(single.begin(), single.end());
+  set_boundary(mesh, std::move(single));
+}
+
+void set_boundary(VolumeMesh& mesh, std::vector<uint32_t> orders) {
+  std::sort(orders.begin(), orders.end());
   mesh.triangles.clear();
-  mesh.triangles.reserve(3 * single.size());
-  for (uint32_t order : single) {
+  mesh.triangles.reserve(3 * orders.size());
+  for (uint32_t order : orders) {
     const uint32_t t = order / 4, f = order % 4;
     for (size_t k = 0; k < 3; ++k)
       mesh.triangles.push_back(mesh.tets[4 * size_t{t} + kTetFaces[f][k]]);

@@ -33,6 +33,10 @@ std::vector<TetFace> sorted_tet_faces(const std::vector<uint32_t>& tets);
 // (dimension 3).
 void build_boundary(VolumeMesh& mesh);
 
+// mesh.triangles = the faces `orders` (tet * 4 + local face, each once), wound outward from their
+// tets, in tet order: build_boundary's result when `orders` are the faces used by one tet.
+void set_boundary(VolumeMesh& mesh, std::vector<uint32_t> orders);
+
 // mesh.edges = the unique undirected edges (i < j, sorted) of the tets (dimension 3), else of the
 // quads, else of the triangles.
 void build_edges(VolumeMesh& mesh);

@@ -2,6 +2,7 @@
 // the new rest mesh built from the result.
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 #include "mesh/tet_faces.hpp"
 #include "tacta/vec3.hpp"
@@ -176,6 +177,7 @@ Lists make_lists(size_t items, ForEach&& for_each) {
 struct Separation {
   std::vector<uint32_t> tets, node_source;
   size_t faces_separated = 0;
+  std::vector<uint32_t> opened;  // both sides (tet * 4 + local face) of each face that opened
   std::vector<FaceNodes> crack;  // crossed faces still closed, new numbering, sorted
 };
 
@@ -242,9 +244,11 @@ Separation separate(const VolumeMesh& rest, const std::vector<SharedFace>& faces
   for (const SharedFace& f : faces) {
     if (!f.crossed) continue;
     const FaceNodes a = new_key(f.first), b = new_key(f.second);
-    if (a != b)
+    if (a != b) {
       ++s.faces_separated;
-    else
+      s.opened.push_back(f.first);
+      s.opened.push_back(f.second);
+    } else
       s.crack.push_back(a);
   }
   std::sort(s.crack.begin(), s.crack.end());
@@ -253,9 +257,10 @@ Separation separate(const VolumeMesh& rest, const std::vector<SharedFace>& faces
 
 // The tets' shared faces, each marked crossed when the segment between its tets' centroids
 // (deformed) passes through a blade triangle; empty with `problem` set when a face has 3 tets.
+// `single`: the faces (tet * 4 + local face) used by one tet.
 std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const double> positions,
                                       const Blade& blade, std::span<const FaceNodes> crack,
-                                      std::string& problem) {
+                                      std::string& problem, std::vector<uint32_t>& single) {
   const std::vector<TetFace> all = mesh_detail::sorted_tet_faces(rest.tets);
   std::vector<SharedFace> faces;
   for (size_t i = 0; i < all.size();) {
@@ -265,6 +270,7 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
       problem = "a face of the mesh is shared by more than two tets";
       return {};
     }
+    if (j - i == 1) single.push_back(all[i].order);
     if (j - i == 2)
       faces.push_back({all[i].order, all[i + 1].order,
                        std::binary_search(crack.begin(), crack.end(), all[i].key)});
@@ -293,9 +299,11 @@ std::vector<SharedFace> crossed_faces(const VolumeMesh& rest, std::span<const do
 }
 
 // The new mesh from its tets (new node numbers) and node sources: rest positions, boundary,
-// edges, and the cut marks of its boundary (exposed by this cut, or marked before).
+// edges, and the cut marks of its boundary (exposed by this cut, or marked before). `boundary`:
+// the faces used by one new tet when known (else found from the tets).
 void build_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut,
-                std::vector<uint32_t> tets, TopologyEdit& edit) {
+                std::vector<uint32_t> tets, TopologyEdit& edit,
+                std::optional<std::vector<uint32_t>> boundary = std::nullopt) {
   VolumeMesh& mesh = edit.mesh;
   mesh.dimension = 3;
   mesh.source = rest.source;
@@ -304,7 +312,10 @@ void build_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut,
     for (size_t a = 0; a < 3; ++a)
       mesh.positions[3 * n + a] = rest.positions[3 * size_t{edit.node_source[n]} + a];
   mesh.tets = std::move(tets);
-  mesh_detail::build_boundary(mesh);
+  if (boundary)
+    mesh_detail::set_boundary(mesh, std::move(*boundary));
+  else
+    mesh_detail::build_boundary(mesh);
   mesh_detail::build_edges(mesh);
   // Old boundary faces by their node triple, with their mark.
   std::vector<std::pair<std::array<uint32_t, 3>, uint8_t>> old_faces(rest.triangles.size() / 3);
@@ -362,8 +373,9 @@ CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_tri
     build_mesh(rest, rest_cut_triangle, std::move(r.tets), edit);
     return result;
   }
+  std::vector<uint32_t> single;
   const std::vector<SharedFace> faces =
-      crossed_faces(rest, positions, blade, crack, result.refused);
+      crossed_faces(rest, positions, blade, crack, result.refused, single);
   if (!result.refused.empty()) {
     edit = unchanged(rest, rest_cut_triangle);
     return result;
@@ -381,7 +393,10 @@ CutResult cut_mesh(const VolumeMesh& rest, std::span<const uint8_t> rest_cut_tri
   std::iota(edit.tet_source.begin(), edit.tet_source.end(), 0u);
   edit.nodes_added = edit.node_source.size() - rest.node_count();
   edit.faces_separated = s.faces_separated;
-  build_mesh(rest, rest_cut_triangle, std::move(s.tets), edit);
+  // Splitting nodes joins no faces (a new face maps back to its old one through node_source),
+  // so the new boundary is the old one and both sides of every face that opened.
+  single.insert(single.end(), s.opened.begin(), s.opened.end());
+  build_mesh(rest, rest_cut_triangle, std::move(s.tets), edit, std::move(single));
   return result;
 }
 
