@@ -407,9 +407,10 @@ CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::ma
   for (int p = 0; p < n; ++p) new_index_[order.indices()[p]] = p;
   // Upper triangle in the new numbering, built in compressed columns with ascending rows (what
   // setFromTriplets would make), with the index of each entry's source in the block values. A
-  // diagonal block holds both (r, c) and (c, r): take one of them.
+  // diagonal block holds both (r, c) and (c, r): take one of them. The entries are gathered by
+  // row, then dealt to their columns row by row: each column's rows come out ascending.
   struct Entry {
-    int row;
+    int col;
     uint32_t source;
   };
   const auto for_each_entry = [&](auto&& take) {
@@ -420,30 +421,36 @@ CholeskySolver::CholeskySolver(const BlockSparseMatrix& pattern) : ldlt_(std::ma
             const int row = new_index_[3 * i + r];
             const int col = new_index_[3 * columns[k] + c];
             if (columns[k] == i && row > col) continue;
-            take(std::max(row, col), Entry{std::min(row, col), 9 * k + 3 * r + c});
+            take(std::min(row, col), Entry{std::max(row, col), 9 * k + 3 * r + c});
           }
   };
   permuted_upper_.resize(n, n);
   int* outer = permuted_upper_.outerIndexPtr();
   std::fill_n(outer, n + 1, 0);
-  for_each_entry([&](int col, const Entry&) { ++outer[col + 1]; });
-  for (int col = 0; col < n; ++col) outer[col + 1] += outer[col];
-  std::vector<Entry> entries(static_cast<size_t>(outer[n]));
+  std::vector<int> row_start(static_cast<size_t>(n) + 1, 0);
+  for_each_entry([&](int row, const Entry& e) {
+    ++row_start[row + 1];
+    ++outer[e.col + 1];
+  });
+  for (int i = 0; i < n; ++i) {
+    row_start[i + 1] += row_start[i];
+    outer[i + 1] += outer[i];
+  }
+  std::vector<Entry> by_row(static_cast<size_t>(row_start[n]));
   {
-    std::vector<int> fill(outer, outer + n);
-    for_each_entry([&](int col, const Entry& e) { entries[fill[col]++] = e; });
+    std::vector<int> fill(row_start.begin(), row_start.end() - 1);
+    for_each_entry([&](int row, const Entry& e) { by_row[fill[row]++] = e; });
   }
   permuted_upper_.resizeNonZeros(outer[n]);
   std::fill_n(permuted_upper_.valuePtr(), outer[n], 0.0);
-  value_source_.resize(entries.size());
-  for (int col = 0; col < n; ++col) {
-    std::sort(entries.begin() + outer[col], entries.begin() + outer[col + 1],
-              [](const Entry& x, const Entry& y) { return x.row < y.row; });
-    for (int s = outer[col]; s < outer[col + 1]; ++s) {
-      permuted_upper_.innerIndexPtr()[s] = entries[s].row;
-      value_source_[s] = entries[s].source;
+  value_source_.resize(by_row.size());
+  std::vector<int> fill(outer, outer + n);
+  for (int row = 0; row < n; ++row)
+    for (int s = row_start[row]; s < row_start[row + 1]; ++s) {
+      const int at = fill[by_row[s].col]++;
+      permuted_upper_.innerIndexPtr()[at] = row;
+      value_source_[at] = by_row[s].source;
     }
-  }
   ldlt_->analyze_preordered_upper(permuted_upper_);
   rhs_.resize(n);
   solution_.resize(n);
