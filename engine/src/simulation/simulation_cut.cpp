@@ -17,7 +17,10 @@ CutSummary Simulation::Impl::cut(size_t slot, std::span<const double> triangles,
   const double time = clock ? clock->time() : 0.0;
   const CutSummary summary = cut_body(world, slot, triangles, mode, time);
   if (summary.changed) {
-    if (collision) collision->replace_surface(slot);
+    if (collision) {
+      collision->replace_surface(slot);
+      collision->build_between_ticks(time, 1.0 / world.scene().clock.haptic_rate_hz);
+    }
     if (haptics) haptics->surface_changed(world, slot);
     if (clock) clock->body_reshaped(slot);
   }
