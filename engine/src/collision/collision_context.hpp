@@ -60,7 +60,8 @@ class CollisionContext {
   void add_surface(size_t body);
   // A body whose mesh a cut changed: its surface is described again from the new mesh (or
   // embedded surface) and the plugins prepare again (allocates; between ticks, on the thread
-  // that runs them). The hierarchies are rebuilt at the next refit.
+  // that runs them). The hierarchies are rebuilt at the next refit (a cut calls
+  // build_between_ticks for that).
   void replace_surface(size_t body);
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
