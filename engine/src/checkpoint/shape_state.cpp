@@ -20,15 +20,15 @@ namespace {
 // bytes left, so a forged length cannot allocate past the checkpoint's own size).
 constexpr uint64_t kMaxEntries = uint64_t{1} << 28;
 
+// An embedded surface is saved as the embedding it is made from (make_embedded_surface derives
+// each vertex's nodes and the extrapolated count from it), with its cut triangles.
 void save_surface(CheckpointWriter& out, const EmbeddedSurface& s) {
   out.array(s.triangles);
   out.array(s.corner_uvs);
   out.array(s.rest_positions);
   out.array(s.tet);
-  out.array(s.nodes);
   out.array(s.weights);
   out.array(s.cut_triangles);
-  out.pod(static_cast<uint64_t>(s.extrapolated_vertices));
   out.text(s.source);
 }
 
@@ -38,44 +38,37 @@ bool all_finite(const std::vector<double>& values) {
   return true;
 }
 
-// What is wrong with a saved embedded surface against the mesh it follows; empty: nothing.
-std::string surface_problem(const EmbeddedSurface& s, const VolumeMesh& mesh) {
-  const size_t v = s.vertex_count(), t = s.triangle_count();
-  if (s.triangles.size() % 3 != 0 || s.rest_positions.size() % 3 != 0 || s.tet.size() != v ||
-      s.nodes.size() != 4 * v || s.weights.size() != 4 * v ||
-      (!s.corner_uvs.empty() && s.corner_uvs.size() != 6 * t) ||
-      (!s.cut_triangles.empty() && s.cut_triangles.size() != t))
-    return "array sizes that do not agree (" + std::to_string(v) + " vertices, " +
-           std::to_string(t) + " triangles)";
-  for (uint32_t corner : s.triangles)
-    if (corner >= v) return "a triangle corner past its " + std::to_string(v) + " vertices";
-  for (size_t i = 0; i < v; ++i) {
-    if (s.tet[i] >= mesh.tet_count())
-      return "vertex " + std::to_string(i) + " bound to a tet past the mesh's";
-    for (size_t c = 0; c < 4; ++c)
-      if (s.nodes[4 * i + c] != mesh.tets[4 * size_t{s.tet[i]} + c])
-        return "vertex " + std::to_string(i) + "'s nodes are not its tet's";
+// The surface made again on `mesh` (the cut mesh, which carries no embedding of its own) by
+// make_embedded_surface, which checks the binding (a tet and 4 weights a vertex, tets and
+// corners in range); sizes and numbers it does not check are checked here.
+std::unique_ptr<EmbeddedSurface> read_surface(CheckpointReader& in, VolumeMesh& mesh) {
+  Embedding e;
+  e.surface.triangles = in.array<uint32_t>("the surface's triangles", kMaxEntries);
+  e.surface.corner_uvs = in.array<double>("the surface's corner uvs", kMaxEntries);
+  e.surface.positions = in.array<double>("the surface's rest positions", kMaxEntries);
+  e.element = in.array<uint32_t>("the surface's tets", kMaxEntries);
+  e.weights = in.array<double>("the surface's weights", kMaxEntries);
+  std::vector<uint8_t> cut = in.array<uint8_t>("the surface's cut triangles", kMaxEntries);
+  e.surface.source = in.text("the surface's source");
+  const size_t t = e.surface.triangle_count();
+  if (e.surface.triangles.size() % 3 != 0 || e.surface.positions.size() % 3 != 0 ||
+      (!e.surface.corner_uvs.empty() && e.surface.corner_uvs.size() != 6 * t) ||
+      (!cut.empty() && cut.size() != t))
+    in.fail("the cut body's embedded surface: array sizes that do not agree (" +
+            std::to_string(e.surface.vertex_count()) + " vertices, " + std::to_string(t) +
+            " triangles)");
+  if (!all_finite(e.surface.positions) || !all_finite(e.weights) ||
+      !all_finite(e.surface.corner_uvs))
+    in.fail("the cut body's embedded surface: a number that is not finite");
+  mesh.embedding = std::move(e);
+  std::unique_ptr<EmbeddedSurface> s;
+  try {
+    s = std::make_unique<EmbeddedSurface>(make_embedded_surface(mesh));
+  } catch (const InputError& error) {
+    in.fail(std::string("the cut body's embedded surface: ") + error.what());
   }
-  if (!all_finite(s.rest_positions) || !all_finite(s.weights) || !all_finite(s.corner_uvs))
-    return "a number that is not finite";
-  return {};
-}
-
-std::unique_ptr<EmbeddedSurface> read_surface(CheckpointReader& in, const VolumeMesh& mesh) {
-  auto s = std::make_unique<EmbeddedSurface>();
-  s->triangles = in.array<uint32_t>("the surface's triangles", kMaxEntries);
-  s->corner_uvs = in.array<double>("the surface's corner uvs", kMaxEntries);
-  s->rest_positions = in.array<double>("the surface's rest positions", kMaxEntries);
-  s->tet = in.array<uint32_t>("the surface's tets", kMaxEntries);
-  s->nodes = in.array<uint32_t>("the surface's tet nodes", kMaxEntries);
-  s->weights = in.array<double>("the surface's weights", kMaxEntries);
-  s->cut_triangles = in.array<uint8_t>("the surface's cut triangles", kMaxEntries);
-  s->extrapolated_vertices = in.pod<uint64_t>("the surface's extrapolated vertex count");
-  s->source = in.text("the surface's source");
-  if (const std::string why = surface_problem(*s, mesh); !why.empty())
-    in.fail("the cut body's embedded surface: " + why);
-  s->positions.assign(s->rest_positions.size(), 0.0);
-  s->normals.assign(s->rest_positions.size(), 0.0);
+  mesh.embedding.reset();  // the body holds the surface; a cut mesh carries none
+  s->cut_triangles = std::move(cut);
   return s;
 }
 

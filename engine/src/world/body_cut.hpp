@@ -17,18 +17,18 @@
 
 namespace tacta {
 
+// Why body `b` can never be cut as the scene set it up (its own thread, a model without
+// TACTA_MODEL_CLAIM_TOPOLOGY_EDITS); empty when it can. A scene's cut events are checked by it at
+// load, every cut again when it comes.
+std::string cut_unsupported(const SoftBody& b);
+
 // Cuts body `slot` along `triangles` (9 doubles each, m, world frame) at simulated `time` (s):
 // a new rest mesh, lumped masses, fixed nodes, model instance (rebuilt on the new mesh from the
 // parameters of the one in use, then begun from the carried-over state), node state and loads,
-// recorded nodes, probes and embedded surface. Allocates. Throws InputError (nothing changed)
-// when the body cannot be cut: a model without TACTA_MODEL_CLAIM_TOPOLOGY_EDITS, a body on its
-// own thread, a model swap waiting, and what cut_mesh refuses
-// (a planar mesh, blade numbers not 9 a triangle, a removal that would take every tet).
-// Why body `b` can never be cut as the scene set it up (its own thread, a model without
-// TACTA_MODEL_CLAIM_TOPOLOGY_EDITS); empty when it can. A scene's cut
-// events are checked by it at load, every cut again when it comes.
-std::string cut_unsupported(const SoftBody& b);
-
+// boundary motion, recorded nodes, probes and embedded surface. Allocates. Throws InputError
+// (nothing changed) when the body cannot be cut: cut_unsupported, a model swap waiting, and what
+// cut_mesh refuses (a planar mesh, blade numbers not 9 a triangle, a removal that would take
+// every tet).
 CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
                     double time);
 
@@ -55,8 +55,9 @@ ShapeModels make_shape_models(World& world, const SoftBody& b, const BodyTopolog
                               const SourceLocation& where);
 
 // Gives body `b` the new shape, its models (not begun) and node arrays (3 per node of the new
-// mesh; the loads become zero, the applied forces are the caller's); the old topology, arrays
-// and surface are kept as RetiredArrays. The embedded surface is made current from `positions`.
+// mesh; the loads become zero, the applied forces are the caller's); the old topology, arrays,
+// surface and boundary motion are kept as RetiredArrays. The embedded surface is made current
+// from `positions`.
 // Allocates; throws nothing.
 void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
                    std::vector<double> positions, std::vector<double> velocities,

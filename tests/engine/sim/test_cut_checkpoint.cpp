@@ -16,10 +16,10 @@ namespace tacta::simtest {
 namespace {
 
 // The tick, state hash, node count, positions and velocities of both runs, compared exactly.
-void expect_same_state(Simulation& straight, Simulation& resumed) {
+void expect_same_state(Simulation& straight, Simulation& resumed, const char* body = "beam") {
   ASSERT_EQ(straight.tick(), resumed.tick());
   EXPECT_EQ(straight.report().state_hash, resumed.report().state_hash);
-  const BodyHandle a = straight.body("beam"), b = resumed.body("beam");
+  const BodyHandle a = straight.body(body), b = resumed.body(body);
   EXPECT_EQ(straight.body_revision(a), resumed.body_revision(b));
   const BodyArrays x = straight.body_arrays(a), y = resumed.body_arrays(b);
   ASSERT_EQ(x.nodes, y.nodes);
@@ -83,6 +83,27 @@ TEST(CutCheckpoint, PrescribedMotionResumesBitForBitAfterCuts) {
   first.restore_state(uncut);
   first.step(80);
   expect_same_state(never_cut, first);
+}
+
+// The liver incision (an embedded fine surface, a scalpel from sim_stylus) checkpointed between
+// two of its cuts: the cut surface comes back with its cut triangles and the run goes on alike.
+TEST(CutCheckpoint, TheLiverIncisionResumesWithItsCutSurface) {
+  const SceneDesc scene = load_scene(scene_path("examples/liver_incision"), schemas(),
+                                     {"output.plots=[]", "output.frames=false"});
+  Simulation straight(scene, plugins());
+  straight.step(700);
+  ASSERT_GT(straight.body_revision(straight.body("liver")), 0u);
+  Simulation resumed(scene, plugins());
+  resumed.restore_state(checkpoint_after(scene, 606));
+  resumed.step(94);
+  expect_same_state(straight, resumed, "liver");
+  const BodyStatic& x = straight.scene_static().bodies[0];
+  const BodyStatic& y = resumed.scene_static().bodies[0];
+  ASSERT_FALSE(x.surface_triangles.empty());
+  EXPECT_EQ(x.surface_triangles, y.surface_triangles);
+  EXPECT_EQ(x.surface_rest_positions, y.surface_rest_positions);
+  EXPECT_EQ(x.surface_cut_triangles, y.surface_cut_triangles);
+  EXPECT_GT(std::count(y.surface_cut_triangles.begin(), y.surface_cut_triangles.end(), 1), 0);
 }
 
 // Rewinding: the checkpoint of the uncut beam restored into the same Simulation after it was cut,
