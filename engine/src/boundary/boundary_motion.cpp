@@ -178,6 +178,7 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::carried(std::span<const uint32_t
       m.held_.back().node = n;
     } else if (managed_at[old] >= 0) {
       m.managed_.push_back(managed_[size_t(managed_at[old])]);
+      m.managed_source_.push_back(static_cast<uint32_t>(managed_at[old]));
       Managed& node = m.managed_.back();
       node.node = n;
       node.stiffness = stiffness[n];
@@ -186,6 +187,15 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::carried(std::span<const uint32_t
   }
   m.forces_.assign(3 * size_t(mesh.node_count()), 0.0);
   return motion;
+}
+
+void BoundaryMotion::carry_state_from(const BoundaryMotion& source) noexcept {
+  for (size_t i = 0; i < managed_source_.size(); ++i) {
+    const Managed& from = source.managed_[managed_source_[i]];
+    managed_[i].saved_velocity = from.saved_velocity;
+    managed_[i].stuck = from.stuck;
+    managed_[i].anchor = from.anchor;
+  }
 }
 
 void BoundaryMotion::place(std::span<double> x, std::span<double> v, double time) const noexcept {

@@ -59,6 +59,10 @@ class BoundaryMotion {
   std::unique_ptr<BoundaryMotion> carried(std::span<const uint32_t> node_source,
                                           const VolumeMesh& mesh,
                                           std::span<const double> masses) const;
+  // A carried motion takes the state `source` (the motion it was carried from) has now: the
+  // managed nodes' saved velocities, stuck flags and anchors. For a cut prepared off the tick and
+  // installed ticks later. Allocates nothing.
+  void carry_state_from(const BoundaryMotion& source) noexcept;
   // Whether after_step needs the model's internal forces (some node has free components).
   bool needs_internal_forces() const noexcept { return !managed_.empty(); }
   size_t held_count() const noexcept { return held_.size(); }
@@ -107,6 +111,7 @@ class BoundaryMotion {
   std::vector<Held> held_;
   std::vector<Managed> managed_;
   std::vector<Plate> plates_;
+  std::vector<uint32_t> managed_source_;  // carried: per managed node, its source's entry
   std::vector<double> forces_;   // 3 per node, N: the model's internal forces (sized at load)
   double alpha_ = 0, beta_ = 0;  // Rayleigh damping of the body's material
   double lambda_ = 0, mu_ = 0;   // its Lame parameters, Pa (the managed nodes' stiffness bound)

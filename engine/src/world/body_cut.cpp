@@ -89,12 +89,17 @@ void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const VolumeMesh& mes
   for (int c = 0; c < 4; ++c) probe.nodes[c] = n[c], probe.weights[c] = w[c];
 }
 
-// Copies 3 values per node from the old array through node_source.
-std::vector<double> carried(const std::vector<double>& old, const TopologyEdit& edit) {
-  std::vector<double> out(3 * edit.node_source.size());
-  for (size_t n = 0; n < edit.node_source.size(); ++n)
-    std::copy_n(&old[3 * size_t{edit.node_source[n]}], 3, &out[3 * n]);
-  return out;
+// After exchange_shape: the old instances are freed (before the topology they were made on) and
+// the old topology, positions, velocities, surface and boundary motion kept.
+void keep_retired(const SoftBody& b, NewShape& old, ShapeModels& old_models, ShapeArrays& arrays) {
+  old_models = {};
+  RetiredArrays retired;
+  retired.topology = std::move(old.topology);
+  retired.positions = std::move(arrays.positions);
+  retired.velocities = std::move(arrays.velocities);
+  retired.surface = std::move(old.surface);
+  retired.boundary = std::move(old.boundary);
+  b.shape.retired.push_back(std::move(retired));
 }
 
 }  // namespace
@@ -110,42 +115,45 @@ std::string cut_unsupported(const SoftBody& b) {
   return {};
 }
 
-CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
-                    double time) {
+PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
+                        std::span<const double> positions) {
   const SoftBody b = world.body(slot);
   const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
   for (double v : triangles)
     if (!std::isfinite(v)) throw InputError(where, "cut: a blade corner is not a finite number");
   if (const std::string why = refusal(b); !why.empty()) throw InputError(where, "cut: " + why);
 
-  BodyTopology& old = *b.shape.topology;
+  const BodyTopology& old = *b.shape.topology;
   CutResult result =
-      cut_mesh(old.mesh, b.shape.cut_triangles, b.nodes.positions, triangles, mode, b.shape.crack);
+      cut_mesh(old.mesh, b.shape.cut_triangles, positions, triangles, mode, b.shape.crack);
   if (!result.refused.empty()) throw InputError(where, "cut: " + result.refused);
-  CutSummary summary;
+  PreparedCut cut;
+  cut.slot = slot;
+  cut.mode = mode;
+  cut.prepared_on = &old;
+  cut.model_then = b.model.instance.get();
+  cut.next_swap_then = b.model.next_swap;
   if (!result.edit.changed()) {
-    b.shape.crack = std::move(result.crack);
-    ++b.shape.cuts.cuts_missed;
-    summary.revision = b.shape.cuts.revision;
-    summary.tets = old.mesh.tet_count();
-    summary.nodes = old.mesh.node_count();
-    return summary;
+    cut.crack = std::move(result.crack);
+    return cut;
   }
   TopologyEdit& edit = result.edit;
-  const double haptic_dt = 1.0 / world.scene().clock.haptic_rate_hz;
-  const double energy_before =
-      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
+  cut.changed = true;
+  cut.tets_removed = edit.tets_removed;
+  cut.nodes_removed = edit.nodes_removed;
+  cut.nodes_added = edit.nodes_added;
+  cut.faces_separated = edit.faces_separated;
 
   // The new shape, and the models rebuilt on it (throws before anything is replaced).
-  NewShape shape;
+  NewShape& shape = cut.shape;
   shape.topology = std::make_unique<BodyTopology>();
   BodyTopology& topology = *shape.topology;
   topology.material = old.material;
   topology.load = old.load;
   topology.masses = lumped_masses(edit.mesh, old.material.density);
-  topology.fixed.resize(edit.node_source.size());
-  for (size_t n = 0; n < edit.node_source.size(); ++n)
-    topology.fixed[n] = old.fixed[edit.node_source[n]];
+  const size_t n = edit.node_source.size();
+  topology.fixed.resize(n);
+  for (size_t i = 0; i < n; ++i) topology.fixed[i] = old.fixed[edit.node_source[i]];
   shape.cut_triangles = std::move(edit.cut_triangle);
   shape.crack = std::move(result.crack);
   if (b.surface.mesh) {
@@ -157,61 +165,108 @@ CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles
   std::vector<int64_t> new_tet_of_old(old.mesh.tet_count(), -1);
   for (size_t t = 0; t < edit.tet_source.size(); ++t)
     new_tet_of_old[edit.tet_source[t]] = int64_t(t);
-  const std::vector<int64_t> copy = first_copies(edit, old.mesh.node_count());
+  cut.first_copy = first_copies(edit, old.mesh.node_count());
   topology.mesh = std::move(edit.mesh);
   topology.view = make_view(topology.mesh);
-  shape.loaded_node.resize(edit.node_source.size());
-  for (size_t n = 0; n < edit.node_source.size(); ++n)
-    shape.loaded_node[n] = b.shape.loaded_node.empty() ? edit.node_source[n]
-                                                       : b.shape.loaded_node[edit.node_source[n]];
+  shape.loaded_node.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    shape.loaded_node[i] = b.shape.loaded_node.empty() ? edit.node_source[i]
+                                                       : b.shape.loaded_node[edit.node_source[i]];
   if (b.constraints.boundary)
     shape.boundary =
         b.constraints.boundary->carried(edit.node_source, topology.mesh, topology.masses);
-  ShapeModels models = make_shape_models(world, b, topology, where);
+  cut.models = make_shape_models(world, b, topology, where);
 
-  // From here on nothing throws: the body takes the new arrays.
   const VolumeMesh& mesh = topology.mesh;
-  for (uint32_t& n : b.recording.recorded_nodes) n = carried_node(n, copy, old.mesh, mesh);
+  cut.recorded_nodes = b.recording.recorded_nodes;
+  for (uint32_t& node : cut.recorded_nodes)
+    node = carried_node(node, cut.first_copy, old.mesh, mesh);
   if (b.recording.probe_node)
-    b.recording.probe_node = carried_node(*b.recording.probe_node, copy, old.mesh, mesh);
-  for (Probe& p : b.recording.probes) carry_probe(p, old.mesh, mesh, edit, new_tet_of_old);
-  const size_t n = edit.node_source.size();
-  std::vector<double> applied;
-  if (!b.loads.applied_forces.empty()) {
-    // A force on a split node stays on its first copy, so the total applied stays the same.
-    applied.assign(3 * n, 0.0);
-    for (size_t o = 0; o < copy.size(); ++o)
-      if (copy[o] >= 0)
-        std::copy_n(&b.loads.applied_forces[3 * o], 3, &applied[3 * size_t(copy[o])]);
-  }
-  const double removed_mass = [&] {
-    double before = 0, after = 0;
-    for (double m : old.masses) before += m;
-    for (double m : topology.masses) after += m;
-    return before - after;
-  }();
-  install_shape(b, std::move(shape), std::move(models), carried(b.nodes.positions, edit),
-                carried(b.nodes.velocities, edit), carried(b.nodes.step_start, edit));
-  b.loads.applied_forces = std::move(applied);
+    cut.probe_node = carried_node(*b.recording.probe_node, cut.first_copy, old.mesh, mesh);
+  cut.probes = b.recording.probes;
+  for (Probe& p : cut.probes) carry_probe(p, old.mesh, mesh, edit, new_tet_of_old);
+  ShapeArrays& a = cut.arrays;
+  for (std::vector<double>* v :
+       {&a.positions, &a.velocities, &a.step_start, &a.external_forces, &a.contact_forces})
+    v->assign(3 * n, 0.0);
+  if (!b.loads.applied_forces.empty()) a.applied_forces.assign(3 * n, 0.0);
+  double mass_before = 0, mass_after = 0;
+  for (double m : old.masses) mass_before += m;
+  for (double m : topology.masses) mass_after += m;
+  cut.removed_mass_kg = mass_before - mass_after;
+  cut.node_source = std::move(edit.node_source);
+  return cut;
+}
 
+bool still_fits(const World& world, const PreparedCut& cut) noexcept {
+  const SoftBody b = world.body(cut.slot);
+  return b.shape.topology.get() == cut.prepared_on && b.model.instance.get() == cut.model_then &&
+         b.model.next_swap == cut.next_swap_then;
+}
+
+CutSummary apply_cut(World& world, PreparedCut& cut, double time) noexcept {
+  const SoftBody b = world.body(cut.slot);
   CutTotals& totals = b.shape.cuts;
+  CutSummary summary;
+  if (!cut.changed) {
+    std::swap(b.shape.crack, cut.crack);
+    ++totals.cuts_missed;
+    summary.revision = totals.revision;
+    summary.tets = b.shape.topology->mesh.tet_count();
+    summary.nodes = b.node_count();
+    return summary;
+  }
+  const double energy_before =
+      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
+  // The state now, carried through node_source; a force on a split node stays on its first copy,
+  // so the total applied stays the same.
+  ShapeArrays& a = cut.arrays;
+  for (size_t n = 0; n < cut.node_source.size(); ++n) {
+    const size_t from = 3 * size_t{cut.node_source[n]};
+    std::copy_n(&b.nodes.positions[from], 3, &a.positions[3 * n]);
+    std::copy_n(&b.nodes.velocities[from], 3, &a.velocities[3 * n]);
+    std::copy_n(&b.nodes.step_start[from], 3, &a.step_start[3 * n]);
+  }
+  if (!a.applied_forces.empty() && b.loads.applied_forces.size() == 3 * cut.first_copy.size())
+    for (size_t o = 0; o < cut.first_copy.size(); ++o)
+      if (cut.first_copy[o] >= 0)
+        std::copy_n(&b.loads.applied_forces[3 * o], 3,
+                    &a.applied_forces[3 * size_t(cut.first_copy[o])]);
+  if (cut.shape.boundary) cut.shape.boundary->carry_state_from(*b.constraints.boundary);
+  std::swap(b.recording.recorded_nodes, cut.recorded_nodes);
+  std::swap(b.recording.probe_node, cut.probe_node);
+  std::swap(b.recording.probes, cut.probes);
+  exchange_shape(b, cut.shape, cut.models, cut.arrays);
+
   ++totals.revision;
-  totals.tets_removed += result.edit.tets_removed;
-  totals.nodes_removed += result.edit.nodes_removed;
-  totals.nodes_added += result.edit.nodes_added;
-  totals.faces_separated += result.edit.faces_separated;
-  totals.removed_mass_kg += mode == CutMode::kRemove ? removed_mass : 0.0;
-  const double energy_after = begin_model(b, time, haptic_dt);
+  totals.tets_removed += cut.tets_removed;
+  totals.nodes_removed += cut.nodes_removed;
+  totals.nodes_added += cut.nodes_added;
+  totals.faces_separated += cut.faces_separated;
+  totals.removed_mass_kg += cut.mode == CutMode::kRemove ? cut.removed_mass_kg : 0.0;
+  const double energy_after = begin_model(b, time, 1.0 / world.scene().clock.haptic_rate_hz);
   totals.removed_energy_J += energy_before - energy_after;
 
   summary.changed = true;
   summary.revision = totals.revision;
-  summary.tets_removed = result.edit.tets_removed;
-  summary.nodes_removed = result.edit.nodes_removed;
-  summary.nodes_added = result.edit.nodes_added;
-  summary.faces_separated = result.edit.faces_separated;
+  summary.tets_removed = cut.tets_removed;
+  summary.nodes_removed = cut.nodes_removed;
+  summary.nodes_added = cut.nodes_added;
+  summary.faces_separated = cut.faces_separated;
   summary.tets = b.shape.topology->mesh.tet_count();
   summary.nodes = b.node_count();
+  return summary;
+}
+
+void retire_cut(World& world, PreparedCut& cut) {
+  if (cut.changed) keep_retired(world.body(cut.slot), cut.shape, cut.models, cut.arrays);
+}
+
+CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
+                    double time) {
+  PreparedCut cut = prepare_cut(world, slot, triangles, mode, world.body(slot).nodes.positions);
+  const CutSummary summary = apply_cut(world, cut, time);
+  retire_cut(world, cut);
   return summary;
 }
 
@@ -222,34 +277,45 @@ ShapeModels make_shape_models(World& world, const SoftBody& b, const BodyTopolog
   ShapeModels models;
   models.instance =
       world.make_model(b.model.instance->name(), b.model.instance->params(), topology, dt, at);
+  models.future_swaps.resize(b.model.swaps.size());  // null for the swaps already made
   for (size_t s = b.model.next_swap; s < b.model.swaps.size(); ++s)
-    models.future_swaps.push_back(world.make_model(
-        b.model.swaps[s].model->name(), b.model.swaps[s].model->params(), topology, dt, at));
+    models.future_swaps[s] = world.make_model(b.model.swaps[s].model->name(),
+                                              b.model.swaps[s].model->params(), topology, dt, at);
   return models;
+}
+
+void exchange_shape(const SoftBody& b, NewShape& shape, ShapeModels& models,
+                    ShapeArrays& arrays) noexcept {
+  std::swap(b.nodes.positions, arrays.positions);
+  std::swap(b.nodes.velocities, arrays.velocities);
+  std::swap(b.nodes.step_start, arrays.step_start);
+  std::swap(b.loads.external_forces, arrays.external_forces);
+  std::swap(b.loads.contact_forces, arrays.contact_forces);
+  std::swap(b.loads.applied_forces, arrays.applied_forces);
+  // Swaps still to come take the instances made on the new mesh; those made (outgoing) leave.
+  for (size_t s = 0; s < b.model.swaps.size(); ++s)
+    std::swap(b.model.swaps[s].model, models.future_swaps[s]);
+  std::swap(b.model.instance, models.instance);
+  std::swap(b.shape.topology, shape.topology);
+  std::swap(b.surface.mesh, shape.surface);
+  std::swap(b.constraints.boundary, shape.boundary);
+  std::swap(b.shape.cut_triangles, shape.cut_triangles);
+  std::swap(b.shape.crack, shape.crack);
+  std::swap(b.shape.loaded_node, shape.loaded_node);
+  if (b.surface.mesh) update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
 }
 
 void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
                    std::vector<double> positions, std::vector<double> velocities,
                    std::vector<double> step_start) {
-  RetiredArrays retired;
-  retired.positions = std::exchange(b.nodes.positions, std::move(positions));
-  retired.velocities = std::exchange(b.nodes.velocities, std::move(velocities));
-  b.nodes.step_start = std::move(step_start);
-  b.loads.external_forces.assign(b.nodes.positions.size(), 0.0);
-  b.loads.contact_forces.assign(b.nodes.positions.size(), 0.0);
-  b.loads.applied_forces.clear();
-  for (size_t s = 0; s < b.model.next_swap; ++s) b.model.swaps[s].model.reset();  // outgoing
-  for (size_t s = b.model.next_swap, k = 0; s < b.model.swaps.size(); ++s, ++k)
-    b.model.swaps[s].model = std::move(models.future_swaps[k]);
-  b.model.instance = std::move(models.instance);  // the old instance goes before its topology
-  retired.topology = std::exchange(b.shape.topology, std::move(shape.topology));
-  retired.surface = std::exchange(b.surface.mesh, std::move(shape.surface));
-  retired.boundary = std::exchange(b.constraints.boundary, std::move(shape.boundary));
-  b.shape.retired.push_back(std::move(retired));
-  b.shape.cut_triangles = std::move(shape.cut_triangles);
-  b.shape.crack = std::move(shape.crack);
-  b.shape.loaded_node = std::move(shape.loaded_node);
-  if (b.surface.mesh) update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
+  ShapeArrays arrays;
+  arrays.external_forces.assign(positions.size(), 0.0);
+  arrays.contact_forces.assign(positions.size(), 0.0);
+  arrays.positions = std::move(positions);
+  arrays.velocities = std::move(velocities);
+  arrays.step_start = std::move(step_start);
+  exchange_shape(b, shape, models, arrays);
+  keep_retired(b, shape, models, arrays);
 }
 
 }  // namespace tacta

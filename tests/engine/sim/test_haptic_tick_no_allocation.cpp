@@ -2,11 +2,14 @@
 // god-object proxy's surface queries and (second case) collision detection and response, over
 // the shipped liver palpation scene through its first press. malloc and friends are interposed
 // in this executable (tests/support/allocation_counter.hpp); skipped under the sanitizers.
-// Last case: the ticks after a cut (made between ticks, as Simulation::cut, scene cut events and
-// blades make it) allocate nothing either.
+// Last cases: the ticks after a cut (made between ticks, as Simulation::cut, scene cut events and
+// blades make it) allocate nothing either, and installing a cut prepared off the tick
+// (apply_cut) allocates nothing on any model that takes topology edits.
 #include <span>
+#include <thread>
 
 #include "allocation_counter.hpp"
+#include "cut_beam_scene.hpp"
 #include "sim_test_support.hpp"
 #include "world/body_cut.hpp"
 
@@ -59,8 +62,7 @@ TEST(HapticTickAllocations, LiverPalpationAsShipped) {
   EXPECT_FALSE(run.frozen);
   // The counted ticks went through the sliced refit and the embedded patch (the default).
   EXPECT_GT(run.proxy_slices, 0u);
-  std::printf("%llu slices, %llu whole refits\n",
-              static_cast<unsigned long long>(run.proxy_slices),
+  std::printf("%llu slices, %llu whole refits\n", static_cast<unsigned long long>(run.proxy_slices),
               static_cast<unsigned long long>(run.proxy_whole_refits));
 }
 
@@ -189,6 +191,50 @@ TEST(HapticTickAllocations, TicksAfterACut) {
   EXPECT_EQ(h.world.body(0).shape.cuts.revision, 2u);
   EXPECT_FALSE(h.world.body(0).fault.frozen);
 }
+
+// A cut prepared on another thread from a copy of the positions taken at a tick boundary, while
+// the ticks go on, then installed at a later boundary by apply_cut: installing it (the state
+// carried, the shape exchanged, the new model begun) allocates nothing, on every model that takes
+// topology edits, for a beam with prescribed and sliding nodes cut through its sliding face.
+class PreparedCutAllocations : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PreparedCutAllocations, ApplyingItAllocatesNothing) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
+  const SceneDesc scene = scene_from_text(beam_scene(GetParam(), kPrescribedBeam), "beam");
+  LoopHarness h(scene, 300);
+  for (int i = 0; i < 50; ++i) h.tick();
+  const std::vector<double> positions = h.world.body(0).nodes.positions;
+  const std::vector<double> blade = plane_x(0.05);
+  PreparedCut cut;
+  std::thread worker([&] { cut = prepare_cut(h.world, 0, blade, CutMode::kSeparate, positions); });
+  for (int i = 0; i < 20; ++i) h.tick();  // the ticks go on meanwhile: the state moves
+  worker.join();
+  ASSERT_TRUE(cut.changed);
+  ASSERT_TRUE(still_fits(h.world, cut));
+  const std::vector<double> now = h.world.body(0).nodes.positions;
+  ASSERT_NE(now, positions);
+  g_allocations = 0;
+  g_counting = true;
+  const CutSummary summary = apply_cut(h.world, cut, static_cast<double>(h.next) * h.dt);
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0) << "heap allocations installing the prepared cut";
+  EXPECT_EQ(summary.revision, 1u);
+  EXPECT_EQ(summary.nodes_added, 9u) << "the 3 x 3 nodes of the face x = 0.05 copied";
+  EXPECT_FALSE(still_fits(h.world, cut)) << "the body has moved on to the new mesh";
+  const std::vector<double>& carried = h.world.body(0).nodes.positions;
+  ASSERT_EQ(carried.size(), 3 * cut.node_source.size());
+  for (size_t n = 0; n < cut.node_source.size(); ++n)  // the state at the apply, not the prepare
+    for (size_t a = 0; a < 3; ++a)
+      ASSERT_EQ(carried[3 * n + a], now[3 * size_t{cut.node_source[n]} + a]) << "node " << n;
+  retire_cut(h.world, cut);
+  h.collision.replace_surface(0);
+  for (int i = 0; i < 50; ++i) h.tick();
+  EXPECT_FALSE(h.world.body(0).fault.frozen);
+}
+
+INSTANTIATE_TEST_SUITE_P(ModelsTakingEdits, PreparedCutAllocations,
+                         ::testing::Values("corotational_fem", "hyperelastic", "tensor_mass",
+                                           "mass_spring", "vbd"));
 
 }  // namespace
 }  // namespace tacta::simtest
