@@ -17,6 +17,7 @@ HapticLoop::HapticLoop(World& world, TripleBuffer<Snapshot>& snapshots, size_t e
   record_interval_s_ = world.scene().output.record_interval_s;
   faults_.reserve(64 + world.body_count() + world.device_count());
   body_status_.resize(world.body_capacity());  // bodies added while running count here too
+  reshaped_.resize(world.body_capacity());
   device_status_.resize(world.device_count());
   reserve(expected_ticks, duration_s);
 }
@@ -63,15 +64,33 @@ const char* HapticLoop::haptic_part_name(int part) noexcept {
   return part >= 0 && part < kHapticPartCount ? names[part] : "?";
 }
 
-BodySnapshot HapticLoop::body_prototype(const SoftBody& b) {
+BodySnapshot HapticLoop::sized_entry(size_t nodes, bool stress, size_t surface_vertices,
+                                     const std::string& model, uint32_t revision) {
   BodySnapshot bs;
+  bs.positions.assign(3 * nodes, 0.0);
+  bs.velocities.assign(3 * nodes, 0.0);
+  if (stress) bs.von_mises.assign(nodes, 0.0);
+  bs.surface_positions.assign(3 * surface_vertices, 0.0);
+  bs.model = model;
+  bs.model.reserve(64);  // a swap copies the new name without reallocating
+  bs.revision = revision;
+  return bs;
+}
+
+BodySnapshot HapticLoop::body_prototype(const SoftBody& b) {
+  BodySnapshot bs = sized_entry(b.node_count(), b.model.instance->has_stress(),
+                                b.surface.mesh ? b.surface.mesh->positions.size() / 3 : 0,
+                                b.model.instance->name(), b.shape.cuts.revision);
   bs.positions = b.nodes.positions;
   bs.velocities = b.nodes.velocities;
-  if (b.model.instance->has_stress()) bs.von_mises.assign(b.node_count(), 0.0);
   if (b.surface.mesh) bs.surface_positions = b.surface.mesh->positions;
-  bs.model = b.model.instance->name();
-  bs.model.reserve(64);  // a swap copies the new name without reallocating
   return bs;
+}
+
+void HapticLoop::take_reshaped(size_t slot, std::array<BodySnapshot, 3>& entries) noexcept {
+  if (slot >= reshaped_.size()) return;
+  std::swap(reshaped_[slot].entries, entries);
+  reshaped_[slot].used = 0;
 }
 
 Snapshot HapticLoop::make_prototype(World& world) {
@@ -229,6 +248,10 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
     BodySnapshot& bs = s.bodies[i];
     bs.present = b.present();
     if (b.presence.state == BodyPresence::kPending) continue;
+    // An entry of an older revision (a cut whose entries have not reached this slot) keeps what
+    // it drew: its arrays follow that revision's description.
+    if (bs.revision != b.shape.cuts.revision || bs.positions.size() != b.nodes.positions.size())
+      continue;
     std::copy(b.nodes.positions.begin(), b.nodes.positions.end(), bs.positions.begin());
     std::copy(b.nodes.velocities.begin(), b.nodes.velocities.end(), bs.velocities.begin());
     if (b.surface.mesh)
@@ -263,6 +286,12 @@ void HapticLoop::capture(Snapshot& s, double time) const noexcept {
 
 void HapticLoop::publish(double time) noexcept {
   Snapshot& s = snapshots_.write_slot();
+  for (size_t i = 0; i < s.bodies.size() && i < reshaped_.size(); ++i) {
+    Reshaped& r = reshaped_[i];
+    if (r.used < r.entries.size() && s.bodies[i].revision != r.entries[r.used].revision &&
+        r.entries[r.used].revision == world_.body(i).shape.cuts.revision)
+      std::swap(s.bodies[i], r.entries[r.used++]);
+  }
   capture(s, time);
   for (size_t i = 0; i < s.bodies.size(); ++i) {
     const BodySnapshot& bs = s.bodies[i];

@@ -80,8 +80,17 @@ class HapticLoop final : public HapticTask, private TickEvents {
   const Recorder<ProbeRow>& probes() const { return probes_; }
   const Recorder<EnergyRow>& energy() const { return energy_; }
   const Recorder<FaultRecord>& faults() const { return faults_; }
+  // A cut installed at a tick boundary while the render task runs: body `slot`'s snapshot entries
+  // for its new revision, one per triple-buffer slot, built off the tick. publish() exchanges one
+  // into each slot it fills that still follows an older revision; `entries` gets back what was
+  // pending before (to be freed off the tick). Allocates nothing.
+  void take_reshaped(size_t slot, std::array<BodySnapshot, 3>& entries) noexcept;
   // A prototype snapshot with every buffer sized, for building the triple buffer.
   static BodySnapshot body_prototype(const SoftBody& body);  // one body's entry, sized for it
+  // An entry sized for `nodes` nodes, von Mises values when `stress`, `surface_vertices` embedded
+  // surface vertices, at mesh `revision` (zeros; `model` reserved for a swap's longer name).
+  static BodySnapshot sized_entry(size_t nodes, bool stress, size_t surface_vertices,
+                                  const std::string& model, uint32_t revision);
   static Snapshot make_prototype(World& world);
 
   // Where a tick's time goes (ms per tick, every tick), for report.json's tick_breakdown_ms.
@@ -95,6 +104,12 @@ class HapticLoop final : public HapticTask, private TickEvents {
 
  private:
   void record(double time) noexcept;
+  // Snapshot entries waiting for the slots publish() fills next (take_reshaped), per body slot.
+  struct Reshaped {
+    std::array<BodySnapshot, 3> entries;
+    size_t used = 3;  // entries already exchanged into a slot
+  };
+  std::vector<Reshaped> reshaped_;
   // TickEvents: counts each step's and device's status bits; on a body fault marks the body
   // frozen (its state is already back at the last trusted one) and records it, as a device's.
   void stepped(size_t body, uint32_t bits, double time) noexcept override;

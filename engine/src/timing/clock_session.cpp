@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "systems/device_surface_feed.hpp"
+#include "timing/body_descriptions.hpp"
 
 namespace tacta {
 
@@ -35,31 +36,6 @@ class OffsetTask final : public HapticTask {
   double dt_;
   BetweenTicks* between_;
 };
-
-}  // namespace
-
-namespace {
-
-BodyStatic describe_body(const SoftBody& b) {
-  const VolumeMesh& m = b.shape.topology->mesh;
-  BodyStatic bs;
-  bs.name = b.info.name;
-  bs.rest_positions = m.positions;
-  bs.triangles = m.triangles;
-  bs.tets = m.tets;
-  bs.quads = m.quads;
-  bs.dimension = m.dimension;
-  bs.revision = b.shape.cuts.revision;
-  bs.cut_triangles = b.shape.cut_triangles;
-  if (b.surface.mesh) {
-    bs.surface_rest_positions = b.surface.mesh->rest_positions;
-    bs.surface_triangles = b.surface.mesh->triangles;
-    bs.surface_cut_triangles = b.surface.mesh->cut_triangles;
-  }
-  for (uint32_t n = 0; n < b.shape.topology->fixed.size(); ++n)
-    if (b.shape.topology->fixed[n]) bs.fixed_nodes.push_back(n);
-  return bs;
-}
 
 }  // namespace
 
@@ -97,7 +73,8 @@ ClockSession::ClockSession(World& world, HapticInteraction* haptics, CollisionRe
       scene_static_(describe_scene(world)),
       snapshots_(HapticLoop::make_prototype(world)),
       loop_(world, snapshots_, 0, 0.0),
-      render_(snapshots_, scene_static_),
+      chains_(world.body_capacity()),
+      render_(snapshots_, scene_static_, chains_),
       surface_feed_(make_device_surface_feed(world)) {
   loop_.set_haptics(haptics);
   loop_.set_response(response);
@@ -122,6 +99,52 @@ void ClockSession::body_reshaped(size_t slot) {
   scene_static_.bodies[slot] = describe_body(b);
   const BodySnapshot prototype = HapticLoop::body_prototype(b);
   snapshots_.for_each_slot([&](Snapshot& s) { s.bodies[slot] = prototype; });
+}
+
+PreparedPicture ClockSession::prepare_picture(const PreparedCut& cut) const {
+  PreparedPicture p;
+  p.slot = cut.slot;
+  if (!cut.changed) return p;
+  const SoftBody b = world_.body(cut.slot);
+  p.description = std::make_unique<DescribedRevision>();
+  p.description->body = describe_prepared(b, cut);
+  const size_t surface_vertices = cut.shape.surface ? cut.shape.surface->positions.size() / 3 : 0;
+  for (BodySnapshot& e : p.entries)
+    e = HapticLoop::sized_entry(cut.node_source.size(), cut.models.instance->has_stress(),
+                                surface_vertices, cut.models.instance->name(),
+                                p.description->body.revision);
+  return p;
+}
+
+void ClockSession::reshaped_at_tick(PreparedPicture& picture) noexcept {
+  if (!picture.description) return;
+  chains_.publish(picture.slot, std::move(picture.description));
+  loop_.take_reshaped(picture.slot, picture.entries);
+}
+
+void ClockSession::follow_reshaped_bodies() {
+  for (size_t i = 0; i < scene_static_.bodies.size(); ++i) {
+    const uint32_t revision = world_.body(i).shape.cuts.revision;
+    if (scene_static_.bodies[i].revision == revision) continue;
+    if (const BodyStatic* d = chains_.find(i, revision)) scene_static_.bodies[i] = *d;
+  }
+}
+
+const SceneStatic& ObserverRenderTask::follow(const Snapshot& s) {
+  bool behind = false;  // some snapshot entry follows another revision than the description
+  for (size_t i = 0; i < s.bodies.size() && i < scene_.bodies.size(); ++i)
+    behind = behind || s.bodies[i].revision != scene_.bodies[i].revision;
+  if (!behind) return scene_;
+  if (view_.bodies.size() != scene_.bodies.size()) view_ = scene_;
+  for (size_t i = 0; i < s.bodies.size() && i < view_.bodies.size(); ++i) {
+    const uint32_t want = s.bodies[i].revision;
+    if (view_.bodies[i].revision == want) continue;
+    if (scene_.bodies[i].revision == want)
+      view_.bodies[i] = scene_.bodies[i];
+    else if (const BodyStatic* d = chains_.find(i, want))
+      view_.bodies[i] = *d;
+  }
+  return view_;
 }
 
 void ClockSession::reserve(uint64_t ticks) {
@@ -184,6 +207,7 @@ ScheduleResult ClockSession::run(const ScheduleOptions& options) {
   start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
   OffsetTask task(loop_, tick_, dt_, between_);
   last_run_ = run_schedule(task, render_, options);
+  follow_reshaped_bodies();
   tick_ += last_run_.ticks;
   frames_ += last_run_.frames;
   // Stopping the workers finishes and keeps a step still in flight, so the run's final state

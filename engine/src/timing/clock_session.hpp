@@ -3,6 +3,7 @@
 // that step(), advance_to() and run() all continue one timeline from t = 0.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@
 #include "tacta/sim/scheduler.hpp"
 #include "tacta/sim/snapshot.hpp"
 #include "tacta/sim/triple_buffer.hpp"
+#include "timing/body_descriptions.hpp"
 #include "world/world.hpp"
 
 namespace tacta {
@@ -21,20 +23,37 @@ namespace tacta {
 class CheckpointWriter;
 class CheckpointReader;
 
-// Hands the newest snapshot to the observers at each frame (frames, VTK, a window, Python).
+// Hands the newest snapshot to the observers at each frame (frames, VTK, a window, Python), with
+// the scene description its arrays follow.
 class ObserverRenderTask final : public RenderTask {
  public:
-  ObserverRenderTask(TripleBuffer<Snapshot>& snapshots, const SceneStatic& scene)
-      : snapshots_(snapshots), scene_(scene) {}
+  ObserverRenderTask(TripleBuffer<Snapshot>& snapshots, const SceneStatic& scene,
+                     const DescriptionChains& chains)
+      : snapshots_(snapshots), scene_(scene), chains_(chains) {}
   void frame(double /*wall_time*/) override {
     if (!snapshots_.acquire()) return;
-    for (FrameObserver* o : observers) o->on_frame(scene_, snapshots_.read_slot());
+    const Snapshot& s = snapshots_.read_slot();
+    const SceneStatic& scene = follow(s);
+    for (FrameObserver* o : observers) o->on_frame(scene, s);
   }
   std::vector<FrameObserver*> observers;  // changed only between steps and runs
 
  private:
+  // The session's description, or where a body's entry follows another revision (a cut installed
+  // while this thread draws, whose description the session's takes only after the run) a copy
+  // with that revision's description from the chains. Allocates only when a revision moves.
+  const SceneStatic& follow(const Snapshot& s);
   TripleBuffer<Snapshot>& snapshots_;
-  const SceneStatic& scene_;
+  const SceneStatic& scene_;  // not changed while a run's render thread reads it
+  const DescriptionChains& chains_;
+  SceneStatic view_;
+};
+
+// The render side of a cut prepared off the tick (ClockSession::prepare_picture).
+struct PreparedPicture {
+  size_t slot = 0;
+  std::unique_ptr<DescribedRevision> description;  // null: the cut changed nothing
+  std::array<BodySnapshot, 3> entries;             // one per snapshot slot
 };
 
 // Work the thread that runs lockstep ticks does between two of them (Simulation's cut events).
@@ -75,6 +94,18 @@ class ClockSession {
   // again for its new mesh (allocates); observers see the new revision from the next frame.
   void body_reshaped(size_t slot);
 
+  // A cut's picture made off the tick (allocates; any thread, the body's mesh unchanged since
+  // prepare_cut), then installed at the tick boundary where apply_cut installs the cut (allocates
+  // nothing): the render task draws the new revision from the first snapshot that follows it.
+  // `picture` gets back what it replaced, to be freed off the tick.
+  PreparedPicture prepare_picture(const PreparedCut& cut) const;
+  void reshaped_at_tick(PreparedPicture& picture) noexcept;
+  // After a run that installed cuts at tick boundaries: the session's description takes their
+  // revisions (allocates; the render thread has stopped).
+  void follow_reshaped_bodies();
+  // The task that hands snapshots to the observers (the render thread's, in a realtime run).
+  RenderTask& render_task() noexcept { return render_; }
+
   // What runs between lockstep ticks (not owned; null: nothing). A realtime run never calls it:
   // its ticks run on a thread that must not allocate (Simulation::run refuses such a run).
   void set_between_ticks(BetweenTicks* work) noexcept { between_ = work; }
@@ -108,6 +139,7 @@ class ClockSession {
   SceneStatic scene_static_;
   TripleBuffer<Snapshot> snapshots_;
   HapticLoop loop_;
+  DescriptionChains chains_;  // per body slot: revisions installed at tick boundaries
   ObserverRenderTask render_;
   std::unique_ptr<FrameObserver> surface_feed_;  // remote devices' surface, when any
   TickStatus step_status_;

@@ -16,7 +16,8 @@ struct BodySnapshot {
   std::vector<double> surface_positions;  // 3 per embedded surface vertex, m (empty: none)
   std::string model;  // model name at the time of the snapshot (set at swaps only)
   bool frozen = false;
-  bool present = true;  // false while an added body waits for its time, and after it was removed
+  bool present = true;    // false while an added body waits for its time, and after it was removed
+  uint32_t revision = 0;  // the mesh revision (BodyStatic::revision) the arrays above follow
   double kinetic_J = 0, elastic_J = 0, max_displacement_m = 0;
 };
 
