@@ -16,14 +16,6 @@
 namespace tacta {
 
 namespace {
-// Resized with room for a quarter more: a cut adds a few vertices at a time, and growing past
-// the capacity moves the whole buffer to fresh pages (milliseconds between two ticks).
-template <class T>
-void resize_with_room(std::vector<T>& v, size_t count) {
-  if (count > v.capacity()) v.reserve(count + count / 4);
-  v.resize(count);
-}
-
 constexpr double kMaxThicknessPerEdge = 0.5;  // collision.thickness <= this x the mean surface edge
 constexpr double kMarginTargetPerEdge = 0.25;  // proxy query margin kept below this x mean edge,
 constexpr double kMarginCapPerEdge = 3.0;      // and never past this (whole refit)
@@ -242,33 +234,47 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
             proxy->api.overlap_shape != nullptr;
 }
 
+// 1 per node, 1/kg (0: fixed, or moved by its own thread).
+void node_inverse_masses(const BodyTopology& topology, bool own_thread, std::vector<double>& inv) {
+  inv.resize(topology.masses.size());
+  // A body stepping on its own thread has its state replaced at each refresh, so a correction
+  // made here would be lost: for the response it is a moving obstacle (infinite mass).
+  for (size_t n = 0; n < inv.size(); ++n)
+    inv[n] =
+        own_thread || topology.fixed[n] || topology.masses[n] <= 0 ? 0.0 : 1.0 / topology.masses[n];
+}
+
+tacta_collision_surface CollisionContext::node_surface(
+    size_t body, const BodyTopology& topology, double* start, double* end, double* velocities,
+    const std::vector<double>& inverse_masses) const {
+  tacta_collision_surface s{};
+  s.body_id = static_cast<uint32_t>(body);
+  s.vertex_count = static_cast<uint32_t>(inverse_masses.size());
+  s.positions_start = start;
+  s.positions_end = end;
+  s.velocities = velocities;
+  s.inverse_masses = inverse_masses.data();
+  s.triangle_count = static_cast<uint32_t>(topology.mesh.triangles.size() / 3);
+  s.triangles = topology.mesh.triangles.data();
+  s.tet_count = static_cast<uint32_t>(topology.mesh.tets.size() / 4);
+  s.tets = s.tet_count ? topology.mesh.tets.data() : nullptr;
+  s.thickness = world_.scene().collision.thickness;
+  return s;
+}
+
 bool CollisionContext::describe_body(size_t i, tacta_collision_surface& s) {
   const SoftBody b = world_.body(i);
   if (!world_.body_desc(i).collide || b.shape.topology->mesh.triangles.empty() ||
       b.shape.topology->mesh.dimension != 3)
     return false;
-  std::vector<double>& inv = inverse_masses_[i];
-  inv.resize(b.node_count());
-  // A body stepping on its own thread has its state replaced at each refresh, so a correction
-  // made here would be lost: for the response it is a moving obstacle (infinite mass).
-  for (size_t n = 0; n < inv.size(); ++n)
-    inv[n] = b.settings.own_thread || b.shape.topology->fixed[n] || b.shape.topology->masses[n] <= 0
-                 ? 0.0
-                 : 1.0 / b.shape.topology->masses[n];
-  s.body_id = static_cast<uint32_t>(i);
-  s.vertex_count = static_cast<uint32_t>(b.node_count());
-  s.positions_start = b.nodes.step_start.data();
-  s.positions_end = b.nodes.positions.data();
-  s.velocities = b.nodes.velocities.data();
-  s.inverse_masses = inv.data();
-  s.triangle_count = static_cast<uint32_t>(b.shape.topology->mesh.triangles.size() / 3);
-  s.triangles = b.shape.topology->mesh.triangles.data();
-  s.tet_count = static_cast<uint32_t>(b.shape.topology->mesh.tets.size() / 4);
-  s.tets = s.tet_count ? b.shape.topology->mesh.tets.data() : nullptr;
-  s.thickness = world_.scene().collision.thickness;
+  node_inverse_masses(*b.shape.topology, b.settings.own_thread, inverse_masses_[i]);
+  s = node_surface(i, *b.shape.topology, b.nodes.step_start.data(), b.nodes.positions.data(),
+                   b.nodes.velocities.data(), inverse_masses_[i]);
   // A body with an embedded surface is seen, touched and collided through that surface.
   if (b.surface.mesh) {
-    embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(world_, i, inverse_masses_[i]);
+    embedded_[i] = std::make_unique<EmbeddedCollisionSurface>(
+        world_, i, *b.surface.mesh, b.node_count(), inverse_masses_[i].data());
+    embedded_[i]->refresh();
     embedded_[i]->describe(s);
   }
   return true;
@@ -278,22 +284,24 @@ void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
   surface_of_body_[body] = static_cast<int>(surfaces_.size());
   body_of_surface_.push_back(static_cast<int>(body));
   surfaces_.push_back(s);
-  freshness_.push_back(fresh_surface(body, s));
+  const SoftBody b = world_.body(body);
+  freshness_.push_back(
+      fresh_surface(s, b.node_count(), embedded_[body].get(), b.nodes.positions.data()));
   constexpr double kInf = std::numeric_limits<double>::infinity();
   covered_.push_back({kInf, kInf, kInf, -kInf, -kInf, -kInf});
   last_distance_.push_back(0.0);
   patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
 }
 
-SurfaceFreshness CollisionContext::fresh_surface(size_t body, const tacta_collision_surface& s) {
+SurfaceFreshness fresh_surface(const tacta_collision_surface& s, size_t node_count,
+                               const EmbeddedCollisionSurface* embedded, const double* nodes) {
   // A margin of a fraction of a mean edge adds few triangles to a query; one of a few mean edges
   // adds many: cheaper to refit the whole surface then.
-  const SoftBody b = world_.body(body);
-  const double weight_bound = embedded_[body] ? embedded_[body]->weight_bound() : 1.0;
+  const double weight_bound = embedded ? embedded->weight_bound() : 1.0;
   const double edge = mean_edge_length(s);
-  SurfaceFreshness fresh(b.node_count(), s.triangle_count, weight_bound,
-                         kMarginTargetPerEdge * edge, kMarginCapPerEdge * edge);
-  fresh.reset(b.nodes.positions.data());
+  SurfaceFreshness fresh(node_count, s.triangle_count, weight_bound, kMarginTargetPerEdge * edge,
+                         kMarginCapPerEdge * edge);
+  fresh.reset(nodes);
   return fresh;
 }
 
@@ -309,8 +317,8 @@ void CollisionContext::prepare_plugins(const SourceLocation& where) {
   }
   size_t vertices = 0;
   for (const auto& s : surfaces_) vertices += s.vertex_count;
-  resize_with_room(pairs_, 16384 + 16 * vertices);
-  resize_with_room(contacts_, 4096 + 4 * vertices);
+  resize_with_room(pairs_, pairs_needed(vertices));
+  resize_with_room(contacts_, contacts_needed(vertices));
   refitted_once_ = false;  // the plugins' hierarchies are built again at the next refit
 }
 
@@ -331,7 +339,8 @@ void CollisionContext::replace_surface(size_t body) {
   embedded_[body].reset();
   if (!describe_body(body, s)) return;  // a cut keeps the body's triangles: not reached
   surfaces_[k] = s;
-  freshness_[k] = fresh_surface(body, s);
+  const SoftBody b = world_.body(body);
+  freshness_[k] = fresh_surface(s, b.node_count(), embedded_[body].get(), b.nodes.positions.data());
   constexpr double kInf = std::numeric_limits<double>::infinity();
   covered_[k] = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   last_distance_[k] = 0.0;

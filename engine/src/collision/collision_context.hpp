@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/proxy_freshness.hpp"
+#include "collision/surface_replacement.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/haptics/surface_query.hpp"
 #include "tacta/plugin_registry.hpp"
@@ -19,6 +20,7 @@
 namespace tacta {
 
 class CollisionInstance;
+struct PreparedCut;
 
 // One loaded collision plugin: the roles it declares (or, guessed, its entries imply) and the
 // roles the engine gave it (TACTA_COLLISION_ROLE_* bits).
@@ -33,6 +35,14 @@ struct CollisionPluginUse {
 std::string role_names(uint32_t roles);
 constexpr uint32_t role_index(uint32_t role) { return static_cast<uint32_t>(__builtin_ctz(role)); }
 class EmbeddedCollisionSurface;
+
+// A body's node inverse masses for the contact response, 1 per node, 1/kg: 0 for a fixed node,
+// and for every node of a body stepping on its own thread.
+void node_inverse_masses(const BodyTopology& topology, bool own_thread, std::vector<double>& inv);
+// The proxy's freshness bookkeeping for surface `s` (over `embedded`, or null: the tets'
+// boundary) of a body of `node_count` nodes, current as of `nodes` (3 per node, m).
+SurfaceFreshness fresh_surface(const tacta_collision_surface& s, size_t node_count,
+                               const EmbeddedCollisionSurface* embedded, const double* nodes);
 
 class CollisionContext {
  public:
@@ -63,6 +73,25 @@ class CollisionContext {
   // that runs them). The hierarchies are rebuilt at the next refit (a cut calls
   // build_between_ticks for that).
   void replace_surface(size_t body);
+
+  // A cut's collision side built off the tick, in three steps. reserve_view_copy sizes `copy`
+  // for the view as it is, with room for a quarter more (allocates; off the tick). copy_view, on
+  // the thread that ticks, between two ticks: the positions the plugins see, the tools and the
+  // time, into `copy`; allocates nothing; false (copy.filled false) when the copy lacks room
+  // (reserve again, then copy).
+  void reserve_view_copy(ViewCopy& copy) const;
+  bool copy_view(ViewCopy& copy) noexcept;
+  // On any thread, after prepare_cut(world, body, ...) and before its apply_cut: the surface of
+  // `cut`'s new shape (inverse masses, embedded surface, freshness) described over the arrays
+  // the body will have once the cut is applied, and every plugin instance made again, prepared
+  // and built over `copy` with that surface in it (cut.arrays' positions are filled from the
+  // copy; apply_cut sets them again). Reads nothing a tick writes. Allocates. Throws InputError
+  // (nothing changed) when a plugin refuses.
+  SurfaceReplacement prepare_replacement(size_t body, PreparedCut& cut, const ViewCopy& copy);
+  // On the thread that ticks, right after the world's apply_cut of that cut: swaps the surface
+  // and the plugin instances in (`r` then holds the old ones: destroy it off the tick), and the
+  // next refit refits every surface whole. Allocates nothing.
+  void apply_replacement(SurfaceReplacement& r) noexcept;
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;
@@ -143,9 +172,14 @@ class CollisionContext {
   // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
   uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
   bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
+  // The surface over a body's tets' boundary for `topology` and node arrays (3 per node).
+  tacta_collision_surface node_surface(size_t body, const BodyTopology& topology, double* start,
+                                       double* end, double* velocities,
+                                       const std::vector<double>& inverse_masses) const;
+  // What pairs_, contacts_ and patch_triangles_ need for surfaces of these sizes.
+  size_t pairs_needed(size_t vertices) const noexcept { return 16384 + 16 * vertices; }
+  size_t contacts_needed(size_t vertices) const noexcept { return 4096 + 4 * vertices; }
   void append(size_t body, const tacta_collision_surface& s);
-  // The proxy's freshness bookkeeping for body's surface `s`, current as of its nodes now.
-  SurfaceFreshness fresh_surface(size_t body, const tacta_collision_surface& s);
   void prepare_plugins(const SourceLocation& where);
   void sync_tools() noexcept;  // Tool components -> the packed view
   template <class Add>

@@ -17,9 +17,9 @@ class CollisionInstance {
   CollisionInstance(const LoadedDescriptor& found, const ParamSet& params, double dt,
                     const SourceLocation& where)
       : descriptor(*found.descriptor),
-        api(*static_cast<const tacta_collision_api*>(found.descriptor->api)) {
-    tacta_collision_setup setup{sizeof(tacta_collision_setup), params.data(), params.size(), dt};
-    char message[kCollisionMessageCapacity] = {0};
+        api(*static_cast<const tacta_collision_api*>(found.descriptor->api)),
+        params_(params),
+        dt_(dt) {
     int guessed = 0;
     roles = tacta_collision_roles(&descriptor, &guessed);
     roles_guessed = guessed != 0;
@@ -29,9 +29,19 @@ class CollisionInstance {
       element_order = api.element_order;
       update_elements = api.update_elements;
     }
-    if (api.create(&setup, &instance, message, sizeof message) != TACTA_OK || instance == nullptr)
+    instance = create_sibling(where);
+  }
+  // A fresh instance of the same plugin with the same parameters and tick (a surface built off
+  // the tick and swapped in: SurfaceReplacement); the caller destroys it with api.destroy.
+  // Allocates; throws InputError when the plugin refuses.
+  void* create_sibling(const SourceLocation& where) const {
+    tacta_collision_setup setup{sizeof(tacta_collision_setup), params_.data(), params_.size(), dt_};
+    char message[kCollisionMessageCapacity] = {0};
+    void* made = nullptr;
+    if (api.create(&setup, &made, message, sizeof message) != TACTA_OK || made == nullptr)
       throw InputError(where, std::string("collision plugin '") + descriptor.name +
                                   "' could not be created: " + message);
+    return made;
   }
   ~CollisionInstance() {
     if (instance != nullptr) api.destroy(instance);
@@ -46,6 +56,10 @@ class CollisionInstance {
   // Both or neither (a refit spread over ticks).
   decltype(tacta_collision_api::element_order) element_order = nullptr;
   decltype(tacta_collision_api::update_elements) update_elements = nullptr;
+
+ private:
+  ParamSet params_;  // as create() saw them, for siblings
+  double dt_ = 0;    // s
 };
 
 }  // namespace tacta

@@ -6,10 +6,11 @@
 namespace tacta {
 
 EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
-                                                   const std::vector<double>& node_inverse_masses)
-    : world_(world), body_(body), node_inverse_masses_(node_inverse_masses) {
-  const EmbeddedSurface& s = *this->body().surface.mesh;
-  const size_t vertices = s.vertex_count(), nodes = this->body().node_count();
+                                                   EmbeddedSurface& surface, size_t node_count,
+                                                   const double* node_inverse_masses)
+    : world_(world), body_(body), surface_(&surface), node_inverse_masses_(node_inverse_masses) {
+  const EmbeddedSurface& s = surface;
+  const size_t vertices = s.vertex_count(), nodes = node_count;
   start_.assign(3 * vertices, 0.0);
   velocities_.assign(3 * vertices, 0.0);
   end_before_.assign(3 * vertices, 0.0);
@@ -33,11 +34,10 @@ EmbeddedCollisionSurface::EmbeddedCollisionSurface(World& world, size_t body,
     for (size_t k = 0; k < 4; ++k) sum += std::fabs(s.weights[4 * v + k]);
     weight_bound_ = std::max(weight_bound_, sum);
   }
-  refresh();
 }
 
 void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept {
-  EmbeddedSurface& s = *body().surface.mesh;
+  EmbeddedSurface& s = *surface_;
   view.vertex_count = static_cast<uint32_t>(s.vertex_count());
   view.positions_start = start_.data();
   view.positions_end = s.positions.data();
@@ -51,35 +51,41 @@ void EmbeddedCollisionSurface::describe(tacta_collision_surface& view) noexcept 
 
 void EmbeddedCollisionSurface::refresh(uint64_t pass) noexcept {
   const SoftBody b = body();
-  interpolate_to_surface(*b.surface.mesh, b.nodes.step_start.data(), start_.data());
-  update_embedded_surface(*b.surface.mesh, b.nodes.positions.data());
-  interpolate_to_surface(*b.surface.mesh, b.nodes.velocities.data(), velocities_.data());
+  refresh_from(b.nodes.step_start.data(), b.nodes.positions.data(), b.nodes.velocities.data(),
+               pass);
+}
+
+void EmbeddedCollisionSurface::refresh_from(const double* node_start, const double* node_end,
+                                            const double* velocities, uint64_t pass) noexcept {
+  interpolate_to_surface(*surface_, node_start, start_.data());
+  update_embedded_surface(*surface_, node_end);
+  interpolate_to_surface(*surface_, velocities, velocities_.data());
   std::fill(fresh_at_.begin(), fresh_at_.end(), pass);
 }
 
 void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint32_t count,
                                                  uint64_t pass) noexcept {
   const SoftBody b = body();
-  const EmbeddedSurface& s = *b.surface.mesh;
+  const EmbeddedSurface& s = *surface_;
   for (uint32_t i = 0; i < count; ++i)
     for (size_t k = 0; k < 3; ++k) {
       const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
       if (fresh_at_[v] == pass) continue;
       fresh_at_[v] = pass;
-      interpolate_vertex(s, v, b.nodes.positions.data(), &b.surface.mesh->positions[3 * size_t{v}]);
+      interpolate_vertex(s, v, b.nodes.positions.data(), &surface_->positions[3 * size_t{v}]);
       interpolate_vertex(s, v, b.nodes.step_start.data(), &start_[3 * size_t{v}]);
     }
 }
 
 void EmbeddedCollisionSurface::remember() noexcept {
-  const EmbeddedSurface& s = *body().surface.mesh;
+  const EmbeddedSurface& s = *surface_;
   std::copy(s.positions.begin(), s.positions.end(), end_before_.begin());
   std::copy(velocities_.begin(), velocities_.end(), velocities_before_.begin());
 }
 
 void EmbeddedCollisionSurface::apply_response() noexcept {
   const SoftBody b = body();
-  EmbeddedSurface& s = *b.surface.mesh;
+  EmbeddedSurface& s = *surface_;
   // What the response asked of each vertex: its corrected end position and velocity.
   bool any = false;
   for (size_t v = 0; v < s.vertex_count(); ++v) {

@@ -14,14 +14,21 @@ namespace tacta {
 
 class EmbeddedCollisionSurface {
  public:
-  // node_inverse_masses: 1 per node, 1/kg (0 fixed); must outlive this object.
-  EmbeddedCollisionSurface(World& world, size_t body,
-                           const std::vector<double>& node_inverse_masses);
+  // Body `body`'s `surface` over `node_count` nodes (the body's shape, or one a cut prepared
+  // that becomes the body's when applied: the per-tick entries read the body's nodes and the
+  // surface then). node_inverse_masses: 1 per node, 1/kg (0 fixed); its buffer must outlive
+  // this object (a vector swapped elsewhere keeps it). The vertices are current once refreshed.
+  EmbeddedCollisionSurface(World& world, size_t body, EmbeddedSurface& surface, size_t node_count,
+                           const double* node_inverse_masses);
   // Points the plugin view at the surface's arrays.
   void describe(tacta_collision_surface& view) noexcept;
   // Start positions from the body's saved (start of tick) state, end positions, normals and
   // velocities from its current one; every vertex is then current as of proxy pass `pass`.
   void refresh(uint64_t pass = 0) noexcept;
+  // The same from given node arrays (3 per node: start of tick, end, velocities), e.g. copies
+  // of the body's taken for a build off the tick.
+  void refresh_from(const double* node_start, const double* node_end, const double* velocities,
+                    uint64_t pass) noexcept;
   // Start and end positions of the listed triangles' vertices only, skipping those already
   // current as of `pass`: the slices a hierarchy is refit by and the patch the proxy's queries
   // read. Velocities are left to refresh(), which runs before a contact response.
@@ -43,7 +50,8 @@ class EmbeddedCollisionSurface {
 
   World& world_;
   size_t body_;
-  const std::vector<double>& node_inverse_masses_;
+  EmbeddedSurface* surface_;
+  const double* node_inverse_masses_;
   std::vector<double> start_;           // 3 per vertex, m
   std::vector<double> velocities_;      // 3 per vertex, m/s
   std::vector<double> inverse_masses_;  // 1 per vertex, 1/kg: sum of w^2 / m over its tet's nodes

@@ -15,12 +15,24 @@ namespace tacta {
 CutSummary Simulation::Impl::cut(size_t slot, std::span<const double> triangles, CutMode mode) {
   const auto start = std::chrono::steady_clock::now();
   const double time = clock ? clock->time() : 0.0;
-  const CutSummary summary = cut_body(world, slot, triangles, mode, time);
+  // The halves a realtime cut runs on two threads, here in a row: the shape and its collision
+  // surface (fresh plugin instances built over a copy of the view) prepared, then both applied.
+  PreparedCut prepared =
+      prepare_cut(world, slot, triangles, mode, world.body(slot).nodes.positions);
+  SurfaceReplacement replacement;
+  if (prepared.changed && collision) {
+    ViewCopy copy;
+    collision->reserve_view_copy(copy);
+    collision->copy_view(copy);
+    replacement = collision->prepare_replacement(slot, prepared, copy);
+  }
+  const CutSummary summary = apply_cut(world, prepared, time);
+  if (collision) collision->apply_replacement(replacement);
+  retire_cut(world, prepared);
   if (summary.changed) {
-    if (collision) {
-      collision->replace_surface(slot);
-      collision->build_between_ticks(time, 1.0 / world.scene().clock.haptic_rate_hz);
-    }
+    // The hierarchies refit now from the bodies as the last tick left them, so the next tick's
+    // proxy pass goes on by slices.
+    if (collision) collision->build_between_ticks(time, 1.0 / world.scene().clock.haptic_rate_hz);
     if (haptics) haptics->surface_changed(world, slot);
     if (clock) clock->body_reshaped(slot);
   }
