@@ -128,7 +128,11 @@ SurfaceReplacement CollisionContext::prepare_replacement(size_t body, PreparedCu
     build[j].velocities = nullptr;
   }
   build[k] = r.description;
-  tacta_collision_world world = view_;
+  // Not a copy of view_: the ticks write its time and margin meanwhile.
+  tacta_collision_world world{};
+  world.struct_size = sizeof world;
+  world.obstacles = obstacles_.data();
+  world.obstacle_count = static_cast<uint32_t>(obstacles_.size());
   world.surfaces = build.data();
   world.surface_count = static_cast<uint32_t>(build.size());
   world.shapes = copy.tools.data();
