@@ -4,6 +4,8 @@
 // the same forces and contacts as the surface replaced between ticks (replace_surface); a plugin
 // refusing the new surface changes nothing. malloc is interposed in this executable
 // (tests/support/allocation_counter.hpp); the counting cases skip under the sanitizers.
+#include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <span>
 #include <thread>
@@ -32,7 +34,9 @@ void cut_replacing_surface(LoopHarness& h) {
   const double time = static_cast<double>(h.next) * h.dt;
   ASSERT_TRUE(cut_body(h.world, 0, kIncision, CutMode::kSeparate, time).changed);
   h.collision.replace_surface(0);
+  (void)h.collision.take_bits();
   h.collision.build_between_ticks(time, h.dt);
+  EXPECT_TRUE(h.collision.take_bits() & TACTA_COLLIDE_REBUILT) << "the plugins prepared again";
   h.haptics.surface_changed(h.world, 0);
 }
 
@@ -49,7 +53,10 @@ void cut_by_replacement(LoopHarness& h) {
   ASSERT_TRUE(apply_cut(h.world, cut, time).changed);
   h.collision.apply_replacement(r);
   retire_cut(h.world, cut);
+  (void)h.collision.take_bits();
   h.collision.build_between_ticks(time, h.dt);
+  EXPECT_FALSE(h.collision.take_bits() & TACTA_COLLIDE_REBUILT)
+      << "the fresh hierarchies, built for the new surface, are refit, not rebuilt";
   h.haptics.surface_changed(h.world, 0);
 }
 
@@ -203,6 +210,76 @@ TEST(CollisionReplacementRefused, ChangesNothing) {
   EXPECT_EQ(refused.collision.pairs_capacity(), pairs);
   EXPECT_EQ(refused.collision.contacts_capacity(), contacts);
   expect_same_ticks(refused, untouched, 100);
+  EXPECT_EQ(refused.collision.proxy_whole_refits(), untouched.collision.proxy_whole_refits());
+  EXPECT_EQ(refused.collision.proxy_slices(), untouched.collision.proxy_slices());
+}
+
+}  // namespace
+}  // namespace tacta::simtest
+
+namespace tacta::simtest {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// The fine liver's embedded surface (scenes/examples/liver_incision_fine.yaml) cut at 0.5 s: the
+// proxy pass right after apply_replacement refits the fresh hierarchies whole without rebuilding
+// them, where the surface replaced between ticks is built again. Prints the costs (ms).
+TEST(CollisionReplacementCost, TheFirstProxyPassAfterTheSwapRefitsWithoutRebuilding) {
+  const SceneDesc scene = load_scene(
+      std::string(TACTA_SOURCE_DIR) + "/scenes/examples/liver_incision_fine.yaml", schemas());
+  LoopHarness old_path(scene, 600), new_path(scene, 600);
+  for (int i = 0; i < 500; ++i) {
+    old_path.tick();
+    new_path.tick();
+  }
+  const double time = static_cast<double>(new_path.next) * new_path.dt;
+  auto start = std::chrono::steady_clock::now();
+  PreparedCut cut = prepare_cut(new_path.world, 0, kIncision, CutMode::kSeparate,
+                                new_path.world.body(0).nodes.positions);
+  const double prepare_cut_ms = ms_since(start);
+  ASSERT_TRUE(cut.changed);
+  ViewCopy copy;
+  new_path.collision.reserve_view_copy(copy);
+  start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(new_path.collision.copy_view(copy));
+  const double copy_ms = ms_since(start);
+  start = std::chrono::steady_clock::now();
+  SurfaceReplacement r = new_path.collision.prepare_replacement(0, cut, copy);
+  const double prepare_ms = ms_since(start);
+  start = std::chrono::steady_clock::now();
+  apply_cut(new_path.world, cut, time);
+  const double apply_cut_ms = ms_since(start);
+  start = std::chrono::steady_clock::now();
+  new_path.collision.apply_replacement(r);
+  const double apply_ms = ms_since(start);
+  retire_cut(new_path.world, cut);
+  (void)new_path.collision.take_bits();
+  start = std::chrono::steady_clock::now();
+  new_path.collision.refit_for_proxy(time, new_path.dt);
+  const double refit_ms = ms_since(start);
+  EXPECT_FALSE(new_path.collision.take_bits() & TACTA_COLLIDE_REBUILT);
+
+  ASSERT_TRUE(cut_body(old_path.world, 0, kIncision, CutMode::kSeparate, time).changed);
+  old_path.collision.replace_surface(0);
+  (void)old_path.collision.take_bits();
+  start = std::chrono::steady_clock::now();
+  old_path.collision.refit_for_proxy(time, old_path.dt);
+  const double build_ms = ms_since(start);
+  EXPECT_TRUE(old_path.collision.take_bits() & TACTA_COLLIDE_REBUILT);
+  EXPECT_EQ(new_path.collision.proxy_whole_refits(), old_path.collision.proxy_whole_refits());
+  std::printf(
+      "fine liver, %u surface triangles: prepare_cut %.3f ms, copy_view %.3f ms, "
+      "prepare_replacement %.3f ms, apply_cut %.3f ms, apply_replacement %.3f ms; first proxy pass "
+      "after "
+      "the swap %.3f ms (after replace_surface: %.3f ms)\n",
+      new_path.collision.view().surfaces[0].triangle_count, prepare_cut_ms, copy_ms, prepare_ms,
+      apply_cut_ms, apply_ms, refit_ms, build_ms);
+  for (int i = 0; i < 50; ++i) new_path.tick();
+  EXPECT_FALSE(new_path.world.body(0).fault.frozen);
 }
 
 }  // namespace
