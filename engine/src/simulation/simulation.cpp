@@ -146,11 +146,6 @@ RunResult Simulation::run(const RunOptions& options) {
   if (options.progress) schedule.on_progress = print_progress;
   schedule.stop = &impl_->stop;
 
-  if (schedule.mode == ClockMode::Realtime)
-    if (const std::string problem =
-            impl_->lockstep_cuts->realtime_problem(time(), time() + schedule.duration_s);
-        !problem.empty())
-      throw InputError({scene.path, 0, 0, "clock.mode"}, problem);
   ClockSession& session = impl_->session();
   const auto expected_ticks =
       static_cast<size_t>(schedule.duration_s * schedule.haptic_rate_hz + 1);

@@ -73,7 +73,7 @@ void Simulation::restore_state(std::span<const uint8_t> bytes) {
   in.expect_end();
   // The saved run had made (or been refused) every cut due by its time: its bodies' shapes came
   // with it.
-  impl.lockstep_cuts->skip_past(session.time());
+  impl.scene_cuts->skip_past(session.time());
 }
 
 void Simulation::save_state(const std::string& path) const {

@@ -56,7 +56,7 @@ uint32_t Simulation::body_revision(BodyHandle body) const {
   return impl_->world.body(impl_->body_at(body)).shape.cuts.revision;
 }
 
-LockstepCuts::LockstepCuts(World& world, Cut cut) : world_(world), cut_(std::move(cut)) {
+SceneCuts::SceneCuts(World& world, Cut cut) : world_(world), cut_(std::move(cut)) {
   for (const BodyEventDesc& e : world.scene().events) {
     if (!e.cut) continue;
     // What makes a body uncuttable is known at load: say so now, at the event, not mid-run.
@@ -72,7 +72,7 @@ LockstepCuts::LockstepCuts(World& world, Cut cut) : world_(world), cut_(std::mov
       [](const BodyEventDesc* a, const BodyEventDesc* b) { return a->time < b->time; });
 }
 
-double LockstepCuts::next_due_s() const noexcept {
+double SceneCuts::next_due_s() const noexcept {
   double due =
       next_ < events_.size() ? events_[next_]->time : std::numeric_limits<double>::infinity();
   for (size_t d = 0; d < world_.device_count(); ++d) {
@@ -83,29 +83,33 @@ double LockstepCuts::next_due_s() const noexcept {
   return due;
 }
 
-void LockstepCuts::skip_past(double time) noexcept {
+void SceneCuts::skip_past(double time) noexcept {
   const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
   while (next_ < events_.size() && events_[next_]->time <= time + half_tick) ++next_;
 }
 
-std::string LockstepCuts::realtime_problem(double from_s, double to_s) const {
-  for (size_t d = 0; d < world_.device_count(); ++d)
-    if (world_.tool(d).blade.enabled)
-      return "device '" + world_.device(d).link.name +
-             "' holds a blade: cuts are made between lockstep ticks only (a realtime tick must "
-             "not allocate); run with --lockstep";
-  for (size_t e = next_; e < events_.size(); ++e)
-    if (events_[e]->time >= from_s && events_[e]->time <= to_s)
-      return "the scene cuts body '" + events_[e]->cut->body + "' at " +
-             std::to_string(events_[e]->time) +
-             " s: cuts are made between lockstep ticks only (a realtime tick must not allocate); "
-             "run with --lockstep";
-  return {};
+const BodyEventDesc* SceneCuts::due_event(double time) const noexcept {
+  const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
+  return next_ < events_.size() && events_[next_]->time <= time + half_tick ? events_[next_]
+                                                                            : nullptr;
 }
 
-void LockstepCuts::run_due(double time) {
+bool SceneCuts::sweep_due(const BladeSweep& blade, double time) const noexcept {
   const double half_tick = 0.5 / world_.scene().clock.haptic_rate_hz;
-  for (; next_ < events_.size() && events_[next_]->time <= time + half_tick; ++next_) {
+  return blade.first_s >= 0 &&
+         (blade.released || blade.first_s + blade.desc.interval_s <= time + half_tick);
+}
+
+bool SceneCuts::sweep_cuts(size_t device, size_t slot) const noexcept {
+  const std::string& touches = world_.device(device).link.desc.touches;
+  const SoftBody b = world_.body(slot);
+  if (!b.present()) return false;
+  return touches.empty() ? (b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS) != 0
+                         : b.info.name == touches;
+}
+
+void SceneCuts::run_due(double time) {
+  for (; due_event(time) != nullptr; ++next_) {
     const CutEventDesc& cut = *events_[next_]->cut;
     const int slot = world_.body_index(cut.body);
     try {
@@ -117,25 +121,17 @@ void LockstepCuts::run_due(double time) {
                   " s was not made: " + e.what());
     }
   }
-  for (size_t d = 0; d < world_.device_count(); ++d) {
-    BladeSweep& blade = world_.tool(d).blade;
-    if (blade.first_s >= 0 &&
-        (blade.released || blade.first_s + blade.desc.interval_s <= time + half_tick))
-      cut_sweep(d, blade);
-  }
+  for (size_t d = 0; d < world_.device_count(); ++d)
+    if (BladeSweep& blade = world_.tool(d).blade; sweep_due(blade, time)) cut_sweep(d, blade);
 }
 
 // The bodies a blade cuts: the one its device touches (`touches`), else every body in the scene
 // whose model takes topology edits (a blade passing others by cuts nothing).
-void LockstepCuts::cut_sweep(size_t device, BladeSweep& blade) {
+void SceneCuts::cut_sweep(size_t device, BladeSweep& blade) {
   const DeviceComponents dev = world_.device(device);
-  const std::string& touches = dev.link.desc.touches;
   dev.stats.blade_triangles_dropped += std::exchange(blade.dropped, 0);
   for (size_t slot = 0; slot < world_.body_count(); ++slot) {
-    const SoftBody b = world_.body(slot);
-    if (!b.present() || (!touches.empty() && b.info.name != touches)) continue;
-    if (touches.empty() && !(b.model.instance->claims() & TACTA_MODEL_CLAIM_TOPOLOGY_EDITS))
-      continue;
+    if (!sweep_cuts(device, slot)) continue;
     try {
       if (cut_(slot, blade.swept, blade.desc.mode).changed) ++dev.stats.blade_cuts;
     } catch (const InputError& e) {

@@ -11,6 +11,7 @@
 #include "collision/collision_context.hpp"
 #include "haptic_interaction/haptic_interaction.hpp"
 #include "plugin/complete_params.hpp"
+#include "simulation/realtime_cuts.hpp"
 #include "systems/haptic_loop.hpp"
 #include "tacta/sim/simulation.hpp"
 #include "timing/clock_session.hpp"
@@ -18,21 +19,28 @@
 
 namespace tacta {
 
-// The cuts made between lockstep ticks (simulation_cut.cpp): the scene's cut events, and what
-// the devices' blades swept (each blade's sweep is cut `interval` after it began, and when its
-// button is let go).
-class LockstepCuts final : public BetweenTicks {
+// The cuts a scene makes as it runs (simulation_cut.cpp): its cut events, and what the devices'
+// blades swept (each blade's sweep is cut `interval` after it began, and when its button is let
+// go). Lockstep runs make them between ticks (run_due); realtime runs through RealtimeCuts, which
+// asks what is due here.
+class SceneCuts final : public BetweenTicks {
  public:
   using Cut = std::function<CutSummary(size_t slot, std::span<const double>, CutMode)>;
   // Checks every event's body can be cut (InputError at the event otherwise); `cut` makes one.
-  LockstepCuts(World& world, Cut cut);
+  SceneCuts(World& world, Cut cut);
   double next_due_s() const noexcept override;
   void run_due(double time) override;
   // A restored run: the events due by `time` (s) were the saved run's.
   void skip_past(double time) noexcept;
-  // Why a realtime run from `from_s` to `to_s` (s) cannot be made (a cut would fall in it, or a
-  // device's tool is a blade); empty when it can.
-  std::string realtime_problem(double from_s, double to_s) const;
+
+  // The next event when it is due by `time` (s, to half a tick), else null; pass_event moves on.
+  const BodyEventDesc* due_event(double time) const noexcept;
+  void pass_event() noexcept { ++next_; }
+  // Whether `blade`'s sweep is due by `time` (s, to half a tick).
+  bool sweep_due(const BladeSweep& blade, double time) const noexcept;
+  // Whether a sweep of device `device`'s blade cuts body `slot` (the body it `touches`, else
+  // every body whose model takes topology edits).
+  bool sweep_cuts(size_t device, size_t slot) const noexcept;
 
  private:
   void cut_sweep(size_t device, BladeSweep& blade);
@@ -52,10 +60,9 @@ struct Simulation::Impl {
         haptics = std::make_unique<HapticInteraction>(world, *collision);
       if (scene.collision.enabled) response = std::make_unique<CollisionResponse>(*collision);
     }
-    lockstep_cuts = std::make_unique<LockstepCuts>(
-        world, [this](size_t slot, std::span<const double> blade, CutMode mode) {
-          return cut(slot, blade, mode);
-        });
+    scene_cuts =
+        std::make_unique<SceneCuts>(world, [this](size_t slot, std::span<const double> blade,
+                                                  CutMode mode) { return cut(slot, blade, mode); });
   }
   World world;
   const PluginRegistry& plugins;
@@ -68,12 +75,16 @@ struct Simulation::Impl {
   std::unique_ptr<CollisionResponse> response;
   std::unique_ptr<ClockSession> clock;        // built at the first step or run
   std::vector<std::string> checkpoint_notes;  // what the last save or restore could not carry
-  std::unique_ptr<LockstepCuts> lockstep_cuts;
+  std::unique_ptr<SceneCuts> scene_cuts;
+  std::unique_ptr<RealtimeCuts> realtime_cuts;  // with the clock: cuts in realtime runs
 
   ClockSession& session() {
     if (!clock) {
       clock = std::make_unique<ClockSession>(world, haptics.get(), response.get());
-      clock->set_between_ticks(lockstep_cuts.get());
+      clock->set_between_ticks(scene_cuts.get());
+      realtime_cuts = std::make_unique<RealtimeCuts>(world, *scene_cuts, collision.get(),
+                                                     haptics.get(), *clock);
+      clock->set_at_tick_boundary(realtime_cuts.get());
     }
     return *clock;
   }

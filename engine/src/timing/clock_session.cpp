@@ -16,11 +16,14 @@ using SteadyClock = std::chrono::steady_clock;
 // run_schedule counts its ticks from 0; this puts them on the session's clock (tick `base` on).
 class OffsetTask final : public HapticTask {
  public:
-  OffsetTask(HapticLoop& loop, uint64_t base, double dt, BetweenTicks* between)
-      : loop_(loop), base_(base), dt_(dt), between_(between) {}
+  OffsetTask(HapticLoop& loop, uint64_t base, double dt, BetweenTicks* between,
+             AtTickBoundary* at_boundary)
+      : loop_(loop), base_(base), dt_(dt), between_(between), at_boundary_(at_boundary) {}
   bool tick(uint64_t index, double, double dt) noexcept override {
     // Time from the tick index, not by accumulation, so long sessions do not drift.
-    return loop_.tick(base_ + index, static_cast<double>(base_ + index) * dt_, dt);
+    const double time = static_cast<double>(base_ + index) * dt_;
+    if (at_boundary_ != nullptr) at_boundary_->at_boundary(time);
+    return loop_.tick(base_ + index, time, dt);
   }
   void publish(double time) noexcept override {
     const auto index = static_cast<uint64_t>(std::llround(time / dt_));
@@ -35,6 +38,7 @@ class OffsetTask final : public HapticTask {
   uint64_t base_;
   double dt_;
   BetweenTicks* between_;
+  AtTickBoundary* at_boundary_;  // realtime runs only
 };
 
 }  // namespace
@@ -205,8 +209,13 @@ ScheduleResult ClockSession::run(const ScheduleOptions& options) {
       static_cast<uint64_t>(std::llround(options.duration_s * options.haptic_rate_hz));
   reserve(ticks + 1);
   start_workers(options.mode == ClockMode::Lockstep, ticks + 1);
-  OffsetTask task(loop_, tick_, dt_, between_);
+  const bool realtime = options.mode == ClockMode::Realtime;
+  AtTickBoundary* at_boundary = realtime ? at_boundary_ : nullptr;
+  if (at_boundary != nullptr) at_boundary->start();
+  OffsetTask task(loop_, tick_, dt_, between_, at_boundary);
   last_run_ = run_schedule(task, render_, options);
+  if (at_boundary != nullptr)
+    at_boundary->finish(static_cast<double>(tick_ + last_run_.ticks) * dt_);
   follow_reshaped_bodies();
   tick_ += last_run_.ticks;
   frames_ += last_run_.frames;

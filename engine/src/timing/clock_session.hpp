@@ -71,6 +71,17 @@ class BetweenTicks {
   }
 };
 
+// Work the haptic thread does at the boundary before each realtime tick (a cut prepared off the
+// tick is installed there). start() and finish() bracket a realtime run on the thread that
+// calls run(): finish installs what is still prepared, at `time` (s), the run's end.
+class AtTickBoundary {
+ public:
+  virtual ~AtTickBoundary() = default;
+  virtual void start() = 0;
+  virtual void at_boundary(double time) noexcept = 0;  // allocates nothing, throws nothing
+  virtual void finish(double time) noexcept = 0;
+};
+
 class ClockSession {
  public:
   // Calls each model's begin() with the body's initial state; `haptics` and `response` may be null.
@@ -109,6 +120,8 @@ class ClockSession {
   // What runs between lockstep ticks (not owned; null: nothing). A realtime run never calls it:
   // its ticks run on a thread that must not allocate (Simulation::run refuses such a run).
   void set_between_ticks(BetweenTicks* work) noexcept { between_ = work; }
+  // What a realtime run does at its tick boundaries (not owned; null: nothing).
+  void set_at_tick_boundary(AtTickBoundary* work) noexcept { at_boundary_ = work; }
 
   // Checkpoints: the clock (tick, frames, the next frame boundary) and the loop's state
   // (checkpoint/loop_state.cpp). Between steps only.
@@ -148,6 +161,7 @@ class ClockSession {
   uint64_t frames_ = 0;
   int workers_mode_ = -1;  // -1 none, 0 realtime, 1 lockstep
   BetweenTicks* between_ = nullptr;
+  AtTickBoundary* at_boundary_ = nullptr;
 };
 
 SceneStatic describe_scene(World& world);

@@ -273,13 +273,7 @@ TEST(Cut, ABladeHeldByADeviceCutsTheBeamInTwoAndRunsRepeatably) {
     return r.state_hash;
   };
   EXPECT_EQ(run(fresh_dir("blade_a")), run(fresh_dir("blade_b")));
-
-  // A realtime run with a blade is refused before it starts.
-  Simulation sim(scene_from_text(beam_scene("corotational_fem", device), "cut_beam"), plugins());
-  RunOptions realtime;
-  realtime.realtime = true;
-  realtime.duration_s = 0.01;
-  EXPECT_THROW(sim.run(realtime), InputError);
+  // The same blade in a realtime run: test_realtime_cuts.cpp.
 }
 
 }  // namespace

@@ -5,12 +5,15 @@
 // Last cases: the ticks after a cut (made between ticks, as Simulation::cut, scene cut events and
 // blades make it) allocate nothing either, and installing a cut prepared off the tick
 // (apply_cut) allocates nothing on any model that takes topology edits.
+#include <chrono>
 #include <span>
 #include <thread>
 
 #include "allocation_counter.hpp"
 #include "cut_beam_scene.hpp"
 #include "sim_test_support.hpp"
+#include "simulation/realtime_cuts.hpp"
+#include "simulation/simulation_impl.hpp"
 #include "world/body_cut.hpp"
 
 namespace tacta::simtest {
@@ -230,6 +233,45 @@ TEST_P(PreparedCutAllocations, ApplyingItAllocatesNothing) {
   h.collision.replace_surface(0);
   for (int i = 0; i < 50; ++i) h.tick();
   EXPECT_FALSE(h.world.body(0).fault.frozen);
+}
+
+// A realtime run's cuts as the haptic thread makes them (simulation/realtime_cuts.hpp): the
+// scalpel's sweeps posted at tick boundaries, prepared on the cut worker (which allocates by
+// design, so only this thread is counted), installed at a later boundary with the collision
+// surface and the picture, every tick publishing a snapshot now and then.
+TEST(HapticTickAllocations, RealtimeCutsAllocateNothingOnTheHapticThread) {
+  if (!TACTA_COUNT_ALLOCATIONS) GTEST_SKIP() << "a sanitizer owns malloc";
+  const SceneDesc scene =
+      scene_from_text(beam_scene("corotational_fem", kScalpelDevice), "cut_beam");
+  World world(scene, plugins());
+  CollisionContext collision(world, plugins());
+  HapticInteraction haptics(world, collision);
+  ClockSession session(world, &haptics, nullptr);
+  SceneCuts schedule(world, [](size_t, std::span<const double>, CutMode) -> CutSummary {
+    ADD_FAILURE() << "a realtime run never cuts between ticks";
+    return {};
+  });
+  RealtimeCuts cuts(world, schedule, &collision, &haptics, session);
+  cuts.start();
+  HapticLoop& loop = session.loop();
+  const double dt = 1.0 / scene.clock.haptic_rate_hz;
+  t_allocations = 0;
+  for (uint64_t k = 0; k < 250; ++k) {
+    const double time = static_cast<double>(k) * dt;
+    g_counting = k >= 10;  // first steps size solver workspaces
+    cuts.at_boundary(time);
+    loop.tick(k, time, dt);
+    if (k % 16 == 0) loop.publish(time + dt);
+    g_counting = false;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));  // the worker's time, as at 1 kHz
+  }
+  const uint64_t installed = world.device(0).stats.blade_cuts;
+  cuts.finish(250 * dt);
+  EXPECT_EQ(t_allocations, 0) << "heap allocations on the haptic thread in 240 ticks";
+  EXPECT_GT(installed, 0u) << "cuts installed at tick boundaries within the counted ticks";
+  EXPECT_EQ(world.device(0).stats.blade_cuts_refused, 0u);
+  EXPECT_GT(world.body(0).shape.cuts.revision, 0u);
+  EXPECT_FALSE(world.body(0).fault.frozen);
 }
 
 INSTANTIATE_TEST_SUITE_P(ModelsTakingEdits, PreparedCutAllocations,
