@@ -92,6 +92,11 @@ class CollisionContext {
   // and the plugin instances in (`r` then holds the old ones: destroy it off the tick), and the
   // next refit refits every surface whole. Allocates nothing.
   void apply_replacement(SurfaceReplacement& r) noexcept;
+  // Whether `r` still fits the view (no surface added since it was built): checked with the
+  // cut's still_fits before apply_cut, else both are prepared again.
+  bool replacement_fits(const SurfaceReplacement& r) const noexcept {
+    return r.surface == SurfaceReplacement::kNone || r.surface_count == surfaces_.size();
+  }
 
   // Refits the hierarchies to the bodies' current motion (start: saved positions, end: current).
   void refit(double time, double dt) noexcept;

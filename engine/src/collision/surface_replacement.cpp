@@ -168,11 +168,12 @@ SurfaceReplacement CollisionContext::prepare_replacement(size_t body, PreparedCu
   if (r.patch_needed > patch_triangles_.capacity())
     resize_with_room(r.patch_triangles, r.patch_needed);
   r.surface = k;
+  r.surface_count = surfaces_.size();
   return r;
 }
 
 void CollisionContext::apply_replacement(SurfaceReplacement& r) noexcept {
-  if (r.surface == SurfaceReplacement::kNone) return;
+  if (r.surface == SurfaceReplacement::kNone || !replacement_fits(r)) return;
   const size_t k = r.surface;
   std::swap(surfaces_[k], r.description);
   std::swap(embedded_[r.body], r.embedded);

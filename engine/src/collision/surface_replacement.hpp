@@ -66,6 +66,7 @@ struct SurfaceReplacement {
   static constexpr size_t kNone = static_cast<size_t>(-1);
   size_t body = 0;
   size_t surface = kNone;                 // kNone: the body does not collide, nothing to swap
+  size_t surface_count = 0;               // the view's surfaces it was built with
   tacta_collision_surface description{};  // the live view's, over the arrays the body will have
   std::vector<double> inverse_masses;     // 1 per node, 1/kg
   std::unique_ptr<EmbeddedCollisionSurface> embedded;  // null: the tets' boundary

@@ -123,6 +123,7 @@ TEST_P(CollisionReplacement, BuiltOnAWorkerAndSwappedInWithoutAllocating) {
   for (int i = 0; i < 20; ++i) h.tick();  // the ticks go on meanwhile
   worker.join();
   ASSERT_TRUE(still_fits(h.world, cut));
+  ASSERT_TRUE(h.collision.replacement_fits(r));
   ASSERT_NE(h.world.body(0).nodes.positions, positions) << "the body moved meanwhile";
 
   g_allocations = 0;
