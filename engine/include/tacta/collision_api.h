@@ -15,7 +15,9 @@
  * convex shapes with a pose at start and end, and static obstacles. Plugins write results into
  * arrays the host owns, each with a capacity; nothing is allocated per tick: an instance
  * allocates in create() and in prepare(world), which the host calls at load time and again only
- * when the world's sizes change. Per-tick entries return TACTA_COLLIDE_* bits, never throw.
+ * when the world's sizes change (a cut: a fresh instance is created, prepared and updated on
+ * another thread while the one in use ticks, then takes its place; instances share nothing).
+ * Per-tick entries return TACTA_COLLIDE_* bits, never throw.
  * Units: SI throughout (m, s, kg, N); times of impact are fractions of the tick in [0, 1].
  */
 #ifndef TACTA_COLLISION_API_H
