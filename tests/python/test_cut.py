@@ -2,7 +2,7 @@
 # separates it (nodes copied, mass kept, the far piece falls freely) or removes the cell it passes
 # through (exactly that cell's mass goes); a blade that misses changes nothing in any of the three
 # accepted shapes; bad shapes and modes raise ValueError, a model that takes no cuts SceneError; a
-# checkpoint of a cut beam resumes bit for bit.
+# checkpoint of a cut beam resumes bit for bit; a realtime run makes its cut events.
 import numpy as np
 import pytest
 import tacta
@@ -150,3 +150,17 @@ def test_a_checkpoint_of_a_cut_beam_resumes_bit_for_bit():
     resumed.advance_to(0.08)
     assert resumed.report()["state_hash"] == straight.report()["state_hash"]
     assert np.array_equal(resumed.body("beam").positions, straight.body("beam").positions)
+
+
+def test_a_realtime_run_makes_the_scenes_cut_events():
+    """A cut event in a realtime run is made on the cut worker and installed at a tick boundary."""
+    scene = beam_scene()
+    x = 0.201
+    scene["events"] = [{"time": 0.02, "cut": {"body": "beam", "mode": "separate",
+                                               "quad": [[x, -1, -1], [x, 1, -1], [x, 1, 1], [x, -1, 1]]}}]
+    sim = tacta.Simulation.from_dict(scene)
+    mass = total_mass(sim)
+    sim.run(duration=0.06, realtime=True)
+    assert sim.body_revision("beam") == 1
+    assert sim.body("beam").positions.shape[0] > 9 * 2 * 2  # the section's nodes were copied
+    assert total_mass(sim) == pytest.approx(mass, rel=1e-12)

@@ -138,7 +138,9 @@ void RealtimeCuts::prepare() noexcept {
 void RealtimeCuts::install(double time) noexcept {
   Prepared& p = prepared_;
   const Request& r = request_;
-  if (p.ok && !still_fits(world_, p.cut)) {  // a model swap came first: prepared again
+  // A model swap or a body's surface added since: prepared again from the state now.
+  if (p.ok && (!still_fits(world_, p.cut) ||
+               (collision_ != nullptr && !collision_->replacement_fits(p.surface)))) {
     p.ok = false;
     repost_ = true;
     hand_over(kApplied);
