@@ -129,7 +129,8 @@ Json body_entry(const World& world, const RunResult& result, size_t i) {
         {"removed_mass_kg", c.removed_mass_kg},
         {"removed_energy_J", c.removed_energy_J},
         {"wall_ms_mean", c.wall_ms_total / static_cast<double>(c.revision + c.cuts_missed)},
-        {"wall_ms_max", c.wall_ms_max}};
+        {"wall_ms_max", c.wall_ms_max},
+        {"install_ms_max", body.shape.install_ms_max}};
   j["step_thread"] = b.own_thread ? "own" : "haptic";
   j["step_rate_hz"] = b.step_rate_hz;
   if (body.surface.mesh) {  // what the body was drawn, touched and collided through

@@ -1,6 +1,7 @@
 #include "simulation/realtime_cuts.hpp"
 
 #include <algorithm>
+#include <pthread.h>
 #include <string>
 #include <utility>
 
@@ -28,6 +29,8 @@ void RealtimeCuts::start() {
   reserve();
   state_.store(kIdle);
   worker_ = std::thread([this] { run(); });
+  // Named so the realtime session lowers it and keeps it off the haptic CPU like the others.
+  pthread_setname_np(worker_.native_handle(), "tacta-cut");
 }
 
 void RealtimeCuts::reserve() {
@@ -35,6 +38,7 @@ void RealtimeCuts::reserve() {
   for (size_t slot = 0; slot < world_.body_count(); ++slot)
     most = std::max(most, world_.body(slot).nodes.positions.size());
   request_.positions.reserve(most + most / 4);
+  request_.velocities.reserve(most + most / 4);
   if (collision_ != nullptr) collision_->reserve_view_copy(request_.view);
 }
 
@@ -94,6 +98,7 @@ bool RealtimeCuts::post(size_t slot, int device, const BodyEventDesc* event,
   r.mode = mode;
   r.asked = std::chrono::steady_clock::now();
   r.positions.clear();
+  r.velocities.clear();
   if (slot < world_.body_count()) {
     const SoftBody b = world_.body(slot);
     const bool room = b.nodes.positions.size() <= r.positions.capacity() &&
@@ -105,6 +110,7 @@ bool RealtimeCuts::post(size_t slot, int device, const BodyEventDesc* event,
       return false;
     }
     r.positions.assign(b.nodes.positions.begin(), b.nodes.positions.end());
+    r.velocities.assign(b.nodes.velocities.begin(), b.nodes.velocities.end());
   }
   hand_over(kPosted);
   return true;
@@ -118,7 +124,7 @@ void RealtimeCuts::prepare() noexcept {
       throw InputError(
           {world_.scene().path, 0, 0, "events"},
           "body '" + (r.event ? r.event->cut->body : std::string()) + "' is not in the scene");
-    p.cut = prepare_cut(world_, r.slot, r.triangles, r.mode, r.positions);
+    p.cut = prepare_cut(world_, r.slot, r.triangles, r.mode, r.positions, r.velocities);
     if (p.cut.changed) {
       if (collision_ != nullptr) p.surface = collision_->prepare_replacement(r.slot, p.cut, r.view);
       p.picture = clock_.prepare_picture(p.cut);
@@ -136,6 +142,7 @@ void RealtimeCuts::prepare() noexcept {
 }
 
 void RealtimeCuts::install(double time) noexcept {
+  const auto start = std::chrono::steady_clock::now();
   Prepared& p = prepared_;
   const Request& r = request_;
   // A model swap or a body's surface added since: prepared again from the state now.
@@ -155,13 +162,15 @@ void RealtimeCuts::install(double time) noexcept {
       clock_.reshaped_at_tick(p.picture);
       if (r.device >= 0) ++world_.device(static_cast<size_t>(r.device)).stats.blade_cuts;
     }
-    // From the moment the cut was asked to the new mesh in place.
+    // From the moment the cut was asked to the new mesh in place, and the install's own part.
     CutTotals& totals = world_.body(r.slot).shape.cuts;
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r.asked)
-            .count();
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - r.asked).count();
     totals.wall_ms_total += ms;
     totals.wall_ms_max = std::max(totals.wall_ms_max, ms);
+    double& install_ms = world_.body(r.slot).shape.install_ms_max;
+    install_ms =
+        std::max(install_ms, std::chrono::duration<double, std::milli>(now - start).count());
   } else if (r.device >= 0) {
     ++world_.device(static_cast<size_t>(r.device)).stats.blade_cuts_refused;
   }

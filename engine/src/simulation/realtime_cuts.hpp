@@ -47,6 +47,7 @@ class RealtimeCuts final : public AtTickBoundary {
     const BodyEventDesc* event = nullptr;  // the scene event asking, null: a blade
     std::span<const double> triangles;     // 9 per triangle, m: the event's, or sweep_
     std::vector<double> positions;         // the body's nodes then, 3 per node, m
+    std::vector<double> velocities;        // and their velocities, m/s
     ViewCopy view;
     std::chrono::steady_clock::time_point asked;
   };

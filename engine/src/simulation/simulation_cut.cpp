@@ -17,8 +17,8 @@ CutSummary Simulation::Impl::cut(size_t slot, std::span<const double> triangles,
   const double time = clock ? clock->time() : 0.0;
   // The halves a realtime cut runs on two threads, here in a row: the shape and its collision
   // surface (fresh plugin instances built over a copy of the view) prepared, then both applied.
-  PreparedCut prepared =
-      prepare_cut(world, slot, triangles, mode, world.body(slot).nodes.positions);
+  PreparedCut prepared = prepare_cut(world, slot, triangles, mode, world.body(slot).nodes.positions,
+                                     world.body(slot).nodes.velocities);
   SurfaceReplacement replacement;
   if (prepared.changed && collision) {
     ViewCopy copy;

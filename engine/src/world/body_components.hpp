@@ -73,8 +73,9 @@ struct CutTotals {
   uint64_t cuts_missed = 0;     // blades that met no tet
   double removed_mass_kg = 0;   // removal: the mass the removed tets carried
   double removed_energy_J = 0;  // kinetic + elastic the removed material took with it
-  // Wall time of the cuts made (the edit, the rebuilds, collision and render), ms: a cut runs
-  // between two ticks, so this is what it adds to the tick it follows.
+  // Wall time of the cuts made, ms, from the request to the new mesh in place: in lockstep the
+  // edit and every rebuild, which the tick after waits for; in a realtime run the worker's time
+  // too, while the ticks went on.
   double wall_ms_total = 0, wall_ms_max = 0;
 };
 
@@ -99,7 +100,8 @@ struct RestShape {
   // Per node: the node of the mesh the scene loaded that it is a copy of (empty while never cut),
   // for what the scene set per node (prescribed motion, plates).
   std::vector<uint32_t> loaded_node;
-  CutTotals cuts;
+  CutTotals cuts;             // checkpointed as it is: add no field
+  double install_ms_max = 0;  // realtime runs: the longest a tick boundary spent installing a cut
   const std::vector<double>& rest() const { return topology->mesh.positions; }
   // The topology the scene loaded (before any cut), which checkpoints fingerprint.
   const BodyTopology& loaded() const {

@@ -89,6 +89,16 @@ void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const VolumeMesh& mes
   for (int c = 0; c < 4; ++c) probe.nodes[c] = n[c], probe.weights[c] = w[c];
 }
 
+// J: sum of m v^2 / 2 (masses 1 per node, velocities 3 per node).
+double kinetic(const std::vector<double>& masses, const std::vector<double>& velocities) {
+  double e = 0;
+  for (size_t i = 0; i < masses.size(); ++i) {
+    const double* v = &velocities[3 * i];
+    e += 0.5 * masses[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  }
+  return e;
+}
+
 // After exchange_shape: the old instances are freed (before the topology they were made on) and
 // the old topology, positions, velocities, surface and boundary motion kept.
 void keep_retired(const SoftBody& b, NewShape& old, ShapeModels& old_models, ShapeArrays& arrays) {
@@ -116,7 +126,7 @@ std::string cut_unsupported(const SoftBody& b) {
 }
 
 PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
-                        std::span<const double> positions) {
+                        std::span<const double> positions, std::span<const double> velocities) {
   const SoftBody b = world.body(slot);
   const SourceLocation where{world.scene().path, 0, 0, "bodies." + b.info.name};
   for (double v : triangles)
@@ -124,6 +134,9 @@ PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> trian
   if (const std::string why = refusal(b); !why.empty()) throw InputError(where, "cut: " + why);
 
   const BodyTopology& old = *b.shape.topology;
+  if (velocities.size() != positions.size())
+    throw InputError(where, "cut: " + std::to_string(velocities.size()) + " velocities for " +
+                                std::to_string(positions.size()) + " position values");
   CutResult result =
       cut_mesh(old.mesh, b.shape.cut_triangles, positions, triangles, mode, b.shape.crack);
   if (!result.refused.empty()) throw InputError(where, "cut: " + result.refused);
@@ -190,6 +203,14 @@ PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> trian
        {&a.positions, &a.velocities, &a.step_start, &a.external_forces, &a.contact_forces})
     v->assign(3 * n, 0.0);
   if (!b.loads.applied_forces.empty()) a.applied_forces.assign(3 * n, 0.0);
+  for (size_t i = 0; i < n; ++i) {  // the state then, carried (apply_cut carries the state now)
+    std::copy_n(&positions[3 * size_t{edit.node_source[i]}], 3, &a.positions[3 * i]);
+    std::copy_n(&velocities[3 * size_t{edit.node_source[i]}], 3, &a.velocities[3 * i]);
+  }
+  cut.positions_then.assign(positions.begin(), positions.end());
+  cut.velocities_then.assign(velocities.begin(), velocities.end());
+  cut.energy_after_J = kinetic(topology.masses, a.velocities) +
+                       cut.models.instance->elastic_energy(a.positions.data());
   double mass_before = 0, mass_after = 0;
   for (double m : old.masses) mass_before += m;
   for (double m : topology.masses) mass_after += m;
@@ -216,8 +237,6 @@ CutSummary apply_cut(World& world, PreparedCut& cut, double time) noexcept {
     summary.nodes = b.node_count();
     return summary;
   }
-  const double energy_before =
-      b.kinetic_energy() + b.model.instance->elastic_energy(b.nodes.positions.data());
   // The state now, carried through node_source; a force on a split node stays on its first copy,
   // so the total applied stays the same.
   ShapeArrays& a = cut.arrays;
@@ -244,8 +263,7 @@ CutSummary apply_cut(World& world, PreparedCut& cut, double time) noexcept {
   totals.nodes_added += cut.nodes_added;
   totals.faces_separated += cut.faces_separated;
   totals.removed_mass_kg += cut.mode == CutMode::kRemove ? cut.removed_mass_kg : 0.0;
-  const double energy_after = begin_model(b, time, 1.0 / world.scene().clock.haptic_rate_hz);
-  totals.removed_energy_J += energy_before - energy_after;
+  b.model.instance->begin(b.state_view(time), b.step_dt(1.0 / world.scene().clock.haptic_rate_hz));
 
   summary.changed = true;
   summary.revision = totals.revision;
@@ -259,12 +277,20 @@ CutSummary apply_cut(World& world, PreparedCut& cut, double time) noexcept {
 }
 
 void retire_cut(World& world, PreparedCut& cut) {
-  if (cut.changed) keep_retired(world.body(cut.slot), cut.shape, cut.models, cut.arrays);
+  if (!cut.changed) return;
+  const SoftBody b = world.body(cut.slot);
+  // After the exchange `cut` holds the old shape and model.
+  const double energy_before = kinetic(cut.shape.topology->masses, cut.velocities_then) +
+                               cut.models.instance->elastic_energy(cut.positions_then.data());
+  b.shape.cuts.removed_energy_J += energy_before - cut.energy_after_J;
+  keep_retired(b, cut.shape, cut.models, cut.arrays);
 }
 
 CutSummary cut_body(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
                     double time) {
-  PreparedCut cut = prepare_cut(world, slot, triangles, mode, world.body(slot).nodes.positions);
+  const SoftBody b = world.body(slot);
+  PreparedCut cut =
+      prepare_cut(world, slot, triangles, mode, b.nodes.positions, b.nodes.velocities);
   const CutSummary summary = apply_cut(world, cut, time);
   retire_cut(world, cut);
   return summary;

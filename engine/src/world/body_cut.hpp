@@ -80,8 +80,8 @@ void install_shape(const SoftBody& b, NewShape shape, ShapeModels models,
                    std::vector<double> positions, std::vector<double> velocities,
                    std::vector<double> step_start);
 
-// A cut's first half, made from body `slot`'s rest data and `positions` (3 per node: where its
-// nodes stood when the cut was asked for). Holds, once applied, what the body had.
+// A cut's first half, made from body `slot`'s rest data and `positions` and `velocities` (3 per
+// node: its state when the cut was asked for). Holds, once applied, what the body had.
 struct PreparedCut {
   size_t slot = 0;
   CutMode mode = CutMode::kSeparate;
@@ -97,6 +97,10 @@ struct PreparedCut {
   std::vector<Probe> probes;
   NewShape shape;
   ShapeArrays arrays;  // sized for the new mesh; apply_cut fills them
+  // The state the cut was asked at, and the energy (J, kinetic + elastic) the new shape holds
+  // there: retire_cut books what the cut took (the old model's energy there, less this one).
+  std::vector<double> positions_then, velocities_then;
+  double energy_after_J = 0;
   ShapeModels models;  // after `shape`: an instance goes before the topology it was made on
   // What it was prepared against (still_fits).
   const BodyTopology* prepared_on = nullptr;
@@ -105,21 +109,24 @@ struct PreparedCut {
 };
 
 // Throws InputError (nothing changed) when the body cannot be cut: cut_unsupported, a model swap
-// waiting, and what cut_mesh refuses. Allocates; reads nothing a tick writes but `positions`.
+// waiting, what cut_mesh refuses, velocities not matching the positions. Allocates; reads nothing
+// a tick writes but `positions` and `velocities`.
 PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> triangles, CutMode mode,
-                        std::span<const double> positions);
+                        std::span<const double> positions, std::span<const double> velocities);
 
 // Whether body cut.slot still has the mesh and model `cut` was prepared on (no other cut, no model
 // swap since): else it must be prepared again.
 bool still_fits(const World& world, const PreparedCut& cut) noexcept;
 
 // The second half, at a tick boundary at simulated `time` (s): the arrays filled from the body's
-// state now, the shape exchanged, the totals counted, the new model begun. The body's mesh must be
-// the one `cut` was prepared on (still_fits). Allocates nothing.
+// state now, the shape exchanged, the totals counted, the new model begun (the energies are
+// reckoned in prepare_cut and retire_cut, off the tick). The body's mesh must be the one `cut`
+// was prepared on (still_fits). Allocates nothing.
 CutSummary apply_cut(World& world, PreparedCut& cut, double time) noexcept;
 
-// Keeps what an applied cut replaced (RetiredArrays: views handed out stay readable). Allocates;
-// off the tick.
+// Books the energy an applied cut took (CutTotals::removed_energy_J: the old model's kinetic +
+// elastic energy at the state the cut was asked at, less the new one's) and keeps what it
+// replaced (RetiredArrays: views handed out stay readable). Allocates; off the tick.
 void retire_cut(World& world, PreparedCut& cut);
 
 }  // namespace tacta

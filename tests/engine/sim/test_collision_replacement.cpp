@@ -44,8 +44,8 @@ void cut_replacing_surface(LoopHarness& h) {
 // The same cut through the halves, with 0 ticks between them.
 void cut_by_replacement(LoopHarness& h) {
   const double time = static_cast<double>(h.next) * h.dt;
-  PreparedCut cut =
-      prepare_cut(h.world, 0, kIncision, CutMode::kSeparate, h.world.body(0).nodes.positions);
+  PreparedCut cut = prepare_cut(h.world, 0, kIncision, CutMode::kSeparate,
+                                h.world.body(0).nodes.positions, h.world.body(0).nodes.velocities);
   ASSERT_TRUE(cut.changed);
   ViewCopy copy;
   h.collision.reserve_view_copy(copy);
@@ -105,6 +105,7 @@ TEST_P(CollisionReplacement, BuiltOnAWorkerAndSwappedInWithoutAllocating) {
   LoopHarness h(liver(overrides()), kTicksToPress + 400);
   for (int i = 0; i < kTicksToPress; ++i) h.tick();
   const std::vector<double> positions = h.world.body(0).nodes.positions;
+  const std::vector<double> velocities = h.world.body(0).nodes.velocities;
   ViewCopy copy;
   h.collision.reserve_view_copy(copy);
   g_allocations = 0;
@@ -118,7 +119,7 @@ TEST_P(CollisionReplacement, BuiltOnAWorkerAndSwappedInWithoutAllocating) {
   PreparedCut cut;
   SurfaceReplacement r;
   std::thread worker([&] {
-    cut = prepare_cut(h.world, 0, kIncision, CutMode::kSeparate, positions);
+    cut = prepare_cut(h.world, 0, kIncision, CutMode::kSeparate, positions, velocities);
     r = h.collision.prepare_replacement(0, cut, copy);
   });
   for (int i = 0; i < 20; ++i) h.tick();  // the ticks go on meanwhile
@@ -190,8 +191,9 @@ TEST(CollisionReplacementRefused, ChangesNothing) {
     refused.tick();
     untouched.tick();
   }
-  PreparedCut cut = prepare_cut(refused.world, 0, kIncision, CutMode::kSeparate,
-                                refused.world.body(0).nodes.positions);
+  PreparedCut cut =
+      prepare_cut(refused.world, 0, kIncision, CutMode::kSeparate,
+                  refused.world.body(0).nodes.positions, refused.world.body(0).nodes.velocities);
   ASSERT_TRUE(cut.changed);
   ASSERT_TRUE(cut.shape.surface) << "the liver is collided through its embedded surface";
   cut.shape.surface->triangles[1] = static_cast<uint32_t>(cut.shape.surface->vertex_count() + 7);
@@ -243,8 +245,9 @@ TEST(CollisionReplacementCost, TheFirstTickAfterTheSwapRefitsWithoutRebuilding) 
   }
   const double time = static_cast<double>(new_path.next) * new_path.dt;
   auto start = std::chrono::steady_clock::now();
-  PreparedCut cut = prepare_cut(new_path.world, 0, kIncision, CutMode::kSeparate,
-                                new_path.world.body(0).nodes.positions);
+  PreparedCut cut =
+      prepare_cut(new_path.world, 0, kIncision, CutMode::kSeparate,
+                  new_path.world.body(0).nodes.positions, new_path.world.body(0).nodes.velocities);
   const double prepare_cut_ms = ms_since(start);
   ASSERT_TRUE(cut.changed);
   ViewCopy copy;

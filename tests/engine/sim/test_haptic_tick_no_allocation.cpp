@@ -209,7 +209,9 @@ TEST_P(PreparedCutAllocations, ApplyingItAllocatesNothing) {
   const std::vector<double> positions = h.world.body(0).nodes.positions;
   const std::vector<double> blade = plane_x(0.05);
   PreparedCut cut;
-  std::thread worker([&] { cut = prepare_cut(h.world, 0, blade, CutMode::kSeparate, positions); });
+  const std::vector<double> velocities = h.world.body(0).nodes.velocities;
+  std::thread worker(
+      [&] { cut = prepare_cut(h.world, 0, blade, CutMode::kSeparate, positions, velocities); });
   for (int i = 0; i < 20; ++i) h.tick();  // the ticks go on meanwhile: the state moves
   worker.join();
   ASSERT_TRUE(cut.changed);

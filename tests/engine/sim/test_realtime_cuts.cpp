@@ -67,8 +67,8 @@ TEST(CutPicture, EveryFrameDrawsTheRevisionItsArraysFollow) {
     const double x = -0.08 + 0.03 * k;
     const std::vector<double> blade = {x, 0.12, -0.1, x, 0.2, -0.1, x, 0.2,  0.1,
                                        x, 0.12, -0.1, x, 0.2, 0.1,  x, 0.12, 0.1};
-    PreparedCut cut =
-        prepare_cut(world, 0, blade, CutMode::kSeparate, world.body(0).nodes.positions);
+    PreparedCut cut = prepare_cut(world, 0, blade, CutMode::kSeparate,
+                                  world.body(0).nodes.positions, world.body(0).nodes.velocities);
     ASSERT_TRUE(cut.changed) << "cut " << k;
     PreparedPicture picture = session.prepare_picture(cut);
     run_ticks(3);  // the ticks go on while a worker would prepare
