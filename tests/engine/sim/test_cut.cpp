@@ -22,31 +22,6 @@ double total_mass(Simulation& sim, BodyHandle body) {
   return std::accumulate(a.masses, a.masses + a.nodes, 0.0);
 }
 
-// The pieces of a mesh: per node, the lowest node joined to it through tets; and the nodes at the
-// beam's two ends (smallest and largest rest x).
-struct Pieces {
-  std::vector<uint32_t> piece;
-  uint32_t clamp = 0, tip = 0;
-  explicit Pieces(const VolumeMesh& mesh) : piece(mesh.node_count()) {
-    std::iota(piece.begin(), piece.end(), 0u);
-    auto root = [&](uint32_t v) {
-      while (piece[v] != v) v = piece[v] = piece[piece[v]];
-      return v;
-    };
-    for (size_t t = 0; t < mesh.tet_count(); ++t)
-      for (int c = 1; c < 4; ++c) {
-        const uint32_t a = root(mesh.tets[4 * t + c]), b = root(mesh.tets[4 * t]);
-        piece[std::max(a, b)] = std::min(a, b);
-      }
-    for (uint32_t n = 0; n < mesh.node_count(); ++n) {
-      piece[n] = root(n);
-      if (mesh.positions[3 * n] > mesh.positions[3 * tip]) tip = n;
-      if (mesh.positions[3 * n] < mesh.positions[3 * clamp]) clamp = n;
-    }
-  }
-  bool in_two() const { return piece[tip] != piece[clamp]; }
-};
-
 TEST(Cut, SeparationKeepsTheMassAndRemovalLosesTheRemovedTets) {
   Simulation sim(scene_from_text(beam_scene("corotational_fem"), "cut_beam"), plugins());
   const BodyHandle beam = sim.body("beam");

@@ -91,27 +91,6 @@ TEST(CutPicture, EveryFrameDrawsTheRevisionItsArraysFollow) {
             world.body(0).nodes.positions.size());
 }
 
-// Whether the beam's two ends (the nodes of least and greatest rest x) are in different pieces.
-bool ends_apart(const VolumeMesh& mesh) {
-  std::vector<uint32_t> piece(mesh.node_count());
-  std::iota(piece.begin(), piece.end(), 0u);
-  const auto root = [&](uint32_t v) {
-    while (piece[v] != v) v = piece[v] = piece[piece[v]];
-    return v;
-  };
-  for (size_t t = 0; t < mesh.tet_count(); ++t)
-    for (int c = 1; c < 4; ++c) {
-      const uint32_t a = root(mesh.tets[4 * t + c]), b = root(mesh.tets[4 * t]);
-      piece[std::max(a, b)] = std::min(a, b);
-    }
-  uint32_t low = 0, high = 0;
-  for (uint32_t n = 0; n < mesh.node_count(); ++n) {
-    if (mesh.positions[3 * n] < mesh.positions[3 * low]) low = n;
-    if (mesh.positions[3 * n] > mesh.positions[3 * high]) high = n;
-  }
-  return root(low) != root(high);
-}
-
 nlohmann::json report_in(const std::string& dir) {
   std::ifstream in(dir + "/report.json");
   return nlohmann::json::parse(in);
@@ -132,7 +111,7 @@ TEST(RealtimeCut, ABladeCutsTheBeamInTwo) {
   EXPECT_EQ(r.faults, 0u);
   const BodyHandle beam = sim.body("beam");
   EXPECT_GT(sim.body_revision(beam), 0u);
-  EXPECT_TRUE(ends_apart(sim.body_mesh(beam))) << "the clamped end and the tip are apart";
+  EXPECT_TRUE(Pieces(sim.body_mesh(beam)).in_two()) << "the clamped end and the tip are apart";
   const nlohmann::json report = report_in(options.out_dir);
   EXPECT_GT(report["devices"][0]["blade"]["cuts"].get<int>(), 0);
   EXPECT_EQ(report["devices"][0]["blade"]["cuts_refused"], 0);
@@ -164,7 +143,7 @@ events:
   const double cell_mass = 1000 * 0.01 * 0.01 * 0.01;  // kg: density x one cell's volume
   EXPECT_NEAR(cuts["removed_mass_kg"].get<double>(), 4 * cell_mass, 1e-12)
       << "the layer of 2 x 2 cells the second blade crosses";
-  EXPECT_TRUE(ends_apart(sim.body_mesh(beam)));
+  EXPECT_TRUE(Pieces(sim.body_mesh(beam)).in_two());
   EXPECT_EQ(sim.step(50).ticks, 50u);
   EXPECT_EQ(sim.body_revision(beam), 2u);
 }
