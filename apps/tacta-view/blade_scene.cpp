@@ -2,17 +2,6 @@
 
 namespace tacta::view {
 
-std::string lockstep_play_reason(const SceneDesc& scene) {
-  for (const DeviceDesc& d : scene.devices)
-    if (d.tool.blade) return "device '" + d.name + "' holds a blade";
-  for (const BodyEventDesc& e : scene.events) {
-    if (e.change_tool && e.change_tool->tool.blade)
-      return "device '" + e.change_tool->device + "' is given a blade";
-    if (e.cut) return "the scene cuts body '" + e.cut->body + "'";
-  }
-  return {};
-}
-
 uint32_t cut_key_buttons(const SceneDesc& scene) {
   uint32_t buttons = 0;
   const auto hold = [&buttons](const ShapeDesc& tool) {

@@ -1,5 +1,5 @@
-// tacta-view SCENE: the interactive window. Runs the scene in realtime on a worker thread (in
-// paced lockstep steps when it cuts) and draws it with the shared renderer; a Dear ImGui panel
+// tacta-view SCENE: the interactive window. Runs the scene in realtime on a worker thread and
+// draws it with the shared renderer; a Dear ImGui panel
 // plays, pauses and steps it, swaps the model of any body and edits its parameters, drives the
 // stylus with the mouse (--mouse; C held cuts with a blade) and plots force and tick time.
 // Exit 0 ok, 1 a run-time failure, 2 bad input.
@@ -40,9 +40,8 @@ int main(int argc, char** argv) {
   app.add_option("--size", size, "Window size in pixels, WIDTHxHEIGHT");
   app.footer(
       "Mouse: left drag moves the stylus target on the view plane, the wheel moves it in depth. "
-      "When a mouse device's tool carries a blade, hold C to cut (it holds the blade's button). "
-      "A scene with a blade or cut events plays in paced lockstep steps (one frame of ticks, "
-      "then a sleep to wall-clock pace): a realtime run refuses cuts, which allocate.");
+      "When a mouse device's tool carries a blade, hold C to cut (it holds the blade's button): "
+      "the realtime run makes each cut off the haptic tick.");
   CLI11_PARSE(app, argc, argv);
   if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 ||
       options.width < 64 || options.height < 64) {

@@ -8,10 +8,6 @@
 namespace tacta::view {
 namespace {
 
-// s: paced lockstep further behind the wall clock than this (a scene slower than real time)
-// starts the pace afresh rather than racing to catch up.
-constexpr double kMaxLag_s = 0.1;
-
 // Whether a new snapshot's scene is not the one held: a body was cut (its revision) or added.
 bool reshaped(const SceneStatic& held, const SceneStatic& now) {
   if (held.bodies.size() != now.bodies.size()) return true;
@@ -23,12 +19,10 @@ bool reshaped(const SceneStatic& held, const SceneStatic& now) {
 }  // namespace
 
 SimSession::SimSession(Simulation& simulation, double frame_period_s,
-                       std::function<void(const SceneStatic&)> before_first_tick,
-                       bool paced_lockstep)
+                       std::function<void(const SceneStatic&)> before_first_tick)
     : simulation_(simulation),
       frame_period_s_(frame_period_s),
       before_first_tick_(std::move(before_first_tick)),
-      paced_lockstep_(paced_lockstep),
       worker_([this] { work(); }) {}
 
 SimSession::~SimSession() {
@@ -56,12 +50,6 @@ void SimSession::pause() {
     std::lock_guard lock(command_mutex_);
     if (mode_ != Mode::Playing) return;
     mode_ = Mode::Paused;
-  }
-  // Paced lockstep sees the mode after each frame (a stop request would outlive the steps:
-  // only run() clears it).
-  if (paced_lockstep_) {
-    wake_.notify_all();
-    return;
   }
   // Consumed when the run returns; should the run have just ended, the next run stops after
   // one tick and the worker simply waits again.
@@ -99,7 +87,7 @@ void SimSession::work() {
       static_cast<uint64_t>(std::max(1.0, std::round(frame_period_s_ / simulation_.dt())));
   for (;;) {
     RunOptions options;
-    bool stepping = false, pacing = false;
+    bool stepping = false;
     {
       std::unique_lock lock(command_mutex_);
       wake_.wait(lock, [this] { return mode_ != Mode::Paused || pending_steps_ > 0; });
@@ -107,9 +95,7 @@ void SimSession::work() {
         simulation_.detach(this);
         return;
       }
-      if (mode_ == Mode::Playing && paced_lockstep_) {
-        pacing = true;
-      } else if (mode_ == Mode::Playing) {
+      if (mode_ == Mode::Playing) {
         options.realtime = true;
         options.duration_s = kSessionSeconds;
       } else {
@@ -119,9 +105,7 @@ void SimSession::work() {
       running_.store(true, std::memory_order_release);
     }
     try {
-      if (pacing)
-        play_paced(frame_ticks);
-      else if (stepping)
+      if (stepping)
         simulation_.step(frame_ticks);
       else
         simulation_.run(options);
@@ -131,28 +115,6 @@ void SimSession::work() {
       if (mode_ == Mode::Playing) mode_ = Mode::Paused;
     }
     running_.store(false, std::memory_order_release);
-  }
-}
-
-void SimSession::play_paced(uint64_t frame_ticks) {
-  using Clock = std::chrono::steady_clock;
-  auto anchor_wall = Clock::now();
-  double anchor_sim_s = simulation_.time();
-  for (;;) {
-    const StepResult ran = simulation_.step(frame_ticks);
-    std::unique_lock lock(command_mutex_);
-    if (ran.ticks < frame_ticks) {  // the run ended (every device finished): nothing to pace
-      if (mode_ == Mode::Playing) mode_ = Mode::Paused;
-      return;
-    }
-    const auto due =
-        anchor_wall + std::chrono::duration_cast<Clock::duration>(
-                          std::chrono::duration<double>(simulation_.time() - anchor_sim_s));
-    if (Clock::now() - due > std::chrono::duration<double>(kMaxLag_s)) {
-      anchor_wall = Clock::now();
-      anchor_sim_s = simulation_.time();
-    }
-    if (wake_.wait_until(lock, due, [this] { return mode_ != Mode::Playing; })) return;
   }
 }
 

@@ -6,12 +6,7 @@
 // it. Step (while paused): Simulation::step of one frame period, on this worker. Runs and steps
 // continue the Simulation's one clock, so the GUI sees a continuous time.
 //
-// Paced lockstep (a scene that cuts: a realtime run refuses blades and cut events, as a cut
-// allocates): Play is Simulation::step of one frame period after another on this worker, each
-// followed by a sleep that holds the simulated time to the wall clock; Pause ends it after the
-// current frame.
-//
-// The snapshot slot's mutex is shared by the render task's thread (or this worker, in lockstep)
+// The snapshot slot's mutex is shared by the render task's thread (or this worker, in a step)
 // and the GUI thread only: the haptic thread never sees it. The scene description in the slot
 // follows the snapshots: it is replaced when a body was cut or added.
 #pragma once
@@ -33,10 +28,9 @@ class SimSession final : public FrameObserver {
   static constexpr double kSessionSeconds = 60;  // s of one realtime run (bounds its records)
 
   // `before_first_tick` runs on the worker once, with the scene, before the first tick (e.g. to
-  // place the mouse device's target). `paced_lockstep`: Play steps instead of realtime runs.
+  // place the mouse device's target).
   SimSession(Simulation& simulation, double frame_period_s,
-             std::function<void(const SceneStatic&)> before_first_tick = {},
-             bool paced_lockstep = false);
+             std::function<void(const SceneStatic&)> before_first_tick = {});
   ~SimSession() override;  // stops the run and joins the worker
   SimSession(const SimSession&) = delete;
   SimSession& operator=(const SimSession&) = delete;
@@ -62,12 +56,10 @@ class SimSession final : public FrameObserver {
  private:
   enum class Mode { Paused, Playing, Quitting };
   void work();
-  void play_paced(uint64_t frame_ticks);  // until Pause, Quit or the end of the run
 
   Simulation& simulation_;
   const double frame_period_s_;
   std::function<void(const SceneStatic&)> before_first_tick_;
-  const bool paced_lockstep_;
   std::atomic<bool> running_{false};
 
   mutable std::mutex command_mutex_;  // GUI thread and worker

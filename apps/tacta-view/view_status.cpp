@@ -18,7 +18,6 @@ void write_view_status(const std::string& path, const ViewStatus& s) {
                                        {"body_models", s.body_models},
                                        {"body_frozen", s.body_frozen},
                                        {"body_revisions", s.body_revisions},
-                                       {"lockstep_play", s.lockstep_play},
                                        {"cut_key_frames", s.cut_key_frames},
                                        {"max_force_N", s.max_force_N},
                                        {"mouse", s.mouse},

@@ -19,7 +19,6 @@ struct ViewStatus {
   std::vector<std::string> body_models;   // per body, from the last snapshot (the haptic side)
   std::vector<bool> body_frozen;          // per body: diverged and frozen by the engine
   std::vector<uint32_t> body_revisions;   // per body: its mesh's revision (each cut adds 1)
-  bool lockstep_play = false;             // Play stepped in paced lockstep (the scene cuts)
   int cut_key_frames = 0;                 // frames shown with the cut key (C) holding a blade
   double max_force_N = 0;                 // largest device force among the snapshots shown
   bool mouse = false;                     // the mouse drove a device

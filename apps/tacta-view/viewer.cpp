@@ -88,16 +88,13 @@ Viewer::Viewer(const ViewerOptions& options)
   for (const DeviceDesc& d : scene_desc_.devices)
     mouse_driven_ = mouse_driven_ || d.plugin == "mouse";
   cut_buttons_ = cut_key_buttons(scene_desc_);
-  lockstep_reason_ = lockstep_play_reason(scene_desc_);
   if (!options.script.empty()) script_.emplace(parse_script(options.script));
   const double frame_period = 1.0 / scene_desc_.clock.render_rate_hz;
-  session_ = std::make_unique<SimSession>(
-      *simulation_, frame_period,
-      [this](const SceneStatic& scene) {
+  session_ =
+      std::make_unique<SimSession>(*simulation_, frame_period, [this](const SceneStatic& scene) {
         if (mouse_driven_)
           mouse_.feed(placement(scene).start);  // before the first tick reads the device
-      },
-      !lockstep_reason_.empty());
+      });
   if (options.paused)
     session_->step();  // one frame, for a first picture
   else
@@ -155,12 +152,6 @@ void Viewer::draw_panel(double frame_ms) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::Checkbox("Wireframe", &style_.wireframe);
-  if (!lockstep_reason_.empty()) {  // wrapped: the reason names a device or a body
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("Play: paced lockstep steps, as %s (cuts are made between lockstep ticks)",
-                       lockstep_reason_.c_str());
-    ImGui::PopStyleColor();
-  }
   const std::string error = session_->error();
   if (!error.empty())
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "run stopped: %s", error.c_str());
@@ -306,7 +297,6 @@ void Viewer::write_status(const std::string& path, double wall_time_s) const {
     }
   if (have_scene_)
     for (const BodyStatic& b : scene_.bodies) s.body_revisions.push_back(b.revision);
-  s.lockstep_play = !lockstep_reason_.empty();
   s.cut_key_frames = cut_frames_;
   s.max_force_N = max_force_N_;
   s.mouse = mouse_driven_ && mouse_.available();

@@ -83,7 +83,6 @@ class Viewer final : public ScriptHost {
   Vec3d top_point_{0, 0, 0};
   bool mouse_driven_ = false;    // a device of the scene is the mouse plugin
   uint32_t cut_buttons_ = 0;     // held while the cut key is down (0: no mouse device has a blade)
-  std::string lockstep_reason_;  // why Play steps in lockstep (empty: realtime runs)
   bool script_cut_key_ = false;  // the script holds C
   int cut_frames_ = 0;           // frames shown with the cut key held
   RingPlot<300> force_plot_;     // N, one sample a new snapshot
