@@ -177,12 +177,16 @@ std::unique_ptr<BoundaryMotion> BoundaryMotion::carried(std::span<const uint32_t
       m.held_.push_back(held_[size_t(held_at[old])]);
       m.held_.back().node = n;
     } else if (managed_at[old] >= 0) {
-      m.managed_.push_back(managed_[size_t(managed_at[old])]);
-      m.managed_source_.push_back(static_cast<uint32_t>(managed_at[old]));
-      Managed& node = m.managed_.back();
+      // What the scene set only: the state after_step writes (saved velocity, stuck flag,
+      // anchor) may be changing on the haptic thread; carry_state_from takes it.
+      const Managed& from = managed_[size_t(managed_at[old])];
+      Managed& node = m.managed_.emplace_back();
       node.node = n;
+      node.series = from.series;
+      node.plate = from.plate;
       node.stiffness = stiffness[n];
       node.mass = masses[n];
+      m.managed_source_.push_back(static_cast<uint32_t>(managed_at[old]));
     }
   }
   m.forces_.assign(3 * size_t(mesh.node_count()), 0.0);

@@ -53,9 +53,10 @@ class BoundaryMotion {
                                                std::vector<uint8_t>& fixed);
 
   // The same motion on a cut body's mesh (topology/cut_mesh.hpp's TopologyEdit): each copy of a
-  // moved node is moved as it was (its series, plate, saved velocity, stuck anchor), a removed
-  // node's motion goes; the managed nodes' masses are `masses` and their stiffness bound is
-  // computed again on `mesh`. Allocates (between ticks).
+  // moved node is moved as it was (its series and plate; its saved velocity and stuck anchor come
+  // with carry_state_from), a removed node's motion goes; the managed nodes' masses are `masses`
+  // and their stiffness bound is computed again on `mesh`. Reads nothing after_step writes, so it
+  // may run off the tick. Allocates.
   std::unique_ptr<BoundaryMotion> carried(std::span<const uint32_t> node_source,
                                           const VolumeMesh& mesh,
                                           std::span<const double> masses) const;
