@@ -20,6 +20,9 @@ RealtimeCuts::RealtimeCuts(World& world, SceneCuts& schedule, CollisionContext* 
 
 RealtimeCuts::~RealtimeCuts() {
   if (!worker_.joinable()) return;
+  // The worker's hand-over would overwrite a stop given while it prepares or tidies up.
+  for (uint32_t state = state_.load(); state == kPosted || state == kApplied; state = state_.load())
+    state_.wait(state);
   hand_over(kStop);
   worker_.join();
 }
