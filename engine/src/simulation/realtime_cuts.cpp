@@ -206,15 +206,18 @@ void RealtimeCuts::run() noexcept {
 
 void RealtimeCuts::finish(double time) noexcept {
   if (!worker_.joinable()) return;
-  // A cut in flight is prepared, installed at the run's end, and tidied up.
+  // What fell due in the run is made before it returns, at its end: the cut in flight, then
+  // any still waiting for it (the next run would otherwise make them late).
   for (;;) {
     const uint32_t state = state_.load(std::memory_order_acquire);
-    if (state == kPosted || state == kApplied)
+    if (state == kPosted || state == kApplied) {
       state_.wait(state, std::memory_order_acquire);
-    else if (state == kReady)
+    } else if (state == kReady) {
       install(time);
-    else
-      break;
+    } else {
+      post_next(time);
+      if (state_.load(std::memory_order_acquire) == kIdle) break;  // nothing was due
+    }
   }
   hand_over(kStop);
   worker_.join();

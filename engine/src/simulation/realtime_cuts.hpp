@@ -35,7 +35,9 @@ class RealtimeCuts final : public AtTickBoundary {
 
   void start() override;                            // reserves the buffers, starts the worker
   void at_boundary(double time) noexcept override;  // haptic thread
-  void finish(double time) noexcept override;       // installs what is ready, joins the worker
+  // The haptic thread has stopped: what fell due by `time` is made and installed, the worker
+  // joined.
+  void finish(double time) noexcept override;
 
  private:
   enum State : uint32_t { kIdle, kPosted, kReady, kApplied, kStop };

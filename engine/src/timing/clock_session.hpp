@@ -73,7 +73,7 @@ class BetweenTicks {
 
 // Work the haptic thread does at the boundary before each realtime tick (a cut prepared off the
 // tick is installed there). start() and finish() bracket a realtime run on the thread that
-// calls run(): finish installs what is still prepared, at `time` (s), the run's end.
+// calls run(): finish makes what fell due by `time` (s), the run's end, and installs it.
 class AtTickBoundary {
  public:
   virtual ~AtTickBoundary() = default;
