@@ -101,13 +101,12 @@ SurfaceReplacement CollisionContext::prepare_replacement(size_t body, PreparedCu
                                 " nodes for body " + std::to_string(body) +
                                 ", the cut was prepared on " +
                                 std::to_string(cut.first_copy.size()));
-  // The arrays the body will have: positions carried from the copy (apply_cut sets them again
-  // from the state at the apply), velocities left to it.
+  // The arrays the body will have: prepare_cut carried the positions and velocities it was given
+  // (the same state the copy holds); the step starts come from the copy (apply_cut sets all of
+  // them again from the state at the apply).
   ShapeArrays& a = cut.arrays;
-  for (size_t n = 0; n < cut.node_source.size(); ++n) {
-    std::copy_n(&node_end[3 * size_t{cut.node_source[n]}], 3, &a.positions[3 * n]);
+  for (size_t n = 0; n < cut.node_source.size(); ++n)
     std::copy_n(&node_start[3 * size_t{cut.node_source[n]}], 3, &a.step_start[3 * n]);
-  }
   const BodyTopology& topology = *cut.shape.topology;
   node_inverse_masses(topology, world_.body(body).settings.own_thread, r.inverse_masses);
   r.description = node_surface(body, topology, a.step_start.data(), a.positions.data(),

@@ -89,16 +89,6 @@ void carry_probe(Probe& probe, const VolumeMesh& old_mesh, const VolumeMesh& mes
   for (int c = 0; c < 4; ++c) probe.nodes[c] = n[c], probe.weights[c] = w[c];
 }
 
-// J: sum of m v^2 / 2 (masses 1 per node, velocities 3 per node).
-double kinetic(const std::vector<double>& masses, const std::vector<double>& velocities) {
-  double e = 0;
-  for (size_t i = 0; i < masses.size(); ++i) {
-    const double* v = &velocities[3 * i];
-    e += 0.5 * masses[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  }
-  return e;
-}
-
 // After exchange_shape: the old instances are freed (before the topology they were made on) and
 // the old topology, positions, velocities, surface and boundary motion kept.
 void keep_retired(const SoftBody& b, NewShape& old, ShapeModels& old_models, ShapeArrays& arrays) {
@@ -209,7 +199,7 @@ PreparedCut prepare_cut(World& world, size_t slot, std::span<const double> trian
   }
   cut.positions_then.assign(positions.begin(), positions.end());
   cut.velocities_then.assign(velocities.begin(), velocities.end());
-  cut.energy_after_J = kinetic(topology.masses, a.velocities) +
+  cut.energy_after_J = kinetic_energy(topology.masses, a.velocities) +
                        cut.models.instance->elastic_energy(a.positions.data());
   double mass_before = 0, mass_after = 0;
   for (double m : old.masses) mass_before += m;
@@ -280,7 +270,7 @@ void retire_cut(World& world, PreparedCut& cut) {
   if (!cut.changed) return;
   const SoftBody b = world.body(cut.slot);
   // After the exchange `cut` holds the old shape and model.
-  const double energy_before = kinetic(cut.shape.topology->masses, cut.velocities_then) +
+  const double energy_before = kinetic_energy(cut.shape.topology->masses, cut.velocities_then) +
                                cut.models.instance->elastic_energy(cut.positions_then.data());
   b.shape.cuts.removed_energy_J += energy_before - cut.energy_after_J;
   keep_retired(b, cut.shape, cut.models, cut.arrays);

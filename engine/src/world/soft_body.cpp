@@ -82,14 +82,17 @@ ModelMailbox::~ModelMailbox() {
   }
 }
 
-double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept {
-  const std::vector<double>& m = topology.masses;
+double kinetic_energy(std::span<const double> masses, std::span<const double> velocities) noexcept {
   double e = 0;
-  for (size_t i = 0; i < m.size(); ++i) {
-    const double* v = &nodes.velocities[3 * i];
-    e += 0.5 * m[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (size_t i = 0; i < masses.size(); ++i) {
+    const double* v = &velocities[3 * i];
+    e += 0.5 * masses[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   }
   return e;
+}
+
+double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept {
+  return kinetic_energy(topology.masses, nodes.velocities);
 }
 
 double SoftBody::kinetic_energy() const noexcept {

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "tacta/scene.hpp"
@@ -65,6 +66,8 @@ double begin_model(const SoftBody& body, double time, double haptic_dt) noexcept
 
 // J: ½ Σ m v² over the nodes (lumped masses).
 double kinetic_energy(const NodeState& nodes, const BodyTopology& topology) noexcept;
+// The same from the arrays: `masses` 1 per node (kg), `velocities` 3 per node (m/s).
+double kinetic_energy(std::span<const double> masses, std::span<const double> velocities) noexcept;
 
 // The plugin view of a mesh: pointers into its arrays (valid while the mesh lives, unmoved).
 tacta_mesh_view make_view(const VolumeMesh& mesh);
