@@ -105,9 +105,15 @@ void SimSession::work() {
       running_.store(true, std::memory_order_release);
     }
     try {
-      if (stepping)
-        simulation_.step(frame_ticks);
-      else
+      if (stepping) {
+        // Tick by tick up to the next frame: after a pause mid-frame, a whole frame period of
+        // ticks would pass the frame it shows and stop between two.
+        const uint64_t frames_before = frames_seen_.load(std::memory_order_relaxed);
+        if (simulation_.tick() == 0) simulation_.step(0);  // the state before any tick is a frame
+        for (uint64_t t = 0;
+             t < frame_ticks && frames_seen_.load(std::memory_order_relaxed) == frames_before; ++t)
+          simulation_.step(1);
+      } else
         simulation_.run(options);
     } catch (const std::exception& e) {
       std::lock_guard lock(command_mutex_);
@@ -129,6 +135,7 @@ void SimSession::on_start(const SceneStatic& scene) {
 }
 
 void SimSession::on_frame(const SceneStatic& scene, const Snapshot& snapshot) {
+  frames_seen_.fetch_add(1, std::memory_order_relaxed);
   std::lock_guard lock(slot_mutex_);
   slot_ = snapshot;  // assignment reuses the slot's buffers after the first frame
   slot_new_ = true;

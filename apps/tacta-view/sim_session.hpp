@@ -3,7 +3,8 @@
 // Play: realtime runs (haptic thread at 1 kHz, render task at the scene's frame rate) of
 // kSessionSeconds each, one after another while playing. Pause: request_stop() ends the run
 // after its current tick; the world keeps its state, so the picture stays and Play goes on from
-// it. Step (while paused): Simulation::step of one frame period, on this worker. Runs and steps
+// it. Step (while paused): ticks on this worker up to the next frame the render task is given
+// (at most one frame period), so the picture shows where the clock is. Runs and steps
 // continue the Simulation's one clock, so the GUI sees a continuous time.
 //
 // The snapshot slot's mutex is shared by the render task's thread (or this worker, in a step)
@@ -37,7 +38,7 @@ class SimSession final : public FrameObserver {
 
   void play();
   void pause();
-  void step();  // one frame period, only while paused
+  void step();  // to the next frame (at most one frame period), only while paused
   bool playing() const;
   bool running() const { return running_.load(std::memory_order_acquire); }
 
@@ -61,6 +62,7 @@ class SimSession final : public FrameObserver {
   const double frame_period_s_;
   std::function<void(const SceneStatic&)> before_first_tick_;
   std::atomic<bool> running_{false};
+  std::atomic<uint64_t> frames_seen_{0};  // on_frame calls; a step ends at the next one
 
   mutable std::mutex command_mutex_;  // GUI thread and worker
   std::condition_variable wake_;

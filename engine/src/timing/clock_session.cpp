@@ -177,7 +177,7 @@ void ClockSession::start_workers(bool lockstep, uint64_t ticks) {
 uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
   reserve(ticks);
   start_workers(true, ticks);
-  if (tick_ == 0) {
+  if (tick_ == 0 && frames_ == 0) {  // the state before any tick, shown once
     loop_.publish(0.0);
     render_.frame(0.0);
     ++frames_;
@@ -191,12 +191,13 @@ uint64_t ClockSession::step(uint64_t ticks, const std::atomic<bool>* stop) {
     step_status_.merge(loop_.last_status());
     ++tick_;
     if (between_ != nullptr) between_->after_tick(time(), dt_);
-    if (frame_clock_.due(time()) || !keep_going) {
+    const bool stopped = !keep_going || (stop != nullptr && stop->load(std::memory_order_relaxed));
+    if (frame_clock_.due(time()) || stopped) {
       loop_.publish(time());
       render_.frame(time());
       ++frames_;
     }
-    if (!keep_going || (stop != nullptr && stop->load(std::memory_order_relaxed))) {
+    if (stopped) {
       ++ran;
       break;
     }

@@ -50,7 +50,9 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
     ++result.ticks;
     const double end_time = static_cast<double>(k + 1) * dt;
     haptic.between_ticks(end_time);
-    if (frames.due(end_time) || k + 1 == ticks || !keep_going) {
+    // The run's last tick is always shown, a stop's too: a paused window shows where the clock is.
+    const bool last = k + 1 == ticks || !keep_going || stop_requested(o);
+    if (frames.due(end_time) || last) {
       haptic.publish(end_time);
       render.frame(ms_between(run_start, SteadyClock::now()) * 1e-3);
       ++result.frames;
@@ -62,7 +64,7 @@ ScheduleResult run_lockstep(HapticTask& haptic, RenderTask& render, const Schedu
       last_progress = t1;
       o.on_progress(static_cast<double>(k + 1) / static_cast<double>(ticks));
     }
-    if (!keep_going || stop_requested(o)) {
+    if (last) {
       result.stopped_early = k + 1 < ticks;
       break;
     }
@@ -171,7 +173,8 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     const double time = static_cast<double>(k) * dt;
     const bool keep_going = haptic.tick(k, time, dt);
     const double end_time = static_cast<double>(k + 1) * dt;
-    if (frame_clock.due(end_time) || k + 1 == ticks || !keep_going) haptic.publish(end_time);
+    const bool last = k + 1 == ticks || !keep_going || stop_requested(o);  // shown, as in lockstep
+    if (frame_clock.due(end_time) || last) haptic.publish(end_time);
     timespec end{};
     clock_gettime(CLOCK_MONOTONIC, &end);
     recorder.record(ms_after(begin, end));
@@ -190,7 +193,7 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
     }
     ++result.ticks;
     ticks_done.store(k + 1, std::memory_order_relaxed);
-    if (!keep_going || stop_requested(o)) {
+    if (last) {
       result.stopped_early = k + 1 < ticks;
       break;
     }

@@ -128,9 +128,10 @@ TEST(TactaViewWindow, PausedStartAdvancesOnlyBySteps) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   nlohmann::json status = read_status(dir / "status.json");
   ASSERT_TRUE(status.is_object()) << run.out << run.err;
-  // Three lockstep runs of one 1/60 s frame each (the first picture and two steps), nothing in
-  // between although the window ran for 40 frames: 17 ticks of 1 ms each.
-  EXPECT_NEAR(status["sim_time_s"].get<double>(), 3 * 0.017, 1.5e-3) << status;
+  // The first picture is the state before any tick; each step goes on to the next frame, the
+  // first tick at or past k/60 s: two steps are 34 ticks of 1 ms, nothing in between although
+  // the window ran for 40 frames.
+  EXPECT_NEAR(status["sim_time_s"].get<double>(), 0.034, 1e-9) << status;
   EXPECT_EQ(status["mouse"], false);  // the scene's own scripted stylus
 }
 
@@ -140,18 +141,17 @@ TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
     const fs::path dir = fresh_dir("pause_" + fs::path(scene).stem().string());
     const ViewRun run = run_view({"scenes/" + scene, "--size", "320x240", "--quit-after", "60",
                                   "--status", (dir / "status.json").string(), "--script",
-                                  "20:pause; 30:mark; 80:mark; 81:step; 90:mark; 91:quit"},
+                                  "20:pause; 30:mark; 80:mark; 81:step; 90:mark; 91:step; 100:mark; 101:quit"},
                                  dir);
     ASSERT_EQ(run.exit_code, 0) << scene << run.err;
     nlohmann::json status = read_status(dir / "status.json");
     ASSERT_TRUE(status.is_object()) << run.out << run.err;
     // (frame, simulated time shown) ten frames after the pause and fifty frames later: it
     // played, then the clock stood still while the window ran on (at least 50/60 s of wall
-    // time); then one Step: a whole frame period, 17 ticks of 1 ms (a stop request left over
-    // from the pause would end it after one tick, before any frame).
-    ASSERT_EQ(status["marks"].size(), 3u) << status;
-    double mark_frame[3], mark_time[3];
-    for (size_t m = 0; m < 3; ++m) {
+    // time); then two Steps, each to the next frame: the first tick at or past k/60 s.
+    ASSERT_EQ(status["marks"].size(), 4u) << status;
+    double mark_frame[4], mark_time[4];
+    for (size_t m = 0; m < 4; ++m) {
       mark_frame[m] = status["marks"][m][0].get<double>();
       mark_time[m] = status["marks"][m][1].get<double>();
     }
@@ -159,11 +159,20 @@ TEST(TactaViewWindow, PauseStopsTheClockWhileTheWindowRuns) {
     EXPECT_EQ(mark_frame[1], 80);
     EXPECT_GT(mark_time[0], 0.0) << scene << status;
     EXPECT_EQ(mark_time[1], mark_time[0]) << scene << status;
-    // The time shown is the last frame the step published: a frame boundary (every 1/60 s) in
-    // its 17 ticks, 16 or 17 ms on.
-    EXPECT_GE(mark_time[2] - mark_time[1], 0.016 - 1e-9) << scene << status;
+    // The pause shows the tick it stopped at (anywhere in a frame); the first step goes on at
+    // most a frame period to a frame, the second a whole one: 16 or 17 ticks of 1 ms.
+    const auto frame_tick = [](double time_s) {  // a 1/60 s boundary lies in (t - 1 ms, t]
+      const double tick = std::round(time_s * 1000);
+      const auto frames_by = [](double t) { return std::floor(60 * (t / 1000 + 1e-9)); };
+      return frames_by(tick) > frames_by(tick - 1);
+    };
+    EXPECT_GT(mark_time[2], mark_time[1]) << scene << status;
     EXPECT_LE(mark_time[2] - mark_time[1], 0.017 + 1e-9) << scene << status;
-    EXPECT_EQ(status["sim_time_s"].get<double>(), mark_time[2]);
+    EXPECT_TRUE(frame_tick(mark_time[2])) << scene << status;
+    EXPECT_GE(mark_time[3] - mark_time[2], 0.016 - 1e-9) << scene << status;
+    EXPECT_LE(mark_time[3] - mark_time[2], 0.017 + 1e-9) << scene << status;
+    EXPECT_TRUE(frame_tick(mark_time[3])) << scene << status;
+    EXPECT_EQ(status["sim_time_s"].get<double>(), mark_time[3]);
   }
 }
 

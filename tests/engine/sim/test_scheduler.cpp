@@ -103,12 +103,12 @@ TEST(SchedulerLockstep, StopFlagAndFalseReturnEndTheRunEarly) {
   o.stop = &stop;
   CountingTask task(o.haptic_rate_hz, 1000);
   task.stop = &stop;
-  task.stop_at = 499;
+  task.stop_at = 508;  // ends at 0.509 s, between the frames at 30/60 and 31/60 s
   CountingRender render;
   const ScheduleResult r = tacta::run_schedule(task, render, o);
-  EXPECT_EQ(r.ticks, 500u);
+  EXPECT_EQ(r.ticks, 509u);
   EXPECT_TRUE(r.stopped_early);
-  EXPECT_EQ(task.publishes.back(), 0.5) << "the state at the stop is published";
+  EXPECT_DOUBLE_EQ(task.publishes.back(), 0.509) << "the state at the stop is published";
 
   CountingTask quitter(o.haptic_rate_hz, 1000);
   quitter.return_false_at = 99;
@@ -220,6 +220,24 @@ class SlowTask final : public tacta::HapticTask {
   void publish(double) noexcept override {}
   int last_policy = -1;
 };
+
+// A paused window shows the state the clock stopped at, not the frame before it.
+TEST(SchedulerRealtime, AStopPublishesTheStateItStoppedAt) {
+  std::atomic<bool> stop{false};
+  ScheduleOptions o;
+  o.mode = ClockMode::Realtime;
+  o.duration_s = 5.0;
+  o.stop = &stop;
+  CountingTask task(o.haptic_rate_hz, 100);
+  task.stop = &stop;
+  task.stop_at = 58;  // ends at 0.059 s, between the frames at 3/60 and 4/60 s
+  CountingRender render;
+  const ScheduleResult r = tacta::run_schedule(task, render, o);
+  EXPECT_EQ(r.ticks, 59u);
+  EXPECT_TRUE(r.stopped_early);
+  ASSERT_FALSE(task.publishes.empty());
+  EXPECT_DOUBLE_EQ(task.publishes.back(), 0.059);
+}
 
 TEST(SchedulerRealtime, AHapticThreadThatMissesEveryDeadlineLeavesSchedFifo) {
   SlowTask task;
