@@ -300,7 +300,8 @@ SurfaceFreshness fresh_surface(const tacta_collision_surface& s, size_t node_cou
   const double weight_bound = embedded ? embedded->weight_bound() : 1.0;
   const double edge = mean_edge_length(s);
   SurfaceFreshness fresh(node_count, s.triangle_count, weight_bound, kMarginTargetPerEdge * edge,
-                         kMarginCapPerEdge * edge);
+                         kMarginCapPerEdge * edge,
+                         embedded ? EmbeddedCollisionSurface::kNodesPerVertex : 1);
   fresh.reset(nodes);
   return fresh;
 }
@@ -446,11 +447,27 @@ void CollisionContext::refit(double time, double dt) noexcept {
   refitted_once_ = true;
   for (auto& e : embedded_)
     if (e) e->refresh(proxy_pass_);
-  for (auto& inst : instances_)
-    if (inst->api.update != nullptr) raised_bits_ |= inst->api.update(inst->instance, &view_);
-  for (size_t k = 0; k < freshness_.size(); ++k)
-    freshness_[k].reset(
-        world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data());
+  bool reordered = false;  // a rebuilt hierarchy may order its elements anew
+  for (auto& inst : instances_) {
+    if (inst->api.update == nullptr) continue;
+    const uint32_t bits = inst->api.update(inst->instance, &view_);
+    raised_bits_ |= bits;
+    reordered = reordered || (inst.get() == slicer_ && (bits & TACTA_COLLIDE_REBUILT));
+  }
+  for (uint32_t k = 0; k < freshness_.size(); ++k) {
+    const size_t body = static_cast<size_t>(body_of_surface_[k]);
+    freshness_[k].reset(world_.body(body).nodes.positions.data());
+    if (!sliced_ || (freshness_[k].bound() && !reordered)) continue;
+    const uint32_t* order = nullptr;
+    uint32_t total = 0;
+    if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
+        total != surfaces_[k].triangle_count) {
+      freshness_[k].unbind();
+      continue;
+    }
+    const EmbeddedCollisionSurface* e = embedded_[body].get();
+    freshness_[k].bind(order, surfaces_[k].triangles, e ? e->vertex_nodes() : nullptr);
+  }
 }
 
 }  // namespace tacta

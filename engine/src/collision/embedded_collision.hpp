@@ -36,6 +36,8 @@ class EmbeddedCollisionSurface {
   // Largest sum of |weight| over the vertices: no vertex moves further than this times the
   // furthest-moving node (1 inside the tets, more for extrapolated vertices).
   double weight_bound() const noexcept { return weight_bound_; }
+  static constexpr uint32_t kNodesPerVertex = 4;  // a vertex follows its tet's nodes
+  const uint32_t* vertex_nodes() const noexcept { return surface_->nodes.data(); }
   // Before the response: keeps the surface's end positions and velocities to see what it changed.
   void remember() noexcept;
   // After it: each vertex's correction is an impulse (its change over its inverse mass), spread

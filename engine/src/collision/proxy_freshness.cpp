@@ -6,13 +6,24 @@
 namespace tacta {
 
 SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, double weight_bound,
-                                   double margin_target, double margin_cap)
+                                   double margin_target, double margin_cap,
+                                   uint32_t nodes_per_vertex)
     : last_nodes_(3 * node_count, 0.0),
+      moves2_(node_count, 0.0),
       drift_(std::max<size_t>(1, (element_count + kSliceElements - 1) / kSliceElements), 0.0),
+      slice_start_(drift_.size() + 1, 0),
+      seen_in_(node_count, 0),
+      nodes_per_vertex_(nodes_per_vertex),
       element_count_(element_count),
       weight_bound_(weight_bound),
       margin_target_(margin_target),
-      margin_cap_(margin_cap) {}
+      margin_cap_(margin_cap) {
+  surface_nodes_.reserve(node_count);
+  // A slice lists each node once: at most its vertices' nodes, and at most every node.
+  const size_t per_slice = std::min<size_t>(size_t{3} * kSliceElements * nodes_per_vertex,
+                                            node_count);
+  slice_nodes_.reserve(drift_.size() * per_slice);
+}
 
 void SurfaceFreshness::reset(const double* nodes) noexcept {
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
@@ -20,16 +31,67 @@ void SurfaceFreshness::reset(const double* nodes) noexcept {
   margin_ = 0.0;
 }
 
+void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
+                            const uint32_t* vertex_nodes) noexcept {
+  bound_ = false;
+  slice_nodes_.clear();  // keeps the capacity reserved for every slice's nodes
+  std::fill(seen_in_.begin(), seen_in_.end(), 0u);
+  for (uint32_t slice = 0; slice < drift_.size(); ++slice) {
+    slice_start_[slice] = static_cast<uint32_t>(slice_nodes_.size());
+    const uint32_t end = std::min(element_count_, (slice + 1) * kSliceElements);
+    for (uint32_t e = slice * kSliceElements; e < end; ++e)
+      for (uint32_t c = 0; c < 3; ++c) {
+        const uint32_t vertex = triangles[3 * size_t{order[e]} + c];
+        for (uint32_t j = 0; j < nodes_per_vertex_; ++j) {
+          const uint32_t node =
+              vertex_nodes ? vertex_nodes[size_t{nodes_per_vertex_} * vertex + j] : vertex;
+          if (node >= seen_in_.size()) {  // not this body's node: every slice takes the largest
+            bound_ = false;
+            return;
+          }
+          if (seen_in_[node] == slice + 1) continue;
+          seen_in_[node] = slice + 1;
+          slice_nodes_.push_back(node);  // within the capacity reserved: no allocation
+        }
+      }
+  }
+  slice_start_[drift_.size()] = static_cast<uint32_t>(slice_nodes_.size());
+  surface_nodes_.clear();
+  for (uint32_t node = 0; node < seen_in_.size(); ++node)
+    if (seen_in_[node] != 0) surface_nodes_.push_back(node);
+  bound_ = true;
+}
+
 bool SurfaceFreshness::advance(const double* nodes) noexcept {
   double largest2 = 0.0;  // m^2
-  for (size_t i = 0; i < last_nodes_.size(); i += 3) {
+  const auto take_move = [&](size_t node) {
+    const size_t i = 3 * node;
     const double dx = nodes[i] - last_nodes_[i], dy = nodes[i + 1] - last_nodes_[i + 1],
                  dz = nodes[i + 2] - last_nodes_[i + 2];
+    last_nodes_[i] = nodes[i];
+    last_nodes_[i + 1] = nodes[i + 1];
+    last_nodes_[i + 2] = nodes[i + 2];
     // A non-finite node makes the margin NaN, which fails the cap below.
     const double d2 = dx * dx + dy * dy + dz * dz;
+    moves2_[node] = d2;
     largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);
+  };
+  if (bound_) {
+    // Only the nodes some slice follows: the others (a body's inside) move no vertex.
+    for (const uint32_t node : surface_nodes_) take_move(node);
+    if (!std::isnan(largest2)) {
+      for (size_t slice = 0; slice < drift_.size(); ++slice) {
+        double slice2 = 0.0;
+        for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k)
+          slice2 = std::max(slice2, moves2_[slice_nodes_[k]]);
+        drift_[slice] += std::sqrt(slice2);
+      }
+      update_margin();
+      return margin_ <= margin_cap_;
+    }
+  } else {
+    for (size_t node = 0; node < moves2_.size(); ++node) take_move(node);
   }
-  std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   const double move = std::sqrt(largest2);
   for (double& d : drift_) d += move;
   update_margin();

@@ -1,10 +1,12 @@
 // What the haptic proxy's queries need of one collision surface per tick without refitting its
 // whole hierarchy. The hierarchy's elements are cut into slices (runs of its element order); each
 // slice keeps how far any of its vertices may have moved since its boxes were computed: the sum,
-// over the ticks since, of the largest node move, times the surface's weight bound (a vertex is a
-// weighted sum of nodes). The queries widen their search by the largest of these (the margin).
-// While the margin is past its target the stalest slice is refit, one a tick; a still body costs
-// nothing. A margin past its cap (a fast body) asks for a whole refit. No allocation per tick.
+// over the ticks since, of the largest move of the nodes its vertices follow, times the surface's
+// weight bound (a vertex is a weighted sum of nodes). Until the slices' nodes are known (bind),
+// every slice takes the body's largest node move. The queries widen their search by the largest
+// drift (the margin). While the margin is past its target the stalest slice is refit, one a tick:
+// a still body, or its still part, costs nothing. A margin past its cap (a fast body) asks for a
+// whole refit. No allocation per tick.
 #pragma once
 
 #include <cstddef>
@@ -15,16 +17,23 @@ namespace tacta {
 
 class SurfaceFreshness {
  public:
-  static constexpr uint32_t kSliceElements = 128;  // elements refit per tick, at most
+  static constexpr uint32_t kSliceElements = 64;  // elements refit per tick, at most
 
   // node_count: the body's nodes; element_count: the surface's triangles; weight_bound: the
   // largest sum of |weight| of a vertex over the nodes it follows (1: vertices are nodes);
   // margin_target, margin_cap: m.
+  // nodes_per_vertex: how many nodes a vertex follows (4: an embedded surface's tet; 1: vertices
+  // are nodes), which sizes the slices' node lists.
   SurfaceFreshness(size_t node_count, uint32_t element_count, double weight_bound,
-                   double margin_target, double margin_cap);
+                   double margin_target, double margin_cap, uint32_t nodes_per_vertex);
 
   // Every box was just computed from `nodes` (3 per node, m): the margin restarts at 0.
   void reset(const double* nodes) noexcept;
+  // The nodes each slice follows, from the hierarchy's element order (element_count entries)
+  // over `triangles` (3 per triangle) and `vertex_nodes` (nodes_per_vertex per vertex, or null:
+  // vertices are nodes). Again after each rebuild, which may reorder. No allocation.
+  void bind(const uint32_t* order, const uint32_t* triangles,
+            const uint32_t* vertex_nodes) noexcept;
   // Once a tick before the proxy's queries: takes in the nodes' largest move since the last
   // call. False when the margin is past its cap: the caller refits everything and calls reset.
   bool advance(const double* nodes) noexcept;
@@ -32,13 +41,24 @@ class SurfaceFreshness {
   // stalest slice while the margin is past its target, else none (count 0). The margin then
   // assumes it was refit.
   void next_slice(uint32_t& first, uint32_t& count) noexcept;
+  void unbind() noexcept { bound_ = false; }  // every slice takes the body's largest node move
+  bool bound() const noexcept { return bound_; }
   double margin() const noexcept { return margin_; }  // m
+  // How far any vertex of slice `slice` may be from where its boxes were computed, m.
+  double slice_margin(size_t slice) const noexcept { return weight_bound_ * drift_[slice]; }
   double margin_cap() const noexcept { return margin_cap_; }
 
  private:
   void update_margin() noexcept;
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
+  std::vector<double> moves2_;      // 1 per node, m^2: its squared move at the last advance
   std::vector<double> drift_;       // per slice: node moves summed since it was refit, m
+  std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
+  std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
+  std::vector<uint32_t> seen_in_;      // 1 per node: the last slice (+ 1) that listed it
+  std::vector<uint32_t> surface_nodes_;  // the nodes any slice follows, once each
+  bool bound_ = false;
+  uint32_t nodes_per_vertex_ = 1;
   uint32_t element_count_ = 0;
   double weight_bound_ = 1.0;
   double margin_target_ = 0.0;

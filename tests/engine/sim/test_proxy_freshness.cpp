@@ -1,0 +1,152 @@
+// SurfaceFreshness's margins are bounds: after any motion, every vertex of a slice lies within
+// the slice's margin of where it was when that slice was last refit (the property the proxy's widened
+// queries rely on). Checked by replaying random, local motions of a strip of triangles whose
+// vertices are nodes, and of vertices that are weighted sums of four nodes (an embedded
+// surface, weights outside [0, 1] included). And the point of slices that know their nodes:
+// a body moving in one place refits only the slices there.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+#include <vector>
+
+#include "collision/proxy_freshness.hpp"
+
+namespace {
+
+using tacta::SurfaceFreshness;
+constexpr uint32_t kSlice = SurfaceFreshness::kSliceElements;
+
+// A strip of 2 x (columns + 1) vertices and 2 triangles per column, along x.
+struct Strip {
+  std::vector<uint32_t> triangles;
+  uint32_t vertices = 0;
+  explicit Strip(uint32_t columns) : vertices(2 * (columns + 1)) {
+    for (uint32_t c = 0; c < columns; ++c) {
+      const uint32_t a = 2 * c, b = a + 1, d = a + 2, e = a + 3;
+      triangles.insert(triangles.end(), {a, d, b, b, d, e});
+    }
+  }
+  uint32_t count() const { return static_cast<uint32_t>(triangles.size() / 3); }
+};
+
+// Vertex positions from node positions: `nodes_per_vertex` weighted nodes each (or the node).
+std::vector<double> vertex_positions(const std::vector<double>& nodes, uint32_t vertices,
+                                     const std::vector<uint32_t>& vertex_nodes,
+                                     const std::vector<double>& weights, uint32_t per_vertex) {
+  std::vector<double> out(3 * size_t{vertices}, 0.0);
+  for (uint32_t v = 0; v < vertices; ++v)
+    for (uint32_t j = 0; j < per_vertex; ++j) {
+      const uint32_t n = per_vertex == 1 ? v : vertex_nodes[per_vertex * v + j];
+      const double w = per_vertex == 1 ? 1.0 : weights[per_vertex * v + j];
+      for (int a = 0; a < 3; ++a) out[3 * v + a] += w * nodes[3 * n + a];
+    }
+  return out;
+}
+
+// Random local motion for `ticks` ticks; every tick, each slice's vertices are checked against
+// where they were at that slice's last refit. Returns the slices refit.
+uint64_t replay(uint32_t per_vertex, uint64_t seed) {
+  const Strip strip(700);  // 1,400 triangles: 11 slices
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  // Nodes: the vertices themselves, or a coarser set each vertex follows four of.
+  const uint32_t node_count = per_vertex == 1 ? strip.vertices : strip.vertices / 4 + 4;
+  std::vector<uint32_t> vertex_nodes;
+  std::vector<double> weights;
+  double weight_bound = 1.0;
+  for (uint32_t v = 0; per_vertex > 1 && v < strip.vertices; ++v) {
+    double sum = 0, abs_sum = 0;
+    std::array<double, 4> w{};
+    for (uint32_t j = 0; j < 4; ++j) {
+      vertex_nodes.push_back(std::min(node_count - 1, v / 4 + j));
+      w[j] = 0.25 + 0.4 * unit(rng);  // some below 0: extrapolated
+      sum += w[j];
+    }
+    for (double& x : w) {
+      x /= sum;
+      abs_sum += std::fabs(x);
+      weights.push_back(x);
+    }
+    weight_bound = std::max(weight_bound, abs_sum);
+  }
+  std::vector<double> nodes(3 * size_t{node_count});
+  for (uint32_t n = 0; n < node_count; ++n) nodes[3 * n] = 0.01 * n;
+  // A scrambled element order, as a hierarchy's is.
+  std::vector<uint32_t> order(strip.count());
+  for (uint32_t e = 0; e < strip.count(); ++e) order[e] = e;
+  std::shuffle(order.begin(), order.end(), rng);
+
+  const double target = 1e-3, cap = 1.0;  // m
+  SurfaceFreshness fresh(node_count, strip.count(), weight_bound, target, cap, per_vertex);
+  fresh.reset(nodes.data());
+  fresh.bind(order.data(), strip.triangles.data(), per_vertex == 1 ? nullptr : vertex_nodes.data());
+  const uint32_t slices = (strip.count() + kSlice - 1) / kSlice;
+  std::vector<std::vector<double>> at_refit(
+      slices, vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex));
+  uint64_t refits = 0;
+  for (int tick = 0; tick < 2000; ++tick) {
+    // A patch of nodes moves (the tool's neighbourhood, somewhere along the strip), plus a
+    // slow drift of everything now and then.
+    const auto centre = static_cast<uint32_t>(rng() % node_count);
+    for (uint32_t n = centre; n < std::min(node_count, centre + 30); ++n)
+      for (int a = 0; a < 3; ++a) nodes[3 * n + a] += 2e-4 * unit(rng);
+    if (tick % 97 == 0)
+      for (double& x : nodes) x += 1e-5 * unit(rng);
+    EXPECT_TRUE(fresh.advance(nodes.data())) << "the cap is far";
+    const std::vector<double> now =
+        vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex);
+    for (uint32_t s = 0; s < slices; ++s)
+      for (uint32_t e = s * kSlice; e < std::min(strip.count(), (s + 1) * kSlice); ++e)
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t v = strip.triangles[3 * order[e] + c];
+          const double dx = now[3 * v] - at_refit[s][3 * v],
+                       dy = now[3 * v + 1] - at_refit[s][3 * v + 1],
+                       dz = now[3 * v + 2] - at_refit[s][3 * v + 2];
+          const double moved = std::sqrt(dx * dx + dy * dy + dz * dz);
+          if (moved > fresh.slice_margin(s) * (1 + 1e-12) + 1e-15) {
+            ADD_FAILURE() << "slice " << s << " vertex " << v << " moved " << moved
+                          << " m, its margin " << fresh.slice_margin(s) << " m at tick " << tick;
+            return refits;
+          }
+        }
+    uint32_t first = 0, count = 0;
+    for (fresh.next_slice(first, count); count > 0; fresh.next_slice(first, count)) {
+      at_refit[first / kSlice] = now;  // the slice's boxes are computed from where it is now
+      ++refits;
+    }
+    EXPECT_LE(fresh.margin(), target);
+  }
+  return refits;
+}
+
+TEST(ProxyFreshness, MarginsBoundWhereSlicesOfNodeVerticesMoved) { EXPECT_GT(replay(1, 1), 0u); }
+
+TEST(ProxyFreshness, MarginsBoundWhereSlicesOfEmbeddedVerticesMoved) {
+  EXPECT_GT(replay(4, 2), 0u);
+}
+
+// One end of the strip moves; the slices at the other end are never refit.
+TEST(ProxyFreshness, StillSlicesAreNotRefit) {
+  const Strip strip(700);
+  std::vector<double> nodes(3 * size_t{strip.vertices});
+  for (uint32_t n = 0; n < strip.vertices; ++n) nodes[3 * n] = 0.01 * n;
+  std::vector<uint32_t> order(strip.count());
+  for (uint32_t e = 0; e < strip.count(); ++e) order[e] = e;
+  SurfaceFreshness fresh(strip.vertices, strip.count(), 1.0, 1e-3, 1.0, 1);
+  fresh.reset(nodes.data());
+  fresh.bind(order.data(), strip.triangles.data(), nullptr);
+  uint32_t highest_refit = 0;
+  for (int tick = 0; tick < 500; ++tick) {
+    for (uint32_t n = 0; n < 40; ++n) nodes[3 * n + 2] += 1e-4;  // the first 20 columns rise
+    ASSERT_TRUE(fresh.advance(nodes.data()));
+    uint32_t first = 0, count = 0;
+    for (fresh.next_slice(first, count); count > 0; fresh.next_slice(first, count))
+      highest_refit = std::max(highest_refit, first + count);
+  }
+  // The 40 nodes belong to the first 40 triangles, all in slice 0.
+  EXPECT_EQ(highest_refit, kSlice);
+}
+
+}  // namespace
