@@ -96,20 +96,31 @@ TEST(SchedulerLockstep, AFrameAtEverySixtiethOfSimulatedTime) {
   EXPECT_NEAR(task.publishes.back(), 10.0, 1e-9);
 }
 
-TEST(SchedulerLockstep, StopFlagAndFalseReturnEndTheRunEarly) {
+// A 5 s run in `mode` that the stop flag ends after tick `stop_at`: the state it stopped at is
+// published (a paused window shows where the clock is, not the frame before it).
+void expect_a_stop_to_publish_its_tick(ClockMode mode, uint64_t stop_at) {
   std::atomic<bool> stop{false};
   ScheduleOptions o;
+  o.mode = mode;
   o.duration_s = 5.0;
   o.stop = &stop;
   CountingTask task(o.haptic_rate_hz, 1000);
   task.stop = &stop;
-  task.stop_at = 508;  // ends at 0.509 s, between the frames at 30/60 and 31/60 s
+  task.stop_at = stop_at;
   CountingRender render;
   const ScheduleResult r = tacta::run_schedule(task, render, o);
-  EXPECT_EQ(r.ticks, 509u);
+  EXPECT_EQ(r.ticks, stop_at + 1);
   EXPECT_TRUE(r.stopped_early);
-  EXPECT_DOUBLE_EQ(task.publishes.back(), 0.509) << "the state at the stop is published";
+  ASSERT_FALSE(task.publishes.empty());
+  EXPECT_DOUBLE_EQ(task.publishes.back(), static_cast<double>(stop_at + 1) * 1e-3);
+}
 
+TEST(SchedulerLockstep, StopFlagAndFalseReturnEndTheRunEarly) {
+  expect_a_stop_to_publish_its_tick(ClockMode::Lockstep, 508);  // 0.509 s: between two frames
+
+  ScheduleOptions o;
+  o.duration_s = 5.0;
+  CountingRender render;
   CountingTask quitter(o.haptic_rate_hz, 1000);
   quitter.return_false_at = 99;
   std::atomic<bool> never{false};
@@ -221,22 +232,8 @@ class SlowTask final : public tacta::HapticTask {
   int last_policy = -1;
 };
 
-// A paused window shows the state the clock stopped at, not the frame before it.
 TEST(SchedulerRealtime, AStopPublishesTheStateItStoppedAt) {
-  std::atomic<bool> stop{false};
-  ScheduleOptions o;
-  o.mode = ClockMode::Realtime;
-  o.duration_s = 5.0;
-  o.stop = &stop;
-  CountingTask task(o.haptic_rate_hz, 100);
-  task.stop = &stop;
-  task.stop_at = 58;  // ends at 0.059 s, between the frames at 3/60 and 4/60 s
-  CountingRender render;
-  const ScheduleResult r = tacta::run_schedule(task, render, o);
-  EXPECT_EQ(r.ticks, 59u);
-  EXPECT_TRUE(r.stopped_early);
-  ASSERT_FALSE(task.publishes.empty());
-  EXPECT_DOUBLE_EQ(task.publishes.back(), 0.059);
+  expect_a_stop_to_publish_its_tick(ClockMode::Realtime, 58);  // 0.059 s: between 3/60 and 4/60
 }
 
 TEST(SchedulerRealtime, AHapticThreadThatMissesEveryDeadlineLeavesSchedFifo) {
