@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   app.add_flag("--mouse", options.mouse,
                "Replace the scene's devices by the mouse (plugin 'mouse'), keeping their tools");
   app.add_flag("--paused", options.paused,
-               "Start paused (one frame is stepped for a first picture)");
+               "Start paused, showing the state before the first tick");
   app.add_option("--quit-after", options.quit_after_s,
                  "Close after this many seconds of wall time (0: never)")
       ->check(CLI::NonNegativeNumber);

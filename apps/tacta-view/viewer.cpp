@@ -96,7 +96,7 @@ Viewer::Viewer(const ViewerOptions& options)
           mouse_.feed(placement(scene).start);  // before the first tick reads the device
       });
   if (options.paused)
-    session_->step();  // one frame, for a first picture
+    session_->step();  // the first picture: the state before any tick
   else
     session_->play();
 }
