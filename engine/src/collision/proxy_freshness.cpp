@@ -45,10 +45,7 @@ void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
         for (uint32_t j = 0; j < nodes_per_vertex_; ++j) {
           const uint32_t node =
               vertex_nodes ? vertex_nodes[size_t{nodes_per_vertex_} * vertex + j] : vertex;
-          if (node >= seen_in_.size()) {  // not this body's node: every slice takes the largest
-            bound_ = false;
-            return;
-          }
+          if (node >= seen_in_.size()) return;  // not this body's node: stays unbound
           if (seen_in_[node] == slice + 1) continue;
           seen_in_[node] = slice + 1;
           slice_nodes_.push_back(node);  // within the capacity reserved: no allocation
