@@ -179,7 +179,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   }
   const double stiffness_scale = h * beta_ + h * h;
   uint32_t e = 0;
-  if (options_.batch_elements && options_.rotation == RotationMethod::kPolar) {
+  if (options_.batch_elements) {
     result |= batched_pass(state.positions, stiffness_scale);
     e = static_cast<uint32_t>(batches_.size()) * kBatchLanes;
   }

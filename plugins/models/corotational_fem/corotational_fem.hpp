@@ -55,7 +55,7 @@ struct Options {
   int load_steps = 1;
   int static_iterations = 25;      // per increment, at most
   double static_tolerance = 1e-6;  // |f_int + f_ext| on free nodes <= this * the load scale
-  // step()'s element pass four tets at a time (element_batch.cpp; polar rotation only); false:
+  // step()'s element pass four tets at a time (element_batch.cpp; either rotation); false:
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs

@@ -3,7 +3,8 @@
 // every operation is a loop over the lanes the compiler turns into one vector instruction
 // (AVX2 in the x86-64-v3 clone, SSE2 pairs otherwise). Gathers of node positions and scatters
 // into forces and matrix blocks stay scalar. A lane whose single Newton step does not end the
-// polar iteration is finished by the scalar polar_rotation().
+// polar iteration is finished by the scalar polar_rotation(); under `svd` an inverted tet, or
+// one that iteration does not finish, takes the SVD.
 #include <cmath>
 
 #include "corotational_fem.hpp"
@@ -129,14 +130,31 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
     qy[l] = ny * inverse_norm;
     qz[l] = nz * inverse_norm;
   }
+  Lanes det;
+  for (int l = 0; l < kLanes; ++l)
+    det[l] = f[0][l] * (f[4][l] * f[8][l] - f[5][l] * f[7][l]) -
+             f[1][l] * (f[3][l] * f[8][l] - f[5][l] * f[6][l]) +
+             f[2][l] * (f[3][l] * f[7][l] - f[4][l] * f[6][l]);
+  const bool svd = options_.rotation == RotationMethod::kSvd;
   uint32_t result = TACTA_STEP_OK;
   for (int l = 0; l < kLanes; ++l) {
     polar_iterations += stepped[l] ? 1 : 0;
-    if (!finished[l]) {  // rare: far from the answer, the scalar iteration carries on
+    if (det[l] <= 0.0) result |= TACTA_STEP_INVERTED_ELEMENT;
+    // With det F > 0 the rotation maximising tr(R^T F) is F's polar factor, U V^T, which the
+    // Newton iteration finds to ~1e-12 rad: under `svd` only an inverted tet, or one the
+    // iteration does not finish, takes the SVD. A lane the single step did not finish goes on
+    // in the scalar iteration.
+    if (!finished[l] || (svd && det[l] <= 0.0)) {
       Eigen::Quaterniond q(qw[l], qx[l], qy[l], qz[l]);
       Eigen::Matrix3d deformation;
       for (int i = 0; i < 9; ++i) deformation(i / 3, i % 3) = f[i][l];
-      polar_iterations += polar_rotation(deformation, q, kPolarMaxIterations - 1);
+      bool take_svd = svd && det[l] <= 0.0;
+      if (!take_svd) {
+        const int taken = polar_rotation(deformation, q, kPolarMaxIterations - 1);
+        polar_iterations += taken;
+        take_svd = svd && taken >= kPolarMaxIterations - 1;
+      }
+      if (take_svd) q = Eigen::Quaterniond(svd_rotation(deformation));
       qw[l] = q.w();
       qx[l] = q.x();
       qy[l] = q.y();
@@ -157,14 +175,8 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
     last[0] = qx[l], last[1] = qy[l], last[2] = qz[l], last[3] = qw[l];
   }
   quaternion_to_matrix(qw, qx, qy, qz, rot);
-  // Inversion, strain eps = sym(R^T F) - I, stress, world stress R sigma.
+  // Strain eps = sym(R^T F) - I, stress, world stress R sigma.
   Lanes stress[9], world[9];
-  for (int l = 0; l < kLanes; ++l) {
-    const double det = f[0][l] * (f[4][l] * f[8][l] - f[5][l] * f[7][l]) -
-                       f[1][l] * (f[3][l] * f[8][l] - f[5][l] * f[6][l]) +
-                       f[2][l] * (f[3][l] * f[7][l] - f[4][l] * f[6][l]);
-    if (det <= 0.0) result |= TACTA_STEP_INVERTED_ELEMENT;
-  }
   Lanes g[9];  // R^T F
   for (int r = 0; r < 3; ++r)
     for (int k = 0; k < 3; ++k)

@@ -203,7 +203,8 @@ TEST(CorotationalSolvers, IncompleteCholeskyStepsLikeSparseCholesky) {
 
 // step()'s element pass four tets at a time gives the trajectory of the one-at-a-time pass: a
 // beam swinging under gravity with a sideways kick, 54 tets so that two go through the
-// one-at-a-time path after the batches.
+// one-at-a-time path after the batches. With rotation svd the batch's Newton step finds U V^T
+// of every tet with det F > 0 (the polar factor) to ~1e-12 rad, and the SVD does the others.
 TEST(CorotationalSolvers, BatchedElementPassMatchesOneAtATime) {
   TestMesh mesh = box_tet_mesh({1, 1, 9}, {0.02, 0.02, 0.18}, 1000.0);
   mesh.fix_plane(2, 0.0);
@@ -211,37 +212,71 @@ TEST(CorotationalSolvers, BatchedElementPassMatchesOneAtATime) {
   material.rayleigh_mass = 0.1;
   material.rayleigh_stiffness = 0.01;
   ASSERT_EQ(mesh.tets.size() / 4 % CorotationalFem::kBatchLanes, 2u);
-  auto run = [&](bool batched) {
+  for (const RotationMethod rotation : {RotationMethod::kPolar, RotationMethod::kSvd}) {
+    long polar_iterations = 0;
+    auto run = [&](bool batched) {
+      Options options;
+      options.batch_elements = batched;
+      options.rotation = rotation;
+      options.solver = LinearSolver::kCholesky;
+      auto model = make_model(mesh, material, options);
+      BodyState body(mesh);
+      body.add_gravity(mesh, {0.0, -9.81, 0.0});
+      for (uint32_t i = 0; i < mesh.node_count(); ++i)
+        body.velocities[3 * i] = 5.0 * mesh.positions[3 * i + 2];  // m/s, growing to the tip
+      model->begin(body.state, 1e-3);
+      for (int i = 0; i < 40; ++i)
+        EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+      if (batched) polar_iterations = model->last_polar_iterations();
+      return body.positions;
+    };
+    const std::vector<double> batched = run(true), single = run(false);
+    double difference = 0.0, displacement = 0.0;
+    for (size_t k = 0; k < batched.size(); ++k) {
+      difference = std::max(difference, std::abs(batched[k] - single[k]));
+      displacement = std::max(displacement, std::abs(single[k] - mesh.positions[k]));
+    }
+    const char* name = rotation == RotationMethod::kPolar ? "polar" : "svd";
+    EXPECT_GT(displacement, 1e-3) << name;
+    EXPECT_LT(difference, 1e-10 * displacement) << name;
+    EXPECT_GT(polar_iterations, 0) << name;  // the batch ran its Newton step
+  }
+}
+
+// An inverted tet under `svd` takes the SVD in the batched pass too: a beam whose free half is
+// pushed through itself steps the same with the batch as one tet at a time, with the inverted
+// flag raised by both.
+TEST(CorotationalSolvers, BatchedSvdTakesTheSvdForInvertedTets) {
+  TestMesh mesh = box_tet_mesh({1, 1, 9}, {0.02, 0.02, 0.18}, 1000.0);
+  mesh.fix_plane(2, 0.0);
+  const tacta_material material = make_material(2e4, 0.4, 1000.0);
+  auto run = [&](bool batched, uint32_t& bits) {
     Options options;
     options.batch_elements = batched;
+    options.rotation = RotationMethod::kSvd;
     options.solver = LinearSolver::kCholesky;
     auto model = make_model(mesh, material, options);
     BodyState body(mesh);
-    body.add_gravity(mesh, {0.0, -9.81, 0.0});
+    // Every node past z = 0.09 m mirrored through that plane: the tets there turn inside out.
     for (uint32_t i = 0; i < mesh.node_count(); ++i)
-      body.velocities[3 * i] = 5.0 * mesh.positions[3 * i + 2];  // m/s, growing to the tip
+      if (mesh.positions[3 * i + 2] > 0.09)
+        body.positions[3 * i + 2] = 0.18 - mesh.positions[3 * i + 2];
     model->begin(body.state, 1e-3);
-    for (int i = 0; i < 40; ++i)
-      EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+    bits = 0;
+    for (int i = 0; i < 5; ++i) bits |= model->step(body.state, 1e-3);
     return body.positions;
   };
-  const std::vector<double> batched = run(true), single = run(false);
-  double difference = 0.0, displacement = 0.0;
+  uint32_t batched_bits = 0, single_bits = 0;
+  const std::vector<double> batched = run(true, batched_bits), single = run(false, single_bits);
+  EXPECT_NE(batched_bits & TACTA_STEP_INVERTED_ELEMENT, 0u);
+  EXPECT_NE(single_bits & TACTA_STEP_INVERTED_ELEMENT, 0u);
+  double difference = 0.0, motion = 0.0;
   for (size_t k = 0; k < batched.size(); ++k) {
     difference = std::max(difference, std::abs(batched[k] - single[k]));
-    displacement = std::max(displacement, std::abs(single[k] - mesh.positions[k]));
+    motion = std::max(motion, std::abs(single[k] - mesh.positions[k]));
   }
-  EXPECT_GT(displacement, 1e-3);
-  EXPECT_LT(difference, 1e-10 * displacement);
-  // The batched pass is polar only: with rotation svd, step() takes no polar iteration.
-  Options svd;
-  svd.rotation = RotationMethod::kSvd;
-  auto model = make_model(mesh, material, svd);
-  BodyState body(mesh);
-  body.add_gravity(mesh, {0.0, -9.81, 0.0});
-  model->begin(body.state, 1e-3);
-  model->step(body.state, 1e-3);
-  EXPECT_EQ(model->last_polar_iterations(), 0);
+  EXPECT_GT(motion, 1e-3);
+  EXPECT_LT(difference, 1e-9 * motion);
 }
 
 }  // namespace
