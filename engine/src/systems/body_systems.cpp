@@ -1,6 +1,7 @@
 #include "systems/body_systems.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace tacta {
 
@@ -81,9 +82,69 @@ void take_model_swaps(World& world, double time) noexcept {
       });
 }
 
+namespace {
+
+// A body due to step on the tick's thread this tick, and what its step gave.
+struct DueStep {
+  size_t body = 0;
+  double dt = 0;  // s
+  double divergence_limit_m = 0;
+  ModelInstance* model = nullptr;
+  const BodyTopology* topology = nullptr;
+  StepArrays arrays;
+  BoundaryMotion* boundary = nullptr;
+  FaultState* fault = nullptr;
+  StepOutcome out;
+};
+
+// The due bodies of one tick, stepped in groups (no allocation on the tick).
+struct DueSteps {
+  static constexpr size_t kGroup = 32;
+  std::array<DueStep, kGroup> steps;
+  size_t count = 0;
+  Vec3 gravity{};
+  double time = 0;  // s
+};
+
+void step_due(void* user, uint32_t begin, uint32_t end, uint32_t) {
+  auto& due = *static_cast<DueSteps*>(user);
+  for (uint32_t i = begin; i < end; ++i) {
+    DueStep& d = due.steps[i];
+    d.out = step_body_arrays(*d.model, *d.topology, due.gravity, d.divergence_limit_m, d.arrays,
+                             due.time, d.dt, d.boundary);
+  }
+}
+
+// Steps the group, one body per job on the scene's threads when there are several (a model's
+// own parallel_for then runs serially inside its job, over the same fixed chunks), and reports
+// them in body order.
+bool step_group(World& world, DueSteps& due, TickEvents& events) noexcept {
+  if (due.count > 1 && world.threads() > 1)
+    world.jobs().parallel_for(static_cast<uint32_t>(due.count), 1, &step_due, &due);
+  else
+    step_due(&due, 0, static_cast<uint32_t>(due.count), 0);
+  bool healthy = true;
+  for (size_t i = 0; i < due.count; ++i) {
+    const DueStep& d = due.steps[i];
+    events.stepped(d.body, d.out.bits, due.time);
+    if (d.out.why != nullptr) {
+      events.faulted(d.body, d.out.bits, d.out.why, due.time);
+      healthy = false;
+      continue;
+    }
+    d.fault->max_displacement_m = std::max(d.fault->max_displacement_m, d.out.max_displacement);
+  }
+  due.count = 0;
+  return healthy;
+}
+
+}  // namespace
+
 bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& workers,
                  TickEvents& events, double time, double dt) noexcept {
-  const Vec3& g = world.scene().gravity;
+  DueSteps due;
+  due.gravity = world.scene().gravity;
+  due.time = time;
   bool healthy = true;
   world
       .bodies_in_scene<FaultState, BodySettings, StepProgress, BodyModel, RestShape, NodeState,
@@ -104,20 +165,19 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
           progress.next_step_s += settings.period_s;
           step_dt = settings.period_s;
         }
-        const StepArrays arrays{nodes.positions, nodes.velocities, loads.external_forces,
-                                nodes.step_start, loads.contact_forces};
-        const StepOutcome out =
-            step_body_arrays(*model.instance, *shape.topology, g, settings.divergence_limit_m,
-                             arrays, time, step_dt, constraints.boundary.get());
-        events.stepped(body, out.bits, time);
-        if (out.why != nullptr) {
-          events.faulted(body, out.bits, out.why, time);
-          healthy = false;
-          return;
-        }
-        fault.max_displacement_m = std::max(fault.max_displacement_m, out.max_displacement);
+        if (due.count == DueSteps::kGroup) healthy = step_group(world, due, events) && healthy;
+        DueStep& d = due.steps[due.count++];
+        d.body = body;
+        d.dt = step_dt;
+        d.divergence_limit_m = settings.divergence_limit_m;
+        d.model = model.instance.get();
+        d.topology = shape.topology.get();
+        d.arrays = {nodes.positions, nodes.velocities, loads.external_forces, nodes.step_start,
+                    loads.contact_forces};
+        d.boundary = constraints.boundary.get();
+        d.fault = &fault;
       });
-  return healthy;
+  return step_group(world, due, events) && healthy;
 }
 
 void record_bodies(World& world, double time, Recorder<TrajectoryRow>& trajectory,

@@ -52,6 +52,7 @@ class World {
     return registry_.view<InScene, Ts...>();
   }
   uint32_t threads() const noexcept { return jobs_->threads(); }
+  JobPool& jobs() noexcept { return *jobs_; }  // the scene's `threads`: models' and bodies'
 
   // Builds a model instance for a body (load time, or a swap requested from a UI thread).
   std::unique_ptr<ModelInstance> make_model(const std::string& model, const ParamSet& params,

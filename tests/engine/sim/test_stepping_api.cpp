@@ -215,5 +215,75 @@ TEST(HostServices, TwoWorkersGiveTheSerialPassToRoundingAndRepeat) {
   EXPECT_EQ(beam_after(2, 50), parallel) << "a thread count gives one result, run after run";
 }
 
+// Bodies due on the same tick step together, one per job on the scene's threads: each body's
+// state is, bit for bit, what it reaches alone in a scene with the same `threads` (its model's
+// own parallel_for runs serially inside its job, over the same fixed chunks), and within
+// rounding of `threads: 1` (1,824 tets a beam: corotational_fem colours its element pass).
+// A body that faults in the group freezes; the others step on.
+std::string beams_scene(uint32_t threads, const std::vector<std::string>& bodies) {
+  std::string text = "name: beams_together\nthreads: " + std::to_string(threads) +
+                     "\ngravity: [0, -9, 0]\nclock: {haptic_rate_hz: 100}\nbodies:\n";
+  for (const std::string& b : bodies) text += b;
+  return text;
+}
+
+std::string beam_body(const std::string& name, double x, const std::string& model,
+                      double youngs_modulus = 1000) {
+  return "  - name: " + name + "\n    mesh: {beam_grid: {size: [10, 10, 40], cells: [2, 2, 10], " +
+         "origin: [" + std::to_string(x) + ", -5, 0]}}\n" +
+         "    material: {youngs_modulus: " + std::to_string(youngs_modulus) +
+         ", poisson_ratio: 0.4, density: 0.2, " +
+         "rayleigh_mass: 0.1, rayleigh_stiffness: 0.1}\n    model: " + model + "\n" +
+         "    fixed: [{box: {min: [-100, -100, -1], max: [100, 100, 0.1]}}]\n";
+}
+
+std::vector<double> positions_after(const std::string& text, const std::string& body,
+                                    uint64_t ticks) {
+  Simulation simulation(scene_from_text(text, "beams_together"), plugins());
+  simulation.step(ticks);
+  const BodyArrays a = simulation.body_arrays(simulation.body(body));
+  return {a.positions, a.positions + 3 * a.nodes};
+}
+
+TEST(HostServices, BodiesDueTogetherStepOnTheWorkersAsEachStepsAlone) {
+  const std::vector<std::string> bodies = {
+      beam_body("polar", 0, "{name: corotational_fem, rotation: polar}"),
+      beam_body("svd", 20, "{name: corotational_fem, rotation: svd}"),
+      beam_body("tensor", 40, "{name: tensor_mass, integrator: implicit_euler}")};
+  const std::string together = beams_scene(2, bodies);
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    const std::string name = b == 0 ? "polar" : (b == 1 ? "svd" : "tensor");
+    const std::vector<double> grouped = positions_after(together, name, 40);
+    EXPECT_EQ(grouped, positions_after(beams_scene(2, {bodies[b]}), name, 40)) << name;
+    const std::vector<double> serial = positions_after(beams_scene(1, bodies), name, 40);
+    double difference = 0, largest = 0;
+    for (size_t i = 0; i < serial.size(); ++i) {
+      difference = std::max(difference, std::fabs(serial[i] - grouped[i]));
+      largest = std::max(largest, std::fabs(serial[i]));
+    }
+    EXPECT_LT(difference, 1e-9 * largest) << name;
+  }
+}
+
+TEST(HostServices, ABodyFaultingInTheGroupFreezesAndTheOthersStepOn) {
+  const std::vector<std::string> bodies = {
+      beam_body("steady", 0, "corotational_fem"),
+      // Explicit steps of 10 ms far past their stability limit: it diverges within ticks.
+      beam_body("fragile", 20, "{name: tensor_mass, integrator: central_difference}", 1e9),
+      beam_body("other", 40, "corotational_fem")};
+  Simulation simulation(scene_from_text(beams_scene(2, bodies), "beams_together"), plugins());
+  simulation.step(20);
+  const RunResult report = simulation.report();
+  ASSERT_EQ(report.bodies.size(), 3u);
+  EXPECT_TRUE(report.bodies[1].frozen);
+  EXPECT_FALSE(report.bodies[0].frozen);
+  EXPECT_FALSE(report.bodies[2].frozen);
+  EXPECT_EQ(positions_after(beams_scene(2, {bodies[0]}), "steady", 20),
+            [&] {
+              const BodyArrays a = simulation.body_arrays(simulation.body("steady"));
+              return std::vector<double>(a.positions, a.positions + 3 * a.nodes);
+            }());
+}
+
 }  // namespace
 }  // namespace tacta::simtest
