@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 
 namespace tacta {
 
@@ -94,24 +95,33 @@ struct DueStep {
   StepArrays arrays;
   BoundaryMotion* boundary = nullptr;
   FaultState* fault = nullptr;
+  StepProgress* progress = nullptr;
   StepOutcome out;
 };
 
-// The due bodies of one tick, stepped in groups (no allocation on the tick).
+// The due bodies of one tick, stepped in groups of kGroup (on the stack: no allocation).
 struct DueSteps {
-  static constexpr size_t kGroup = 32;
+  static constexpr size_t kGroup = 16;
   std::array<DueStep, kGroup> steps;
+  std::array<uint32_t, kGroup> order;  // the costliest (its last timed step) first
   size_t count = 0;
   Vec3 gravity{};
   double time = 0;  // s
+  bool timed = false;  // steps on several threads: each body's wall time orders the next group
 };
 
 void step_due(void* user, uint32_t begin, uint32_t end, uint32_t) {
   auto& due = *static_cast<DueSteps*>(user);
   for (uint32_t i = begin; i < end; ++i) {
-    DueStep& d = due.steps[i];
+    DueStep& d = due.steps[due.order[i]];
+    const auto start = due.timed ? std::chrono::steady_clock::now()
+                                 : std::chrono::steady_clock::time_point{};
     d.out = step_body_arrays(*d.model, *d.topology, due.gravity, d.divergence_limit_m, d.arrays,
                              due.time, d.dt, d.boundary);
+    if (due.timed)
+      d.progress->step_wall_ms = std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - start)
+                                     .count();
   }
 }
 
@@ -119,10 +129,19 @@ void step_due(void* user, uint32_t begin, uint32_t end, uint32_t) {
 // own parallel_for then runs serially inside its job, over the same fixed chunks), and reports
 // them in body order.
 bool step_group(World& world, DueSteps& due, TickEvents& events) noexcept {
-  if (due.count > 1 && world.threads() > 1)
+  for (uint32_t i = 0; i < due.count; ++i) due.order[i] = i;
+  due.timed = due.count > 1 && world.threads() > 1;
+  if (due.timed) {
+    // Longest first, so the threads finish close together (the order changes no result); an
+    // insertion sort: std::stable_sort may allocate its buffer.
+    const auto cost = [&](uint32_t i) { return due.steps[i].progress->step_wall_ms; };
+    for (uint32_t i = 1; i < due.count; ++i)
+      for (uint32_t j = i; j > 0 && cost(due.order[j]) > cost(due.order[j - 1]); --j)
+        std::swap(due.order[j], due.order[j - 1]);
     world.jobs().parallel_for(static_cast<uint32_t>(due.count), 1, &step_due, &due);
-  else
+  } else {
     step_due(&due, 0, static_cast<uint32_t>(due.count), 0);
+  }
   bool healthy = true;
   for (size_t i = 0; i < due.count; ++i) {
     const DueStep& d = due.steps[i];
@@ -176,6 +195,7 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
                     loads.contact_forces};
         d.boundary = constraints.boundary.get();
         d.fault = &fault;
+        d.progress = &progress;
       });
   return step_group(world, due, events) && healthy;
 }

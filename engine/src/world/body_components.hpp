@@ -170,6 +170,7 @@ struct BodySettings {
 struct StepProgress {
   double next_step_s = 0;  // s; when a slower body steps next
   uint64_t refreshes = 0;  // own_thread: finished steps taken into NodeState so far
+  double step_wall_ms = 0;  // wall time of its last step on the tick's threads (who goes first)
 };
 
 // Prescribed motion and plates; null when none.
