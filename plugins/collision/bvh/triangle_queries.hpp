@@ -46,44 +46,73 @@ inline double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, 
   return norm(q);
 }
 
+namespace detail {
+// Smallest root s in [0, 1] of a s^2 + b s + c = 0 where the value falls through 0 (c > 0: the
+// start is outside), or -1. Roots in the form that does not cancel.
+inline double entering_root(double a, double b, double c) {
+  if (!(a > 0.0) || !(c > 0.0) || b >= 0.0) return -1.0;  // not moving toward it
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) return -1.0;
+  const double s = 2.0 * c / (-b + std::sqrt(disc));  // = (-b - sqrt(disc)) / 2a
+  return s <= 1.0 ? s : -1.0;
+}
+}  // namespace detail
+
 // First fraction s in [0, 1] at which a sphere of radius r moving from -> to touches the
-// triangle, or -1. The distance from a linearly moving point to a convex set is convex in s,
-// so: touching at 0, else find the minimum by golden search and bisect the decreasing part.
+// triangle, or -1. The triangle is its face, three edges and three corners: the first touch of
+// the whole is the earliest of the first touches of the parts, each in closed form (the plane
+// offset by r, a cylinder of radius r around an edge with its foot inside the edge, a sphere of
+// radius r around a corner). A start already within r touches at 0.
 inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, const Vec3& a,
                                    const Vec3& b, const Vec3& c) {
-  auto gap = [&](double s) {
-    const Vec3 p{from[0] + s * (to[0] - from[0]), from[1] + s * (to[1] - from[1]),
-                 from[2] + s * (to[2] - from[2])};
-    return distance_to_triangle(p, a, b, c) - r;
-  };
-  if (gap(0.0) <= 0.0) return 0.0;
+  if (distance_to_triangle(from, a, b, c) <= r) return 0.0;
+  const Vec3 d = sub(to, from);
   // Every point of the sweep is within half its length of its middle: a triangle further than
-  // that (and r, and 1 pm for rounding) from the middle is never touched, and most candidates a
-  // box query hands over are rejected here before the search.
-  const Vec3 middle{0.5 * (from[0] + to[0]), 0.5 * (from[1] + to[1]), 0.5 * (from[2] + to[2])};
-  if (distance_to_triangle(middle, a, b, c) - 0.5 * norm(sub(to, from)) - r > 1e-12) return -1.0;
-  double lo = 0.0, hi = 1.0;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  for (int i = 0; i < 60 && hi - lo > 1e-12; ++i) {
-    const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
-    if (gap(m1) < gap(m2))
-      hi = m2;
-    else
-      lo = m1;
+  // that (and r, and 1 pm for rounding) from the middle is never touched. Most candidates a box
+  // query hands over end here.
+  const Vec3 middle = add_scaled(from, d, 0.5);
+  if (distance_to_triangle(middle, a, b, c) - 0.5 * norm(d) - r > 1e-12) return -1.0;
+  double first = 2.0;
+  // Face: the centre reaches the plane offset by r on its own side, over the triangle.
+  const Vec3 normal = cross(sub(b, a), sub(c, a));
+  const double twice_area = norm(normal);
+  if (twice_area > 0.0) {
+    const Vec3 n = scaled(normal, 1.0 / twice_area);
+    const double height = dot(sub(from, a), n), closing = dot(d, n);
+    const double side = height >= 0.0 ? 1.0 : -1.0;
+    if (std::abs(height) > r && side * closing < 0.0) {
+      const double s = (std::abs(height) - r) / (-side * closing);
+      // Where the centre is then, over the plane: inside when on the inner side of each edge.
+      const Vec3 centre = add_scaled(from, d, s);
+      if (s <= 1.0 && dot(cross(sub(b, a), sub(centre, a)), normal) >= 0.0 &&
+          dot(cross(sub(c, b), sub(centre, b)), normal) >= 0.0 &&
+          dot(cross(sub(a, c), sub(centre, c)), normal) >= 0.0)
+        first = s;
+    }
   }
-  double s_min = 0.5 * (lo + hi);
-  if (gap(1.0) < gap(s_min)) s_min = 1.0;
-  if (gap(s_min) > 0.0) return -1.0;
-  lo = 0.0;
-  hi = s_min;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (gap(mid) > 0.0)
-      lo = mid;
-    else
-      hi = mid;
+  // Edges: the centre reaches the cylinder of radius r around the edge's line, its foot inside.
+  const Vec3* corner[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = *corner[k];
+    const Vec3 e = sub(*corner[(k + 1) % 3], p);
+    const double length2 = dot(e, e);
+    if (!(length2 > 0.0)) continue;
+    const Vec3 m = sub(from, p);
+    const Vec3 m_off = add_scaled(m, e, -dot(m, e) / length2);  // parts across the edge
+    const Vec3 d_off = add_scaled(d, e, -dot(d, e) / length2);
+    const double s = detail::entering_root(dot(d_off, d_off), 2.0 * dot(m_off, d_off),
+                                           dot(m_off, m_off) - r * r);
+    if (s < 0.0 || s >= first) continue;
+    const double t = dot(add_scaled(m, d, s), e) / length2;
+    if (t >= 0.0 && t <= 1.0) first = s;
   }
-  return hi;
+  // Corners.
+  for (const Vec3* v : corner) {
+    const Vec3 m = sub(from, *v);
+    const double s = detail::entering_root(dot(d, d), 2.0 * dot(m, d), dot(m, m) - r * r);
+    if (s >= 0.0 && s < first) first = s;
+  }
+  return first <= 1.0 ? first : -1.0;
 }
 
 }  // namespace tacta::collision
