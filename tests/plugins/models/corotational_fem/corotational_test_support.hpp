@@ -35,6 +35,11 @@ struct BodyState {
     for (uint32_t i = 0; i < mesh.node_count(); ++i)
       for (int c = 0; c < 3; ++c) external_forces[3 * i + c] += mesh.masses[i] * g[c];
   }
+  // A sideways kick: x velocity rate * z (m/s), growing toward a beam's tip along z.
+  void kick_sideways(const TestMesh& mesh, double rate) {
+    for (uint32_t i = 0; i < mesh.node_count(); ++i)
+      velocities[3 * i] = rate * mesh.positions[3 * i + 2];
+  }
   double kinetic_energy(const TestMesh& mesh) const {
     double sum = 0.0;
     for (size_t k = 0; k < velocities.size(); ++k)

@@ -60,8 +60,7 @@ struct KickedBox {
     if (threaded) *threaded = model->threaded();
     BodyState body(mesh);
     body.add_gravity(mesh, {0.0, -9.81, 0.0});
-    for (uint32_t i = 0; i < mesh.node_count(); ++i)
-      body.velocities[3 * i] = 3.0 * mesh.positions[3 * i + 2];  // m/s, growing with height
+    body.kick_sideways(mesh, 3.0);
     model->begin(body.state, 1e-3);
     for (int i = 0; i < steps; ++i)
       EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
