@@ -170,36 +170,44 @@ bool BoundingTree::query(const Aabb& box, Visit&& visit) const noexcept {
   return true;
 }
 
-// Distance (m) from p to box; 0 inside.
-inline double distance(const Aabb& box, const std::array<double, 3>& p) noexcept {
+// Squared distance (m^2) from p to box; 0 inside.
+inline double squared_distance(const Aabb& box, const std::array<double, 3>& p) noexcept {
   double d2 = 0.0;
   for (int k = 0; k < 3; ++k) {
     const double below = box.lo[k] - p[k], above = p[k] - box.hi[k];
     const double out = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
     d2 += out * out;
   }
-  return std::sqrt(d2);
+  return d2;
 }
 
 template <class Visit>
 bool BoundingTree::nearest(const std::array<double, 3>& p, double margin, double& best,
                            Visit&& visit) const noexcept {
   if (node_count_ == 0) return true;
-  std::array<uint32_t, 256> stack;
+  // Each entry keeps its box's squared distance, measured once when its parent pushed it.
+  struct Entry {
+    uint32_t node;
+    double d2;  // m^2
+  };
+  std::array<Entry, 256> stack;
   uint32_t size = 0;
-  stack[size++] = 0;
+  stack[size++] = {0, squared_distance(nodes_[0].box, p)};
   while (size > 0) {
-    const Node& n = nodes_[stack[--size]];
-    if (n.box.empty() || distance(n.box, p) - margin > best) continue;
+    const Entry top = stack[--size];
+    const Node& n = nodes_[top.node];
+    const double reach = best + margin;  // a box further than this holds nothing nearer
+    if (n.box.empty() || top.d2 > reach * reach) continue;
     if (n.count == 1) {
       visit(order_[n.first]);
       continue;
     }
     if (size + 2 > stack.size()) return false;
-    const double left = distance(nodes_[n.left].box, p), right = distance(nodes_[n.right].box, p);
+    const Entry left{n.left, squared_distance(nodes_[n.left].box, p)};
+    const Entry right{n.right, squared_distance(nodes_[n.right].box, p)};
     // The nearer child is popped first.
-    stack[size++] = left <= right ? n.right : n.left;
-    stack[size++] = left <= right ? n.left : n.right;
+    stack[size++] = left.d2 <= right.d2 ? right : left;
+    stack[size++] = left.d2 <= right.d2 ? left : right;
   }
   return true;
 }
