@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <optional>
 
 namespace tacta {
 
@@ -103,56 +104,53 @@ struct DueStep {
 struct DueSteps {
   static constexpr size_t kGroup = 16;
   std::array<DueStep, kGroup> steps;
-  std::array<uint32_t, kGroup> order;  // the costliest (its last timed step) first
+  std::array<uint32_t, kGroup> order;  // the slowest (its last step in a group) first
   size_t count = 0;
   Vec3 gravity{};
   double time = 0;  // s
-  bool timed = false;  // steps on several threads: each body's wall time orders the next group
 };
+
+void step_one(DueStep& d, const Vec3& gravity, double time, bool timed) noexcept {
+  const auto start =
+      timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  d.out = step_body_arrays(*d.model, *d.topology, gravity, d.divergence_limit_m, d.arrays, time,
+                           d.dt, d.boundary);
+  if (timed)
+    d.progress->step_wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
 void step_due(void* user, uint32_t begin, uint32_t end, uint32_t) {
   auto& due = *static_cast<DueSteps*>(user);
-  for (uint32_t i = begin; i < end; ++i) {
-    DueStep& d = due.steps[due.order[i]];
-    const auto start = due.timed ? std::chrono::steady_clock::now()
-                                 : std::chrono::steady_clock::time_point{};
-    d.out = step_body_arrays(*d.model, *d.topology, due.gravity, d.divergence_limit_m, d.arrays,
-                             due.time, d.dt, d.boundary);
-    if (due.timed)
-      d.progress->step_wall_ms = std::chrono::duration<double, std::milli>(
-                                     std::chrono::steady_clock::now() - start)
-                                     .count();
-  }
+  for (uint32_t i = begin; i < end; ++i)
+    step_one(due.steps[due.order[i]], due.gravity, due.time, true);
 }
 
-// Steps the group, one body per job on the scene's threads when there are several (a model's
-// own parallel_for then runs serially inside its job, over the same fixed chunks), and reports
-// them in body order.
+// What a step gave, told to the tick's ledger. False when it faulted.
+bool report_step(const DueStep& d, TickEvents& events, double time) noexcept {
+  events.stepped(d.body, d.out.bits, time);
+  if (d.out.why != nullptr) {
+    events.faulted(d.body, d.out.bits, d.out.why, time);
+    return false;
+  }
+  d.fault->max_displacement_m = std::max(d.fault->max_displacement_m, d.out.max_displacement);
+  return true;
+}
+
+// Steps the group, one body per job on the scene's threads (a model's own parallel_for then
+// runs serially inside its job, over the same fixed chunks), the slowest last time first so the
+// threads finish close together (the order changes no result), and reports them in body order.
 bool step_group(World& world, DueSteps& due, TickEvents& events) noexcept {
   for (uint32_t i = 0; i < due.count; ++i) due.order[i] = i;
-  due.timed = due.count > 1 && world.threads() > 1;
-  if (due.timed) {
-    // Longest first, so the threads finish close together (the order changes no result); an
-    // insertion sort: std::stable_sort may allocate its buffer.
-    const auto cost = [&](uint32_t i) { return due.steps[i].progress->step_wall_ms; };
-    for (uint32_t i = 1; i < due.count; ++i)
-      for (uint32_t j = i; j > 0 && cost(due.order[j]) > cost(due.order[j - 1]); --j)
-        std::swap(due.order[j], due.order[j - 1]);
-    world.jobs().parallel_for(static_cast<uint32_t>(due.count), 1, &step_due, &due);
-  } else {
-    step_due(&due, 0, static_cast<uint32_t>(due.count), 0);
-  }
+  // An insertion sort: std::stable_sort may allocate its buffer.
+  const auto cost = [&](uint32_t i) { return due.steps[i].progress->step_wall_ms; };
+  for (uint32_t i = 1; i < due.count; ++i)
+    for (uint32_t j = i; j > 0 && cost(due.order[j]) > cost(due.order[j - 1]); --j)
+      std::swap(due.order[j], due.order[j - 1]);
+  world.jobs().parallel_for(static_cast<uint32_t>(due.count), 1, &step_due, &due);
   bool healthy = true;
-  for (size_t i = 0; i < due.count; ++i) {
-    const DueStep& d = due.steps[i];
-    events.stepped(d.body, d.out.bits, due.time);
-    if (d.out.why != nullptr) {
-      events.faulted(d.body, d.out.bits, d.out.why, due.time);
-      healthy = false;
-      continue;
-    }
-    d.fault->max_displacement_m = std::max(d.fault->max_displacement_m, d.out.max_displacement);
-  }
+  for (size_t i = 0; i < due.count; ++i)
+    healthy = report_step(due.steps[i], events, due.time) && healthy;
   due.count = 0;
   return healthy;
 }
@@ -161,9 +159,13 @@ bool step_group(World& world, DueSteps& due, TickEvents& events) noexcept {
 
 bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& workers,
                  TickEvents& events, double time, double dt) noexcept {
-  DueSteps due;
-  due.gravity = world.scene().gravity;
-  due.time = time;
+  // With threads >= 2 the due bodies are gathered and stepped together; else each steps here.
+  std::optional<DueSteps> group;
+  if (world.threads() > 1) {
+    group.emplace();
+    group->gravity = world.scene().gravity;
+    group->time = time;
+  }
   bool healthy = true;
   world
       .bodies_in_scene<FaultState, BodySettings, StepProgress, BodyModel, RestShape, NodeState,
@@ -184,8 +186,7 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
           progress.next_step_s += settings.period_s;
           step_dt = settings.period_s;
         }
-        if (due.count == DueSteps::kGroup) healthy = step_group(world, due, events) && healthy;
-        DueStep& d = due.steps[due.count++];
+        DueStep d;
         d.body = body;
         d.dt = step_dt;
         d.divergence_limit_m = settings.divergence_limit_m;
@@ -196,8 +197,22 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
         d.boundary = constraints.boundary.get();
         d.fault = &fault;
         d.progress = &progress;
+        if (!group) {
+          step_one(d, world.scene().gravity, time, false);
+          healthy = report_step(d, events, time) && healthy;
+          return;
+        }
+        if (group->count == DueSteps::kGroup)
+          healthy = step_group(world, *group, events) && healthy;
+        group->steps[group->count++] = d;
       });
-  return step_group(world, due, events) && healthy;
+  if (group && group->count == 1) {  // alone: its model's own parallel_for has the threads
+    step_one(group->steps[0], group->gravity, time, false);
+    healthy = report_step(group->steps[0], events, time) && healthy;
+  } else if (group && group->count > 1) {
+    healthy = step_group(world, *group, events) && healthy;
+  }
+  return healthy;
 }
 
 void record_bodies(World& world, double time, Recorder<TrajectoryRow>& trajectory,

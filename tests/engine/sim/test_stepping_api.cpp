@@ -278,11 +278,10 @@ TEST(HostServices, ABodyFaultingInTheGroupFreezesAndTheOthersStepOn) {
   EXPECT_TRUE(report.bodies[1].frozen);
   EXPECT_FALSE(report.bodies[0].frozen);
   EXPECT_FALSE(report.bodies[2].frozen);
-  EXPECT_EQ(positions_after(beams_scene(2, {bodies[0]}), "steady", 20),
-            [&] {
-              const BodyArrays a = simulation.body_arrays(simulation.body("steady"));
-              return std::vector<double>(a.positions, a.positions + 3 * a.nodes);
-            }());
+  EXPECT_EQ(positions_after(beams_scene(2, {bodies[0]}), "steady", 20), [&] {
+    const BodyArrays a = simulation.body_arrays(simulation.body("steady"));
+    return std::vector<double>(a.positions, a.positions + 3 * a.nodes);
+  }());
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 // on random triangles and sweeps and on the cases where a closed form can slip (a start within
 // r, a sweep along the face, across an edge or onto a corner, flat and needle triangles).
 #include <gtest/gtest.h>
-
 #include <random>
 
 #include "triangle_queries.hpp"
