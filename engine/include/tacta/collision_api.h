@@ -91,6 +91,14 @@ typedef struct tacta_collision_world {
    * surface's hierarchy since its vertices last moved (update_elements), and no vertex has moved
    * further than this from where its elements' boxes were computed. 0: every box is current. */
   double query_margin;
+  /* appended (read only when struct_size reaches it), for the proxy queries of a plugin that
+   * declares TACTA_COLLISION_PROXY_MAKES_CURRENT: before sphere_cast or closest_point reads a
+   * triangle's positions_end, it calls make_current(make_current_context, surface, triangle),
+   * which brings that triangle's vertices up to date (an embedded surface's vertices are current
+   * only where made so). NULL: every position is current. Not thread-safe: call it from the
+   * thread that called the query. */
+  void (*make_current)(void* context, uint32_t surface, uint32_t triangle);
+  void* make_current_context;
 } tacta_collision_world;
 
 /* ---- results ---------------------------------------------------------------------------------- */
@@ -250,12 +258,21 @@ typedef struct tacta_collision_api {
    * other elements than the surface's triangles. The host slices only a plugin that also
    * serves the proxy; then, for the proxy's queries, a surface's positions_end may be current
    * only for the triangles this plugin's overlap_shape (widened by query_margin) reports for the
-   * query's box: the host brings those up to date before each query. */
+   * query's box: the host brings those up to date before each query (or, with
+   * TACTA_COLLISION_PROXY_MAKES_CURRENT, each triangle when the query calls make_current). */
   uint32_t (*element_order)(void* instance, uint32_t surface, const uint32_t** order,
                             uint32_t* count);
   uint32_t (*update_elements)(void* instance, const tacta_collision_world* world, uint32_t surface,
                               uint32_t first, uint32_t count);
+
+  /* -- appended after update_elements (present when api_size reaches it) --------------------- */
+  /* TACTA_COLLISION_PROXY_* bits. With MAKES_CURRENT, the proxy queries call the world's
+   * make_current for each triangle before reading its positions, and the host then skips the
+   * overlap_shape pass that made the query's whole box current (it reads only what is tested). */
+  uint32_t proxy_flags;
 } tacta_collision_api;
+
+#define TACTA_COLLISION_PROXY_MAKES_CURRENT 1u
 
 #define TACTA_COLLISION_API_FIELD(member, required) \
   { #member, offsetof(tacta_collision_api, member), required }

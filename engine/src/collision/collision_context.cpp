@@ -98,11 +98,13 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   }
 
  private:
-  // Adds a query's wall time to the context's query_ms and leaves the view's margin at 0.
+  // Adds a query's wall time to the context's query_ms and leaves the view's margin at 0 (and
+  // its make_current unset: other callers read every position as current).
   struct Timed {
     explicit Timed(CollisionContext& c) : context(c), start(std::chrono::steady_clock::now()) {}
     ~Timed() {
       context.view_.query_margin = 0.0;
+      context.view_.make_current = nullptr;
       context.query_ms_ +=
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();

@@ -148,6 +148,9 @@ class CollisionContext {
   // The proxy's hierarchies are refit by slices (collision.proxy_refit sliced, and a broad phase
   // serving the proxy that offers it); false: whole, every tick.
   bool proxy_sliced() const noexcept { return sliced_; }
+  // Tests: make every query's box current beforehand, as for a proxy plugin that does not call
+  // make_current, even when it does (the two must touch alike).
+  void set_eager_patches(bool eager) noexcept { eager_patches_ = eager; }
   // Contacts over the tick and the response (positions and velocities corrected in place).
   // Returns TACTA_COLLIDE_* bits.
   uint32_t detect_and_respond(double time, double dt) noexcept;
@@ -168,8 +171,10 @@ class CollisionContext {
  private:
   class Query;
   // Before a proxy query on `surface` over the box lo..hi (m): the view's margin is the surface's,
-  // and an embedded surface's vertices the query can reach are made current.
+  // and an embedded surface's vertices the query can reach are made current, or (a proxy plugin
+  // with TACTA_COLLISION_PROXY_MAKES_CURRENT) will be as it reads them, by make_current_entry.
   void prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept;
+  static void make_current_entry(void* context, uint32_t surface, uint32_t triangle) noexcept;
   // True when `surface` has vertices that are current only where a query looked (prepare_query).
   bool patched(uint32_t surface) const noexcept {
     return sliced_ && embedded_[static_cast<size_t>(body_of_surface_[surface])] != nullptr;
@@ -205,6 +210,7 @@ class CollisionContext {
   std::vector<double> last_distance_;           // per surface: the last closest point's distance, m
   std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
   bool sliced_ = false;                         // refit_for_proxy refits slices
+  bool eager_patches_ = false;                  // tests: the box pass even for MAKES_CURRENT
   const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
   uint64_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
   double query_ms_ = 0, patch_ms_ = 0;

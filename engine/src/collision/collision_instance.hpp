@@ -29,6 +29,8 @@ class CollisionInstance {
       element_order = api.element_order;
       update_elements = api.update_elements;
     }
+    if (descriptor.api_size >= offsetof(tacta_collision_api, proxy_flags) + sizeof(uint32_t))
+      proxy_flags = api.proxy_flags;
     instance = create_sibling(where);
   }
   // A fresh instance of the same plugin with the same parameters and tick (a surface built off
@@ -56,6 +58,7 @@ class CollisionInstance {
   // Both or neither (a refit spread over ticks).
   decltype(tacta_collision_api::element_order) element_order = nullptr;
   decltype(tacta_collision_api::update_elements) update_elements = nullptr;
+  uint32_t proxy_flags = 0;  // TACTA_COLLISION_PROXY_* (0 from a table that predates them)
 
  private:
   ParamSet params_;  // as create() saw them, for siblings

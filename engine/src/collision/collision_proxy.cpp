@@ -1,6 +1,7 @@
 // CollisionContext's side of the haptic proxy: the hierarchies refit a slice at a time while
 // the bodies move (SurfaceFreshness), and an embedded surface's vertices brought up to date where
-// a query looks.
+// a query looks: each triangle it reads (a plugin that calls make_current), else every triangle
+// in its box beforehand.
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -67,11 +68,26 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
   refit(time, dt);
 }
 
+void CollisionContext::make_current_entry(void* context, uint32_t surface,
+                                          uint32_t triangle) noexcept {
+  auto& c = *static_cast<CollisionContext*>(context);
+  if (surface >= c.view_.surface_count || triangle >= c.surfaces_[surface].triangle_count) return;
+  EmbeddedCollisionSurface* e = c.embedded_[static_cast<size_t>(c.body_of_surface_[surface])].get();
+  if (e != nullptr) e->refresh_triangles(&triangle, 1, c.proxy_pass_);
+}
+
 void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept {
   // The query widens its search by how far any vertex may be from its element's box.
   view_.query_margin = sliced_ ? freshness_[surface].margin() : 0.0;
   EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get();
   if (!sliced_ || e == nullptr) return;
+  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  if ((proxy->proxy_flags & TACTA_COLLISION_PROXY_MAKES_CURRENT) != 0 && !eager_patches_) {
+    // The query makes current each triangle it reads, and nothing else.
+    view_.make_current = &make_current_entry;
+    view_.make_current_context = this;
+    return;
+  }
   std::array<double, 6>& c = covered_[surface];
   if (c[0] <= lo[0] && c[1] <= lo[1] && c[2] <= lo[2] && hi[0] <= c[3] && hi[1] <= c[4] &&
       hi[2] <= c[5])
@@ -92,7 +108,6 @@ void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec
   }
   box.pose_start.rotation[0] = 1.0;
   box.pose_end = box.pose_start;
-  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
   uint32_t count = 0;
   raised_bits_ |=
       proxy->api.overlap_shape(proxy->instance, &view_, &box, surface, patch_triangles_.data(),

@@ -65,15 +65,21 @@ void EmbeddedCollisionSurface::refresh_from(const double* node_start, const doub
 
 void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint32_t count,
                                                  uint64_t pass) noexcept {
-  const SoftBody b = body();
+  if (pass != nodes_pass_ || nodes_end_ == nullptr) {
+    // Looked up once a pass: a query may call this for one triangle at a time.
+    const SoftBody b = body();
+    nodes_end_ = b.nodes.positions.data();
+    nodes_start_ = b.nodes.step_start.data();
+    nodes_pass_ = pass;
+  }
   const EmbeddedSurface& s = *surface_;
   for (uint32_t i = 0; i < count; ++i)
     for (size_t k = 0; k < 3; ++k) {
       const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
       if (fresh_at_[v] == pass) continue;
       fresh_at_[v] = pass;
-      interpolate_vertex(s, v, b.nodes.positions.data(), &surface_->positions[3 * size_t{v}]);
-      interpolate_vertex(s, v, b.nodes.step_start.data(), &start_[3 * size_t{v}]);
+      interpolate_vertex(s, v, nodes_end_, &surface_->positions[3 * size_t{v}]);
+      interpolate_vertex(s, v, nodes_start_, &start_[3 * size_t{v}]);
     }
 }
 

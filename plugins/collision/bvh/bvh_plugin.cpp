@@ -21,6 +21,8 @@ class BvhBroadPhase {
   static constexpr const char* kDescription =
       "broad phase: AABB/OBB trees refit per tick, pairs, self-collision, haptic proxy queries";
   static constexpr uint32_t kVersion = 10000;
+  // The proxy queries make each triangle current (world.make_current) before reading it.
+  static constexpr uint32_t kProxyFlags = TACTA_COLLISION_PROXY_MAKES_CURRENT;
   static constexpr std::array<tacta_param_spec, 4> kParams{
       sdk::choice_param("volume", "aabb|obb", 0,
                         "internal node volume: axis-aligned or principal axes"),
@@ -136,7 +138,9 @@ class BvhBroadPhase {
     const Vec3 p{point[0], point[1], point[2]};
     double best = max_distance;
     bool found = false;
+    const CurrentMaker make_current(world, surface);
     trees_[surface].nearest(p, query_margin(world), best, [&](uint32_t t) {
+      make_current(t);
       Vec3 x[3];
       corners(s, t, x);
       std::array<double, 3> w;
@@ -166,7 +170,9 @@ class BvhBroadPhase {
     }
     box = widened(box, query_margin(world));
     double best = 2.0;
+    const CurrentMaker make_current(world, surface);
     trees_[surface].query(box, [&](uint32_t t) {
+      make_current(t);
       Vec3 x[3];
       corners(s, t, x);
       const double toi = sphere_cast_triangle(a, b, radius, x[0], x[1], x[2]);
@@ -191,6 +197,22 @@ class BvhBroadPhase {
                                               sizeof(world.query_margin);
     return has && world.query_margin > 0.0 ? world.query_margin : 0.0;
   }
+  // The host's make_current for one surface (nothing from a host whose world view predates it).
+  struct CurrentMaker {
+    CurrentMaker(const tacta_collision_world& world, uint32_t s) : surface(s) {
+      if (world.struct_size >= offsetof(tacta_collision_world, make_current_context) +
+                                   sizeof(world.make_current_context)) {
+        call = world.make_current;
+        context = world.make_current_context;
+      }
+    }
+    void operator()(uint32_t triangle) const noexcept {
+      if (call != nullptr) call(context, surface, triangle);
+    }
+    void (*call)(void*, uint32_t, uint32_t) = nullptr;
+    void* context = nullptr;
+    uint32_t surface;
+  };
   static Aabb widened(Aabb box, double margin) noexcept {
     for (int k = 0; k < 3; ++k) {
       box.lo[k] -= margin;

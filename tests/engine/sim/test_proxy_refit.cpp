@@ -1,7 +1,8 @@
 // The haptic proxy's surfaces brought up to date a slice at a time (collision.proxy_refit:
 // sliced, the default) answer every query as a whole refit each tick does: on the liver demo
 // (its embedded 4,384-triangle surface, and its tets' boundary), with and without contact
-// response, the device force, the contact and the bodies' nodes agree tick for tick.
+// response, the device force, the contact and the bodies' nodes agree tick for tick; and the
+// embedded vertices made current as the queries read them touch as when made current by box.
 #include <cmath>
 #include <memory>
 
@@ -101,6 +102,32 @@ TEST(ProxyRefit, SlicedTouchesTheTetBoundaryAsAWholeRefitDoes) {
 // start from those hierarchies each tick.
 TEST(ProxyRefit, SlicedTouchesAsAWholeRefitWithContactResponseOn) {
   expect_same_touch({"collision.enabled=true"}, 1500, false);
+}
+
+// The bvh plugin makes current each triangle its queries read (PROXY_MAKES_CURRENT); a proxy
+// plugin that does not gets the query's whole box made current beforehand. Both read the same
+// vertex positions, so the touch is the same bit for bit; the box pass makes more current.
+TEST(ProxyRefit, VerticesMadeCurrentAsReadTouchAsTheWholeBoxMadeCurrent) {
+  constexpr size_t kTicks = 2600;
+  ProxyRun as_read("sliced", {}, kTicks), box("sliced", {}, kTicks);
+  box.collision->set_eager_patches(true);
+  size_t contact_ticks = 0;
+  double as_read_patch_ms = 0, box_patch_ms = 0;  // the box pass's time, summed over the ticks
+  for (size_t k = 0; k < kTicks; ++k) {
+    as_read.tick();
+    box.tick();
+    as_read_patch_ms += as_read.collision->patch_ms();
+    box_patch_ms += box.collision->patch_ms();
+    const DeviceComponents a = as_read.world->device(0), b = box.world->device(0);
+    ASSERT_EQ(a.contact.in_contact, b.contact.in_contact) << "tick " << k;
+    contact_ticks += a.contact.in_contact ? 1 : 0;
+    for (size_t i = 0; i < 3; ++i)
+      ASSERT_EQ(a.contact.force[i], b.contact.force[i]) << "tick " << k;
+  }
+  EXPECT_GT(contact_ticks, kTicks / 4);
+  EXPECT_EQ(as_read.world->body(0).nodes.positions, box.world->body(0).nodes.positions);
+  EXPECT_EQ(as_read_patch_ms, 0.0);  // no box pass: each read made its own triangle current
+  EXPECT_GT(box_patch_ms, 0.0);
 }
 
 }  // namespace

@@ -3,8 +3,8 @@
 // queries widened by a margin against a whole refit, bad input reported.
 #include <algorithm>
 #include <array>
-#include <gtest/gtest.h>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <limits>
 #include <random>
 #include <set>
@@ -78,7 +78,8 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
   TestSurface b = tacta::testing::grid(9, 0.8, 0.2, 0.1, 0.05);
   const double margin = 0.002;
   std::vector<tacta_collision_surface> views{a.view(1, margin), b.view(2, margin)};
-  tacta_collision_world world{sizeof world, 2, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
+  tacta_collision_world world{sizeof world, 2,    views.data(), 0,   nullptr, 0,
+                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK) << message;
@@ -110,7 +111,8 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
 TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
   TestSurface a = tacta::testing::grid(10, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
+  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
+                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
@@ -149,7 +151,8 @@ TEST_P(BvhPlugin, SlicedRefitAndWidenedQueriesAnswerAsAWholeRefit) {
   std::mt19937 rng(99);
   TestSurface a = tacta::testing::grid(20, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
+  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
+                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
   void* sliced = make(GetParam());
   void* whole = make(GetParam());
   char message[256] = {0};
@@ -221,7 +224,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   TestSurface a = tacta::testing::grid(3, 1.0, 0.0, 0.0, 0.0);
   a.triangles[4] = 999;  // out of range
   std::vector<tacta_collision_surface> views{a.view(7, 0.0)};
-  tacta_collision_world world{sizeof world, 1, views.data(), 0, nullptr, 0, nullptr, 1e-3, 0.0, 0.0};
+  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
+                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
   EXPECT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(message).find("999"), std::string::npos) << message;
   // NaN positions: flagged, those elements skipped.
@@ -232,8 +236,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   // Empty mesh.
   TestSurface empty;
   std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
-  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0,  nullptr, 0,
-                                    nullptr,      1e-3, 0.0,         0.0};
+  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0,   nullptr, 0,
+                                    nullptr,      1e-3, 0.0,         0.0, nullptr, nullptr};
   ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
   api().update(bvh, &empty_world);
   uint32_t count = 5;

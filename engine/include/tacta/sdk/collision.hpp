@@ -28,6 +28,7 @@
 //   uint32_t element_order(uint32_t surface, const uint32_t*& order, uint32_t& count) noexcept
 //   uint32_t update_elements(const tacta_collision_world&, uint32_t surface, uint32_t first,
 //                            uint32_t count) noexcept
+//   static constexpr uint32_t kProxyFlags          TACTA_COLLISION_PROXY_* bits
 #pragma once
 
 #include "tacta/collision_api.h"
@@ -145,6 +146,7 @@ struct CollisionAdapter {
       api.element_order = &element_order;
       api.update_elements = &update_elements;
     }
+    if constexpr (requires { T::kProxyFlags; }) api.proxy_flags = T::kProxyFlags;
     return api;
   }
 };
