@@ -138,8 +138,10 @@ bool report_step(const DueStep& d, TickEvents& events, double time) noexcept {
 }
 
 // Steps the group, one body per job on the scene's threads (a model's own parallel_for then
-// runs serially inside its job, over the same fixed chunks), the slowest last time first so the
-// threads finish close together (the order changes no result), and reports them in body order.
+// runs serially inside its job, over the same fixed chunks; a group of one runs on the caller
+// outside any job, so its model's parallel_for has the threads), the slowest last time first so
+// the threads finish close together (the order changes no result), and reports them in body
+// order.
 bool step_group(World& world, DueSteps& due, TickEvents& events) noexcept {
   for (uint32_t i = 0; i < due.count; ++i) due.order[i] = i;
   // An insertion sort: std::stable_sort may allocate its buffer.
@@ -206,12 +208,7 @@ bool step_bodies(World& world, const std::vector<std::unique_ptr<BodyWorker>>& w
           healthy = step_group(world, *group, events) && healthy;
         group->steps[group->count++] = d;
       });
-  if (group && group->count == 1) {  // alone: its model's own parallel_for has the threads
-    step_one(group->steps[0], group->gravity, time, false);
-    healthy = report_step(group->steps[0], events, time) && healthy;
-  } else if (group && group->count > 1) {
-    healthy = step_group(world, *group, events) && healthy;
-  }
+  if (group && group->count > 0) healthy = step_group(world, *group, events) && healthy;
   return healthy;
 }
 
