@@ -12,6 +12,7 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
       moves2_(node_count, 0.0),
       drift_(std::max<size_t>(1, (element_count + kSliceElements - 1) / kSliceElements), 0.0),
       slice_start_(drift_.size() + 1, 0),
+      referenced_(drift_.size(), 0),
       seen_in_(node_count, 0),
       nodes_per_vertex_(nodes_per_vertex),
       element_count_(element_count),
@@ -23,12 +24,14 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
   const size_t per_slice = std::min<size_t>(size_t{3} * kSliceElements * nodes_per_vertex,
                                             node_count);
   slice_nodes_.reserve(drift_.size() * per_slice);
+  reference_.reserve(3 * slice_nodes_.capacity());
 }
 
 void SurfaceFreshness::reset(const double* nodes) noexcept {
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   std::fill(drift_.begin(), drift_.end(), 0.0);
   margin_ = 0.0;
+  for (size_t slice = 0; bound_ && slice < drift_.size(); ++slice) take_reference(slice);
 }
 
 void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
@@ -56,7 +59,36 @@ void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
   surface_nodes_.clear();
   for (uint32_t node = 0; node < seen_in_.size(); ++node)
     if (seen_in_[node] != 0) surface_nodes_.push_back(node);
+  reference_.resize(3 * slice_nodes_.size());  // within the capacity reserved
   bound_ = true;
+  // Right after reset, last_nodes_ is where every box was computed; later, not known until the
+  // slice's next refit.
+  for (size_t slice = 0; slice < drift_.size(); ++slice)
+    if (drift_[slice] == 0.0)
+      take_reference(slice);
+    else
+      referenced_[slice] = 0;
+}
+
+void SurfaceFreshness::take_reference(size_t slice) noexcept {
+  for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k) {
+    const double* now = &last_nodes_[3 * size_t{slice_nodes_[k]}];
+    std::copy(now, now + 3, &reference_[3 * size_t{k}]);
+  }
+  referenced_[slice] = 1;
+}
+
+double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
+  if (!bound_ || !referenced_[slice]) return drift_[slice];
+  double largest2 = 0.0;  // m^2
+  for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k) {
+    const double* now = &last_nodes_[3 * size_t{slice_nodes_[k]}];
+    const double* then = &reference_[3 * size_t{k}];
+    const double dx = now[0] - then[0], dy = now[1] - then[1], dz = now[2] - then[2];
+    largest2 = std::max(largest2, dx * dx + dy * dy + dz * dz);
+  }
+  // Never above the path sum, which bounds it too (rounding aside).
+  return std::min(drift_[slice], std::sqrt(largest2));
 }
 
 bool SurfaceFreshness::advance(const double* nodes) noexcept {
@@ -97,13 +129,26 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
 
 void SurfaceFreshness::next_slice(uint32_t& first, uint32_t& count) noexcept {
   first = count = 0;
-  if (!(margin_ > margin_target_)) return;
-  const auto stalest =
-      static_cast<uint32_t>(std::max_element(drift_.begin(), drift_.end()) - drift_.begin());
-  first = std::min(stalest * kSliceElements, element_count_);
-  count = std::min(kSliceElements, element_count_ - first);
-  drift_[stalest] = 0.0;
-  update_margin();
+  // A slice measured near its boxes takes that drift; one past half the target is refit. At
+  // most kMeasuredPerCall are kept a call (a settling body has every slice cross on one tick):
+  // the rest wait a tick with the margin past its target, which the queries widen by.
+  constexpr int kMeasuredPerCall = 8;
+  for (int kept = 0; margin_ > margin_target_ && kept < kMeasuredPerCall; ++kept) {
+    const auto stalest =
+        static_cast<uint32_t>(std::max_element(drift_.begin(), drift_.end()) - drift_.begin());
+    const double measured = measured_drift(stalest);
+    if (weight_bound_ * measured <= 0.5 * margin_target_) {
+      drift_[stalest] = measured;  // still near its boxes: no refit
+      update_margin();
+      continue;
+    }
+    first = std::min(stalest * kSliceElements, element_count_);
+    count = std::min(kSliceElements, element_count_ - first);
+    drift_[stalest] = 0.0;
+    if (bound_) take_reference(stalest);
+    update_margin();
+    return;
+  }
 }
 
 void SurfaceFreshness::update_margin() noexcept {

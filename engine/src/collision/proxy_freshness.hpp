@@ -5,8 +5,11 @@
 // weight bound (a vertex is a weighted sum of nodes). Until the slices' nodes are known (bind),
 // every slice takes the body's largest node move. The queries widen their search by the largest
 // drift (the margin). While the margin is past its target the stalest slice is refit, one a tick:
-// a still body, or its still part, costs nothing. A margin past its cap (a fast body) asks for a
-// whole refit. No allocation per tick.
+// a still body, or its still part, costs nothing. A path summed over ticks overstates where a
+// jiggling node is, so before a slice is refit its nodes are measured against where they were at
+// its last refit (a slice's worth of reads against a refit's worth of work): a slice still near
+// its boxes takes that distance as its drift and is not refit. A margin past its cap (a fast
+// body) asks for a whole refit. No allocation per tick.
 #pragma once
 
 #include <cstddef>
@@ -37,9 +40,11 @@ class SurfaceFreshness {
   // Once a tick before the proxy's queries: takes in the nodes' largest move since the last
   // call. False when the margin is past its cap: the caller refits everything and calls reset.
   bool advance(const double* nodes) noexcept;
-  // The run [first, first + count) of the hierarchy's element order to refit this tick: the
-  // stalest slice while the margin is past its target, else none (count 0). The margin then
-  // assumes it was refit.
+  // The run [first, first + count) of the hierarchy's element order to refit this tick, from the
+  // nodes as the last advance read them: the stalest slice while the margin is past its target
+  // and its nodes are past half the target from where its boxes were computed, else none (count
+  // 0; the margin may stay past its target a tick while slices wait to be measured). The margin
+  // then assumes it was refit.
   void next_slice(uint32_t& first, uint32_t& count) noexcept;
   void unbind() noexcept { bound_ = false; }  // every slice takes the body's largest node move
   bool bound() const noexcept { return bound_; }
@@ -50,11 +55,17 @@ class SurfaceFreshness {
 
  private:
   void update_margin() noexcept;
+  // The largest distance of the slice's nodes from where they were at its last refit, m (the
+  // slice's path sum where that is not known).
+  double measured_drift(size_t slice) const noexcept;
+  void take_reference(size_t slice) noexcept;  // the slice's boxes are computed from last_nodes_
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
   std::vector<double> moves2_;      // 1 per node, m^2: its squared move at the last advance
   std::vector<double> drift_;       // per slice: node moves summed since it was refit, m
   std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
   std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
+  std::vector<double> reference_;      // 3 per slice_nodes_ entry, m: where it was at the refit
+  std::vector<uint8_t> referenced_;    // per slice: reference_ holds its nodes at its last refit
   std::vector<uint32_t> seen_in_;      // 1 per node: the last slice (+ 1) that listed it
   std::vector<uint32_t> surface_nodes_;  // the nodes any slice follows, once each
   bool bound_ = false;
