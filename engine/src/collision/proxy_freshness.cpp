@@ -9,7 +9,7 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
                                    double margin_target, double margin_cap,
                                    uint32_t nodes_per_vertex)
     : last_nodes_(3 * node_count, 0.0),
-      moves2_(node_count, 0.0),
+      paths_(node_count, 0.0),
       drift_(std::max<size_t>(1, (element_count + kSliceElements - 1) / kSliceElements), 0.0),
       slice_start_(drift_.size() + 1, 0),
       referenced_(drift_.size(), 0),
@@ -30,6 +30,9 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
 void SurfaceFreshness::reset(const double* nodes) noexcept {
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   std::fill(drift_.begin(), drift_.end(), 0.0);
+  std::fill(paths_.begin(), paths_.end(), 0.0);
+  pending_ = 0.0;
+  pending_ticks_ = 0;
   margin_ = 0.0;
   for (size_t slice = 0; bound_ && slice < drift_.size(); ++slice) take_reference(slice);
 }
@@ -64,7 +67,7 @@ void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
   // Right after reset, last_nodes_ is where every box was computed; later, not known until the
   // slice's next refit.
   for (size_t slice = 0; slice < drift_.size(); ++slice)
-    if (drift_[slice] == 0.0)
+    if (drift_[slice] == 0.0 && pending_ == 0.0)
       take_reference(slice);
     else
       referenced_[slice] = 0;
@@ -79,7 +82,7 @@ void SurfaceFreshness::take_reference(size_t slice) noexcept {
 }
 
 double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
-  if (!bound_ || !referenced_[slice]) return drift_[slice];
+  if (!bound_ || !referenced_[slice]) return drift_[slice] + pending_;
   double largest2 = 0.0;  // m^2
   for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k) {
     const double* now = &last_nodes_[3 * size_t{slice_nodes_[k]}];
@@ -88,43 +91,61 @@ double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
     largest2 = std::max(largest2, dx * dx + dy * dy + dz * dz);
   }
   // Never above the path sum, which bounds it too (rounding aside).
-  return std::min(drift_[slice], std::sqrt(largest2));
+  return std::min(drift_[slice] + pending_, std::sqrt(largest2));
 }
 
 bool SurfaceFreshness::advance(const double* nodes) noexcept {
-  double largest2 = 0.0;  // m^2
-  const auto take_move = [&](size_t node) {
-    const size_t i = 3 * node;
-    const double dx = nodes[i] - last_nodes_[i], dy = nodes[i + 1] - last_nodes_[i + 1],
-                 dz = nodes[i + 2] - last_nodes_[i + 2];
-    last_nodes_[i] = nodes[i];
-    last_nodes_[i + 1] = nodes[i + 1];
-    last_nodes_[i + 2] = nodes[i + 2];
-    // A non-finite node makes the margin NaN, which fails the cap below.
-    const double d2 = dx * dx + dy * dy + dz * dz;
-    moves2_[node] = d2;
-    largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);
-  };
-  if (bound_) {
-    // Only the nodes some slice follows: the others (a body's inside) move no vertex.
-    for (const uint32_t node : surface_nodes_) take_move(node);
-    if (!std::isnan(largest2)) {
-      for (size_t slice = 0; slice < drift_.size(); ++slice) {
-        double slice2 = 0.0;
-        for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k)
-          slice2 = std::max(slice2, moves2_[slice_nodes_[k]]);
-        drift_[slice] += std::sqrt(slice2);
-      }
-      update_margin();
-      return margin_ <= margin_cap_;
+  if (!bound_) {
+    double largest2 = 0.0;  // m^2
+    for (size_t i = 0; i < last_nodes_.size(); i += 3) {
+      const double dx = nodes[i] - last_nodes_[i], dy = nodes[i + 1] - last_nodes_[i + 1],
+                   dz = nodes[i + 2] - last_nodes_[i + 2];
+      std::copy(nodes + i, nodes + i + 3, &last_nodes_[i]);
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);  // NaN fails the cap below
     }
-  } else {
-    for (size_t node = 0; node < moves2_.size(); ++node) take_move(node);
+    const double move = std::sqrt(largest2);
+    for (double& d : drift_) d += move;
+    update_margin();
+    return margin_ <= margin_cap_;
   }
-  const double move = std::sqrt(largest2);
-  for (double& d : drift_) d += move;
+  // Only the nodes some slice follows: the others (a body's inside) move no vertex. Each adds
+  // its move to its own path; the slices take their nodes' largest path now and then.
+  double finite = 0.0;  // 0 * x is NaN for a NaN or infinite x
+  for (const uint32_t node : surface_nodes_) {
+    double* last = &last_nodes_[3 * size_t{node}];
+    const double* now = nodes + 3 * size_t{node};
+    const double dx = now[0] - last[0], dy = now[1] - last[1], dz = now[2] - last[2];
+    last[0] = now[0];
+    last[1] = now[1];
+    last[2] = now[2];
+    const double path = paths_[node] + std::sqrt(dx * dx + dy * dy + dz * dz);
+    paths_[node] = path;
+    finite += 0.0 * path;
+    pending_ = std::max(pending_, path);
+  }
+  if (std::isnan(finite)) {
+    margin_ = finite;
+    return false;
+  }
+  ++pending_ticks_;
+  // A quarter of the target keeps the slices' share of the margin within reach of refits.
+  if (pending_ticks_ >= kPendingTicks || weight_bound_ * pending_ > 0.25 * margin_target_)
+    take_paths();
   update_margin();
   return margin_ <= margin_cap_;
+}
+
+void SurfaceFreshness::take_paths() noexcept {
+  for (size_t slice = 0; slice < drift_.size(); ++slice) {
+    double longest = 0.0;
+    for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k)
+      longest = std::max(longest, paths_[slice_nodes_[k]]);
+    drift_[slice] += longest;
+  }
+  for (const uint32_t node : surface_nodes_) paths_[node] = 0.0;
+  pending_ = 0.0;
+  pending_ticks_ = 0;
 }
 
 void SurfaceFreshness::next_slice(uint32_t& first, uint32_t& count) noexcept {
@@ -152,7 +173,7 @@ void SurfaceFreshness::next_slice(uint32_t& first, uint32_t& count) noexcept {
 }
 
 void SurfaceFreshness::update_margin() noexcept {
-  margin_ = weight_bound_ * *std::max_element(drift_.begin(), drift_.end());
+  margin_ = weight_bound_ * (*std::max_element(drift_.begin(), drift_.end()) + pending_);
 }
 
 }  // namespace tacta

@@ -1,8 +1,10 @@
 // What the haptic proxy's queries need of one collision surface per tick without refitting its
 // whole hierarchy. The hierarchy's elements are cut into slices (runs of its element order); each
-// slice keeps how far any of its vertices may have moved since its boxes were computed: the sum,
-// over the ticks since, of the largest move of the nodes its vertices follow, times the surface's
-// weight bound (a vertex is a weighted sum of nodes). Until the slices' nodes are known (bind),
+// slice keeps how far any of its vertices may have moved since its boxes were computed: the
+// longest path since, among the nodes its vertices follow, times the surface's weight bound (a
+// vertex is a weighted sum of nodes). Each node sums its own path every tick; the slices take
+// their nodes' longest every few ticks, and until then every slice adds the longest of all
+// (pending). Until the slices' nodes are known (bind),
 // every slice takes the body's largest node move. The queries widen their search by the largest
 // drift (the margin). While the margin is past its target the stalest slice is refit, one a tick:
 // a still body, or its still part, costs nothing. A path summed over ticks overstates where a
@@ -50,18 +52,23 @@ class SurfaceFreshness {
   bool bound() const noexcept { return bound_; }
   double margin() const noexcept { return margin_; }  // m
   // How far any vertex of slice `slice` may be from where its boxes were computed, m.
-  double slice_margin(size_t slice) const noexcept { return weight_bound_ * drift_[slice]; }
+  double slice_margin(size_t slice) const noexcept {
+    return weight_bound_ * (drift_[slice] + pending_);
+  }
   double margin_cap() const noexcept { return margin_cap_; }
 
  private:
+  static constexpr int kPendingTicks = 8;  // ticks between the slices taking their nodes' paths
   void update_margin() noexcept;
+  void take_paths() noexcept;  // each slice's drift grows by its nodes' longest path; paths restart
   // The largest distance of the slice's nodes from where they were at its last refit, m (the
   // slice's path sum where that is not known).
   double measured_drift(size_t slice) const noexcept;
   void take_reference(size_t slice) noexcept;  // the slice's boxes are computed from last_nodes_
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
-  std::vector<double> moves2_;      // 1 per node, m^2: its squared move at the last advance
-  std::vector<double> drift_;       // per slice: node moves summed since it was refit, m
+  std::vector<double> paths_;       // 1 per node, m: its moves summed since the slices took them
+  std::vector<double> drift_;       // per slice: its nodes' longest path since it was refit, m,
+                                    // less what is still pending
   std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
   std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
   std::vector<double> reference_;      // 3 per slice_nodes_ entry, m: where it was at the refit
@@ -75,6 +82,8 @@ class SurfaceFreshness {
   double margin_target_ = 0.0;
   double margin_cap_ = 0.0;
   double margin_ = 0.0;
+  double pending_ = 0.0;  // the longest of paths_, m
+  int pending_ticks_ = 0;
 };
 
 }  // namespace tacta
