@@ -67,7 +67,7 @@ class SurfaceFreshness {
   void take_reference(size_t slice) noexcept;  // the slice's boxes are computed from last_nodes_
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
   std::vector<double> paths_;       // 1 per node, m: its moves summed since the slices took them
-  std::vector<double> drift_;  // per slice, m: its nodes' longest path since its refit, less pending_
+  std::vector<double> drift_;  // per slice, m: its nodes' longest path since refit, less pending_
   std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
   std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
   std::vector<double> reference_;      // 3 per slice_nodes_ entry, m: where it was at the refit
