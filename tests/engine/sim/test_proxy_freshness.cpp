@@ -131,16 +131,28 @@ TEST(ProxyFreshness, MarginsBoundWhereSlicesOfEmbeddedVerticesMoved) {
   EXPECT_GT(replay(4, 2), 0u);
 }
 
+// A straight strip whose vertices are nodes, in element order, its freshness bound to it.
+struct BoundStrip {
+  Strip strip{700};
+  std::vector<double> nodes;
+  std::vector<uint32_t> order;
+  SurfaceFreshness fresh;
+  explicit BoundStrip(double target)
+      : nodes(3 * size_t{strip.vertices}),
+        order(strip.count()),
+        fresh(strip.vertices, strip.count(), 1.0, target, 1.0, 1) {
+    for (uint32_t n = 0; n < strip.vertices; ++n) nodes[3 * n] = 0.01 * n;
+    for (uint32_t e = 0; e < strip.count(); ++e) order[e] = e;
+    fresh.reset(nodes.data());
+    fresh.bind(order.data(), strip.triangles.data(), nullptr);
+  }
+};
+
 // One end of the strip moves; the slices at the other end are never refit.
 TEST(ProxyFreshness, StillSlicesAreNotRefit) {
-  const Strip strip(700);
-  std::vector<double> nodes(3 * size_t{strip.vertices});
-  for (uint32_t n = 0; n < strip.vertices; ++n) nodes[3 * n] = 0.01 * n;
-  std::vector<uint32_t> order(strip.count());
-  for (uint32_t e = 0; e < strip.count(); ++e) order[e] = e;
-  SurfaceFreshness fresh(strip.vertices, strip.count(), 1.0, 1e-3, 1.0, 1);
-  fresh.reset(nodes.data());
-  fresh.bind(order.data(), strip.triangles.data(), nullptr);
+  BoundStrip bound(1e-3);
+  std::vector<double>& nodes = bound.nodes;
+  SurfaceFreshness& fresh = bound.fresh;
   uint32_t highest_refit = 0;
   for (int tick = 0; tick < 500; ++tick) {
     for (uint32_t n = 0; n < 40; ++n) nodes[3 * n + 2] += 1e-4;  // the first 20 columns rise
@@ -157,20 +169,14 @@ TEST(ProxyFreshness, StillSlicesAreNotRefit) {
 // a quarter of the target of where they were: each slice is measured and none is refit, though
 // the path sums pass the target after two ticks. A slice the shaking carries away is refit.
 TEST(ProxyFreshness, NodesShakingInPlaceAreMeasuredNotRefit) {
-  const Strip strip(700);
-  std::vector<double> rest(3 * size_t{strip.vertices});
-  for (uint32_t n = 0; n < strip.vertices; ++n) rest[3 * n] = 0.01 * n;
-  std::vector<uint32_t> order(strip.count());
-  for (uint32_t e = 0; e < strip.count(); ++e) order[e] = e;
   const double target = 1e-3;  // m
-  SurfaceFreshness fresh(strip.vertices, strip.count(), 1.0, target, 1.0, 1);
-  fresh.reset(rest.data());
-  fresh.bind(order.data(), strip.triangles.data(), nullptr);
-  std::vector<double> nodes = rest;
+  BoundStrip bound(target);
+  std::vector<double>& nodes = bound.nodes;
+  SurfaceFreshness& fresh = bound.fresh;
   uint64_t refits = 0;
   for (int tick = 0; tick < 500; ++tick) {
     const double sign = tick % 2 == 0 ? 1.0 : -1.0;
-    for (uint32_t n = 0; n < strip.vertices; ++n) nodes[3 * n + 2] = 0.2 * target * sign;
+    for (uint32_t n = 0; n < bound.strip.vertices; ++n) nodes[3 * n + 2] = 0.2 * target * sign;
     ASSERT_TRUE(fresh.advance(nodes.data()));
     uint32_t first = 0, count = 0;
     for (fresh.next_slice(first, count); count > 0; fresh.next_slice(first, count)) ++refits;
