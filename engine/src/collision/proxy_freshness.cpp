@@ -5,6 +5,13 @@
 
 namespace tacta {
 
+namespace {
+double squared_distance(const double* a, const double* b) noexcept {  // m^2, 3 coordinates each
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+}  // namespace
+
 SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, double weight_bound,
                                    double margin_target, double margin_cap,
                                    uint32_t nodes_per_vertex)
@@ -85,10 +92,8 @@ double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
   if (!bound_ || !referenced_[slice]) return drift_[slice] + pending_;
   double largest2 = 0.0;  // m^2
   for (uint32_t k = slice_start_[slice]; k < slice_start_[slice + 1]; ++k) {
-    const double* now = &last_nodes_[3 * size_t{slice_nodes_[k]}];
-    const double* then = &reference_[3 * size_t{k}];
-    const double dx = now[0] - then[0], dy = now[1] - then[1], dz = now[2] - then[2];
-    largest2 = std::max(largest2, dx * dx + dy * dy + dz * dz);
+    largest2 = std::max(largest2, squared_distance(&last_nodes_[3 * size_t{slice_nodes_[k]}],
+                                                   &reference_[3 * size_t{k}]));
   }
   // Never above the path sum, which bounds it too (rounding aside).
   return std::min(drift_[slice] + pending_, std::sqrt(largest2));
@@ -98,10 +103,8 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
   if (!bound_) {
     double largest2 = 0.0;  // m^2
     for (size_t i = 0; i < last_nodes_.size(); i += 3) {
-      const double dx = nodes[i] - last_nodes_[i], dy = nodes[i + 1] - last_nodes_[i + 1],
-                   dz = nodes[i + 2] - last_nodes_[i + 2];
+      const double d2 = squared_distance(nodes + i, &last_nodes_[i]);
       std::copy(nodes + i, nodes + i + 3, &last_nodes_[i]);
-      const double d2 = dx * dx + dy * dy + dz * dz;
       largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);  // NaN fails the cap below
     }
     const double move = std::sqrt(largest2);
@@ -115,11 +118,8 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
   for (const uint32_t node : surface_nodes_) {
     double* last = &last_nodes_[3 * size_t{node}];
     const double* now = nodes + 3 * size_t{node};
-    const double dx = now[0] - last[0], dy = now[1] - last[1], dz = now[2] - last[2];
-    last[0] = now[0];
-    last[1] = now[1];
-    last[2] = now[2];
-    const double path = paths_[node] + std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double path = paths_[node] + std::sqrt(squared_distance(now, last));
+    std::copy(now, now + 3, last);
     paths_[node] = path;
     finite += 0.0 * path;
     pending_ = std::max(pending_, path);
