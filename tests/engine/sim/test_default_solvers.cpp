@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sanitizer_skip.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
@@ -50,6 +51,7 @@ TEST(DefaultSolvers, SofaBeamsFollowTheDirectSolve) {
 }
 
 TEST(DefaultSolvers, LiverDemoFollowsTheDirectSolve) {
+  TACTA_HEAVY_RUN();
   // The first palpation: the stylus presses during the scene's first 1.5 s.
   RunOptions options;
   options.duration_s = 1.5;

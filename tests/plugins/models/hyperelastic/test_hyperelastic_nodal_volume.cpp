@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "hyperelastic_test_support.hpp"
+#include "sanitizer_skip.hpp"
 
 namespace tacta::models::hyperelastic {
 namespace {
@@ -96,6 +97,7 @@ TEST(NodalVolume, UniaxialPatchTestIsExactAtNu0499) {
 // nu 0.3 (74.5%): the volumetric locking is gone, and what remains is the linear tets' own
 // bending stiffness on this mesh (VALIDATION.md: 83% on 6x6x41 cells).
 TEST(NodalVolume, CantileverDoesNotLockAtNu0499) {
+  TACTA_HEAVY_RUN();
   constexpr double kBeamTheory = 0.03237;  // m, independent of nu
   constexpr std::array<uint32_t, 3> kCells = {4, 4, 29};
   const auto law = MaterialLaw::kNeoHookean;
@@ -122,6 +124,7 @@ TEST(NodalVolume, CantileverDoesNotLockAtNu0499) {
 // On the symmetric (mirrored) split the grid primitives use, nodal averaging still bends as far
 // as the compressible material does at nu 0.499 (per-element tets: 76% of beam theory here).
 TEST(NodalVolume, CantileverOnTheSymmetricSplitBendsAsAtNu03) {
+  TACTA_HEAVY_RUN();
   constexpr double kBeamTheory = 0.03237;  // m
   constexpr std::array<uint32_t, 3> kCells = {4, 4, 29};
   const auto law = MaterialLaw::kNeoHookean;

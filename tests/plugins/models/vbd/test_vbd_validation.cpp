@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <numbers>
 
+#include "sanitizer_skip.hpp"
 #include "vbd_test_support.hpp"
 
 namespace tacta::models::vbd {
@@ -59,6 +60,7 @@ double relative_error(const std::vector<std::vector<double>>& run,
 }
 
 TEST(VbdValidation, ErrorAgainstTheConvergedImplicitStepPerIteration) {
+  TACTA_HEAVY_RUN();
   // Held over a step, R makes the corotational energy quadratic, and corotational_fem's
   // linearised backward Euler with a direct solve is then the exact minimiser of the same G:
   // VBD's iterations converge to it, step by step.
@@ -126,6 +128,7 @@ double corotational_static_tip(const TestMesh& mesh, const tacta_material& mater
 }
 
 TEST(VbdValidation, CantileverSettlesOnTheCorotationalEquilibrium) {
+  TACTA_HEAVY_RUN();
   // The static equilibrium is a fixed point of every VBD iteration (x = x_t, v = 0 makes the
   // inertia and damping terms vanish), so a damped run settles on E's minimum under gravity,
   // whatever the iteration count: corotational_fem's, for the corotational energy. SOFA's
@@ -171,6 +174,7 @@ TEST(VbdValidation, CantileverSettlesOnTheCorotationalEquilibrium) {
 }
 
 TEST(VbdValidation, BarWaveSpeedFromFirstLongitudinalMode) {
+  TACTA_HEAVY_RUN();
   // Clamped-free bar, L = 1 m, 0.05 m square section: f1 = c / (4 L), c = sqrt(E / rho); the
   // corotational validation's setup (corotational_fem: +0.41 %).
   const double length = 1.0, e = 1e6, rho = 1000.0;
