@@ -159,7 +159,7 @@ TEST(SimulationRequests, DeviceInputReachesEachDeviceInstance) {
 
 // The viewer's case: a target fed from the GUI thread while the haptic thread reads the device
 // (realtime; only the first mouse is fed). The stylus ends where the last target was; clean under ThreadSanitizer
-// (build-tsan/bin/sim_simulation_test --gtest_filter='*DeviceInput*').
+// (build-tsan/bin/sim_threads_test --gtest_filter='*DeviceInput*').
 TEST(SimulationRequests, DeviceInputDuringARealtimeRun) {
   Simulation simulation(
       scene_from_text(kTwoMice, "one_mouse", {"clock.mode=realtime", "clock.duration_s=0.4"}),
