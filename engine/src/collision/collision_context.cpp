@@ -403,7 +403,7 @@ std::vector<CollisionPluginUse> CollisionContext::plugin_uses() const {
 CollisionContext::~CollisionContext() = default;
 
 bool CollisionContext::surface_present(uint32_t surface) const noexcept {
-  return world_.body(static_cast<size_t>(body_of_surface_[surface])).present();
+  return world_.body_present(static_cast<size_t>(body_of_surface_[surface]));
 }
 
 uint32_t CollisionContext::drop_absent(uint32_t first, uint32_t count) noexcept {
@@ -459,7 +459,7 @@ void CollisionContext::refit(double time, double dt) noexcept {
   }
   for (uint32_t k = 0; k < freshness_.size(); ++k) {
     const size_t body = static_cast<size_t>(body_of_surface_[k]);
-    freshness_[k].reset(world_.body(body).nodes.positions.data());
+    freshness_[k].reset(world_.body_nodes(body).positions.data());
     if (!sliced_ || (freshness_[k].bound() && !reordered)) continue;
     const uint32_t* order = nullptr;
     uint32_t total = 0;

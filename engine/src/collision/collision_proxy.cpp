@@ -30,7 +30,7 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
   for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
     if (surface_present(k) &&
         !freshness_[k].advance(
-            world_.body(static_cast<size_t>(body_of_surface_[k])).nodes.positions.data()))
+            world_.body_nodes(static_cast<size_t>(body_of_surface_[k])).positions.data()))
       whole = true;
   if (!whole) {
     sync_tools();

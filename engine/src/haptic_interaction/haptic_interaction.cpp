@@ -61,7 +61,7 @@ void HapticInteraction::update_tools(World& world) noexcept {
     // A tool whose body was removed has nothing to touch: no force, and a fresh start if the
     // device goes on (its proxy would otherwise stay on a surface that is gone).
     const bool body_gone = dev.contact.touched_body >= 0 &&
-                           !world.body(static_cast<size_t>(dev.contact.touched_body)).present();
+                           !world.body_present(static_cast<size_t>(dev.contact.touched_body));
     if (dev.link.state != TACTA_DEVICE_CONNECTED || body_gone) {
       dev.contact.force = {0, 0, 0};
       dev.contact.in_contact = false;

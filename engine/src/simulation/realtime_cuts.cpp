@@ -39,7 +39,7 @@ void RealtimeCuts::start() {
 void RealtimeCuts::reserve() {
   size_t most = 0;
   for (size_t slot = 0; slot < world_.body_count(); ++slot)
-    most = std::max(most, world_.body(slot).nodes.positions.size());
+    most = std::max(most, world_.body_nodes(slot).positions.size());
   request_.positions.reserve(most + most / 4);
   request_.velocities.reserve(most + most / 4);
   if (collision_ != nullptr) collision_->reserve_view_copy(request_.view);

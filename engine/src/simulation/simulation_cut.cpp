@@ -113,7 +113,7 @@ void SceneCuts::run_due(double time) {
     const CutEventDesc& cut = *events_[next_]->cut;
     const int slot = world_.body_index(cut.body);
     try {
-      if (slot < 0 || !world_.body(static_cast<size_t>(slot)).present())
+      if (slot < 0 || !world_.body_present(static_cast<size_t>(slot)))
         throw InputError(cut.where, "body '" + cut.body + "' is not in the scene");
       cut_(static_cast<size_t>(slot), cut.triangles, cut.mode);
     } catch (const InputError& e) {

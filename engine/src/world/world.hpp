@@ -35,6 +35,15 @@ class World {
   size_t device_count() const noexcept { return devices_.size(); }
   // Slot i's components (entity index = body slot). A removed body's stay for the report.
   SoftBody body(size_t i) const noexcept;
+  // Two of slot i's components alone, for the haptic tick's per-surface checks (body() looks up
+  // a dozen pools: about 440 instructions).
+  bool body_present(size_t i) const noexcept {
+    return registry_.pool<BodyPresence>().at(static_cast<uint32_t>(i)).state ==
+           BodyPresence::kPresent;
+  }
+  NodeState& body_nodes(size_t i) const noexcept {
+    return registry_.pool<NodeState>().at(static_cast<uint32_t>(i));
+  }
   const BodyDesc& body_desc(size_t i) const { return descs_[i]; }
   // Device i's components. Their pools are made at load and never change, so other threads
   // (device input) reach a device without racing the tick's thread.
