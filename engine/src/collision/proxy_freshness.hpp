@@ -5,12 +5,13 @@
 // vertex is a weighted sum of nodes). Each node sums its own path every tick; the slices take
 // their nodes' longest every few ticks, and until then every slice adds the longest of all
 // (pending). Until the slices' nodes are known (bind), every slice takes the body's largest node
-// move. The queries widen their search by the largest drift (the margin). While the margin is past its target the stalest slice is refit, one a tick:
-// a still body, or its still part, costs nothing. A path summed over ticks overstates where a
-// jiggling node is, so before a slice is refit its nodes are measured against where they were at
-// its last refit (a slice's worth of reads against a refit's worth of work): a slice still near
-// its boxes takes that distance as its drift and is not refit. A margin past its cap (a fast
-// body) asks for a whole refit. No allocation per tick.
+// move. The queries widen their search by the largest drift (the margin). While the margin is
+// past its target the stalest slice is refit, one a tick: a still body, or its still part, costs
+// nothing. A path summed over ticks overstates where a jiggling node is, so before a slice is
+// refit its nodes are measured against where they were at its last refit (a slice's worth of
+// reads against a refit's worth of work): a slice still near its boxes takes that distance as its
+// drift and is not refit. A margin past its cap (a fast body) asks for a whole refit. No
+// allocation per tick.
 #pragma once
 
 #include <cstddef>
@@ -38,7 +39,8 @@ class SurfaceFreshness {
   // vertices are nodes). Again after each rebuild, which may reorder. No allocation.
   void bind(const uint32_t* order, const uint32_t* triangles,
             const uint32_t* vertex_nodes) noexcept;
-  // Once a tick before the proxy's queries: takes in the nodes' moves since the last call. False when the margin is past its cap: the caller refits everything and calls reset.
+  // Once a tick before the proxy's queries: takes in the nodes' moves since the last call. False
+  // when the margin is past its cap: the caller refits everything and calls reset.
   bool advance(const double* nodes) noexcept;
   // The run [first, first + count) of the hierarchy's element order to refit this tick, from the
   // nodes as the last advance read them: the stalest slice while the margin is past its target
