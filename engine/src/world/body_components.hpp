@@ -49,6 +49,8 @@ struct BodyPresence {
   double added_s = -1;          // s, simulated; -1: in the scene from the start
   double removed_s = -1;        // s, simulated; -1: not removed
   double initial_energy_J = 0;  // kinetic + elastic when added (bodies added while running)
+
+  bool present() const noexcept { return state == kPresent; }
 };
 
 struct NodeState {

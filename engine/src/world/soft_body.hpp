@@ -49,7 +49,7 @@ struct SoftBody {
   FaultState& fault;
   Recording& recording;
 
-  bool present() const noexcept { return presence.state == BodyPresence::kPresent; }
+  bool present() const noexcept { return presence.present(); }
   size_t node_count() const noexcept { return nodes.node_count(); }
   double step_dt(double haptic_dt) const noexcept { return settings.step_dt(haptic_dt); }
   const std::vector<double>& rest() const { return shape.rest(); }

@@ -38,8 +38,7 @@ class World {
   // Two of slot i's components alone, for the haptic tick's per-surface checks (body() looks up
   // a dozen pools: about 440 instructions).
   bool body_present(size_t i) const noexcept {
-    return registry_.pool<BodyPresence>().at(static_cast<uint32_t>(i)).state ==
-           BodyPresence::kPresent;
+    return registry_.pool<BodyPresence>().at(static_cast<uint32_t>(i)).present();
   }
   NodeState& body_nodes(size_t i) const noexcept {
     return registry_.pool<NodeState>().at(static_cast<uint32_t>(i));
