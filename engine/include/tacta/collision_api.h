@@ -99,6 +99,14 @@ typedef struct tacta_collision_world {
    * thread that called the query. */
   void (*make_current)(void* context, uint32_t surface, uint32_t triangle);
   void* make_current_context;
+  /* appended (read only when struct_size reaches it), for the proxy queries of a plugin that
+   * declares TACTA_COLLISION_PROXY_TAKES_CANDIDATES: when non-NULL, sphere_cast and
+   * closest_point need test only these proxy_candidate_count triangles of the queried surface,
+   * whose positions_end are current: the host has made sure no other triangle is within the
+   * query's reach (the swept sphere's box; the box of max_distance about the point). NULL: the
+   * whole surface, as above. */
+  const uint32_t* proxy_candidates;
+  uint32_t proxy_candidate_count;
 } tacta_collision_world;
 
 /* ---- results ---------------------------------------------------------------------------------- */
@@ -259,7 +267,8 @@ typedef struct tacta_collision_api {
    * serves the proxy; then, for the proxy's queries, a surface's positions_end may be current
    * only for the triangles this plugin's overlap_shape (widened by query_margin) reports for the
    * query's box: the host brings those up to date before each query (or, with
-   * TACTA_COLLISION_PROXY_MAKES_CURRENT, each triangle when the query calls make_current). */
+   * TACTA_COLLISION_PROXY_MAKES_CURRENT, each triangle when the query calls make_current; with
+   * TACTA_COLLISION_PROXY_TAKES_CANDIDATES, the candidates it names are current). */
   uint32_t (*element_order)(void* instance, uint32_t surface, const uint32_t** order,
                             uint32_t* count);
   uint32_t (*update_elements)(void* instance, const tacta_collision_world* world, uint32_t surface,
@@ -273,6 +282,10 @@ typedef struct tacta_collision_api {
 } tacta_collision_api;
 
 #define TACTA_COLLISION_PROXY_MAKES_CURRENT 1u
+/* sphere_cast and closest_point read the world's proxy_candidates when set (tests only those),
+ * and on equal distance (closest_point) or time of impact (sphere_cast) answer with the lowest
+ * triangle index, so that the answer does not depend on the order triangles are tested in. */
+#define TACTA_COLLISION_PROXY_TAKES_CANDIDATES 2u
 
 #define TACTA_COLLISION_API_FIELD(member, required) \
   { #member, offsetof(tacta_collision_api, member), required }

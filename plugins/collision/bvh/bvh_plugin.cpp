@@ -21,8 +21,10 @@ class BvhBroadPhase {
   static constexpr const char* kDescription =
       "broad phase: AABB/OBB trees refit per tick, pairs, self-collision, haptic proxy queries";
   static constexpr uint32_t kVersion = 10000;
-  // The proxy queries make each triangle current (world.make_current) before reading it.
-  static constexpr uint32_t kProxyFlags = TACTA_COLLISION_PROXY_MAKES_CURRENT;
+  // The proxy queries make each triangle current (world.make_current) before reading it, and
+  // test only the host's candidates when it names them.
+  static constexpr uint32_t kProxyFlags =
+      TACTA_COLLISION_PROXY_MAKES_CURRENT | TACTA_COLLISION_PROXY_TAKES_CANDIDATES;
   static constexpr std::array<tacta_param_spec, 4> kParams{
       sdk::choice_param("volume", "aabb|obb", 0,
                         "internal node volume: axis-aligned or principal axes"),
@@ -138,22 +140,32 @@ class BvhBroadPhase {
     const Vec3 p{point[0], point[1], point[2]};
     double best = max_distance;
     bool found = false;
-    const CurrentMaker make_current(world, surface);
-    trees_[surface].nearest(p, query_margin(world), best, [&](uint32_t t) {
-      make_current(t);
+    const auto test = [&](uint32_t t) {
       Vec3 x[3];
       corners(s, t, x);
       std::array<double, 3> w;
       const Vec3 q = closest_on_triangle(p, x[0], x[1], x[2], w);
       const Vec3 d = sub(p, q);
       const double dist = std::sqrt(dot(d, d));
-      // Ties keep the first found: the nearest-first order decides, as the box order did.
-      if (!(dist <= best) || (found && dist == best)) return;
+      // Of equal distances the lowest triangle: the answer does not hang on the search order.
+      if (!(dist <= best) || (found && dist == best && t > hit.triangle)) return;
       best = dist;
       found = true;
       fill_hit(hit, t, w, q, x);
       hit.distance = dist;
       hit.toi = 0.0;
+    };
+    if (const Candidates c(world, s); c.list != nullptr) {
+      for (uint32_t i = 0; i < c.count; ++i)
+        if (c.list[i] < s.triangle_count &&
+            squared_distance(triangle_box(s, c.list[i]), p) <= best * best)
+          test(c.list[i]);
+      return found;
+    }
+    const CurrentMaker make_current(world, surface);
+    trees_[surface].nearest(p, query_margin(world), best, [&](uint32_t t) {
+      make_current(t);
+      test(t);
     });
     return found;
   }
@@ -168,15 +180,13 @@ class BvhBroadPhase {
       box.lo[k] = std::min(a[k], b[k]) - radius;
       box.hi[k] = std::max(a[k], b[k]) + radius;
     }
-    box = widened(box, query_margin(world));
     double best = 2.0;
-    const CurrentMaker make_current(world, surface);
-    trees_[surface].query(box, [&](uint32_t t) {
-      make_current(t);
+    const auto test = [&](uint32_t t) {
       Vec3 x[3];
       corners(s, t, x);
       const double toi = sphere_cast_triangle(a, b, radius, x[0], x[1], x[2]);
-      if (toi < 0.0 || toi >= best) return;
+      // Of equal times the lowest triangle: the answer does not hang on the search order.
+      if (toi < 0.0 || toi > best || (toi == best && t > hit.triangle)) return;
       best = toi;
       const Vec3 c{a[0] + toi * (b[0] - a[0]), a[1] + toi * (b[1] - a[1]),
                    a[2] + toi * (b[2] - a[2])};
@@ -185,6 +195,17 @@ class BvhBroadPhase {
       fill_hit(hit, t, w, q, x);
       hit.toi = toi;
       hit.distance = 0.0;
+    };
+    if (const Candidates c(world, s); c.list != nullptr) {
+      for (uint32_t i = 0; i < c.count; ++i)
+        if (c.list[i] < s.triangle_count && triangle_box(s, c.list[i]).overlaps(box))
+          test(c.list[i]);
+      return best <= 1.0;
+    }
+    const CurrentMaker make_current(world, surface);
+    trees_[surface].query(widened(box, query_margin(world)), [&](uint32_t t) {
+      make_current(t);
+      test(t);
     });
     return best <= 1.0;
   }
@@ -193,8 +214,8 @@ class BvhBroadPhase {
   // m: how far the host says vertices may be from where their boxes were computed (0 from a
   // host whose world view predates the field).
   static double query_margin(const tacta_collision_world& world) noexcept {
-    const bool has = world.struct_size >= offsetof(tacta_collision_world, query_margin) +
-                                              sizeof(world.query_margin);
+    const bool has = world.struct_size >=
+                     offsetof(tacta_collision_world, query_margin) + sizeof(world.query_margin);
     return has && world.query_margin > 0.0 ? world.query_margin : 0.0;
   }
   // The host's make_current for one surface (nothing from a host whose world view predates it).
@@ -213,6 +234,34 @@ class BvhBroadPhase {
     void* context = nullptr;
     uint32_t surface;
   };
+  // The host's candidate triangles for a proxy query (none from a host whose world view
+  // predates them, or when it names none: the whole surface).
+  struct Candidates {
+    Candidates(const tacta_collision_world& world, const tacta_collision_surface& s) {
+      if (world.struct_size >= offsetof(tacta_collision_world, proxy_candidate_count) +
+                                   sizeof(world.proxy_candidate_count) &&
+          s.triangles != nullptr) {
+        list = world.proxy_candidates;
+        count = world.proxy_candidate_count;
+      }
+    }
+    const uint32_t* list = nullptr;
+    uint32_t count = 0;
+  };
+  // A triangle's box from its end positions, m.
+  static Aabb triangle_box(const tacta_collision_surface& s, uint32_t t) noexcept {
+    Aabb box;
+    const double* x = &s.positions_end[3 * size_t{s.triangles[3 * size_t{t}]}];
+    box.lo = box.hi = {x[0], x[1], x[2]};
+    for (int i = 1; i < 3; ++i) {
+      x = &s.positions_end[3 * size_t{s.triangles[3 * size_t{t} + i]}];
+      for (int k = 0; k < 3; ++k) {
+        box.lo[k] = std::min(box.lo[k], x[k]);
+        box.hi[k] = std::max(box.hi[k], x[k]);
+      }
+    }
+    return box;
+  }
   static Aabb widened(Aabb box, double margin) noexcept {
     for (int k = 0; k < 3; ++k) {
       box.lo[k] -= margin;

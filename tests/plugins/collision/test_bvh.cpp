@@ -78,8 +78,8 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
   TestSurface b = tacta::testing::grid(9, 0.8, 0.2, 0.1, 0.05);
   const double margin = 0.002;
   std::vector<tacta_collision_surface> views{a.view(1, margin), b.view(2, margin)};
-  tacta_collision_world world{sizeof world, 2,    views.data(), 0,   nullptr, 0,
-                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
+  tacta_collision_world world{sizeof world, 2,   views.data(), 0,       nullptr, 0,       nullptr,
+                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK) << message;
@@ -111,8 +111,8 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
 TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
   TestSurface a = tacta::testing::grid(10, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
-                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
+  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
+                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
@@ -151,8 +151,8 @@ TEST_P(BvhPlugin, SlicedRefitAndWidenedQueriesAnswerAsAWholeRefit) {
   std::mt19937 rng(99);
   TestSurface a = tacta::testing::grid(20, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
-                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
+  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
+                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
   void* sliced = make(GetParam());
   void* whole = make(GetParam());
   char message[256] = {0};
@@ -224,8 +224,8 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   TestSurface a = tacta::testing::grid(3, 1.0, 0.0, 0.0, 0.0);
   a.triangles[4] = 999;  // out of range
   std::vector<tacta_collision_surface> views{a.view(7, 0.0)};
-  tacta_collision_world world{sizeof world, 1,    views.data(), 0,   nullptr, 0,
-                              nullptr,      1e-3, 0.0,          0.0, nullptr, nullptr};
+  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
+                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
   EXPECT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(message).find("999"), std::string::npos) << message;
   // NaN positions: flagged, those elements skipped.
@@ -237,13 +237,85 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   TestSurface empty;
   std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
   tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0,   nullptr, 0,
-                                    nullptr,      1e-3, 0.0,         0.0, nullptr, nullptr};
+                                    nullptr,      1e-3, 0.0,         0.0, nullptr, nullptr,
+                                    nullptr,      0};
   ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
   api().update(bvh, &empty_world);
   uint32_t count = 5;
   tacta_collision_pair pair{};
   EXPECT_EQ(api().find_pairs(bvh, &empty_world, &pair, 1, &count), 0u);
   EXPECT_EQ(count, 0u);
+  api().destroy(bvh);
+}
+
+// The host's candidates (TACTA_COLLISION_PROXY_TAKES_CANDIDATES): given every triangle the
+// queries answer as the tree search does, bit for bit (of equal distances, both the lowest
+// triangle); given a few, only those are tested.
+TEST_P(BvhPlugin, CandidatesAnswerAsTheTreeSearchAndAreAllThatIsTested) {
+  std::mt19937 rng(7);
+  TestSurface a = tacta::testing::grid(16, 1.0, 0.0, 0.0, 0.0);
+  tacta::testing::deform(a, rng, 0.02, 0.3);
+  std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
+  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
+                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  void* bvh = make(GetParam());
+  char message[256] = {0};
+  ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
+  api().update(bvh, &world);
+  std::vector<uint32_t> all(views[0].triangle_count);
+  for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+  std::shuffle(all.begin(), all.end(), rng);  // the order must not matter
+  std::uniform_real_distribution<double> in_box(-0.6, 0.6), height(-0.3, 0.3);
+  const auto same = [](const tacta_surface_hit& x, const tacta_surface_hit& y) {
+    return x.triangle == y.triangle && x.distance == y.distance && x.toi == y.toi &&
+           std::equal(x.point, x.point + 3, y.point) &&
+           std::equal(x.normal, x.normal + 3, y.normal);
+  };
+  // Grid vertices as query points too: several triangles at one distance.
+  std::vector<std::array<double, 3>> points{{0.0, 0.0, 0.05}, {0.125, -0.25, 0.0}};
+  for (int q = 0; q < 60; ++q) points.push_back({in_box(rng), in_box(rng), height(rng)});
+  for (const auto& p : points) {
+    tacta_surface_hit tree{}, listed{};
+    world.proxy_candidates = nullptr;
+    world.proxy_candidate_count = 0;
+    const int ft = api().closest_point(bvh, &world, 0, p.data(), 0.2, &tree);
+    world.proxy_candidates = all.data();
+    world.proxy_candidate_count = static_cast<uint32_t>(all.size());
+    const int fl = api().closest_point(bvh, &world, 0, p.data(), 0.2, &listed);
+    ASSERT_EQ(ft, fl);
+    if (ft) {
+      EXPECT_TRUE(same(tree, listed))
+          << "closest point: " << tree.triangle << ", " << listed.triangle;
+    }
+    const double to[3] = {p[0] + 0.1, p[1] - 0.05, -p[2]};
+    world.proxy_candidates = nullptr;
+    world.proxy_candidate_count = 0;
+    const int ct = api().sphere_cast(bvh, &world, 0, p.data(), to, 0.02, &tree);
+    world.proxy_candidates = all.data();
+    world.proxy_candidate_count = static_cast<uint32_t>(all.size());
+    const int cl = api().sphere_cast(bvh, &world, 0, p.data(), to, 0.02, &listed);
+    ASSERT_EQ(ct, cl);
+    if (ct) {
+      EXPECT_TRUE(same(tree, listed))
+          << "sphere cast: " << tree.triangle << ", " << listed.triangle;
+    }
+  }
+  // Only the listed triangles (and none out of range) are tested.
+  const double above[3] = {0.0, 0.0, 0.05};
+  tacta_surface_hit hit{};
+  world.proxy_candidates = nullptr;
+  ASSERT_EQ(api().closest_point(bvh, &world, 0, above, 0.2, &hit), 1);
+  const std::vector<uint32_t> far_one{999999, all[0] == hit.triangle ? all[1] : all[0]};
+  world.proxy_candidates = far_one.data();
+  world.proxy_candidate_count = 2;
+  tacta_surface_hit only{};
+  if (api().closest_point(bvh, &world, 0, above, 0.2, &only)) {
+    EXPECT_EQ(only.triangle, far_one[1]);
+  }
+  world.proxy_candidate_count = 0;  // an empty list: nothing to touch
+  EXPECT_EQ(api().closest_point(bvh, &world, 0, above, 0.2, &only), 0);
+  const double down_from[3] = {0.0, 0.0, 0.5}, down_to[3] = {0.0, 0.0, -0.5};
+  EXPECT_EQ(api().sphere_cast(bvh, &world, 0, down_from, down_to, 0.02, &only), 0);
   api().destroy(bvh);
 }
 
