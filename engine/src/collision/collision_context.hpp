@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "collision/proxy_freshness.hpp"
+#include "collision/proxy_patch.hpp"
 #include "collision/surface_replacement.hpp"
 #include "tacta/collision_api.h"
 #include "tacta/haptics/surface_query.hpp"
@@ -39,11 +40,6 @@ class EmbeddedCollisionSurface;
 // A body's node inverse masses for the contact response, 1 per node, 1/kg: 0 for a fixed node,
 // and for every node of a body stepping on its own thread.
 void node_inverse_masses(const BodyTopology& topology, bool own_thread, std::vector<double>& inv);
-// The proxy's freshness bookkeeping for surface `s` (over `embedded`, or null: the tets'
-// boundary) of a body of `node_count` nodes, current as of `nodes` (3 per node, m).
-SurfaceFreshness fresh_surface(const tacta_collision_surface& s, size_t node_count,
-                               const EmbeddedCollisionSurface* embedded, const double* nodes);
-
 class CollisionContext {
  public:
   // Builds the world view and the plugin instances; throws InputError (bad mesh, unknown plugin).
@@ -151,6 +147,14 @@ class CollisionContext {
   // Tests: make every query's box current beforehand, as for a proxy plugin that does not call
   // make_current, even when it does (the two must touch alike).
   void set_eager_patches(bool eager) noexcept { eager_patches_ = eager; }
+  // Tests: the proxy's queries search the hierarchies even where a patch could answer them (the
+  // two must answer alike).
+  void set_proxy_patches(bool on) noexcept { patches_on_ = on; }
+  // Gathers of the proxy's patches since load, and the queries they answered.
+  uint64_t patch_gathers() const noexcept { return patch_gathers_; }
+  uint64_t patch_queries() const noexcept { return patch_queries_; }
+  // Free-space checks the last closest points answered without a search (Query::clear_of).
+  uint64_t clear_answers() const noexcept { return clear_answers_; }
   // Contacts over the tick and the response (positions and velocities corrected in place).
   // Returns TACTA_COLLIDE_* bits.
   uint32_t detect_and_respond(double time, double dt) noexcept;
@@ -175,10 +179,28 @@ class CollisionContext {
   // with TACTA_COLLISION_PROXY_MAKES_CURRENT) will be as it reads them, by make_current_entry.
   void prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept;
   static void make_current_entry(void* context, uint32_t surface, uint32_t triangle) noexcept;
-  // True when `surface` has vertices that are current only where a query looked (prepare_query).
+  // The query over `box` is answered from the surface's patch, gathered again first when it does
+  // not cover the box; false: from the hierarchy (the patch would hold too many triangles).
+  bool use_patch(uint32_t surface, const ProxyPatch::Box& box, const CollisionInstance& proxy,
+                 EmbeddedCollisionSurface* embedded) noexcept;
+  bool gather(uint32_t surface, const ProxyPatch::Box& box, bool alone,
+              const CollisionInstance& proxy) noexcept;
+  // Of patch_triangles_[0, count), made current, those whose box meets the cube (centre, half
+  // size, m) are moved to the front; returns how many.
+  uint32_t keep_in_cube(uint32_t surface, const std::array<double, 3>& center, double half,
+                        uint32_t count) noexcept;
+  // True when a query on `surface` reads only what lies near it (an embedded surface made
+  // current where a query looks, or a patch): its closest point is searched in growing balls.
   bool patched(uint32_t surface) const noexcept {
-    return sliced_ && embedded_[static_cast<size_t>(body_of_surface_[surface])] != nullptr;
+    return sliced_ && (embedded_[static_cast<size_t>(body_of_surface_[surface])] != nullptr ||
+                       patches_wanted());
   }
+  bool patches_wanted() const noexcept;
+  // The proxy's freshness bookkeeping for surface `s` (over `embedded`, or null: the tets'
+  // boundary) of a body of `node_count` nodes, current as of `nodes` (3 per node, m).
+  SurfaceFreshness fresh_surface(const tacta_collision_surface& s, size_t node_count,
+                                 const EmbeddedCollisionSurface* embedded,
+                                 const double* nodes) const;
   // Drops contacts touching an absent body from contacts_[first, first + count); returns those kept.
   uint32_t drop_absent(uint32_t first, uint32_t count) noexcept;
   bool describe_body(size_t body, tacta_collision_surface& s);  // false: the body does not collide
@@ -209,10 +231,22 @@ class CollisionContext {
   std::vector<std::array<double, 6>> covered_;  // per surface: box made current this pass, m
   std::vector<double> last_distance_;           // per surface: the last closest point's distance, m
   std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
-  bool sliced_ = false;                         // refit_for_proxy refits slices
-  bool eager_patches_ = false;                  // tests: the box pass even for MAKES_CURRENT
-  const CollisionInstance* slicer_ = nullptr;   // the plugin whose hierarchies are sliced
-  uint64_t proxy_pass_ = 0;                     // refit_for_proxy calls, for vertex freshness
+  // Where a surface's last closest point was asked, how far it was, and the surface's
+  // odometer_base then (for Query::clear_of); outside false: not known to be outside.
+  struct Sighting {
+    Vec3 point{0, 0, 0};       // m
+    double distance = 0;       // m
+    double odometer_base = 0;  // m
+    bool outside = false;
+  };
+  std::vector<Sighting> sightings_;  // per surface
+  std::vector<ProxyPatch> patches_;  // per surface
+  bool patches_on_ = true;           // tests: false searches the hierarchies
+  uint64_t patch_gathers_ = 0, patch_queries_ = 0, clear_answers_ = 0;
+  bool sliced_ = false;                        // refit_for_proxy refits slices
+  bool eager_patches_ = false;                 // tests: the box pass even for MAKES_CURRENT
+  const CollisionInstance* slicer_ = nullptr;  // the plugin whose hierarchies are sliced
+  uint64_t proxy_pass_ = 0;                    // refit_for_proxy calls, for vertex freshness
   double query_ms_ = 0, patch_ms_ = 0;
   uint32_t raised_bits_ = 0;  // see take_bits()
   uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;

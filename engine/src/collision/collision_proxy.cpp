@@ -9,6 +9,7 @@
 #include "collision/collision_context.hpp"
 #include "collision/collision_instance.hpp"
 #include "collision/embedded_collision.hpp"
+#include "collision/proxy_patch.hpp"
 
 namespace tacta {
 
@@ -27,6 +28,11 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     return;
   }
   bool whole = !refitted_once_;
+  for (uint32_t k = 0; k < view_.surface_count; ++k)
+    if (!surface_present(k)) {  // its moves are not followed while it is away
+      patches_[k].drop();
+      sightings_[k] = {};
+    }
   for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
     if (surface_present(k) &&
         !freshness_[k].advance(
@@ -76,12 +82,22 @@ void CollisionContext::make_current_entry(void* context, uint32_t surface,
   if (e != nullptr) e->refresh_triangles(&triangle, 1, c.proxy_pass_);
 }
 
+bool CollisionContext::patches_wanted() const noexcept {
+  const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  return patches_on_ && !eager_patches_ && proxy != nullptr &&
+         (proxy->proxy_flags & TACTA_COLLISION_PROXY_TAKES_CANDIDATES) != 0 &&
+         proxy->api.overlap_shape != nullptr;
+}
+
 void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept {
   // The query widens its search by how far any vertex may be from its element's box.
   view_.query_margin = sliced_ ? freshness_[surface].margin() : 0.0;
+  if (!sliced_) return;
   EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get();
-  if (!sliced_ || e == nullptr) return;
   const CollisionInstance* proxy = served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  if (patches_wanted() && use_patch(surface, {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}, *proxy, e))
+    return;
+  if (e == nullptr) return;
   if ((proxy->proxy_flags & TACTA_COLLISION_PROXY_MAKES_CURRENT) != 0 && !eager_patches_) {
     // The query makes current each triangle it reads, and nothing else.
     view_.make_current = &make_current_entry;
@@ -115,6 +131,90 @@ void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec
   e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
   patch_ms_ +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
+                                 const CollisionInstance& proxy,
+                                 EmbeddedCollisionSurface* embedded) noexcept {
+  ProxyPatch& patch = patches_[surface];
+  const bool gathering = !patch.covers(box, freshness_[surface].travel());
+  if (gathering && !patch.worth_gathering(box, proxy_pass_)) return false;
+  const bool refreshing = embedded != nullptr && patch.made_current_in() != proxy_pass_;
+  if (!gathering && !refreshing) {
+    patch.note_served(box);
+  } else {
+    // Timed only when it does work: twice a tick, a clock read would cost more than a query.
+    const auto start = std::chrono::steady_clock::now();
+    // The cube for the queries the patch served, or for this one alone when that is too many.
+    const bool held = !gathering || gather(surface, box, false, proxy) ||
+                      (patch.widens(box) && gather(surface, box, true, proxy));
+    if (held && embedded != nullptr && patch.made_current_in() != proxy_pass_) {
+      embedded->refresh_triangles(patch.triangles(), patch.count(), proxy_pass_);
+      patch.set_made_current_in(proxy_pass_);
+    }
+    patch_ms_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!held) return false;
+    patch.note_served(box);
+  }
+  ++patch_queries_;
+  view_.proxy_candidates = patch.triangles();
+  view_.proxy_candidate_count = patch.count();
+  return true;
+}
+
+bool CollisionContext::gather(uint32_t surface, const ProxyPatch::Box& box, bool alone,
+                              const CollisionInstance& proxy) noexcept {
+  ProxyPatch& patch = patches_[surface];
+  std::array<double, 3> center{};
+  double half = 0.0;
+  patch.cube_for(box, alone, center, half);
+  tacta_collision_shape cube{};
+  cube.type = TACTA_SHAPE_BOX;
+  for (size_t a = 0; a < 3; ++a) {
+    cube.half_extents[a] = half;
+    cube.pose_start.position[a] = center[a];
+  }
+  cube.pose_start.rotation[0] = 1.0;
+  cube.pose_end = cube.pose_start;
+  uint32_t count = 0;
+  // Widened by the margin (set by prepare_query): every triangle that may be in the cube.
+  const uint32_t bits =
+      proxy.api.overlap_shape(proxy.instance, &view_, &cube, surface, patch_triangles_.data(),
+                              static_cast<uint32_t>(patch_triangles_.size()), &count);
+  raised_bits_ |= bits;
+  ++patch_gathers_;
+  if (bits == TACTA_COLLIDE_OK) count = keep_in_cube(surface, center, half, count);
+  if (bits != TACTA_COLLIDE_OK ||
+      !patch.keep(center, half, patch_triangles_.data(), count, box, proxy_pass_))
+    return false;
+  freshness_[surface].mark_travel();
+  return true;
+}
+
+uint32_t CollisionContext::keep_in_cube(uint32_t surface, const std::array<double, 3>& center,
+                                        double half, uint32_t count) noexcept {
+  // The hierarchy's answer holds every triangle within the margin of the cube; made current,
+  // those whose box is clear of it are dropped (one of a few mean edges past it, most are).
+  const tacta_collision_surface& s = surfaces_[surface];
+  if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get())
+    e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
+  uint32_t kept = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint32_t t = patch_triangles_[i];
+    bool clear = false;
+    for (size_t a = 0; a < 3 && !clear; ++a) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (size_t c = 0; c < 3; ++c) {
+        const double x = s.positions_end[3 * size_t{s.triangles[3 * size_t{t} + c]} + a];
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+      clear = !(lo <= center[a] + half && hi >= center[a] - half);  // NaN: clear, never kept
+    }
+    if (!clear) patch_triangles_[kept++] = t;
+  }
+  return kept;
 }
 
 // Rounds of detect + respond: the response's corrections are motions too, and can cross a

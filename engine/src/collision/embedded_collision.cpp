@@ -67,9 +67,7 @@ void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint
                                                  uint64_t pass) noexcept {
   if (pass != nodes_pass_ || nodes_end_ == nullptr) {
     // Looked up once a pass: a query may call this for one triangle at a time.
-    const SoftBody b = body();
-    nodes_end_ = b.nodes.positions.data();
-    nodes_start_ = b.nodes.step_start.data();
+    nodes_end_ = world_.body_nodes(body_).positions.data();
     nodes_pass_ = pass;
   }
   const EmbeddedSurface& s = *surface_;
@@ -78,8 +76,9 @@ void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint
       const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
       if (fresh_at_[v] == pass) continue;
       fresh_at_[v] = pass;
-      interpolate_vertex(s, v, nodes_end_, &surface_->positions[3 * size_t{v}]);
-      interpolate_vertex(s, v, nodes_start_, &start_[3 * size_t{v}]);
+      double* end = &surface_->positions[3 * size_t{v}];
+      interpolate_vertex(s, v, nodes_end_, end);
+      std::copy(end, end + 3, &start_[3 * size_t{v}]);
     }
 }
 

@@ -29,9 +29,11 @@ class EmbeddedCollisionSurface {
   // of the body's taken for a build off the tick.
   void refresh_from(const double* node_start, const double* node_end, const double* velocities,
                     uint64_t pass) noexcept;
-  // Start and end positions of the listed triangles' vertices only, skipping those already
-  // current as of `pass`: the slices a hierarchy is refit by and the patch the proxy's queries
-  // read. Velocities are left to refresh(), which runs before a contact response.
+  // End positions of the listed triangles' vertices only, skipping those already current as of
+  // `pass`: the slices a hierarchy is refit by and the patch the proxy's queries read. Their
+  // start is set to their end: the proxy reads only where vertices are, and the boxes a slice
+  // refit computes from start and end need be no wider. refresh(), which runs before a contact
+  // response, makes start, end and velocities whole again.
   void refresh_triangles(const uint32_t* triangles, uint32_t count, uint64_t pass) noexcept;
   // Largest sum of |weight| over the vertices: no vertex moves further than this times the
   // furthest-moving node (1 inside the tets, more for extrapolated vertices).
@@ -69,7 +71,6 @@ class EmbeddedCollisionSurface {
   // The body's node arrays refresh_triangles reads in pass nodes_pass_ (its arrays change only
   // between ticks, each tick a new pass).
   const double* nodes_end_ = nullptr;
-  const double* nodes_start_ = nullptr;
   uint64_t nodes_pass_ = 0;
   double weight_bound_ = 1.0;
 };

@@ -28,13 +28,16 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
       margin_cap_(margin_cap) {
   surface_nodes_.reserve(node_count);
   // A slice lists each node once: at most its vertices' nodes, and at most every node.
-  const size_t per_slice = std::min<size_t>(size_t{3} * kSliceElements * nodes_per_vertex,
-                                            node_count);
+  const size_t per_slice =
+      std::min<size_t>(size_t{3} * kSliceElements * nodes_per_vertex, node_count);
   slice_nodes_.reserve(drift_.size() * per_slice);
   reference_.reserve(3 * slice_nodes_.capacity());
 }
 
 void SurfaceFreshness::reset(const double* nodes) noexcept {
+  // The boxes start afresh, the travel does not: the nodes may have moved since the last read.
+  if (read_once_) take_travel(pending_ + largest_move(nodes));
+  read_once_ = true;
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   std::fill(drift_.begin(), drift_.end(), 0.0);
   std::fill(paths_.begin(), paths_.end(), 0.0);
@@ -88,6 +91,20 @@ void SurfaceFreshness::take_reference(size_t slice) noexcept {
   referenced_[slice] = 1;
 }
 
+double SurfaceFreshness::largest_move(const double* nodes) const noexcept {
+  double largest2 = 0.0;  // m^2
+  const auto take = [&](size_t i) {
+    const double d2 = squared_distance(nodes + i, &last_nodes_[i]);
+    largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);
+  };
+  if (bound_) {
+    for (const uint32_t node : surface_nodes_) take(3 * size_t{node});
+  } else {
+    for (size_t i = 0; i < last_nodes_.size(); i += 3) take(i);
+  }
+  return std::sqrt(largest2);
+}
+
 double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
   if (!bound_ || !referenced_[slice]) return drift_[slice] + pending_;
   double largest2 = 0.0;  // m^2
@@ -109,6 +126,8 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
     }
     const double move = std::sqrt(largest2);
     for (double& d : drift_) d += move;
+    take_travel(move);
+    read_once_ = true;
     update_margin();
     return margin_ <= margin_cap_;
   }
@@ -143,6 +162,7 @@ void SurfaceFreshness::take_paths() noexcept {
       longest = std::max(longest, paths_[slice_nodes_[k]]);
     drift_[slice] += longest;
   }
+  take_travel(pending_);
   for (const uint32_t node : surface_nodes_) paths_[node] = 0.0;
   pending_ = 0.0;
   pending_ticks_ = 0;

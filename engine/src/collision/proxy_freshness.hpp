@@ -56,6 +56,15 @@ class SurfaceFreshness {
     return weight_bound_ * (drift_[slice] + pending_);
   }
   double margin_cap() const noexcept { return margin_cap_; }
+  // How far any vertex may have moved since the last mark_travel (or construction), m: for the
+  // proxy's patch (proxy_patch.hpp). Every node move the advances and resets read counts,
+  // whatever refit followed; NaN once a node was not finite.
+  double travel() const noexcept { return weight_bound_ * (travel_ + pending_); }
+  void mark_travel() noexcept { travel_ = 0.0; }
+  // A reading that only grows: no vertex has moved further between two instants than odometer()
+  // at the second less odometer_base() at the first, m.
+  double odometer() const noexcept { return weight_bound_ * (taken_ + pending_); }
+  double odometer_base() const noexcept { return weight_bound_ * taken_; }
 
  private:
   static constexpr int kPendingTicks = 8;  // ticks between the slices taking their nodes' paths
@@ -65,14 +74,21 @@ class SurfaceFreshness {
   // slice's path sum where that is not known).
   double measured_drift(size_t slice) const noexcept;
   void take_reference(size_t slice) noexcept;  // the slice's boxes are computed from last_nodes_
+  void take_travel(double path) noexcept {     // m
+    travel_ += path;
+    taken_ += path;
+  }
+  // The largest move of the nodes the slices follow (every node while unbound) from
+  // last_nodes_ to `nodes`, m; NaN for a node not finite.
+  double largest_move(const double* nodes) const noexcept;
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
   std::vector<double> paths_;       // 1 per node, m: its moves summed since the slices took them
   std::vector<double> drift_;  // per slice, m: its nodes' longest path since refit, less pending_
-  std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
-  std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
-  std::vector<double> reference_;      // 3 per slice_nodes_ entry, m: where it was at the refit
-  std::vector<uint8_t> referenced_;    // per slice: reference_ holds its nodes at its last refit
-  std::vector<uint32_t> seen_in_;      // 1 per node: the last slice (+ 1) that listed it
+  std::vector<uint32_t> slice_nodes_;    // the nodes each slice follows, slice after slice
+  std::vector<uint32_t> slice_start_;    // per slice + 1: its first entry in slice_nodes_
+  std::vector<double> reference_;        // 3 per slice_nodes_ entry, m: where it was at the refit
+  std::vector<uint8_t> referenced_;      // per slice: reference_ holds its nodes at its last refit
+  std::vector<uint32_t> seen_in_;        // 1 per node: the last slice (+ 1) that listed it
   std::vector<uint32_t> surface_nodes_;  // the nodes any slice follows, once each
   bool bound_ = false;
   uint32_t nodes_per_vertex_ = 1;
@@ -81,7 +97,10 @@ class SurfaceFreshness {
   double margin_target_ = 0.0;
   double margin_cap_ = 0.0;
   double margin_ = 0.0;
-  double pending_ = 0.0;  // the longest of paths_, m
+  double pending_ = 0.0;    // the longest of paths_, m
+  double travel_ = 0.0;     // m: the longest paths taken since mark_travel, summed (pending_ apart)
+  double taken_ = 0.0;      // m: the same since construction
+  bool read_once_ = false;  // last_nodes_ holds nodes read by a reset or an advance
   int pending_ticks_ = 0;
 };
 

@@ -36,7 +36,8 @@ void GodObjectProxy::update(const SurfaceQuery& world, const Vec3& device_positi
           on_surface(hit, add_scaled(position_, sub(device_position, position_), hit.fraction));
       contact_ = hit;
       in_contact_ = true;
-    } else if (world.closest_point(device_position, params_.inside_search, hit, signed_distance) &&
+    } else if (!world.clear_of(device_position, params_.radius) &&
+               world.closest_point(device_position, params_.inside_search, hit, signed_distance) &&
                signed_distance < params_.radius) {
       // Overlapping without a sweep hit: a surface came onto the device, or it started inside.
       position_ = on_surface(hit, device_position);

@@ -1,6 +1,8 @@
 // SurfaceFreshness's margins are bounds: after any motion, every vertex of a slice lies within
 // the slice's margin of where it was when that slice was last refit (the property the proxy's widened
-// queries rely on). Checked by replaying random, local motions of a strip of triangles whose
+// queries rely on), and every vertex within the travel, and the odometer's advance, of where it
+// was at the last mark (the proxy's patch and clear_of rely on those), whole refits (resets)
+// between included. Checked by replaying random, local motions of a strip of triangles whose
 // vertices are nodes, and of vertices that are weighted sums of four nodes (an embedded
 // surface, weights outside [0, 1] included). And the point of slices that know their nodes:
 // a body moving in one place refits only the slices there; nodes shaking in place refit none.
@@ -85,8 +87,21 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
   const uint32_t slices = (strip.count() + kSlice - 1) / kSlice;
   std::vector<std::vector<double>> at_refit(
       slices, vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex));
+  std::vector<double> at_mark = at_refit[0];
+  double base_at_mark = fresh.odometer_base();
   uint64_t refits = 0;
   for (int tick = 0; tick < 2000; ++tick) {
+    if (tick % 61 == 0) {  // a patch gathered, a closest point found
+      fresh.mark_travel();
+      base_at_mark = fresh.odometer_base();
+      at_mark = vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex);
+    }
+    if (tick % 333 == 150) {  // the nodes move after the tick's advance, then a whole refit
+      for (double& x : nodes) x += 1e-2 * unit(rng);  // m: past any path summed since the mark
+      fresh.reset(nodes.data());
+      for (auto& slice : at_refit)
+        slice = vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex);
+    }
     // A patch of nodes moves (the tool's neighbourhood, somewhere along the strip), plus a
     // slow drift of everything now and then.
     const auto centre = static_cast<uint32_t>(rng() % node_count);
@@ -97,6 +112,22 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
     EXPECT_TRUE(fresh.advance(nodes.data())) << "the cap is far";
     const std::vector<double> now =
         vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex);
+    for (uint32_t v = 0; v < strip.vertices; ++v) {
+      const double dx = now[3 * v] - at_mark[3 * v], dy = now[3 * v + 1] - at_mark[3 * v + 1],
+                   dz = now[3 * v + 2] - at_mark[3 * v + 2];
+      const double moved = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (moved > fresh.travel() * (1 + 1e-12) + 1e-15) {
+        ADD_FAILURE() << "vertex " << v << " moved " << moved << " m since the mark, the travel "
+                      << fresh.travel() << " m at tick " << tick;
+        return refits;
+      }
+      const double odometer = fresh.odometer() - base_at_mark;
+      if (moved > odometer * (1 + 1e-12) + 1e-15) {
+        ADD_FAILURE() << "vertex " << v << " moved " << moved << " m since the mark, the odometer "
+                      << odometer << " m at tick " << tick;
+        return refits;
+      }
+    }
     for (uint32_t s = 0; s < slices; ++s)
       for (uint32_t e = s * kSlice; e < std::min(strip.count(), (s + 1) * kSlice); ++e)
         for (int c = 0; c < 3; ++c) {

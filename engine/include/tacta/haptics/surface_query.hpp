@@ -28,6 +28,15 @@ class SurfaceQuery {
   // signed_distance: distance of `point` from the surface, negative inside.
   virtual bool closest_point(const Vec3& point, double max_distance, SurfaceHit& hit,
                              double& signed_distance) const noexcept = 0;
+  // True when the answerer knows without a search that `point` is outside every surface and at
+  // least `distance` (m) from it (closest_point would find it no nearer): e.g. from where its
+  // last closest point was and how far the point and the surfaces have moved since. false: not
+  // known, ask closest_point. Lets a proxy in free space skip looking for a surface come onto it.
+  virtual bool clear_of(const Vec3& point, double distance) const noexcept {
+    (void)point;
+    (void)distance;
+    return false;
+  }
 };
 
 }  // namespace tacta::haptics

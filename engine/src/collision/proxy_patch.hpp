@@ -1,0 +1,105 @@
+// The haptic proxy's patch of one collision surface: the triangles near the tool, gathered now and
+// then from the hierarchy (the proxy plugin's overlap_shape over a cube, widened by the margin),
+// which the proxy's queries then test one by one (TACTA_COLLISION_PROXY_TAKES_CANDIDATES) instead
+// of searching the hierarchy. A triangle left out lay outside the cube when it was gathered; none
+// of its vertices has moved further than the surface's travel since (SurfaceFreshness), so a
+// query whose box lies inside the cube shrunk by that travel cannot reach it. Only the patch's
+// vertices need be current. Fixed capacity: no allocation after construction.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace tacta {
+
+class ProxyPatch {
+ public:
+  // Triangles a patch holds at most: a gather finding more is not kept (those queries search the
+  // hierarchy), as testing them one by one would cost more than the search.
+  static constexpr uint32_t kCapacity = 96;
+  using Box = std::array<double, 6>;  // lo x, y, z then hi x, y, z; m
+
+  ProxyPatch() { triangles_.reserve(kCapacity); }
+
+  // A query over `box` finds every triangle within its reach among triangles(): the box lies
+  // inside the gathered cube shrunk by `travel` (m) on every side (false for a NaN travel).
+  bool covers(const Box& box, double travel) const noexcept {
+    if (!held_ || !(travel >= 0.0)) return false;
+    const double half = half_ - travel;
+    for (int a = 0; a < 3; ++a)
+      if (!(box[a] >= center_[a] - half && box[a + 3] <= center_[a] + half)) return false;
+    return true;
+  }
+  // A query over `box` was answered from the patch: the next gather's cube holds such boxes too.
+  void note_served(const Box& box) noexcept {
+    for (int a = 0; a < 3; ++a) served_extent_ = std::max(served_extent_, box[a + 3] - box[a]);
+  }
+  // The cube to gather for a query over `box`, m: centred on it, of half size the largest query
+  // side the patch served or this one's (so the tick's other queries fit too, and the tool may
+  // move about half a query before the next gather). `alone`: this query's side only.
+  void cube_for(const Box& box, bool alone, std::array<double, 3>& center,
+                double& half) const noexcept {
+    double side = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      center[a] = 0.5 * (box[a] + box[a + 3]);
+      side = std::max(side, box[a + 3] - box[a]);
+    }
+    half = alone ? side : std::max(side, served_extent_);
+  }
+  // A gather for a query over `box` is worth trying in proxy pass `pass`: none for a query of
+  // 3/4 the side or more (about half the area) held too many in the last kRetryPasses passes (the
+  // god-object's search for a surface that came onto a device well clear of it: a large ball
+  // each tick, which the hierarchy answers).
+  bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
+    if (pass - failed_pass_ >= kRetryPasses) return true;
+    for (int a = 0; a < 3; ++a)
+      if (box[a + 3] - box[a] < 0.75 * failed_side_) return true;
+    return false;
+  }
+  // The cube for the queries served is larger than the one for `box` alone.
+  bool widens(const Box& box) const noexcept {
+    for (int a = 0; a < 3; ++a)
+      if (box[a + 3] - box[a] >= served_extent_) return false;
+    return true;
+  }
+  // The triangles a gather over the cube found for a query over `box` in pass `pass`: kept when
+  // they fit (false: the patch is as it was).
+  bool keep(const std::array<double, 3>& center, double half, const uint32_t* triangles,
+            uint32_t count, const Box& box, uint64_t pass) noexcept {
+    if (count > kCapacity) {
+      failed_pass_ = pass;
+      failed_side_ = 0.0;
+      for (int a = 0; a < 3; ++a) failed_side_ = std::max(failed_side_, box[a + 3] - box[a]);
+      return false;
+    }
+    triangles_.assign(triangles, triangles + count);  // within the capacity reserved
+    center_ = center;
+    half_ = half;
+    held_ = true;
+    served_extent_ = 0.0;
+    made_current_in_ = 0;
+    return true;
+  }
+  void drop() noexcept { held_ = false; }  // the surface changed
+  bool held() const noexcept { return held_; }
+  const uint32_t* triangles() const noexcept { return triangles_.data(); }
+  uint32_t count() const noexcept { return static_cast<uint32_t>(triangles_.size()); }
+  // The proxy pass in which the patch's vertices were last made current (0: never).
+  uint64_t made_current_in() const noexcept { return made_current_in_; }
+  void set_made_current_in(uint64_t pass) noexcept { made_current_in_ = pass; }
+
+ private:
+  static constexpr uint64_t kRetryPasses = 64;
+  std::vector<uint32_t> triangles_;
+  uint64_t failed_pass_ = 0;    // the last pass a gather held too many triangles, and the query's
+  double failed_side_ = 1e300;  // largest side then, m
+  std::array<double, 3> center_{};
+  double half_ = 0.0;           // m, of the cube gathered over
+  double served_extent_ = 0.0;  // m: the largest side of a query box served since the gather
+  uint64_t made_current_in_ = 0;
+  bool held_ = false;
+};
+
+}  // namespace tacta

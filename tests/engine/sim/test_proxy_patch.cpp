@@ -1,0 +1,65 @@
+// ProxyPatch's bookkeeping: a query is answered from the patch only while its box lies inside
+// the gathered cube shrunk by the travel; the next cube holds the queries served; a gather that
+// held too many triangles is not tried again for as large a query for a while.
+#include <cmath>
+#include <gtest/gtest.h>
+#include <vector>
+
+#include "collision/proxy_patch.hpp"
+
+namespace {
+
+using tacta::ProxyPatch;
+
+ProxyPatch::Box box_about(double x, double y, double z, double half) {
+  return {x - half, y - half, z - half, x + half, y + half, z + half};
+}
+
+TEST(ProxyPatch, CoversOnlyInsideTheCubeLessTheTravel) {
+  ProxyPatch patch;
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 1e-3), 0.0));  // nothing gathered yet
+  const std::vector<uint32_t> found{4, 8, 15};
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, found.data(), 3, box_about(0, 0, 0, 0.005), 1));
+  EXPECT_EQ(patch.count(), 3u);
+  EXPECT_TRUE(patch.covers(box_about(0, 0, 0, 0.005), 0.0));
+  EXPECT_TRUE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.001));  // 9 mm of 10 - 1
+  EXPECT_FALSE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.0015));
+  EXPECT_FALSE(patch.covers(box_about(0, 0, -0.006, 0.005), 0.0));  // out along z
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 0.005), std::nan("")));
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 0.005), -1.0));
+  patch.drop();
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 1e-3), 0.0));
+}
+
+TEST(ProxyPatch, TheNextCubeHoldsTheQueriesServed) {
+  ProxyPatch patch;
+  const std::vector<uint32_t> none;
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, none.data(), 0, box_about(0, 0, 0, 0.005), 1));
+  patch.note_served(box_about(0, 0, 0, 0.004));  // a closest point's ball: 8 mm across
+  std::array<double, 3> center{};
+  double half = 0;
+  patch.cube_for(box_about(1, 2, 3, 0.001), false, center, half);  // a short sweep's box
+  EXPECT_EQ(center, (std::array<double, 3>{1, 2, 3}));
+  EXPECT_NEAR(half, 0.008, 1e-15);
+  EXPECT_TRUE(patch.widens(box_about(1, 2, 3, 0.001)));
+  patch.cube_for(box_about(1, 2, 3, 0.001), true, center, half);
+  EXPECT_NEAR(half, 0.002, 1e-15);  // that box alone: its side
+  EXPECT_FALSE(patch.widens(box_about(1, 2, 3, 0.006)));
+}
+
+TEST(ProxyPatch, TooManyTrianglesAreNotKeptNorSoughtAgainForAsLargeAQuery) {
+  ProxyPatch patch;
+  const std::vector<uint32_t> few{1, 2};
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, few.data(), 2, box_about(0, 0, 0, 0.005), 1));
+  std::vector<uint32_t> many(ProxyPatch::kCapacity + 1);
+  const ProxyPatch::Box large = box_about(0, 0, 0, 0.02);
+  EXPECT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), ProxyPatch::kCapacity + 1, large, 10));
+  EXPECT_EQ(patch.count(), 2u);  // the patch is as it was
+  EXPECT_TRUE(patch.covers(box_about(0, 0, 0, 0.005), 0.0));
+  EXPECT_FALSE(patch.worth_gathering(large, 11));
+  EXPECT_FALSE(patch.worth_gathering(box_about(0, 0, 0, 0.016), 11));  // 4/5 of the side
+  EXPECT_TRUE(patch.worth_gathering(box_about(0, 0, 0, 0.01), 11));    // half the side
+  EXPECT_TRUE(patch.worth_gathering(large, 10 + 64));                  // tried again later
+}
+
+}  // namespace
