@@ -28,8 +28,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     const Timed timed(context_);
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
-        continue;
+      if (!asked(s)) continue;
       Vec3 lo, hi;
       for (size_t a = 0; a < 3; ++a) {
         lo[a] = std::min(from[a], to[a]) - radius;
@@ -54,8 +53,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     const Timed timed(context_);
     bool found = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
-        continue;
+      if (!asked(s)) continue;
       // A surface brought up to date only where queries look is searched in growing balls, the
       // first 10 % past the distance the last query on it found (the surface and the tool move
       // far less in a tick): the patch made current is about that ball's, and its area grows
@@ -101,8 +99,7 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     if (!context_.sliced_) return false;
     bool any = false;
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
-      if ((surface_ >= 0 && static_cast<uint32_t>(surface_) != s) || !context_.surface_present(s))
-        continue;
+      if (!asked(s)) continue;
       const Sighting& seen = context_.sightings_[s];
       if (!seen.outside) return false;
       const double moved =
@@ -115,6 +112,10 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   }
 
  private:
+  // Surface s is one this query answers for: present, and the one it is restricted to, if any.
+  bool asked(uint32_t s) const noexcept {
+    return (surface_ < 0 || static_cast<uint32_t>(surface_) == s) && context_.surface_present(s);
+  }
   // Adds a query's wall time to the context's query_ms and leaves the view's margin at 0 (and
   // its make_current unset: other callers read every position as current).
   struct Timed {

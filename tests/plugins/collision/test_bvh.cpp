@@ -72,14 +72,23 @@ class BvhPlugin : public ::testing::TestWithParam<int> {
   tacta::testing::LoadedPlugin plugin_{"tacta_bvh.so"};
 };
 
+// A world view over `views`, nothing else in it (dt 1 ms, no margin, no candidates).
+tacta_collision_world world_over(std::vector<tacta_collision_surface>& views) {
+  tacta_collision_world world{};
+  world.struct_size = sizeof world;
+  world.surface_count = static_cast<uint32_t>(views.size());
+  world.surfaces = views.data();
+  world.dt = 1e-3;
+  return world;
+}
+
 TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
   std::mt19937 rng(1234);
   TestSurface a = tacta::testing::grid(12, 1.0, 0.0, 0.0, 0.0);
   TestSurface b = tacta::testing::grid(9, 0.8, 0.2, 0.1, 0.05);
   const double margin = 0.002;
   std::vector<tacta_collision_surface> views{a.view(1, margin), b.view(2, margin)};
-  tacta_collision_world world{sizeof world, 2,   views.data(), 0,       nullptr, 0,       nullptr,
-                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  tacta_collision_world world = world_over(views);
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK) << message;
@@ -111,8 +120,7 @@ TEST_P(BvhPlugin, CandidatePairsEqualBruteForceOnDeformingMeshes) {
 TEST_P(BvhPlugin, ClosestPointAndSphereCastMatchBruteForce) {
   TestSurface a = tacta::testing::grid(10, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
-                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  tacta_collision_world world = world_over(views);
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
@@ -151,8 +159,7 @@ TEST_P(BvhPlugin, SlicedRefitAndWidenedQueriesAnswerAsAWholeRefit) {
   std::mt19937 rng(99);
   TestSurface a = tacta::testing::grid(20, 1.0, 0.0, 0.0, 0.0);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
-                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  tacta_collision_world world = world_over(views);
   void* sliced = make(GetParam());
   void* whole = make(GetParam());
   char message[256] = {0};
@@ -224,8 +231,7 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   TestSurface a = tacta::testing::grid(3, 1.0, 0.0, 0.0, 0.0);
   a.triangles[4] = 999;  // out of range
   std::vector<tacta_collision_surface> views{a.view(7, 0.0)};
-  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
-                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  tacta_collision_world world = world_over(views);
   EXPECT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_ERR_INVALID_ARGUMENT);
   EXPECT_NE(std::string(message).find("999"), std::string::npos) << message;
   // NaN positions: flagged, those elements skipped.
@@ -236,9 +242,7 @@ TEST_P(BvhPlugin, BadInputIsReportedNotCrashed) {
   // Empty mesh.
   TestSurface empty;
   std::vector<tacta_collision_surface> none{empty.view(1, 0.0)};
-  tacta_collision_world empty_world{sizeof world, 1,    none.data(), 0,   nullptr, 0,
-                                    nullptr,      1e-3, 0.0,         0.0, nullptr, nullptr,
-                                    nullptr,      0};
+  tacta_collision_world empty_world = world_over(none);
   ASSERT_EQ(api().prepare(bvh, &empty_world, message, sizeof message), TACTA_OK);
   api().update(bvh, &empty_world);
   uint32_t count = 5;
@@ -256,8 +260,7 @@ TEST_P(BvhPlugin, CandidatesAnswerAsTheTreeSearchAndAreAllThatIsTested) {
   TestSurface a = tacta::testing::grid(16, 1.0, 0.0, 0.0, 0.0);
   tacta::testing::deform(a, rng, 0.02, 0.3);
   std::vector<tacta_collision_surface> views{a.view(1, 0.0)};
-  tacta_collision_world world{sizeof world, 1,   views.data(), 0,       nullptr, 0,       nullptr,
-                              1e-3,         0.0, 0.0,          nullptr, nullptr, nullptr, 0};
+  tacta_collision_world world = world_over(views);
   void* bvh = make(GetParam());
   char message[256] = {0};
   ASSERT_EQ(api().prepare(bvh, &world, message, sizeof message), TACTA_OK);
