@@ -70,6 +70,7 @@ CollisionContext::CollisionContext(World& world, const PluginRegistry& plugins) 
   const double dt = 1.0 / scene.clock.haptic_rate_hz;
   response_enabled_ = c.enabled;
 
+  patch_slots_ = std::max<size_t>(1, world.device_count());
   // Per slot, so a body added later (add_surface) finds its entries.
   surface_of_body_.assign(world.body_capacity(), -1);
   refits_seen_.assign(world.body_capacity(), 0);
@@ -199,7 +200,7 @@ void CollisionContext::append(size_t body, const tacta_collision_surface& s) {
   covered_.push_back({kInf, kInf, kInf, -kInf, -kInf, -kInf});
   last_distance_.push_back(0.0);
   sightings_.emplace_back();
-  patches_.emplace_back();
+  patches_.resize(patches_.size() + patch_slots_);
   patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
 }
 
@@ -259,7 +260,7 @@ void CollisionContext::replace_surface(size_t body) {
   covered_[k] = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   last_distance_[k] = 0.0;
   sightings_[k] = {};
-  patches_[k].drop();
+  drop_patches(static_cast<uint32_t>(k));
   patch_triangles_.resize(std::max<size_t>(patch_triangles_.size(), s.triangle_count));
   prepare_plugins({world_.scene().path, 0, 0, "collision"});
 }
@@ -332,7 +333,8 @@ uint32_t CollisionContext::drop_absent(uint32_t first, uint32_t count) noexcept 
   return kept;
 }
 
-const haptics::SurfaceQuery& CollisionContext::surface_query(int body) noexcept {
+const haptics::SurfaceQuery& CollisionContext::surface_query(int body, size_t device) noexcept {
+  asking_ = device < patch_slots_ ? device : 0;
   query_->restrict_to(body >= 0 && static_cast<size_t>(body) < surface_of_body_.size()
                           ? surface_of_body_[static_cast<size_t>(body)]
                           : -1);

@@ -162,7 +162,9 @@ class CollisionContext {
   uint32_t contact_count() const noexcept { return contact_count_; }
 
   // Answers the god-object proxy's queries against one body's surface (or every surface, -1).
-  const haptics::SurfaceQuery& surface_query(int body) noexcept;
+  // For device `device`'s proxy: each keeps its own patches (two tools on one body do not gather
+  // over each other's).
+  const haptics::SurfaceQuery& surface_query(int body, size_t device = 0) noexcept;
   tacta_collision_world& view() noexcept { return view_; }
 
   std::vector<CollisionPluginUse> plugin_uses() const;
@@ -240,8 +242,16 @@ class CollisionContext {
     bool outside = false;
   };
   std::vector<Sighting> sightings_;  // per surface
-  std::vector<ProxyPatch> patches_;  // per surface
-  bool patches_on_ = true;           // tests: false searches the hierarchies
+  std::vector<ProxyPatch> patches_;  // per surface, patch_slots_ each (one per device)
+  size_t patch_slots_ = 1;
+  size_t asking_ = 0;  // the device whose proxy asks (surface_query)
+  ProxyPatch& patch_of(uint32_t surface) noexcept {
+    return patches_[surface * patch_slots_ + asking_];
+  }
+  void drop_patches(uint32_t surface) noexcept {
+    for (size_t d = 0; d < patch_slots_; ++d) patches_[surface * patch_slots_ + d].drop();
+  }
+  bool patches_on_ = true;  // tests: false searches the hierarchies
   uint64_t patch_gathers_ = 0, patch_queries_ = 0, clear_answers_ = 0;
   bool sliced_ = false;                        // refit_for_proxy refits slices
   bool eager_patches_ = false;                 // tests: the box pass even for MAKES_CURRENT

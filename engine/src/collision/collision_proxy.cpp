@@ -30,7 +30,7 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
   bool whole = !refitted_once_;
   for (uint32_t k = 0; k < view_.surface_count; ++k)
     if (!surface_present(k)) {  // its moves are not followed while it is away
-      patches_[k].drop();
+      drop_patches(k);
       sightings_[k] = {};
     }
   for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
@@ -136,8 +136,8 @@ void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec
 bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
                                  const CollisionInstance& proxy,
                                  EmbeddedCollisionSurface* embedded) noexcept {
-  ProxyPatch& patch = patches_[surface];
-  const bool gathering = !patch.covers(box, freshness_[surface].travel());
+  ProxyPatch& patch = patch_of(surface);
+  const bool gathering = !patch.covers(box, freshness_[surface].odometer());
   if (gathering && !patch.worth_gathering(box, proxy_pass_)) return false;
   const bool refreshing = embedded != nullptr && patch.made_current_in() != proxy_pass_;
   if (!gathering && !refreshing) {
@@ -165,7 +165,7 @@ bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
 
 bool CollisionContext::gather(uint32_t surface, const ProxyPatch::Box& box, bool alone,
                               const CollisionInstance& proxy) noexcept {
-  ProxyPatch& patch = patches_[surface];
+  ProxyPatch& patch = patch_of(surface);
   std::array<double, 3> center{};
   double half = 0.0;
   patch.cube_for(box, alone, center, half);
@@ -185,11 +185,8 @@ bool CollisionContext::gather(uint32_t surface, const ProxyPatch::Box& box, bool
   raised_bits_ |= bits;
   ++patch_gathers_;
   if (bits == TACTA_COLLIDE_OK) count = keep_in_cube(surface, center, half, count);
-  if (bits != TACTA_COLLIDE_OK ||
-      !patch.keep(center, half, patch_triangles_.data(), count, box, proxy_pass_))
-    return false;
-  freshness_[surface].mark_travel();
-  return true;
+  return bits == TACTA_COLLIDE_OK && patch.keep(center, half, patch_triangles_.data(), count, box,
+                                                proxy_pass_, freshness_[surface].odometer_base());
 }
 
 uint32_t CollisionContext::keep_in_cube(uint32_t surface, const std::array<double, 3>& center,

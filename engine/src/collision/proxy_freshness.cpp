@@ -35,8 +35,8 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
 }
 
 void SurfaceFreshness::reset(const double* nodes) noexcept {
-  // The boxes start afresh, the travel does not: the nodes may have moved since the last read.
-  if (read_once_) take_travel(pending_ + largest_move(nodes));
+  // The boxes start afresh, the odometer does not: the nodes may have moved since the last read.
+  if (read_once_) taken_ += pending_ + largest_move(nodes);
   read_once_ = true;
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   std::fill(drift_.begin(), drift_.end(), 0.0);
@@ -126,7 +126,7 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
     }
     const double move = std::sqrt(largest2);
     for (double& d : drift_) d += move;
-    take_travel(move);
+    taken_ += move;
     read_once_ = true;
     update_margin();
     return margin_ <= margin_cap_;
@@ -162,7 +162,7 @@ void SurfaceFreshness::take_paths() noexcept {
       longest = std::max(longest, paths_[slice_nodes_[k]]);
     drift_[slice] += longest;
   }
-  take_travel(pending_);
+  taken_ += pending_;
   for (const uint32_t node : surface_nodes_) paths_[node] = 0.0;
   pending_ = 0.0;
   pending_ticks_ = 0;

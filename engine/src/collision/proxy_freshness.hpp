@@ -56,13 +56,10 @@ class SurfaceFreshness {
     return weight_bound_ * (drift_[slice] + pending_);
   }
   double margin_cap() const noexcept { return margin_cap_; }
-  // How far any vertex may have moved since the last mark_travel (or construction), m: for the
-  // proxy's patch (proxy_patch.hpp). Every node move the advances and resets read counts,
-  // whatever refit followed; NaN once a node was not finite.
-  double travel() const noexcept { return weight_bound_ * (travel_ + pending_); }
-  void mark_travel() noexcept { travel_ = 0.0; }
-  // A reading that only grows: no vertex has moved further between two instants than odometer()
-  // at the second less odometer_base() at the first, m.
+  // A reading that only grows, for the proxy's patches and free-space check: no vertex has
+  // moved further between two instants than odometer() at the second less odometer_base() at
+  // the first, m. Every node move the advances and resets read counts, whatever refit followed;
+  // NaN once a node was not finite.
   double odometer() const noexcept { return weight_bound_ * (taken_ + pending_); }
   double odometer_base() const noexcept { return weight_bound_ * taken_; }
 
@@ -74,10 +71,6 @@ class SurfaceFreshness {
   // slice's path sum where that is not known).
   double measured_drift(size_t slice) const noexcept;
   void take_reference(size_t slice) noexcept;  // the slice's boxes are computed from last_nodes_
-  void take_travel(double path) noexcept {     // m
-    travel_ += path;
-    taken_ += path;
-  }
   // The largest move of the nodes the slices follow (every node while unbound) from
   // last_nodes_ to `nodes`, m; NaN for a node not finite.
   double largest_move(const double* nodes) const noexcept;
@@ -98,8 +91,7 @@ class SurfaceFreshness {
   double margin_cap_ = 0.0;
   double margin_ = 0.0;
   double pending_ = 0.0;    // the longest of paths_, m
-  double travel_ = 0.0;     // m: the longest paths taken since mark_travel, summed (pending_ apart)
-  double taken_ = 0.0;      // m: the same since construction
+  double taken_ = 0.0;      // m: the longest paths taken, summed (pending_ apart)
   bool read_once_ = false;  // last_nodes_ holds nodes read by a reset or an advance
   int pending_ticks_ = 0;
 };

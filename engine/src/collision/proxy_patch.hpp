@@ -2,8 +2,8 @@
 // then from the hierarchy (the proxy plugin's overlap_shape over a cube, widened by the margin),
 // which the proxy's queries then test one by one (TACTA_COLLISION_PROXY_TAKES_CANDIDATES) instead
 // of searching the hierarchy. A triangle left out lay outside the cube when it was gathered; none
-// of its vertices has moved further than the surface's travel since (SurfaceFreshness), so a
-// query whose box lies inside the cube shrunk by that travel cannot reach it. Only the patch's
+// of its vertices has moved further than the surface's odometer has advanced since
+// (SurfaceFreshness), so a query whose box lies inside the cube shrunk by that cannot reach it. Only the patch's
 // vertices need be current. Fixed capacity: no allocation after construction.
 #pragma once
 
@@ -24,8 +24,10 @@ class ProxyPatch {
   ProxyPatch() { triangles_.reserve(kCapacity); }
 
   // A query over `box` finds every triangle within its reach among triangles(): the box lies
-  // inside the gathered cube shrunk by `travel` (m) on every side (false for a NaN travel).
-  bool covers(const Box& box, double travel) const noexcept {
+  // inside the gathered cube shrunk on every side by how far the surface's odometer (m) has
+  // advanced since the gather (false for a NaN).
+  bool covers(const Box& box, double odometer) const noexcept {
+    const double travel = odometer - odometer_base_;
     if (!held_ || !(travel >= 0.0)) return false;
     const double half = half_ - travel;
     for (int a = 0; a < 3; ++a)
@@ -64,10 +66,10 @@ class ProxyPatch {
       if (box[a + 3] - box[a] >= served_extent_) return false;
     return true;
   }
-  // The triangles a gather over the cube found for a query over `box` in pass `pass`: kept when
-  // they fit (false: the patch is as it was).
+  // The triangles a gather over the cube found for a query over `box` in pass `pass`, with the
+  // surface's odometer_base then: kept when they fit (false: the patch is as it was).
   bool keep(const std::array<double, 3>& center, double half, const uint32_t* triangles,
-            uint32_t count, const Box& box, uint64_t pass) noexcept {
+            uint32_t count, const Box& box, uint64_t pass, double odometer_base) noexcept {
     if (count > kCapacity) {
       failed_pass_ = pass;
       failed_side_ = 0.0;
@@ -77,6 +79,7 @@ class ProxyPatch {
     triangles_.assign(triangles, triangles + count);  // within the capacity reserved
     center_ = center;
     half_ = half;
+    odometer_base_ = odometer_base;
     held_ = true;
     served_extent_ = 0.0;
     made_current_in_ = 0;
@@ -97,6 +100,7 @@ class ProxyPatch {
   double failed_side_ = 1e300;  // largest side then, m
   std::array<double, 3> center_{};
   double half_ = 0.0;           // m, of the cube gathered over
+  double odometer_base_ = 0.0;  // m, the surface's at the gather
   double served_extent_ = 0.0;  // m: the largest side of a query box served since the gather
   uint64_t made_current_in_ = 0;
   bool held_ = false;

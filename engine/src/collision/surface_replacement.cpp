@@ -181,7 +181,7 @@ void CollisionContext::apply_replacement(SurfaceReplacement& r) noexcept {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   covered_[k] = {kInf, kInf, kInf, -kInf, -kInf, -kInf};
   last_distance_[k] = 0.0;
-  patches_[k].drop();  // the triangles are the new surface's
+  drop_patches(static_cast<uint32_t>(k));  // the triangles are the new surface's
   sightings_[k] = {};
   // Grown within their capacity where it holds (no allocation), else exchanged for the ones
   // made with room; the contacts of the last tick stay readable.

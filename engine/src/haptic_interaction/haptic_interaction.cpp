@@ -87,7 +87,7 @@ void HapticInteraction::move_proxies(World& world) noexcept {
   for (size_t d = 0; d < world.device_count(); ++d) {
     Channel& ch = channels_[d];
     if (!ch.rendering) continue;
-    ch.renderer.move_proxy(collision_.surface_query(world.device(d).contact.touched_body),
+    ch.renderer.move_proxy(collision_.surface_query(world.device(d).contact.touched_body, d),
                            ch.device, ch.velocity);
   }
 }

@@ -1,5 +1,5 @@
 // ProxyPatch's bookkeeping: a query is answered from the patch only while its box lies inside
-// the gathered cube shrunk by the travel; the next cube holds the queries served; a gather that
+// the gathered cube shrunk by how far the surface's odometer advanced since; the next cube holds the queries served; a gather that
 // held too many triangles is not tried again for as large a query for a while.
 #include <cmath>
 #include <gtest/gtest.h>
@@ -19,22 +19,23 @@ TEST(ProxyPatch, CoversOnlyInsideTheCubeLessTheTravel) {
   ProxyPatch patch;
   EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 1e-3), 0.0));  // nothing gathered yet
   const std::vector<uint32_t> found{4, 8, 15};
-  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, found.data(), 3, box_about(0, 0, 0, 0.005), 1));
+  // Gathered with the surface's odometer at 0.002 m.
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, found.data(), 3, box_about(0, 0, 0, 0.005), 1, 0.002));
   EXPECT_EQ(patch.count(), 3u);
-  EXPECT_TRUE(patch.covers(box_about(0, 0, 0, 0.005), 0.0));
-  EXPECT_TRUE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.001));  // 9 mm of 10 - 1
-  EXPECT_FALSE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.0015));
-  EXPECT_FALSE(patch.covers(box_about(0, 0, -0.006, 0.005), 0.0));  // out along z
+  EXPECT_TRUE(patch.covers(box_about(0, 0, 0, 0.005), 0.002));
+  EXPECT_TRUE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.003));  // 9 mm of 10 - 1
+  EXPECT_FALSE(patch.covers(box_about(0.004, 0, 0, 0.005), 0.0035));
+  EXPECT_FALSE(patch.covers(box_about(0, 0, -0.006, 0.005), 0.002));  // out along z
   EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 0.005), std::nan("")));
-  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 0.005), -1.0));
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 0.005), 0.001));  // an odometer run back
   patch.drop();
-  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 1e-3), 0.0));
+  EXPECT_FALSE(patch.covers(box_about(0, 0, 0, 1e-3), 0.002));
 }
 
 TEST(ProxyPatch, TheNextCubeHoldsTheQueriesServed) {
   ProxyPatch patch;
   const std::vector<uint32_t> none;
-  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, none.data(), 0, box_about(0, 0, 0, 0.005), 1));
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, none.data(), 0, box_about(0, 0, 0, 0.005), 1, 0.0));
   patch.note_served(box_about(0, 0, 0, 0.004));  // a closest point's ball: 8 mm across
   std::array<double, 3> center{};
   double half = 0;
@@ -50,10 +51,11 @@ TEST(ProxyPatch, TheNextCubeHoldsTheQueriesServed) {
 TEST(ProxyPatch, TooManyTrianglesAreNotKeptNorSoughtAgainForAsLargeAQuery) {
   ProxyPatch patch;
   const std::vector<uint32_t> few{1, 2};
-  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, few.data(), 2, box_about(0, 0, 0, 0.005), 1));
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, few.data(), 2, box_about(0, 0, 0, 0.005), 1, 0.0));
   std::vector<uint32_t> many(ProxyPatch::kCapacity + 1);
   const ProxyPatch::Box large = box_about(0, 0, 0, 0.02);
-  EXPECT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), ProxyPatch::kCapacity + 1, large, 10));
+  EXPECT_FALSE(
+      patch.keep({0, 0, 0}, 0.04, many.data(), ProxyPatch::kCapacity + 1, large, 10, 0.001));
   EXPECT_EQ(patch.count(), 2u);  // the patch is as it was
   EXPECT_TRUE(patch.covers(box_about(0, 0, 0, 0.005), 0.0));
   EXPECT_FALSE(patch.worth_gathering(large, 11));

@@ -4,6 +4,8 @@
 // response, the device force, the contact and the bodies' nodes agree tick for tick; and the
 // embedded vertices made current as the queries read them touch as when made current by box.
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "sim_test_support.hpp"
@@ -14,11 +16,16 @@ namespace {
 // The world, its collision context, haptics and (when the scene has it on) contact response,
 // ticked as Simulation::run does.
 struct ProxyRun {
-  ProxyRun(const std::string& refit, const std::vector<std::string>& overrides, size_t ticks) {
-    std::vector<std::string> all = overrides;
-    all.push_back("collision.proxy_refit=" + refit);
-    scene =
-        load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml", schemas(), all);
+  ProxyRun(const std::string& refit, const std::vector<std::string>& overrides, size_t ticks)
+      : ProxyRun(load_scene(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml",
+                            schemas(), with_refit(overrides, refit)),
+                 ticks) {}
+  static std::vector<std::string> with_refit(std::vector<std::string> overrides,
+                                             const std::string& refit) {
+    overrides.push_back("collision.proxy_refit=" + refit);
+    return overrides;
+  }
+  ProxyRun(SceneDesc desc, size_t ticks) : scene(std::move(desc)) {
     world = std::make_unique<World>(scene, plugins());
     collision = std::make_unique<CollisionContext>(*world, plugins());
     haptics = std::make_unique<HapticInteraction>(*world, *collision);
@@ -48,18 +55,20 @@ struct ProxyRun {
   uint64_t next = 0;
 };
 
-// Ticks two runs side by side: the same contact and device force every tick, bit for bit, and
-// the same nodes at the end. Returns the ticks in contact.
+// Ticks two runs side by side: the same contacts and device forces every tick, bit for bit, and
+// the same nodes at the end. Returns the ticks the first device was in contact.
 size_t expect_same_ticks(ProxyRun& a, ProxyRun& b, size_t ticks) {
   size_t contact_ticks = 0;
   for (size_t k = 0; k < ticks; ++k) {
     a.tick();
     b.tick();
-    const DeviceComponents da = a.world->device(0), db = b.world->device(0);
-    EXPECT_EQ(da.contact.in_contact, db.contact.in_contact) << "tick " << k;
-    contact_ticks += da.contact.in_contact ? 1 : 0;
-    for (size_t i = 0; i < 3; ++i)
-      EXPECT_EQ(da.contact.force[i], db.contact.force[i]) << "tick " << k << " axis " << i;
+    for (size_t d = 0; d < a.world->device_count(); ++d) {
+      const DeviceComponents da = a.world->device(d), db = b.world->device(d);
+      EXPECT_EQ(da.contact.in_contact, db.contact.in_contact) << "tick " << k << " device " << d;
+      contact_ticks += d == 0 && da.contact.in_contact ? 1 : 0;
+      for (size_t i = 0; i < 3; ++i)
+        EXPECT_EQ(da.contact.force[i], db.contact.force[i]) << "tick " << k << " axis " << i;
+    }
     if (::testing::Test::HasFailure()) return contact_ticks;
   }
   EXPECT_EQ(a.world->body(0).nodes.positions, b.world->body(0).nodes.positions);
@@ -164,6 +173,43 @@ TEST(ProxyPatch, TouchesTheEmbeddedLiverAsTheHierarchySearchDoes) {
 
 TEST(ProxyPatch, TouchesTheTetBoundaryAsTheHierarchySearchDoes) {
   expect_patch_touches_as_the_hierarchy({"bodies.0.mesh.surface=tet_boundary"});
+}
+
+// Two styluses on the liver, pressing the demo's points in opposite orders: each device's proxy
+// keeps its own patch, so neither gathers over the other's each tick, and both touch as the
+// hierarchy's search does.
+TEST(ProxyPatch, TwoDevicesOnOneBodyKeepTheirOwnPatches) {
+  std::ifstream file(std::string(TACTA_SOURCE_DIR) + "/scenes/liver_palpation.yaml");
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const size_t at = text.find("\ncollision:");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, R"(
+  - name: second_stylus
+    plugin: sim_stylus
+    params:
+      workspace_origin: [-0.03, 0.12, 0.02]
+      pattern: palpation
+      palpation_points: [0.018, 0.145, 0.010, -0.049, 0.147, 0.027, -0.078, 0.144, 0.027]
+      approach_height: 0.012
+      depth: 0.008
+    tool:
+      sphere: {radius: 0.004}
+    coupling: {stiffness: 600, damping: 1.0}
+    touches: liver)");
+  constexpr size_t kTicks = 2600;
+  ProxyRun patch(scene_from_text(text, "two_styluses"), kTicks);
+  ProxyRun search(scene_from_text(text, "two_styluses"), kTicks);
+  ASSERT_EQ(patch.world->device_count(), 2u);
+  search.collision->set_proxy_patches(false);
+  const size_t contact_ticks = expect_same_ticks(patch, search, kTicks);
+  const uint64_t queries = patch.collision->patch_queries();
+  const uint64_t gathers = patch.collision->patch_gathers();
+  std::printf("%zu ticks, %zu in contact: %llu queries answered by the patches, %llu gathers\n",
+              kTicks, contact_ticks, static_cast<unsigned long long>(queries),
+              static_cast<unsigned long long>(gathers));
+  EXPECT_GT(contact_ticks, kTicks / 4);
+  EXPECT_GT(queries, 2 * kTicks);
+  EXPECT_LT(gathers, queries / 4);  // one shared patch would be gathered again every tick
 }
 
 }  // namespace
