@@ -3,8 +3,8 @@
 // which the proxy's queries then test one by one (TACTA_COLLISION_PROXY_TAKES_CANDIDATES) instead
 // of searching the hierarchy. A triangle left out lay outside the cube when it was gathered; none
 // of its vertices has moved further than the surface's odometer has advanced since
-// (SurfaceFreshness), so a query whose box lies inside the cube shrunk by that cannot reach it. Only the patch's
-// vertices need be current. Fixed capacity: no allocation after construction.
+// (SurfaceFreshness), so a query whose box lies inside the cube shrunk by that cannot reach it.
+// Only the patch's vertices need be current. Fixed capacity: no allocation after construction.
 #pragma once
 
 #include <algorithm>

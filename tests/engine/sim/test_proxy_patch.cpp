@@ -1,6 +1,7 @@
 // ProxyPatch's bookkeeping: a query is answered from the patch only while its box lies inside
-// the gathered cube shrunk by how far the surface's odometer advanced since; the next cube holds the queries served; a gather that
-// held too many triangles is not tried again for as large a query for a while.
+// the gathered cube shrunk by how far the surface's odometer advanced since; the next cube holds
+// the queries served; a gather that held too many triangles is not tried again for as large a
+// query for a while.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
