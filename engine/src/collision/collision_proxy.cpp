@@ -143,7 +143,8 @@ bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
   if (!gathering && !refreshing) {
     patch.note_served(box);
   } else {
-    // Timed only when it does work: twice a tick, a clock read would cost more than a query.
+    // Timed only when there is work (a gather, or the tick's first refresh): two clock reads on
+    // every query would cost about what the query does.
     const auto start = std::chrono::steady_clock::now();
     // The cube for the queries the patch served, or for this one alone when that is too many.
     const bool held = !gathering || gather(surface, box, false, proxy) ||
@@ -191,8 +192,9 @@ bool CollisionContext::gather(uint32_t surface, const ProxyPatch::Box& box, bool
 
 uint32_t CollisionContext::keep_in_cube(uint32_t surface, const std::array<double, 3>& center,
                                         double half, uint32_t count) noexcept {
-  // The hierarchy's answer holds every triangle within the margin of the cube; made current,
-  // those whose box is clear of it are dropped (one of a few mean edges past it, most are).
+  // The hierarchy's answer holds every triangle that may be within the margin of the cube; made
+  // current, those whose box is clear of the cube itself are dropped (with a margin of a mean
+  // edge or more, most of them).
   const tacta_collision_surface& s = surfaces_[surface];
   if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[surface])].get())
     e->refresh_triangles(patch_triangles_.data(), count, proxy_pass_);
