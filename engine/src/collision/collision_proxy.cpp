@@ -28,16 +28,16 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     return;
   }
   bool whole = !refitted_once_;
-  for (uint32_t k = 0; k < view_.surface_count; ++k)
+  for (uint32_t k = 0; k < view_.surface_count; ++k) {
     if (!surface_present(k)) {  // its moves are not followed while it is away
       drop_patches(k);
       sightings_[k] = {};
-    }
-  for (uint32_t k = 0; k < view_.surface_count && !whole; ++k)
-    if (surface_present(k) &&
-        !freshness_[k].advance(
-            world_.body_nodes(static_cast<size_t>(body_of_surface_[k])).positions.data()))
+    } else if (!whole &&
+               !freshness_[k].advance(
+                   world_.body_nodes(static_cast<size_t>(body_of_surface_[k])).positions.data())) {
       whole = true;
+    }
+  }
   if (!whole) {
     sync_tools();
     view_.time = time;

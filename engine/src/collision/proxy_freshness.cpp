@@ -118,13 +118,8 @@ double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
 
 bool SurfaceFreshness::advance(const double* nodes) noexcept {
   if (!bound_) {
-    double largest2 = 0.0;  // m^2
-    for (size_t i = 0; i < last_nodes_.size(); i += 3) {
-      const double d2 = squared_distance(nodes + i, &last_nodes_[i]);
-      std::copy(nodes + i, nodes + i + 3, &last_nodes_[i]);
-      largest2 = std::isnan(d2) ? d2 : std::max(largest2, d2);  // NaN fails the cap below
-    }
-    const double move = std::sqrt(largest2);
+    const double move = largest_move(nodes);  // NaN fails the cap below
+    std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
     for (double& d : drift_) d += move;
     taken_ += move;
     read_once_ = true;
