@@ -20,6 +20,16 @@ constexpr int kPairA[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3};
 constexpr int kPairB[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
 
 Vec3 node(const double* positions, uint32_t index) { return node_position(positions, index); }
+
+// Each tet's nodes in ascending order: every node pair (a < b) then stores its block as K_ab,
+// never transposed, so the element pass scatters without a branch per lane and pair.
+std::vector<uint32_t> ascending_tets(const tacta_mesh_view& mesh) {
+  std::vector<uint32_t> tets(mesh.tets, mesh.tets + 4 * size_t{mesh.tet_count});
+  for (size_t e = 0; e < tets.size(); e += 4)
+    std::sort(tets.begin() + static_cast<std::ptrdiff_t>(e),
+              tets.begin() + static_cast<std::ptrdiff_t>(e + 4));
+  return tets;
+}
 }  // namespace
 
 CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_material& material,
@@ -35,7 +45,7 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
       fixed_(fixed.begin(), fixed.end()),
       options_(options),
       guard_(mesh),
-      matrix_(mesh.node_count, std::span<const uint32_t>(mesh.tets, 4 * size_t{mesh.tet_count})) {
+      matrix_(mesh.node_count, ascending_tets(mesh)) {
   if (mesh.tet_count == 0)
     throw std::invalid_argument("corotational_fem needs a tetrahedral mesh (the mesh has no tets)");
   if (masses_.size() != node_count_)
@@ -51,8 +61,12 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
     Element& element = elements_[e];
     const TetRest rest =
         checked_tet_rest("corotational_fem", rest_.data(), node_count_, mesh.tets, e);
-    std::copy_n(rest.nodes, 4, element.nodes);
-    std::copy_n(&rest.gradients[0][0], 12, &element.gradients[0][0]);
+    int order[4] = {0, 1, 2, 3};  // each node keeps its own gradient (as ascending_tets)
+    std::sort(order, order + 4, [&](int a, int b) { return rest.nodes[a] < rest.nodes[b]; });
+    for (int a = 0; a < 4; ++a) {
+      element.nodes[a] = rest.nodes[order[a]];
+      std::copy_n(rest.gradients[order[a]], 3, element.gradients[a]);
+    }
     element.volume = rest.volume;
     for (int p = 0; p < 10; ++p) {
       const double* ga = element.gradients[kPairA[p]];
@@ -140,14 +154,13 @@ TACTA_HOT_PATH void CorotationalFem::accumulate(uint32_t e, const ElementFrame& 
     for (int c = 0; c < 3; ++c) forces[3 * element.nodes[a] + c] += f[c];
   }
   const Eigen::Vector3d* c = frame.rotated_gradients;
-  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I); K_ba = K_ab^T, so the
-  // stored block (lower node, higher node) is K_ab with a and b swapped when needed.
+  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I); an element's nodes
+  // ascend (ascending_tets), so the stored block (lower node, higher node) is K_ab.
   const double lambda_v = scale * volume * lambda_;
   const double mu_v = scale * volume * mu_;
   const uint32_t* slots = matrix_.element_slots(e);
   for (int p = 0; p < 10; ++p) {
-    int a = kPairA[p], b = kPairB[p];
-    if (element.nodes[a] > element.nodes[b]) std::swap(a, b);
+    const int a = kPairA[p], b = kPairB[p];
     const double* ca = c[a].data();
     const double* cb = c[b].data();
     const double diagonal = mu_v * element.gradient_dots[p];

@@ -6,10 +6,12 @@
 // polar iteration is finished by the scalar polar_rotation(); under `svd` an inverted tet, or
 // one that iteration does not finish, takes the SVD.
 #include <cmath>
+#include <cstring>
 
 #include "corotational_fem.hpp"
 #include "element_rotation.hpp"
 #include "hot_path.hpp"
+#include "lanes4.hpp"
 
 namespace tacta::models::corotational {
 
@@ -37,6 +39,18 @@ inline void quaternion_to_matrix(const Lanes& w, const Lanes& x, const Lanes& y,
     r[7][l] = 2.0 * (y[l] * z[l] + x[l] * w[l]);
     r[8][l] = 1.0 - 2.0 * (x[l] * x[l] + y[l] * y[l]);
   }
+}
+// Rows r0..r3 of four lanes each, transposed: out[l] = (r0[l], r1[l], r2[l], r3[l]).
+inline void transpose4(const sparse::Lanes4& r0, const sparse::Lanes4& r1, const sparse::Lanes4& r2,
+                       const sparse::Lanes4& r3, sparse::Lanes4 (&out)[4]) {
+  const sparse::Lanes4 even01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+  const sparse::Lanes4 odd01 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+  const sparse::Lanes4 even23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+  const sparse::Lanes4 odd23 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+  out[0] = __builtin_shufflevector(even01, even23, 0, 1, 4, 5);
+  out[1] = __builtin_shufflevector(odd01, odd23, 0, 1, 4, 5);
+  out[2] = __builtin_shufflevector(even01, even23, 2, 3, 6, 7);
+  out[3] = __builtin_shufflevector(odd01, odd23, 2, 3, 6, 7);
 }
 }  // namespace
 
@@ -213,38 +227,43 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
       for (int r = 0; r < 3; ++r) target[r] += force[r][l];
     }
   }
-  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I), per lane; the stored
-  // block is (lower node, higher node): K_ab, or its transpose when a's node is the higher.
-  Lanes lambda_v, mu_v;
-  for (int l = 0; l < kLanes; ++l) {
-    lambda_v[l] = scale * rest.volume[l] * lambda_;
-    mu_v[l] = scale * rest.volume[l] * mu_;
-  }
+  // K_ab = V (lambda c_a c_b^T + mu c_b c_a^T + mu (grad_a . grad_b) I), the four lanes at once.
+  // An element's nodes ascend (ascending_tets): the stored block (node a, node b) is K_ab, which
+  // each lane adds as two 4-wide runs and its last entry, read out of the lanes (a transpose).
+  using sparse::Lanes4;
+  Lanes4 cv[4][3], grad[4][3], lambda_v, mu_v;
+  for (int a = 0; a < 4; ++a)
+    for (int r = 0; r < 3; ++r) {
+      std::memcpy(&cv[a][r], c[a][r], sizeof(Lanes4));
+      std::memcpy(&grad[a][r], rest.gradients[a][r], sizeof(Lanes4));
+    }
+  std::memcpy(&lambda_v, rest.volume, sizeof(Lanes4));
+  mu_v = lambda_v * (scale * mu_);
+  lambda_v *= scale * lambda_;
   for (int p = 0; p < 10; ++p) {
     const int a = kPairA[p], bb = kPairB[p];
-    Lanes k[9];
+    Lanes4 k[9];
     for (int r = 0; r < 3; ++r)
       for (int q = 0; q < 3; ++q)
-        for (int l = 0; l < kLanes; ++l)
-          k[3 * r + q][l] =
-              lambda_v[l] * c[a][r][l] * c[bb][q][l] + mu_v[l] * c[bb][r][l] * c[a][q][l];
+        k[3 * r + q] = lambda_v * cv[a][r] * cv[bb][q] + mu_v * cv[bb][r] * cv[a][q];
+    const Lanes4 diagonal =
+        mu_v * (grad[a][0] * grad[bb][0] + grad[a][1] * grad[bb][1] + grad[a][2] * grad[bb][2]);
+    k[0] += diagonal;
+    k[4] += diagonal;
+    k[8] += diagonal;
+    Lanes4 heads[4], middles[4];
+    transpose4(k[0], k[1], k[2], k[3], heads);
+    transpose4(k[4], k[5], k[6], k[7], middles);
     for (int l = 0; l < kLanes; ++l) {
-      const double diagonal = mu_v[l] * (rest.gradients[a][0][l] * rest.gradients[bb][0][l] +
-                                         rest.gradients[a][1][l] * rest.gradients[bb][1][l] +
-                                         rest.gradients[a][2][l] * rest.gradients[bb][2][l]);
-      k[0][l] += diagonal;
-      k[4][l] += diagonal;
-      k[8][l] += diagonal;
-    }
-    for (int l = 0; l < kLanes; ++l) {
-      const Element& element = elements_[first + l];
       double* block = matrix_.block(matrix_.element_slots(first + l)[p]);
-      if (element.nodes[a] <= element.nodes[bb]) {
-        for (int i = 0; i < 9; ++i) block[i] += k[i][l];
-      } else {
-        for (int r = 0; r < 3; ++r)
-          for (int q = 0; q < 3; ++q) block[3 * r + q] += k[3 * q + r][l];
-      }
+      Lanes4 head, middle;
+      std::memcpy(&head, block, sizeof head);
+      std::memcpy(&middle, block + 4, sizeof middle);
+      head += heads[l];
+      middle += middles[l];
+      std::memcpy(block, &head, sizeof head);
+      std::memcpy(block + 4, &middle, sizeof middle);
+      block[8] += k[8][l];
     }
   }
   return result;
