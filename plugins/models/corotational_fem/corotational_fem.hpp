@@ -58,6 +58,9 @@ struct Options {
   // step()'s element pass four tets at a time (element_batch.cpp; either rotation); false:
   // one at a time, the reference the batched pass is tested against.
   bool batch_elements = true;
+  // CG's guess (extrapolate_guess): adaptive, linear or quadratic as the last step scored; or
+  // linear always (the guess of earlier releases).
+  bool adaptive_guess = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
   // colour by colour (no two batches of a colour share a node), each colour in parallel, and
   // with threaded_solve, from kMinThreadedNodes nodes, the rest of the step too: the matrix's
@@ -154,6 +157,11 @@ class CorotationalFem {
   // |f_int + loads_| over free nodes at positions; leaves the forces in forces_ and, when
   // with_matrix, K (fixed rows projected) in matrix_.
   double equilibrium_residual(const double* positions, bool with_matrix) noexcept;
+  // CG's guess for entries [begin, end) of dv: extrapolated from the last steps' increments.
+  void extrapolate_guess(size_t begin, size_t end) noexcept;
+  // Adds to linear and quadratic the squared misses of the two guesses of this step, entries
+  // [begin, end), once dv is solved, (m/s)^2.
+  void score_guess(size_t begin, size_t end, double& linear, double& quadratic) const noexcept;
   // Adds K_e scaled by `scale` into matrix_, and f_e into forces.
   void accumulate(uint32_t e, const ElementFrame& frame, double scale, double* forces) noexcept;
 
@@ -174,6 +182,10 @@ class CorotationalFem {
   std::unique_ptr<SafeSolver> solver_;
   std::vector<double> forces_, stiffness_velocity_,  // stiffness_velocity_: h (beta + h) K v
       rhs_, delta_v_, previous_delta_v_, weights_;
+  // CG's guess (extrapolate_guess): the increment two steps back, m/s, and this step's second
+  // difference; the guess is quadratic while that scored better on the last step, else linear.
+  std::vector<double> older_delta_v_, guess_curvature_;
+  bool quadratic_guess_ = false;
   SolveReport last_solve_;
   StaticCounters static_counters_;
   std::vector<double> loads_, equilibrium_loads_, static_start_;  // static solve, 3 per node

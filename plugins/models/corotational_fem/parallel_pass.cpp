@@ -103,17 +103,18 @@ void CorotationalFem::finish_system_threaded(const tacta_body_state& state, doub
     if (!fixed_.empty())
       for (uint32_t i = begin; i < end; ++i)
         if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
-    if (extrapolate)  // CG's guess: dv extrapolated over the last two steps (see step())
-      for (size_t k = 3 * size_t{begin}; k < 3 * size_t{end}; ++k) {
-        const double last = delta_v_[k];
-        delta_v_[k] = 2.0 * last - previous_delta_v_[k];
-        previous_delta_v_[k] = last;
-      }
+    if (extrapolate) extrapolate_guess(3 * size_t{begin}, 3 * size_t{end});
   });
 }
 
 void CorotationalFem::advance_threaded(tacta_body_state& state, double h) noexcept {
-  rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+  const bool score = solver_->iterative() && options_.adaptive_guess;
+  rows_.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    if (score) {  // the guesses' misses, summed per chunk and then in chunk order
+      sparse::ChunkSums& sums = rows_.sums(chunk);
+      sums.s[0] = sums.s[1] = 0.0;
+      score_guess(3 * size_t{begin}, 3 * size_t{end}, sums.s[0], sums.s[1]);
+    }
     for (uint32_t i = begin; i < end; ++i) {
       const bool held = !fixed_.empty() && fixed_[i];
       for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
@@ -123,6 +124,7 @@ void CorotationalFem::advance_threaded(tacta_body_state& state, double h) noexce
       }
     }
   });
+  if (score) quadratic_guess_ = rows_.total(1) < rows_.total(0);
 }
 
 }  // namespace tacta::models::corotational

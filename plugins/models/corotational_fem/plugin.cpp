@@ -41,7 +41,11 @@ class CorotationalFemPlugin {
       sparse::static_param_specs("dynamic: implicit Euler steps; static: each step finds "
                                  "equilibrium under the current loads and held nodes (velocities "
                                  "0)"),
-      std::array{sdk::bool_param("threaded_solve", false,
+      std::array{sdk::choice_param("guess", "adaptive|linear", 0,
+                                   "CG's starting dv: extrapolated linearly over two steps, or "
+                                   "(adaptive) quadratically over three after a step where that "
+                                   "missed by less"),
+                 sdk::bool_param("threaded_solve", false,
                                  "with scene threads >= 2 and 384+ nodes: the row passes and the "
                                  "(block) Jacobi CG on the engine's workers too, not only the "
                                  "element pass (off: not yet faster on the 2-CPU VM measured, "
@@ -57,6 +61,7 @@ class CorotationalFemPlugin {
     sparse::read_solver_params(params, options);
     options.static_solve = sparse::read_static_params(params, options);
     options.threaded_solve = params.flag("threaded_solve");
+    options.adaptive_guess = params.choice("guess") == 0;
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),
@@ -118,7 +123,7 @@ class CorotationalFemPlugin {
   StateHeader state_header() const {
     return {kName, kStateVersion, model_->node_count(), model_->element_count()};
   }
-  static constexpr uint32_t kStateVersion = 1;  // CorotationalFem::state_fields' layout
+  static constexpr uint32_t kStateVersion = 2;  // CorotationalFem::state_fields' layout
   std::unique_ptr<CorotationalFem> model_;
 };
 
