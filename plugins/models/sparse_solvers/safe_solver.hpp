@@ -1,5 +1,6 @@
 // The implicit models' linear solve with its safety net: preconditioned CG that checks its
-// residual, and when it has not converged restarts from zero with more iterations, then solves
+// residual, and when it has not converged restarts (from its last iterate, or from zero when that
+// is worse) with more iterations, then solves
 // with sparse LDL^T and keeps using LDL^T for a doubling number of solves (CG failing once on a
 // system tends to fail again). A capped CG accepted unconverged lets errors pile up: SOFA's
 // cantilever collapsed at 0.44 s that way. Counts everything for report.json.
@@ -36,7 +37,7 @@ struct SolverCounters {
   uint64_t solves = 0;
   uint64_t cg_iterations = 0;          // every pass included
   uint64_t warm_starts_rejected = 0;   // the caller's guess was worse than zero
-  uint64_t restarts = 0;               // CG not converged: restarted from zero, more iterations
+  uint64_t restarts = 0;               // CG not converged: restarted, more iterations
   uint64_t direct_fallbacks = 0;       // still not converged: sparse LDL^T solved it
   uint64_t direct_solves_held = 0;     // solves sent straight to LDL^T after a recent fallback
   uint64_t unconverged = 0;            // solves left with a residual above the tolerance

@@ -34,10 +34,11 @@ constexpr std::array<tacta_param_spec, 7> solver_param_specs(SolverParamDefaults
                       "CG stops when the residual norm falls below this fraction of the rhs norm"),
       sdk::int_param("refactor_interval", 1, 1, 1000,
                      "incomplete_cholesky: solves between refactorisations (1: every solve)"),
-      sdk::choice_param("fallback", "direct|restart|none", 0,
-                        "when CG has not converged: restart from zero with restart_factor x "
-                        "max_iterations, then sparse LDL^T (direct); the restart only; or "
-                        "accept the unconverged solution (none)"),
+      sdk::choice_param(
+          "fallback", "direct|restart|none", 0,
+          "when CG has not converged: restart from its last iterate with restart_factor x "
+          "max_iterations, then sparse LDL^T (direct); the restart only; or "
+          "accept the unconverged solution (none)"),
       sdk::int_param("restart_factor", 8, 1, 1000,
                      "the restart's iteration cap, in units of max_iterations"),
   };
