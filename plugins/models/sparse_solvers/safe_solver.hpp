@@ -1,9 +1,9 @@
 // The implicit models' linear solve with its safety net: preconditioned CG that checks its
 // residual, and when it has not converged restarts (from its last iterate, or from zero when that
-// is worse) with more iterations, then solves
-// with sparse LDL^T and keeps using LDL^T for a doubling number of solves (CG failing once on a
-// system tends to fail again). A capped CG accepted unconverged lets errors pile up: SOFA's
-// cantilever collapsed at 0.44 s that way. Counts everything for report.json.
+// is worse) with more iterations, then solves with sparse LDL^T and keeps using LDL^T for a
+// doubling number of solves (CG failing once on a system tends to fail again). A capped CG
+// accepted unconverged lets errors pile up: SOFA's cantilever collapsed at 0.44 s that way.
+// Counts everything for report.json.
 #pragma once
 
 #include <array>
