@@ -8,7 +8,9 @@ Checks (docs/TESTING.md, "The realtime soak"):
   exceeded the 1 ms period, i.e. no deadline miss caused by the engine's work. In a virtual
   machine the thread's CPU clock also runs while the host has taken the virtual CPU away (steal
   time, /proc/stat): when the haptic CPU's steal grew during the run, ticks over budget cannot be
-  told from the host's and are printed, not asserted. The first second
+  told from the host's and are printed, not asserted. Where it did not grow (or is not reported)
+  and ticks went over budget, the run is made again: the engine's work at a tick repeats, a
+  stall does not, so only ticks over budget in both runs are the engine's. The first second
   (cold caches, the first whole hierarchy build: about 2 ms at tick 1 of the liver demo) is
   printed, not asserted. Misses while the thread was off its CPU
   (a VM's stalls, preemption, late wake-ups) are counted and printed, not asserted: on a shared
@@ -40,6 +42,21 @@ def steal_jiffies(cpu):
     return None
 
 
+def realtime_run(command, out, cpu):
+    """Runs `command` writing to `out`; returns (report.json, steal jiffies on cpu meanwhile or
+    None where not reported), or (None, None) with the output printed when the run failed."""
+    command = command + ["--out", out]
+    steal_before = steal_jiffies(cpu)
+    run = subprocess.run(command, capture_output=True, text=True)
+    steal_after = steal_jiffies(cpu)
+    stolen = None if steal_before is None or steal_after is None else steal_after - steal_before
+    path = os.path.join(out, "report.json")
+    if run.returncode != 0 or not os.path.exists(path):
+        print(" ".join(command), run.stdout, run.stderr, sep="\n")
+        return None, None
+    return json.load(open(path)), stolen
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--tacta", required=True)
@@ -52,19 +69,26 @@ def main():
     p.add_argument("--set", action="append", default=[], help="a scene override, as tacta run")
     a = p.parse_args()
     command = [a.tacta, "run", a.scene, "--realtime", "--duration", str(a.duration),
-               "--haptic-cpu", str(a.cpu), "--out", a.out, "--quiet",
+               "--haptic-cpu", str(a.cpu), "--quiet",
                "--set", "output.frames=false", "--set", "output.vtk=false", "--set", "output.plots=[]"]
     for s in a.set:
         command += ["--set", s]
-    steal_before = steal_jiffies(a.cpu)
-    run = subprocess.run(command, capture_output=True, text=True)
-    steal_after = steal_jiffies(a.cpu)
-    stolen = None if steal_before is None or steal_after is None else steal_after - steal_before
-    path = os.path.join(a.out, "report.json")
-    if run.returncode != 0 or not os.path.exists(path):
-        print(" ".join(command), run.stdout, run.stderr, sep="\n")
+    r, stolen = realtime_run(command, a.out, a.cpu)
+    if r is None:
         return 2
-    r = json.load(open(path))
+    # Ticks over budget where steal did not grow: the engine's work at tick k is the same in every
+    # run, a stall of the host's is not. So a second run tells them apart: a tick over budget in
+    # both is the engine's; one over budget in one run only was a stall that landed on the
+    # thread's CPU clock (a kernel without steal accounting, or a stall shorter than its jiffy).
+    engine_ticks, again = r["over_budget_ticks"], None
+    listed = r["over_budget_tick_indices"]
+    if not stolen and 0 < r["over_budget_ticks"] == len(listed):
+        again, stolen_again = realtime_run(command, a.out + "_again", a.cpu)
+        if again is None:
+            return 2
+        if not stolen_again and again["over_budget_ticks"] == len(again["over_budget_tick_indices"]):
+            engine_ticks = len(set(listed) & set(again["over_budget_tick_indices"]))
+        stolen = stolen or stolen_again
     rt, mem = r["realtime"], r["memory_kb"]
     fifo = rt["scheduler"] == "SCHED_FIFO" and rt["demoted_at_tick"] == -1
     pinned = rt["haptic_cpu"] == a.cpu
@@ -80,8 +104,11 @@ def main():
          f"{rt['memory_locked']} {rt['scheduler_note'] or ''}".strip(), None),
         ("ticks over budget after 1 s (engine's misses)",
          f"{r['over_budget_ticks']} (max tick CPU {r['max_tick_cpu_ms']:.3f} ms; host steal on "
-         f"CPU {a.cpu} during the run: {'not reported' if stolen is None else f'{stolen} jiffies'})",
-         r["over_budget_ticks"] == 0 if not stolen else (None if r["over_budget_ticks"] else True)),
+         f"CPU {a.cpu} during the run: {'not reported' if stolen is None else f'{stolen} jiffies'})"
+         + ("" if again is None else
+            f"; run again: {again['over_budget_ticks']} (max {again['max_tick_cpu_ms']:.3f} ms), "
+            f"over budget at the same tick in both: {engine_ticks}"),
+         engine_ticks == 0 if not stolen else (None if engine_ticks else True)),
         ("ticks over budget in the first second (start-up)", str(r["warm_up_over_budget_ticks"]),
          None),
         ("deadline misses, all", f"{r['deadline_misses']} ({stall_misses} off the CPU); "

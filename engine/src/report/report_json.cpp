@@ -277,6 +277,11 @@ void write_report_json(const std::string& dir, const HapticLoop& loop, const Wor
   // other misses are time off the CPU: VM stalls, preemption, late wake-ups), after and during
   // the first second (start-up: cold caches, the first hierarchy build).
   j["over_budget_ticks"] = result.schedule.over_budget_ticks;
+  Json& listed = j["over_budget_tick_indices"] = Json::array();
+  for (uint64_t i = 0; i < std::min<uint64_t>(result.schedule.over_budget_ticks,
+                                              ScheduleResult::kMaxListedOverBudget);
+       ++i)
+    listed.push_back(result.schedule.over_budget_tick_list[i]);
   j["warm_up_over_budget_ticks"] = result.schedule.warm_up_over_budget_ticks;
   j["max_tick_cpu_ms"] = result.schedule.max_tick_cpu_ms;
   j["max_start_jitter_ms"] = result.schedule.max_start_jitter_ms;

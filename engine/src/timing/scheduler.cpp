@@ -183,7 +183,11 @@ ScheduleResult run_realtime(HapticTask& haptic, RenderTask& render, const Schedu
       if (cpu_ms > period_ms) ++result.warm_up_over_budget_ticks;
     } else {
       result.max_tick_cpu_ms = std::max(result.max_tick_cpu_ms, cpu_ms);
-      if (cpu_ms > period_ms) ++result.over_budget_ticks;
+      if (cpu_ms > period_ms) {
+        if (result.over_budget_ticks < ScheduleResult::kMaxListedOverBudget)
+          result.over_budget_tick_list[result.over_budget_ticks] = k;
+        ++result.over_budget_ticks;
+      }
     }
     if (ms_after(add_ns(due, period_ns), end) > 0) {
       ++result.deadline_misses;

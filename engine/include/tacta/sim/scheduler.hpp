@@ -84,6 +84,11 @@ struct ScheduleResult {
   // it) exceeded the period. Such a tick misses its deadline by the engine's own work; every
   // other miss is the thread waiting for its CPU (a stall, preemption or a late wake-up).
   uint64_t over_budget_ticks = 0;
+  // Which ticks, the first kMaxListedOverBudget of them: the engine's work at a tick repeats
+  // run after run (realtime states equal lockstep's), a host's stall does not, so two runs' lists
+  // tell the two apart where the kernel does not account steal time (tests/soak).
+  static constexpr size_t kMaxListedOverBudget = 64;
+  uint64_t over_budget_tick_list[kMaxListedOverBudget] = {};
   uint64_t warm_up_over_budget_ticks = 0;  // the same during the warm-up (warm_up_s)
   double max_tick_cpu_ms = 0;              // after the warm-up
   // realtime: how each wait for a tick's start ended (clock.spin_us): woken before the deadline
