@@ -80,15 +80,17 @@ def main():
     # run, a stall of the host's is not. So a second run tells them apart: a tick over budget in
     # both is the engine's; one over budget in one run only was a stall that landed on the
     # thread's CPU clock (a kernel without steal accounting, or a stall shorter than its jiffy).
-    engine_ticks, again = r["over_budget_ticks"], None
+    engine_ticks, again, compared = r["over_budget_ticks"], None, False
     listed = r["over_budget_tick_indices"]
     if not stolen and 0 < r["over_budget_ticks"] == len(listed):
         again, stolen_again = realtime_run(command, a.out + "_again", a.cpu)
         if again is None:
             return 2
-        if not stolen_again and again["over_budget_ticks"] == len(again["over_budget_tick_indices"]):
+        # A tick over budget in both runs is asserted whatever the second run's steal: two stalls
+        # landing on the same tick by chance is not what a test should be built around.
+        if again["over_budget_ticks"] == len(again["over_budget_tick_indices"]):
             engine_ticks = len(set(listed) & set(again["over_budget_tick_indices"]))
-        stolen = stolen or stolen_again
+            compared = True
     rt, mem = r["realtime"], r["memory_kb"]
     fifo = rt["scheduler"] == "SCHED_FIFO" and rt["demoted_at_tick"] == -1
     pinned = rt["haptic_cpu"] == a.cpu
@@ -107,8 +109,9 @@ def main():
          f"CPU {a.cpu} during the run: {'not reported' if stolen is None else f'{stolen} jiffies'})"
          + ("" if again is None else
             f"; run again: {again['over_budget_ticks']} (max {again['max_tick_cpu_ms']:.3f} ms), "
-            f"over budget at the same tick in both: {engine_ticks}"),
-         engine_ticks == 0 if not stolen else (None if engine_ticks else True)),
+            f"over budget at the same tick in both: "
+            f"{engine_ticks if compared else 'not known (more than report.json lists)'}"),
+         engine_ticks == 0 if compared or not stolen else (None if engine_ticks else True)),
         ("ticks over budget in the first second (start-up)", str(r["warm_up_over_budget_ticks"]),
          None),
         ("deadline misses, all", f"{r['deadline_misses']} ({stall_misses} off the CPU); "
