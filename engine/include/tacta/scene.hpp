@@ -243,6 +243,7 @@ struct ClockDesc {
   int haptic_cpu = -1;       // pin the haptic thread to this CPU, others off it; -1: no pinning
   bool lock_memory = true;   // mlockall for the run
   bool shallow_idle = true;  // realtime: PM QoS keeps the CPUs out of deep idle states
+  bool poll_idle = true;     // realtime, pinned: a SCHED_IDLE spinner keeps the haptic CPU busy
   double spin_us = 50;       // us before each deadline spun instead of slept
   // A checkpoint of this scene to continue from (Simulation::save_state, `--checkpoint-at`): the
   // Simulation opens at its time. Absolute; empty: start at t = 0.

@@ -230,6 +230,8 @@ void add_realtime(Json& j, const RunResult& result) {
       {"memory_note", g.memory_note},
       {"shallow_idle", g.shallow_idle},
       {"idle_note", g.idle_note},
+      {"poll_idle", g.poll_idle},
+      {"poll_note", g.poll_note},
       {"haptic_cpu", g.cpu},
       {"cpu_note", g.cpu_note},
       {"helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered)},

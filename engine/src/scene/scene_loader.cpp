@@ -40,7 +40,7 @@ ClockDesc read_clock(const Field& field) {
   field.expect_map(
       "a map {mode, haptic_rate_hz, render_rate_hz, duration_s, haptic_priority, ...}");
   field.check_keys({"mode", "haptic_rate_hz", "render_rate_hz", "duration_s", "haptic_priority",
-                    "haptic_cpu", "lock_memory", "spin_us", "shallow_idle", "resume"});
+                    "haptic_cpu", "lock_memory", "spin_us", "shallow_idle", "poll_idle", "resume"});
   ClockDesc clock;
   if (auto f = field.get("mode"))
     clock.mode = f->choice({"lockstep", "realtime"}) == "realtime" ? ClockDesc::Mode::Realtime
@@ -67,6 +67,7 @@ ClockDesc read_clock(const Field& field) {
   }
   if (auto f = field.get("lock_memory")) clock.lock_memory = f->boolean();
   if (auto f = field.get("shallow_idle")) clock.shallow_idle = f->boolean();
+  if (auto f = field.get("poll_idle")) clock.poll_idle = f->boolean();
   // 1 ms: a whole 1 kHz period; a longer spin would only burn the CPU.
   if (auto f = field.get("spin_us")) clock.spin_us = f->real(Range::closed(0, 1000));
   if (auto f = field.get("resume")) {

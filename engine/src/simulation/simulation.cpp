@@ -142,6 +142,7 @@ RunResult Simulation::run(const RunOptions& options) {
   schedule.realtime.cpu = scene.clock.haptic_cpu;
   schedule.realtime.lock_memory = scene.clock.lock_memory;
   schedule.realtime.shallow_idle = scene.clock.shallow_idle;
+  schedule.realtime.poll_idle = scene.clock.poll_idle;
   schedule.realtime.spin_us = scene.clock.spin_us;
   if (options.progress) schedule.on_progress = print_progress;
   schedule.stop = &impl_->stop;

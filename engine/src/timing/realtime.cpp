@@ -1,6 +1,7 @@
 // Scheduling policy, memory locking and CPU placement around a realtime run (see realtime.hpp).
 #include "tacta/sim/realtime.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -85,6 +86,28 @@ ResidentMemory resident_memory() noexcept {
     // Reporting memory is best effort; a run never fails for it.
   }
   return m;
+}
+
+// The idle poller's body: it lowers itself to SCHED_IDLE (glibc's thread attributes cannot ask
+// for it), says how that went in `state` (1 lowered, else -errno; it then ends), and spins on a
+// relaxed load and a pause: the CPU stays out of its idle state, the haptic thread's cache lines
+// are not touched.
+void* poll_until_stopped(void* session_state) {
+  auto* state = static_cast<std::atomic<int>*>(session_state);
+  sched_param none{};
+  if (sched_setscheduler(0, SCHED_IDLE, &none) != 0) {
+    state->store(-errno);
+    state->notify_one();
+    return nullptr;
+  }
+  state->store(1);
+  state->notify_one();
+  while (state->load(std::memory_order_relaxed) == 1) {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  return nullptr;
 }
 
 RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(options) {
@@ -199,6 +222,44 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
       ++grant_.helper_threads_lowered;
     }
   }
+  if (!options.poll_idle) {
+    grant_.poll_note = "not requested (clock.poll_idle: false)";
+  } else if (grant_.cpu < 0) {
+    grant_.poll_note = "not pinned (clock.haptic_cpu): no CPU of the haptic thread's own to hold";
+  } else {
+    start_idle_poller();
+  }
+}
+
+void RealtimeSession::start_idle_poller() {
+  // Born SCHED_OTHER on the haptic CPU (not inheriting the haptic thread's SCHED_FIFO, which
+  // would hold the CPU against it), then lowered by itself; the wait below sleeps, so the
+  // haptic thread leaves it the CPU to do that.
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
+  pthread_attr_setschedpolicy(&attr, SCHED_OTHER);
+  sched_param none{};
+  pthread_attr_setschedparam(&attr, &none);
+  cpu_set_t only;
+  CPU_ZERO(&only);
+  CPU_SET(grant_.cpu, &only);
+  pthread_attr_setaffinity_np(&attr, sizeof only, &only);
+  const int error = pthread_create(&idle_poller_, &attr, poll_until_stopped, &poller_state_);
+  pthread_attr_destroy(&attr);
+  if (error != 0) {
+    grant_.poll_note = "the idle poller was refused (" + errno_text(error) + ")";
+    return;
+  }
+  pthread_setname_np(idle_poller_, "tacta-idle-poll");
+  poller_state_.wait(0);
+  if (poller_state_.load() == 1) {
+    polling_ = grant_.poll_idle = true;
+  } else {
+    pthread_join(idle_poller_, nullptr);
+    grant_.poll_note =
+        "SCHED_IDLE refused to the idle poller (" + errno_text(-poller_state_.load()) + ")";
+  }
 }
 
 void RealtimeSession::lower_this_thread() noexcept {
@@ -225,6 +286,10 @@ bool RealtimeSession::demote(int64_t tick) noexcept {
 }
 
 RealtimeSession::~RealtimeSession() {
+  if (polling_) {
+    poller_state_.store(0, std::memory_order_relaxed);
+    pthread_join(idle_poller_, nullptr);
+  }
   sched_param old{};
   old.sched_priority = old_priority_;
   pthread_setschedparam(pthread_self(), old_policy_, &old);

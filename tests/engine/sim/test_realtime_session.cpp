@@ -2,6 +2,7 @@
 // lowered (and moved off a pinned CPU), and everything is restored when the session ends.
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <pthread.h>
@@ -11,6 +12,7 @@
 #include <sys/syscall.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 #include "tacta/sim/realtime.hpp"
 
@@ -173,6 +175,56 @@ TEST(RealtimeSession, HoldsCpusInShallowIdleStatesForTheRun) {
   EXPECT_FALSE(off.grant().shallow_idle);
   EXPECT_EQ(off.grant().idle_note, "not requested (clock.shallow_idle: false)");
   EXPECT_EQ(latency_requests_held(), held_before);
+}
+
+// The threads of this process named `name` (/proc/self/task/*/comm).
+std::vector<pid_t> threads_named(const std::string& name) {
+  std::vector<pid_t> found;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream comm(task.path() / "comm");
+    std::string line;
+    if (std::getline(comm, line) && line == name)
+      found.push_back(static_cast<pid_t>(std::stoi(task.path().filename().string())));
+  }
+  return found;
+}
+
+// clock.poll_idle: a pinned session runs one SCHED_IDLE thread on the haptic CPU (so it never
+// idles, yet yields to any other thread at once), and it is gone when the session ends.
+TEST(RealtimeSession, AnIdlePollerHoldsThePinnedCpuForTheRun) {
+  RealtimeOptions options;
+  options.priority = 0;
+  options.lock_memory = false;
+  options.cpu = 0;
+  {
+    RealtimeSession session(options);
+    const tacta::RealtimeGrant& g = session.grant();
+    if (g.cpu != 0) GTEST_SKIP() << "pinning refused here: " << g.cpu_note;
+    ASSERT_TRUE(g.poll_idle) << g.poll_note;
+    EXPECT_TRUE(g.poll_note.empty());
+    const std::vector<pid_t> pollers = threads_named("tacta-idle-poll");
+    ASSERT_EQ(pollers.size(), 1u);
+    EXPECT_EQ(sched_getscheduler(pollers[0]), SCHED_IDLE);
+    cpu_set_t cpus;
+    ASSERT_EQ(sched_getaffinity(pollers[0], sizeof cpus, &cpus), 0);
+    EXPECT_EQ(CPU_COUNT(&cpus), 1);
+    EXPECT_TRUE(CPU_ISSET(0, &cpus));
+  }
+  EXPECT_TRUE(threads_named("tacta-idle-poll").empty()) << "the poller outlived the session";
+
+  options.poll_idle = false;
+  {
+    RealtimeSession off(options);
+    EXPECT_FALSE(off.grant().poll_idle);
+    EXPECT_EQ(off.grant().poll_note, "not requested (clock.poll_idle: false)");
+    EXPECT_TRUE(threads_named("tacta-idle-poll").empty());
+  }
+  options.poll_idle = true;
+  options.cpu = -1;
+  RealtimeSession unpinned(options);
+  EXPECT_FALSE(unpinned.grant().poll_idle);
+  EXPECT_NE(unpinned.grant().poll_note.find("not pinned"), std::string::npos);
+  EXPECT_TRUE(threads_named("tacta-idle-poll").empty());
 }
 
 TEST(RealtimeSession, ResidentMemoryIsRead) {

@@ -6,7 +6,9 @@
 // the last microseconds. What was asked and what the kernel granted is reported, never assumed.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <pthread.h>
 #include <string>
 #include <vector>
 
@@ -20,7 +22,12 @@ struct RealtimeOptions {
   // /dev/cpu_dma_latency, as cyclictest makes): between ticks a deep idle state flushes the
   // core's caches and wakes late, and the next tick's step pays for both.
   bool shallow_idle = true;
-  double spin_us = 50;      // the last microseconds before a deadline are spun, not slept
+  // Pinned runs: while the haptic thread sleeps, a SCHED_IDLE thread on its CPU spins, so that
+  // CPU never idles at all. Needed where PM QoS cannot help: a VM's guest idles by halting, which
+  // hands the vCPU back to the host, and the next tick finds its caches cold (the liver demo's
+  // realtime tick p50 0.30 -> 0.21 ms on a 2-vCPU VM). The CPU is busy for the whole run.
+  bool poll_idle = true;
+  double spin_us = 50;  // the last microseconds before a deadline are spun, not slept
 };
 
 // What the kernel granted (report.json "realtime").
@@ -33,6 +40,8 @@ struct RealtimeGrant {
   std::string memory_note;              // why mlockall failed, when it did
   bool shallow_idle = false;            // the PM QoS request is held for the run
   std::string idle_note;                // why it is not, when it is not
+  bool poll_idle = false;               // a spinning SCHED_IDLE thread holds the haptic CPU
+  std::string poll_note;                // why not, when not
   int cpu = -1;                         // the haptic thread's CPU; -1: not pinned
   std::string cpu_note;                 // why pinning failed, when it did
   uint32_t helper_threads_lowered = 0;  // other threads moved to a lower priority (and off `cpu`)
@@ -69,6 +78,7 @@ class RealtimeSession {
   bool demote(int64_t tick) noexcept;
 
  private:
+  void start_idle_poller();
   RealtimeOptions options_;
   RealtimeGrant grant_;
   int old_policy_ = 0, old_priority_ = 0, old_nice_ = 0;
@@ -79,6 +89,10 @@ class RealtimeSession {
   };
   std::vector<LoweredThread> lowered_;
   int latency_fd_ = -1;  // /dev/cpu_dma_latency, open while the request holds
+  // poll_idle: a thread spinning on the haptic CPU at SCHED_IDLE while poller_state_ is 1.
+  std::atomic<int> poller_state_{0};
+  pthread_t idle_poller_{};
+  bool polling_ = false;
 };
 
 }  // namespace tacta
