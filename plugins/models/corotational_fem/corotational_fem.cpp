@@ -208,25 +208,20 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
     if (frame.inverted) result |= TACTA_STEP_INVERTED_ELEMENT;
     accumulate(e, frame, stiffness_scale, forces_.data());
   }
+  double force2 = 0.0;
   if (rows_.threaded()) {
-    finish_system_threaded(state, h);
+    force2 = finish_system_threaded(state, h);
   } else {
     // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
     // damping term, one pass over the blocks instead of a K_e v per element.
     matrix_.multiply(state.velocities, stiffness_velocity_.data());
     matrix_.add_to_diagonal(masses_, 1.0 + h * alpha_);
     matrix_.apply_fixed(fixed_);
-    for (size_t k = 0; k < n; ++k) {
-      const double m = masses_[k / 3];
-      rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
-                stiffness_velocity_[k];
-    }
-    if (!fixed_.empty())
-      for (uint32_t i = 0; i < node_count_; ++i)
-        if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
+    force2 = rhs_rows(state, h, 0, node_count_);
     if (solver_->iterative()) extrapolate_guess(0, n);
   }
-  last_solve_ = solver_->solve(matrix_, rhs_.data(), delta_v_.data());
+  const double floor = options_.force_scaled_tolerance ? h * std::sqrt(force2) : 0.0;
+  last_solve_ = solver_->solve(matrix_, rhs_.data(), delta_v_.data(), false, floor);
   if (!last_solve_.converged) result |= TACTA_STEP_SOLVER_NOT_CONVERGED;
   if (rows_.threaded()) {
     advance_threaded(state, h);
@@ -247,6 +242,22 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   }
   result |= guard_.check(state.positions, state.velocities);
   return result;
+}
+
+double CorotationalFem::rhs_rows(const tacta_body_state& state, double h, uint32_t begin,
+                                 uint32_t end) noexcept {
+  double force2 = 0.0;
+  for (uint32_t i = begin; i < end; ++i) {
+    const bool held = !fixed_.empty() && fixed_[i];
+    const double m = masses_[i];
+    for (size_t k = 3 * size_t{i}; k < 3 * size_t{i} + 3; ++k) {
+      const double f = forces_[k], f_ext = state.external_forces[k];
+      rhs_[k] =
+          held ? 0.0 : h * (f + f_ext - alpha_ * m * state.velocities[k]) - stiffness_velocity_[k];
+      if (!held) force2 += f * f + f_ext * f_ext;
+    }
+  }
+  return force2;
 }
 
 // CG starts from dv extrapolated over the last steps (a smooth motion changes its velocity

@@ -61,6 +61,12 @@ struct Options {
   // CG's guess (extrapolate_guess): adaptive, linear or quadratic as the last step scored; or
   // linear always (the guess of earlier releases).
   bool adaptive_guess = true;
+  // CG's tolerance is relative to the larger of ||rhs|| and the step's force impulse
+  // h (|f_int|^2 + |f_ext|^2)^1/2 over free nodes (forces), or to ||rhs|| alone (rhs: earlier
+  // releases). Near equilibrium the rhs is what is left of forces that cancel, and a tolerance
+  // on it alone asks for digits no force in the step has: the liver demo resting pressed ran
+  // most solves to the iteration cap.
+  bool force_scaled_tolerance = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
   // colour by colour (no two batches of a colour share a node), each colour in parallel, and
   // with threaded_solve, from kMinThreadedNodes nodes, the rest of the step too: the matrix's
@@ -147,7 +153,11 @@ class CorotationalFem {
   uint32_t batched_pass(const double* positions, double scale) noexcept;
   // step() between the element pass and the solve, on the host's workers (rows_): the rhs's
   // h (beta + h) K v, the mass and the held nodes into the matrix, the rhs, the CG guess.
-  void finish_system_threaded(const tacta_body_state& state, double h) noexcept;
+  // Returns rhs_rows' sum over every node, in chunk order.
+  double finish_system_threaded(const tacta_body_state& state, double h) noexcept;
+  // The rhs of nodes [begin, end) (0 on held nodes) from forces_ and the stiffness-velocity
+  // product; returns the sum of |f_int|^2 + |f_ext|^2 over those of them that are free, N^2.
+  double rhs_rows(const tacta_body_state& state, double h, uint32_t begin, uint32_t end) noexcept;
   // step() after the solve, on the workers: v += dv (0 on held nodes), x += h v.
   void advance_threaded(tacta_body_state& state, double h) noexcept;
   // Static solve (corotational_static.cpp): Newton to equilibrium, load stepping.

@@ -86,25 +86,19 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
   return result;
 }
 
-void CorotationalFem::finish_system_threaded(const tacta_body_state& state, double h) noexcept {
+double CorotationalFem::finish_system_threaded(const tacta_body_state& state, double h) noexcept {
   // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and damping
   // term. Every row reads blocks of other rows, so the mass and the held nodes go in after.
   rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
     matrix_.multiply_rows(state.velocities, stiffness_velocity_.data(), begin, end);
   });
   const bool extrapolate = solver_->iterative();
-  rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
+  rows_.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
     matrix_.finish_rows(begin, end, masses_, 1.0 + h * alpha_, fixed_);
-    for (size_t k = 3 * size_t{begin}; k < 3 * size_t{end}; ++k) {
-      const double m = masses_[k / 3];
-      rhs_[k] = h * (forces_[k] + state.external_forces[k] - alpha_ * m * state.velocities[k]) -
-                stiffness_velocity_[k];
-    }
-    if (!fixed_.empty())
-      for (uint32_t i = begin; i < end; ++i)
-        if (fixed_[i]) rhs_[3 * i] = rhs_[3 * i + 1] = rhs_[3 * i + 2] = 0.0;
+    rows_.sums(chunk).s[0] = rhs_rows(state, h, begin, end);
     if (extrapolate) extrapolate_guess(3 * size_t{begin}, 3 * size_t{end});
   });
+  return rows_.total(0);
 }
 
 void CorotationalFem::advance_threaded(tacta_body_state& state, double h) noexcept {

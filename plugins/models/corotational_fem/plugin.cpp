@@ -45,6 +45,11 @@ class CorotationalFemPlugin {
                                    "CG's starting dv: extrapolated linearly over two steps, or "
                                    "(adaptive) quadratically over three after a step where that "
                                    "missed by less"),
+                 sdk::choice_param("tolerance_scale", "forces|rhs", 0,
+                                   "what tolerance is a fraction of: the larger of the rhs norm "
+                                   "and the step's force impulse h (|f_int|^2 + |f_ext|^2)^1/2 "
+                                   "(forces), or the rhs norm alone, which near equilibrium is "
+                                   "what is left of forces that cancel (rhs)"),
                  sdk::bool_param("threaded_solve", false,
                                  "with scene threads >= 2 and 384+ nodes: the row passes and the "
                                  "(block) Jacobi CG on the engine's workers too, not only the "
@@ -62,6 +67,7 @@ class CorotationalFemPlugin {
     options.static_solve = sparse::read_static_params(params, options);
     options.threaded_solve = params.flag("threaded_solve");
     options.adaptive_guess = params.choice("guess") == 0;
+    options.force_scaled_tolerance = params.choice("tolerance_scale") == 0;
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<CorotationalFem>(
         *setup.mesh, *setup.material, std::span<const double>(setup.masses, n),

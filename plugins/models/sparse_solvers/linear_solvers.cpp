@@ -151,8 +151,9 @@ void ConjugateGradientSolver::state_fields(StateIo& io) {
 }
 
 SolveReport ConjugateGradientSolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
-                                           bool keep_preconditioner) {
+                                           bool keep_preconditioner, double residual_floor) {
   if (!keep_preconditioner) build_preconditioner(a);
+  residual_floor_ = residual_floor;
   return iterate(a, b, x, max_iterations_);
 }
 
@@ -168,7 +169,8 @@ SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const d
     std::fill_n(x, 3 * nodes, 0.0);
     return report;
   }
-  const double threshold2 = tolerance_ * tolerance_ * b_norm2;
+  const double scale2 = std::max(b_norm2, residual_floor_ * residual_floor_);
+  const double threshold2 = tolerance_ * tolerance_ * scale2;
   for (size_t i = 0; i < nodes; ++i)
     for (size_t c = 0; c < 3; ++c) x_[4 * i + c] = x[3 * i + c];
   multiply(a, x_.data(), ap_.data());
@@ -186,7 +188,7 @@ SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const d
       for (size_t c = 0; c < 3; ++c) r_[4 * i + c] = b[3 * i + c];
     r_norm2 = b_norm2;
   }
-  report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+  report.relative_residual = std::sqrt(r_norm2 / scale2);
   if (r_norm2 <= threshold2) {
     write_back();
     return report;
@@ -200,7 +202,7 @@ SolveReport ConjugateGradientSolver::iterate(const BlockSparseMatrix& a, const d
     const auto [r_norm2_next, rz_next] = update(rz / p_ap, threshold2);
     r_norm2 = r_norm2_next;
     report.iterations = k + 1;
-    report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+    report.relative_residual = std::sqrt(r_norm2 / scale2);
     if (r_norm2 <= threshold2) {
       write_back();
       return report;
@@ -252,7 +254,8 @@ SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x
     std::fill_n(x, 3 * (r_.size() / 4), 0.0);
     return report;
   }
-  const double threshold2 = tolerance_ * tolerance_ * b_norm2;
+  const double scale2 = std::max(b_norm2, residual_floor_ * residual_floor_);
+  const double threshold2 = tolerance_ * tolerance_ * scale2;
   // r = b - A x, z = M^-1 r, p = z.
   team.run([&](uint32_t chunk, uint32_t begin, uint32_t end) {
     padded_.multiply_rows(x_.data(), ap_.data(), begin, end);
@@ -279,7 +282,7 @@ SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x
     r_norm2 = b_norm2;
     rz = team.total(1);
   }
-  report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+  report.relative_residual = std::sqrt(r_norm2 / scale2);
   if (r_norm2 <= threshold2) {
     write_back();
     return report;
@@ -304,7 +307,7 @@ SolveReport ConjugateGradientSolver::iterate_threaded(const double* b, double* x
     r_norm2 = team.total(0);
     const double rz_next = team.total(1);
     report.iterations = k + 1;
-    report.relative_residual = std::sqrt(r_norm2 / b_norm2);
+    report.relative_residual = std::sqrt(r_norm2 / scale2);
     if (r_norm2 <= threshold2) {
       write_back();
       return report;

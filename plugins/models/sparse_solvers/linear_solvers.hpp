@@ -23,7 +23,8 @@ enum class Preconditioner { kJacobi = 0, kBlockJacobi = 1, kIncompleteCholesky =
 struct SolveReport {
   int iterations = 0;
   bool converged = true;
-  double relative_residual = 0.0;    // ||b - A x|| / ||b|| at exit (CG's recurrence residual)
+  // ||b - A x|| / max(||b||, the solve's residual_floor) at exit (CG's recurrence residual)
+  double relative_residual = 0.0;
   int replaced_pivots = 0;           // IC(0) pivots replaced by A's diagonal block
   bool warm_start_rejected = false;  // ||b - A x0|| > ||b||: CG started from zero instead
 };
@@ -42,11 +43,13 @@ class ConjugateGradientSolver {
                           int max_iterations, double tolerance, int refactor_interval = 1,
                           const tacta_host_services* host = nullptr);
   // x holds the initial guess (the previous step's solution) and receives the solution.
-  // Convergence: ||b - A x|| <= tolerance ||b||.
-  // keep_preconditioner: a is the last solve's matrix, unchanged (no refactorisation, no copy).
+  // Convergence: ||b - A x|| <= tolerance max(||b||, residual_floor). The floor is the scale b's
+  // terms have before they cancel (an implicit step near equilibrium: forces that balance leave
+  // a b far smaller than any of them, and a tolerance on ||b|| alone asks for digits that
+  // describe nothing). keep_preconditioner: a is the last solve's matrix, unchanged.
   SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x,
-                    bool keep_preconditioner = false);
-  // Solves again with the preconditioner of the last solve() on the same a, at most
+                    bool keep_preconditioner = false, double residual_floor = 0.0);
+  // Solves again with the preconditioner and floor of the last solve() on the same a, at most
   // max_iterations: the fallback when solve() did not converge.
   SolveReport resolve(const BlockSparseMatrix& a, const double* b, double* x, int max_iterations) {
     return iterate(a, b, x, max_iterations);
@@ -81,6 +84,7 @@ class ConjugateGradientSolver {
   Preconditioner preconditioner_;
   int max_iterations_;
   double tolerance_;
+  double residual_floor_ = 0.0;  // the last solve()'s
   int refactor_interval_, solves_since_factor_ = 0;
   int replaced_pivots_ = 0;
   std::unique_ptr<BlockIncompleteCholesky> incomplete_cholesky_;

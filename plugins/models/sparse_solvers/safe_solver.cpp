@@ -50,7 +50,7 @@ SolveReport SafeSolver::solve_direct(const BlockSparseMatrix& a, const double* b
 }
 
 SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, double* x,
-                              bool same_matrix) noexcept {
+                              bool same_matrix, double residual_floor) noexcept {
   ++counters_.solves;
   if (!same_matrix) cg_current_ = cholesky_current_ = false;
   SolveReport report;
@@ -61,7 +61,7 @@ SolveReport SafeSolver::solve(const BlockSparseMatrix& a, const double* b, doubl
     ++counters_.direct_solves_held;
     report = solve_direct(a, b, x, same_matrix);
   } else {
-    report = cg_->solve(a, b, x, same_matrix && cg_current_);
+    report = cg_->solve(a, b, x, same_matrix && cg_current_, residual_floor);
     cg_current_ = true;
     counters_.cg_iterations += static_cast<uint64_t>(report.iterations);
     if (report.warm_start_rejected) ++counters_.warm_starts_rejected;

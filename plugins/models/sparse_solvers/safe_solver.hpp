@@ -56,8 +56,10 @@ class SafeSolver {
   // x: the initial guess on entry (CG only), the solution on exit. No allocation (see
   // CholeskySolver for its one exception on very large systems). same_matrix: a is the matrix
   // of the last solve, unchanged, so its preconditioner (or LDL^T factor) is reused.
+  // residual_floor: CG's tolerance is relative to max(||b||, residual_floor)
+  // (ConjugateGradientSolver::solve).
   SolveReport solve(const BlockSparseMatrix& a, const double* b, double* x,
-                    bool same_matrix = false) noexcept;
+                    bool same_matrix = false, double residual_floor = 0.0) noexcept;
   void set_limits(int max_iterations, double tolerance, int refactor_interval);
   const SolverOptions& options() const { return options_; }
   const SolverCounters& counters() const { return counters_; }

@@ -40,10 +40,11 @@ TEST(CorotationalPlugin, LoadsCreatesAndSteps) {
   ASSERT_EQ(d.kind, TACTA_KIND_MODEL);
   std::vector<std::string> names;
   for (uint32_t i = 0; i < d.param_count; ++i) names.emplace_back(d.params[i].name);
-  EXPECT_EQ(names, (std::vector<std::string>{
-                       "rotation", "solver", "preconditioner", "max_iterations", "tolerance",
-                       "refactor_interval", "fallback", "restart_factor", "solve", "load_steps",
-                       "static_iterations", "static_tolerance", "guess", "threaded_solve"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"rotation", "solver", "preconditioner",
+                                             "max_iterations", "tolerance", "refactor_interval",
+                                             "fallback", "restart_factor", "solve", "load_steps",
+                                             "static_iterations", "static_tolerance", "guess",
+                                             "tolerance_scale", "threaded_solve"}));
   const auto& api = plugin.api<tacta_model_api>("corotational_fem");
   ASSERT_NE(api.elastic_energy, nullptr);
   ASSERT_NE(api.internal_forces, nullptr);

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -393,6 +394,58 @@ TEST(CorotationalSolvers, AdaptiveGuessFollowsTheDirectSolveInFewerIterations) {
   // may differ from the direct solve's by about that fraction of the motion.
   EXPECT_LT(adaptive_off, 1e-5 * displacement) << "linear guess: " << linear_off;
   EXPECT_LT(linear_off, 1e-5 * displacement);
+}
+
+// Near equilibrium the step's rhs is what is left of forces that cancel. CG's tolerance taken
+// relative to the larger of ||rhs|| and the step's force impulse (tolerance_scale: forces, the
+// default) leaves an unbalanced force of at most 1e-5 of the forces in play; relative to ||rhs||
+// alone it asks for ever more digits as the body comes to rest. A beam sagging under gravity and
+// a tip load until it rests: both rest where the direct solve rests, the force scale in fewer
+// iterations over the resting half.
+TEST(CorotationalSolvers, ForceScaledToleranceRestsWhereTheDirectSolveRests) {
+  TestMesh mesh = box_tet_mesh({2, 2, 8}, {0.02, 0.02, 0.2}, 1000.0);
+  mesh.fix_plane(2, 0.0);
+  tacta_material material = make_material(1e5, 0.4, 1000.0);
+  material.rayleigh_mass = 5.0;
+  material.rayleigh_stiffness = 0.01;
+  const uint32_t tip = mesh.node_count() - 1;
+  const auto run = [&](Options options, uint64_t& resting_iterations) {
+    auto model = make_model(mesh, material, options);
+    BodyState body(mesh);
+    body.add_gravity(mesh, {0.0, -9.81, 0.0});
+    body.external_forces[3 * tip] += 0.01;  // N, sideways at one tip node
+    model->begin(body.state, 1e-3);
+    for (int i = 0; i < 2000; ++i) {
+      if (i == 1000) resting_iterations = model->counters().cg_iterations;
+      EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+    }
+    resting_iterations = model->counters().cg_iterations - resting_iterations;
+    EXPECT_EQ(model->counters().unconverged, 0u);
+    return body.positions;
+  };
+  Options direct, forces, rhs;
+  direct.solver = LinearSolver::kCholesky;
+  rhs.force_scaled_tolerance = false;
+  uint64_t unused = 0, forces_iterations = 0, rhs_iterations = 0;
+  const std::vector<double> reference = run(direct, unused);
+  const std::vector<double> with_forces = run(forces, forces_iterations);
+  const std::vector<double> with_rhs = run(rhs, rhs_iterations);
+  double forces_off = 0.0, rhs_off = 0.0, displacement = 0.0;
+  for (size_t k = 0; k < reference.size(); ++k) {
+    forces_off = std::max(forces_off, std::abs(with_forces[k] - reference[k]));
+    rhs_off = std::max(rhs_off, std::abs(with_rhs[k] - reference[k]));
+    displacement = std::max(displacement, std::abs(reference[k] - mesh.positions[k]));
+  }
+  std::printf(
+      "at rest: displacement %.3e m; off the direct solve: forces %.3e m, rhs %.3e m; "
+      "CG iterations over the last 1000 steps: forces %llu, rhs %llu\n",
+      displacement, forces_off, rhs_off, static_cast<unsigned long long>(forces_iterations),
+      static_cast<unsigned long long>(rhs_iterations));
+  EXPECT_GT(displacement, 1e-3);
+  EXPECT_LT(forces_iterations, rhs_iterations);
+  // An unbalanced force of 1e-5 of those in play moves the rest shape by about that fraction.
+  EXPECT_LT(forces_off, 1e-5 * displacement) << "rhs scale: " << rhs_off;
+  EXPECT_LT(rhs_off, 1e-5 * displacement);
 }
 
 }  // namespace
