@@ -25,7 +25,8 @@ struct RealtimeOptions {
   // Pinned runs: while the haptic thread sleeps, a SCHED_IDLE thread on its CPU spins, so that
   // CPU never idles at all. Needed where PM QoS cannot help: a VM's guest idles by halting, which
   // hands the vCPU back to the host, and the next tick finds its caches cold (the liver demo's
-  // realtime tick p50 0.30 -> 0.21 ms on a 2-vCPU VM). The CPU is busy for the whole run.
+  // realtime model step p50 0.30-0.34 -> 0.23-0.29 ms on a 2-vCPU VM, its lockstep cost). The
+  // CPU shows busy for the whole run.
   bool poll_idle = true;
   double spin_us = 50;  // the last microseconds before a deadline are spun, not slept
 };
