@@ -2,7 +2,8 @@
 // fill to drop (one tet), the same solution as sparse Cholesky on a bent beam's system in fewer
 // iterations than block Jacobi, and the same trajectory as Cholesky when stepping. The LDL^T
 // symbolic analysis gives Eigen's elimination tree and column counts. The batched element pass,
-// a tet's node order and CG's adaptive guess leave the motion as it was.
+// a tet's node order, CG's adaptive guess and its force-scaled tolerance leave the motion as it
+// was.
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
@@ -354,6 +355,34 @@ TEST(CorotationalSolvers, TetNodeOrderDoesNotChangeTheMotion) {
   }
 }
 
+// The largest coordinate difference between two sets of node positions, m.
+double largest_gap(const std::vector<double>& a, const std::vector<double>& b) {
+  double gap = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) gap = std::max(gap, std::abs(a[k] - b[k]));
+  return gap;
+}
+
+// Two CG settings against the direct solve on the same run: how far each ends from the direct
+// solve's nodes (m), the direct run's displacement (m), and the CG iterations each counted.
+struct AgainstDirect {
+  double first_off = 0.0, second_off = 0.0, displacement = 0.0;
+  uint64_t first_iterations = 0, second_iterations = 0;
+};
+// run(options, iterations) steps a model made with options and returns its node positions.
+template <class Run>
+AgainstDirect against_direct(const TestMesh& mesh, Run run, const Options& first,
+                             const Options& second) {
+  Options direct;
+  direct.solver = LinearSolver::kCholesky;
+  AgainstDirect r;
+  uint64_t unused = 0;
+  const std::vector<double> reference = run(direct, unused);
+  r.first_off = largest_gap(run(first, r.first_iterations), reference);
+  r.second_off = largest_gap(run(second, r.second_iterations), reference);
+  r.displacement = largest_gap(reference, mesh.positions);
+  return r;
+}
+
 // CG's adaptive guess (quadratic over three steps after a step where that missed by less)
 // changes where CG starts, not what it converges to: a beam sagging and swinging under gravity
 // follows the direct solve's path as closely as with the linear guess, in fewer iterations.
@@ -374,26 +403,16 @@ TEST(CorotationalSolvers, AdaptiveGuessFollowsTheDirectSolveInFewerIterations) {
     iterations = model->counters().cg_iterations;
     return body.positions;
   };
-  Options direct, linear, adaptive;
-  direct.solver = LinearSolver::kCholesky;
+  Options adaptive, linear;
   linear.adaptive_guess = false;
-  uint64_t unused = 0, linear_iterations = 0, adaptive_iterations = 0;
-  const std::vector<double> reference = run(direct, unused);
-  const std::vector<double> with_linear = run(linear, linear_iterations);
-  const std::vector<double> with_adaptive = run(adaptive, adaptive_iterations);
-  double linear_off = 0.0, adaptive_off = 0.0, displacement = 0.0;
-  for (size_t k = 0; k < reference.size(); ++k) {
-    linear_off = std::max(linear_off, std::abs(with_linear[k] - reference[k]));
-    adaptive_off = std::max(adaptive_off, std::abs(with_adaptive[k] - reference[k]));
-    displacement = std::max(displacement, std::abs(reference[k] - mesh.positions[k]));
-  }
-  EXPECT_GT(displacement, 1e-3);
+  const AgainstDirect r = against_direct(mesh, run, adaptive, linear);
+  EXPECT_GT(r.displacement, 1e-3);
   // 300 steps: linear 9,478 iterations, adaptive 3,916; both within 2e-6 of the motion.
-  EXPECT_LT(adaptive_iterations, linear_iterations);
+  EXPECT_LT(r.first_iterations, r.second_iterations);
   // Each step's dv is solved to a relative residual of 1e-5 (the default tolerance): the path
   // may differ from the direct solve's by about that fraction of the motion.
-  EXPECT_LT(adaptive_off, 1e-5 * displacement) << "linear guess: " << linear_off;
-  EXPECT_LT(linear_off, 1e-5 * displacement);
+  EXPECT_LT(r.first_off, 1e-5 * r.displacement) << "linear guess: " << r.second_off;
+  EXPECT_LT(r.second_off, 1e-5 * r.displacement);
 }
 
 // Near equilibrium the step's rhs is what is left of forces that cancel. CG's tolerance taken
@@ -423,29 +442,20 @@ TEST(CorotationalSolvers, ForceScaledToleranceRestsWhereTheDirectSolveRests) {
     EXPECT_EQ(model->counters().unconverged, 0u);
     return body.positions;
   };
-  Options direct, forces, rhs;
-  direct.solver = LinearSolver::kCholesky;
+  Options forces, rhs;
   rhs.force_scaled_tolerance = false;
-  uint64_t unused = 0, forces_iterations = 0, rhs_iterations = 0;
-  const std::vector<double> reference = run(direct, unused);
-  const std::vector<double> with_forces = run(forces, forces_iterations);
-  const std::vector<double> with_rhs = run(rhs, rhs_iterations);
-  double forces_off = 0.0, rhs_off = 0.0, displacement = 0.0;
-  for (size_t k = 0; k < reference.size(); ++k) {
-    forces_off = std::max(forces_off, std::abs(with_forces[k] - reference[k]));
-    rhs_off = std::max(rhs_off, std::abs(with_rhs[k] - reference[k]));
-    displacement = std::max(displacement, std::abs(reference[k] - mesh.positions[k]));
-  }
+  const AgainstDirect r = against_direct(mesh, run, forces, rhs);
   std::printf(
       "at rest: displacement %.3e m; off the direct solve: forces %.3e m, rhs %.3e m; "
       "CG iterations over the last 1000 steps: forces %llu, rhs %llu\n",
-      displacement, forces_off, rhs_off, static_cast<unsigned long long>(forces_iterations),
-      static_cast<unsigned long long>(rhs_iterations));
-  EXPECT_GT(displacement, 1e-3);
-  EXPECT_LT(forces_iterations, rhs_iterations);
+      r.displacement, r.first_off, r.second_off,
+      static_cast<unsigned long long>(r.first_iterations),
+      static_cast<unsigned long long>(r.second_iterations));
+  EXPECT_GT(r.displacement, 1e-3);
+  EXPECT_LT(r.first_iterations, r.second_iterations);
   // An unbalanced force of 1e-5 of those in play moves the rest shape by about that fraction.
-  EXPECT_LT(forces_off, 1e-5 * displacement) << "rhs scale: " << rhs_off;
-  EXPECT_LT(rhs_off, 1e-5 * displacement);
+  EXPECT_LT(r.first_off, 1e-5 * r.displacement) << "rhs scale: " << r.second_off;
+  EXPECT_LT(r.second_off, 1e-5 * r.displacement);
 }
 
 }  // namespace
