@@ -201,13 +201,25 @@ TEST(SafeSolver, RestartGoesOnFromWhereTheCappedPassStopped) {
       << "uncapped " << whole.iterations << ", capped at " << cap;
 }
 
-// Tip displacement after 30 steps under gravity, with the given solver settings.
-double tip_after_steps(const Options& options) {
+// The solver tests' beam: 2 x 2 x 8 cells, 0.02 x 0.02 x 0.2 m, rho 1000, held at z = 0.
+TestMesh clamped_beam() {
   TestMesh mesh = box_tet_mesh({2, 2, 8}, {0.02, 0.02, 0.2}, 1000.0);
   mesh.fix_plane(2, 0.0);
+  return mesh;
+}
+
+// Its material: E 1e5 Pa, nu 0.4, Rayleigh rayleigh_mass (1/s) and 0.01 s.
+tacta_material beam_material(double rayleigh_mass) {
   tacta_material material = make_material(1e5, 0.4, 1000.0);
-  material.rayleigh_mass = 0.1;
+  material.rayleigh_mass = rayleigh_mass;
   material.rayleigh_stiffness = 0.01;
+  return material;
+}
+
+// Tip displacement after 30 steps under gravity, with the given solver settings.
+double tip_after_steps(const Options& options) {
+  const TestMesh mesh = clamped_beam();
+  const tacta_material material = beam_material(0.1);
   auto model = make_model(mesh, material, options);
   BodyState body(mesh);
   body.add_gravity(mesh, {0.0, -9.81, 0.0});
@@ -387,11 +399,8 @@ AgainstDirect against_direct(const TestMesh& mesh, Run run, const Options& first
 // changes where CG starts, not what it converges to: a beam sagging and swinging under gravity
 // follows the direct solve's path as closely as with the linear guess, in fewer iterations.
 TEST(CorotationalSolvers, AdaptiveGuessFollowsTheDirectSolveInFewerIterations) {
-  TestMesh mesh = box_tet_mesh({2, 2, 8}, {0.02, 0.02, 0.2}, 1000.0);
-  mesh.fix_plane(2, 0.0);
-  tacta_material material = make_material(1e5, 0.4, 1000.0);
-  material.rayleigh_mass = 0.1;
-  material.rayleigh_stiffness = 0.01;
+  const TestMesh mesh = clamped_beam();
+  const tacta_material material = beam_material(0.1);
   const auto run = [&](Options options, uint64_t& iterations) {
     auto model = make_model(mesh, material, options);
     BodyState body(mesh);
@@ -422,11 +431,8 @@ TEST(CorotationalSolvers, AdaptiveGuessFollowsTheDirectSolveInFewerIterations) {
 // a tip load until it rests: both rest where the direct solve rests, the force scale in fewer
 // iterations over the resting half.
 TEST(CorotationalSolvers, ForceScaledToleranceRestsWhereTheDirectSolveRests) {
-  TestMesh mesh = box_tet_mesh({2, 2, 8}, {0.02, 0.02, 0.2}, 1000.0);
-  mesh.fix_plane(2, 0.0);
-  tacta_material material = make_material(1e5, 0.4, 1000.0);
-  material.rayleigh_mass = 5.0;
-  material.rayleigh_stiffness = 0.01;
+  const TestMesh mesh = clamped_beam();
+  const tacta_material material = beam_material(5.0);  // damped to rest within the run
   const uint32_t tip = mesh.node_count() - 1;
   const auto run = [&](Options options, uint64_t& resting_iterations) {
     auto model = make_model(mesh, material, options);
