@@ -236,6 +236,7 @@ void add_realtime(Json& j, const RunResult& result) {
       {"cpu_note", g.cpu_note},
       {"helper_threads_lowered", static_cast<uint64_t>(g.helper_threads_lowered)},
       {"spin_us", g.spin_us},
+      {"timer_slack_ns", g.timer_slack_ns},
       // How each tick's wait ended: spun to the deadline (spin_us at work) or woken
       // past it.
       {"spun_waits", s.spun_waits},

@@ -13,6 +13,7 @@
 #include <sched.h>
 #include <string>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -179,6 +180,15 @@ RealtimeSession::RealtimeSession(const RealtimeOptions& options) : options_(opti
     }
   }
 
+  // A SCHED_OTHER thread's sleeps may end up to its timer slack late, 50 us by default: the
+  // whole spin window, so every wait would wake past its deadline. SCHED_FIFO threads get no
+  // slack from the kernel; 1 ns gives the fallback (and a demoted thread) the same.
+  old_timer_slack_ns_ = prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0);
+  if (prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0) == 0)
+    grant_.timer_slack_ns = 1;
+  else if (old_timer_slack_ns_ > 0)
+    grant_.timer_slack_ns = static_cast<uint64_t>(old_timer_slack_ns_);
+
   if (options.cpu >= 0) {
     cpu_set_t original;
     CPU_ZERO(&original);
@@ -294,6 +304,8 @@ RealtimeSession::~RealtimeSession() {
   old.sched_priority = old_priority_;
   pthread_setschedparam(pthread_self(), old_policy_, &old);
   setpriority(PRIO_PROCESS, static_cast<id_t>(this_tid()), old_nice_);
+  if (old_timer_slack_ns_ > 0)
+    prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(old_timer_slack_ns_), 0, 0, 0);
   pthread_setname_np(pthread_self(), old_name_.c_str());
   for (const LoweredThread& t : lowered_)
     setpriority(PRIO_PROCESS, static_cast<id_t>(t.tid), t.nice);

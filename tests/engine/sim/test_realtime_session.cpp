@@ -8,6 +8,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <string>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <thread>
@@ -122,6 +123,23 @@ TEST(RealtimeSession, PriorityZeroStaysOrdinary) {
   EXPECT_EQ(policy_of_this_thread(), SCHED_OTHER);
   EXPECT_NE(session.grant().scheduler_note.find("not requested"), std::string::npos);
   EXPECT_FALSE(session.grant().memory_locked);
+}
+
+// The haptic thread's sleeps end on time under SCHED_OTHER too: its timer slack (how late the
+// kernel may end a sleep, 50 us by default, the whole spin window) is 1 ns for the run and back
+// to what it was after.
+TEST(RealtimeSession, TheHapticThreadSleepsWithoutTimerSlack) {
+  const long slack_before = prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0);
+  ASSERT_GT(slack_before, 1);
+  {
+    RealtimeOptions options;
+    options.priority = 0;  // the SCHED_OTHER path, where slack applies
+    options.lock_memory = false;
+    RealtimeSession session(options);
+    EXPECT_EQ(prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0), 1);
+    EXPECT_EQ(session.grant().timer_slack_ns, 1u);
+  }
+  EXPECT_EQ(prctl(PR_GET_TIMERSLACK, 0, 0, 0, 0), slack_before);
 }
 
 // How many descriptors this process holds open on /dev/cpu_dma_latency: each open one is a PM QoS

@@ -47,6 +47,8 @@ struct RealtimeGrant {
   std::string cpu_note;                 // why pinning failed, when it did
   uint32_t helper_threads_lowered = 0;  // other threads moved to a lower priority (and off `cpu`)
   double spin_us = 0;
+  // The haptic thread's timer slack for the run, ns: how late the kernel may end its sleeps.
+  uint64_t timer_slack_ns = 0;
   // Tick at which a SCHED_FIFO haptic thread that missed every deadline for
   // kStarvingTicks ticks was dropped to SCHED_OTHER; -1: never.
   int64_t demoted_at_tick = -1;
@@ -83,6 +85,7 @@ class RealtimeSession {
   RealtimeOptions options_;
   RealtimeGrant grant_;
   int old_policy_ = 0, old_priority_ = 0, old_nice_ = 0;
+  long old_timer_slack_ns_ = -1;
   std::string old_name_;
   std::vector<int> original_cpus_;  // the haptic thread's CPUs before pinning; empty: not pinned
   struct LoweredThread {
