@@ -21,6 +21,10 @@
 //     every root, hence toi is a lower bound of the true first contact time.
 //  4. Every exit that is not "all boxes discarded" reports a contact: the heap overflowing and
 //     the iteration limit both answer "contact" with the smallest start time still kept.
+//  5. Before the bisection, a direction along which the two sides' swept hulls (each moving
+//     point stays in the hull of its start and end) are more than 2 x distance apart, rounding
+//     allowed for, proves no contact: every point of F then has |F| > 2 distance, which no box
+//     the bisection calls small (each axis within distance) can hold.
 // Degenerate inputs (coplanar, parallel, zero motion, contact at t = 0 or 1, zero-area
 // triangles, zero-length edges) need no special case: the argument above does not use
 // any normal, determinant or division. Non-finite input returns no contact and a flag.
@@ -33,12 +37,16 @@ namespace tacta::collision {
 struct CcdTolerance {
   double distance = 1e-6;            // m: stop refining once the image box of F is this small
   uint32_t max_iterations = 100000;  // boxes examined before answering "contact" anyway
+  // Before the bisection, look for a direction along which the two sides' swept hulls stay
+  // more than 2 x distance apart (inclusion_ccd.cpp: separated); off only to compare against.
+  bool separation_test = true;
 };
 
 struct CcdResult {
   bool hit = false;
   bool not_finite = false;  // input had NaN or infinity
   bool gave_up = false;     // limit or heap capacity reached: answered "contact" conservatively
+  uint32_t boxes = 0;       // parameter boxes the bisection examined (0: the separation test)
   double toi = 1.0;         // lower bound of the first contact time, fraction of the tick
   double u = 0.0, v = 0.0;  // parameters at the contact (vertex-face: weights of f1, f2)
 };

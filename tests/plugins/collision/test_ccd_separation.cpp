@@ -1,0 +1,94 @@
+// The inclusion CCD's separation test (inclusion_ccd.cpp: separated): it answers what the
+// bisection answers on every reference query, and settles resting and sliding contact (surfaces
+// a thickness apart along a tilted normal) without bisecting.
+#include <cmath>
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <string>
+
+#include "inclusion_ccd.hpp"
+#include "tacta/ccd_queries.hpp"
+
+namespace {
+
+using tacta::collision::CcdResult;
+using tacta::collision::CcdTolerance;
+using tacta::collision::edge_edge_inclusion;
+using tacta::collision::vertex_face_inclusion;
+
+CcdResult solve(const double* p, bool vertex_face, bool separation_test) {
+  CcdTolerance tolerance;
+  tolerance.separation_test = separation_test;
+  return vertex_face ? vertex_face_inclusion(p, tolerance) : edge_edge_inclusion(p, tolerance);
+}
+
+TEST(CcdSeparation, AnswersWhatTheBisectionAnswersOnEveryReferenceQuery) {
+  const auto queries = tacta::read_ccd_paths({std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd"});
+  ASSERT_EQ(queries.size(), 2824u);
+  int settled = 0;
+  for (const auto& q : queries) {
+    const CcdResult with = solve(q.points, q.vertex_face, true);
+    const CcdResult without = solve(q.points, q.vertex_face, false);
+    if (with.boxes == 0 && !with.hit) ++settled;
+    if (without.gave_up) continue;  // the bisection's conservative "contact": nothing to compare
+    ASSERT_EQ(with.hit, without.hit) << q.origin;
+    if (with.hit) {
+      EXPECT_EQ(with.toi, without.toi) << q.origin;
+      EXPECT_EQ(with.u, without.u) << q.origin;
+      EXPECT_EQ(with.v, without.v) << q.origin;
+    }
+  }
+  std::printf("separation test settled %d of %zu reference queries\n", settled, queries.size());
+  EXPECT_GT(settled, 0);
+}
+
+// A triangle tilted 30 degrees about x, a vertex sliding 1 mm over it at 0.1 mm along the normal
+// (a contact thickness): the coordinate axes do not separate them, the normal does.
+TEST(CcdSeparation, SettlesAVertexRestingOnATiltedFaceWithoutBisecting) {
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6), gap = 1e-4;
+  // Face points (x, y c, y s) for (x, y) in the plane; the normal is (0, -s, c).
+  const double face[9] = {0, 0, 0, 0.02, 0, 0, 0, 0.02 * c, 0.02 * s};
+  double p[24];
+  for (int end = 0; end < 2; ++end) {
+    const double x = 0.004 + 0.001 * end, y = 0.005;
+    double* q = p + 12 * end;
+    q[0] = x;
+    q[1] = y * c - gap * s;
+    q[2] = y * s + gap * c;
+    for (int k = 0; k < 9; ++k) q[3 + k] = face[k];
+  }
+  const CcdResult with = solve(p, true, true);
+  const CcdResult without = solve(p, true, false);
+  EXPECT_FALSE(with.hit);
+  EXPECT_FALSE(without.hit);
+  EXPECT_EQ(with.boxes, 0u);
+  EXPECT_GT(without.boxes, 1u);
+  std::printf("resting vertex: bisection %u boxes, separation test 0\n", without.boxes);
+}
+
+// Two crossing edges 0.1 mm apart along a tilted common normal, one sliding along the other.
+TEST(CcdSeparation, SettlesCrossingEdgesAThicknessApartWithoutBisecting) {
+  const double c = std::cos(M_PI / 5), s = std::sin(M_PI / 5), gap = 1e-4;
+  double p[24];
+  for (int end = 0; end < 2; ++end) {
+    double* q = p + 12 * end;
+    const double shift = 0.002 * end;
+    // Edge a along x in the tilted plane, edge b along the plane's other direction, lifted.
+    const double a[6] = {-0.01 + shift, 0, 0, 0.01 + shift, 0, 0};
+    const double b[6] = {0, -0.01 * c - gap * s, -0.01 * s + gap * c,
+                         0, 0.01 * c - gap * s,  0.01 * s + gap * c};
+    for (int k = 0; k < 6; ++k) {
+      q[k] = a[k];
+      q[6 + k] = b[k];
+    }
+  }
+  const CcdResult with = solve(p, false, true);
+  const CcdResult without = solve(p, false, false);
+  EXPECT_FALSE(with.hit);
+  EXPECT_FALSE(without.hit);
+  EXPECT_EQ(with.boxes, 0u);
+  EXPECT_GT(without.boxes, 1u);
+  std::printf("crossing edges: bisection %u boxes, separation test 0\n", without.boxes);
+}
+
+}  // namespace
