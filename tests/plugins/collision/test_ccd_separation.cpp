@@ -22,6 +22,18 @@ CcdResult solve(const double* p, bool vertex_face, bool separation_test) {
   return vertex_face ? vertex_face_inclusion(p, tolerance) : edge_edge_inclusion(p, tolerance);
 }
 
+// The query is settled by the separation test alone, and the bisection alone agrees (no contact)
+// after examining more than one box.
+void expect_settled_without_bisecting(const double* p, bool vertex_face, const char* label) {
+  const CcdResult with = solve(p, vertex_face, true);
+  const CcdResult without = solve(p, vertex_face, false);
+  EXPECT_FALSE(with.hit);
+  EXPECT_FALSE(without.hit);
+  EXPECT_EQ(with.boxes, 0u);
+  EXPECT_GT(without.boxes, 1u);
+  std::printf("%s: bisection %u boxes, separation test 0\n", label, without.boxes);
+}
+
 TEST(CcdSeparation, AnswersWhatTheBisectionAnswersOnEveryReferenceQuery) {
   const auto queries = tacta::read_ccd_paths({std::string(TACTA_SOURCE_DIR) + "/tests/data/ccd"});
   ASSERT_EQ(queries.size(), 2824u);
@@ -57,13 +69,7 @@ TEST(CcdSeparation, SettlesAVertexRestingOnATiltedFaceWithoutBisecting) {
     q[2] = y * s + gap * c;
     for (int k = 0; k < 9; ++k) q[3 + k] = face[k];
   }
-  const CcdResult with = solve(p, true, true);
-  const CcdResult without = solve(p, true, false);
-  EXPECT_FALSE(with.hit);
-  EXPECT_FALSE(without.hit);
-  EXPECT_EQ(with.boxes, 0u);
-  EXPECT_GT(without.boxes, 1u);
-  std::printf("resting vertex: bisection %u boxes, separation test 0\n", without.boxes);
+  expect_settled_without_bisecting(p, true, "resting vertex");
 }
 
 // Two crossing edges 0.1 mm apart along a tilted common normal, one sliding along the other.
@@ -82,13 +88,7 @@ TEST(CcdSeparation, SettlesCrossingEdgesAThicknessApartWithoutBisecting) {
       q[6 + k] = b[k];
     }
   }
-  const CcdResult with = solve(p, false, true);
-  const CcdResult without = solve(p, false, false);
-  EXPECT_FALSE(with.hit);
-  EXPECT_FALSE(without.hit);
-  EXPECT_EQ(with.boxes, 0u);
-  EXPECT_GT(without.boxes, 1u);
-  std::printf("crossing edges: bisection %u boxes, separation test 0\n", without.boxes);
+  expect_settled_without_bisecting(p, false, "crossing edges");
 }
 
 }  // namespace
