@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "tacta/vec3.hpp"
 
@@ -110,43 +111,58 @@ inline void difference(const double* p, int a, int b, double* d) noexcept {
   for (int k = 0; k < 3; ++k) d[k] = p[3 * a + k] - p[3 * b + k];
 }
 
-// Whether the two sides' swept hulls are more than `margin` apart along n. Every point of a side
-// during the tick (a vertex, a point of the face or an edge, linearly moving) lies in the convex
-// hull of that side's start and end points, so a gap between the projections onto n holds for
-// the whole tick. `slack` bounds the rounding of a projection per unit of |n|_1 (3 products and
-// 2 sums, each relative 2^-53, on coordinates up to `scale`).
+// Whether the two sides' swept hulls are more than `margin` apart along `direction`. Every point
+// of a side during the tick (a vertex, a point of the face or an edge, linearly moving) lies in
+// the convex hull of that side's start and end points, so a gap between the projections holds
+// for the whole tick. Any direction will do, rounded or not, as long as both sides use the same.
+// It is scaled by a power of two (exactly) to a largest component in [0.5, 1), so nothing
+// overflows on finite input short of the coordinates themselves; a projection that does not
+// stay finite proves nothing. The slack bounds the rounding of the projections (3 products and 2
+// sums each, relative 2^-53, on coordinates up to `scale`) and of their difference.
 template <size_t A, size_t B>
-bool apart_along(const double* p, const double* n, const int (&a)[A], const int (&b)[B],
+bool apart_along(const double* p, const double* direction, const int (&a)[A], const int (&b)[B],
                  double margin, double scale) noexcept {
-  const double n1 = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(length > 0.0)) return false;
+  const double largest =
+      std::max({std::abs(direction[0]), std::abs(direction[1]), std::abs(direction[2])});
+  if (!(largest > 0.0) || !std::isfinite(largest)) return false;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  double n[3];
+  for (int k = 0; k < 3; ++k) n[k] = std::ldexp(direction[k], -exponent);
   const auto project = [&](int i) {
     return p[3 * i] * n[0] + p[3 * i + 1] * n[1] + p[3 * i + 2] * n[2];
   };
   double a_low = project(a[0]), a_high = a_low;
+  double b_low = project(b[0]), b_high = b_low;
+  bool finite = std::isfinite(a_low) && std::isfinite(b_low);
   for (size_t i = 1; i < A; ++i) {
     const double x = project(a[i]);
+    finite = finite && std::isfinite(x);
     a_low = std::min(a_low, x);
     a_high = std::max(a_high, x);
   }
-  double b_low = project(b[0]), b_high = b_low;
   for (size_t i = 1; i < B; ++i) {
     const double x = project(b[i]);
+    finite = finite && std::isfinite(x);
     b_low = std::min(b_low, x);
     b_high = std::max(b_high, x);
   }
-  const double gap = 1.001 * margin * length + 2.0 * kErrorFactor * scale * n1;
+  if (!finite) return false;
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double n1 = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
+  const double gap = 1.001 * margin * length + 2.0 * kErrorFactor * scale * n1 +
+                     64.0 * std::numeric_limits<double>::denorm_min();
   return a_low - b_high > gap || b_low - a_high > gap;
 }
 
 // A cheap proof of no contact before the bisection: a direction along which the two swept hulls
-// stay more than twice the distance tolerance apart. The bisection reports a hit only for a box
-// whose image (each axis within `distance`) holds 0, i.e. |F| <= sqrt(3) distance, or when it
-// gives up; so this answers what the bisection answers, or "no contact" where it would have
-// given up on two primitives that never meet. Directions: the face's normal (vertex-face) or the
-// edges' cross product (edge-edge) at the start and at the end of the tick, the line between
-// the two sides' first points at the start, and for edges b's offset across edge a. Resting and sliding contact, primitives a thickness
+// stay more than twice the distance tolerance apart. The bisection calls a box small when its
+// image (each axis within `distance`) holds 0, i.e. |F| <= sqrt(3) distance; so this answers
+// what the bisection answers, except "no contact" where the bisection would have stopped at its
+// depth or iteration limit with a hit on primitives that stay more than 2 distance apart.
+// Directions: the face's normal (vertex-face) or the edges' cross product (edge-edge) at the
+// start and at the end of the tick, the line between the two sides' first points at the start,
+// and for edges b's offset across edge a. Resting and sliding contact, primitives a thickness
 // apart along a tilted normal, are what this catches: there the bisection refines for long.
 template <Kind K>
 bool separated(const double* p, double margin, double scale) noexcept {

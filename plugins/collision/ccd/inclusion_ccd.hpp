@@ -24,7 +24,8 @@
 //  5. Before the bisection, a direction along which the two sides' swept hulls (each moving
 //     point stays in the hull of its start and end) are more than 2 x distance apart, rounding
 //     allowed for, proves no contact: every point of F then has |F| > 2 distance, which no box
-//     the bisection calls small (each axis within distance) can hold.
+//     the bisection calls small (each axis within distance) can hold. The answer is the
+//     bisection's, except where it would have stopped at its limits on such a pair.
 // Degenerate inputs (coplanar, parallel, zero motion, contact at t = 0 or 1, zero-area
 // triangles, zero-length edges) need no special case: the argument above does not use
 // any normal, determinant or division. Non-finite input returns no contact and a flag.

@@ -42,16 +42,19 @@ TEST(CcdSeparation, AnswersWhatTheBisectionAnswersOnEveryReferenceQuery) {
     const CcdResult with = solve(q.points, q.vertex_face, true);
     const CcdResult without = solve(q.points, q.vertex_face, false);
     if (with.boxes == 0 && !with.hit) ++settled;
-    if (without.gave_up) continue;  // the bisection's conservative "contact": nothing to compare
-    ASSERT_EQ(with.hit, without.hit) << q.origin;
-    if (with.hit) {
-      EXPECT_EQ(with.toi, without.toi) << q.origin;
-      EXPECT_EQ(with.u, without.u) << q.origin;
-      EXPECT_EQ(with.v, without.v) << q.origin;
+    if (q.truth) {
+      ASSERT_TRUE(with.hit) << "missed contact at " << q.origin;
+    }
+    // Where the test does not settle a query the same bisection runs: only a settled query can
+    // differ, and it may only where the bisection stopped at its limits.
+    if (!without.gave_up) {
+      ASSERT_EQ(with.hit, without.hit) << q.origin;
     }
   }
   std::printf("separation test settled %d of %zu reference queries\n", settled, queries.size());
-  EXPECT_GT(settled, 0);
+  // A regression guard on our own count (1,946 when written): most of these hard queries are
+  // primitives near each other that a tilted direction separates.
+  EXPECT_GT(settled, static_cast<int>(queries.size()) / 2);
 }
 
 // A triangle tilted 30 degrees about x, a vertex sliding 1 mm over it at 0.1 mm along the normal
@@ -89,6 +92,44 @@ TEST(CcdSeparation, SettlesCrossingEdgesAThicknessApartWithoutBisecting) {
     }
   }
   expect_settled_without_bisecting(p, false, "crossing edges");
+}
+
+// Parallel edges (a structured mesh's diagonals, one surface resting on another) 0.1 mm apart,
+// one sliding along the other, neither along nor across a coordinate axis: no cross product to
+// go by, and the line between their first points runs mostly along them; b's offset across a
+// separates them.
+TEST(CcdSeparation, SettlesParallelEdgesAThicknessApartWithoutBisecting) {
+  const double gap = 1e-4;
+  const double along[3] = {0.6, 0.64, 0.48};  // the edges' direction (unit)
+  const double across = 1.0 / std::sqrt(0.64 * 0.64 + 0.6 * 0.6);
+  const double normal[3] = {0.64 * across, -0.6 * across, 0.0};  // unit, normal to `along`
+  double p[24];
+  for (int end = 0; end < 2; ++end) {
+    double* q = p + 12 * end;
+    const double slide = 0.003 * end;
+    const double a_from = 0.0, a_to = 0.02, b_from = 0.01 + slide, b_to = 0.03 + slide;
+    for (int k = 0; k < 3; ++k) {
+      q[k] = a_from * along[k];
+      q[3 + k] = a_to * along[k];
+      q[6 + k] = b_from * along[k] + gap * normal[k];
+      q[9 + k] = b_to * along[k] + gap * normal[k];
+    }
+  }
+  expect_settled_without_bisecting(p, false, "parallel edges");
+}
+
+// Coordinates near 1e162: the cross products overflow and the line between the sides, finite,
+// gives projections that do not stay finite. A vertex passing through a still triangle at t =
+// 2/3 is still a contact (a projection that overflows proves nothing).
+TEST(CcdSeparation, AHugeButFiniteQueryStillFindsItsContact) {
+  const double start[12] = {
+      0, 0, 0, -1e152, -1e152, 0, 1e162 - 1e152, -1e162 - 1e152, -2e161, -1e152, -1e152, 1e162};
+  double p[24];
+  for (int k = 0; k < 12; ++k) p[k] = p[12 + k] = start[k];
+  p[12] = 1e162;
+  p[13] = -(1e162 + 3e152);
+  p[14] = 0;
+  EXPECT_TRUE(solve(p, true, true).hit);
 }
 
 }  // namespace
