@@ -129,9 +129,7 @@ bool apart_along(const double* p, const double* direction, const int (&a)[A], co
   std::frexp(largest, &exponent);
   double n[3];
   for (int k = 0; k < 3; ++k) n[k] = std::ldexp(direction[k], -exponent);
-  const auto project = [&](int i) {
-    return p[3 * i] * n[0] + p[3 * i + 1] * n[1] + p[3 * i + 2] * n[2];
-  };
+  const auto project = [&](int i) { return dot(p + 3 * i, n); };
   double a_low = project(a[0]), a_high = a_low;
   double b_low = project(b[0]), b_high = b_low;
   bool finite = std::isfinite(a_low) && std::isfinite(b_low);
@@ -148,7 +146,7 @@ bool apart_along(const double* p, const double* direction, const int (&a)[A], co
     b_high = std::max(b_high, x);
   }
   if (!finite) return false;
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double length = std::sqrt(dot(n, n));
   const double n1 = std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]);
   const double gap = 1.001 * margin * length + 2.0 * kErrorFactor * scale * n1 +
                      64.0 * std::numeric_limits<double>::denorm_min();
@@ -166,9 +164,14 @@ bool apart_along(const double* p, const double* direction, const int (&a)[A], co
 // apart along a tilted normal, are what this catches: there the bisection refines for long.
 template <Kind K>
 bool separated(const double* p, double margin, double scale) noexcept {
-  double n[3], e1[3], e2[3];
-  for (int end = 0; end < 2; ++end) {
-    const int o = 4 * end;
+  const auto apart = [&](const double* n) {
+    if constexpr (K == Kind::kVertexFace)
+      return apart_along(p, n, kVertexSide, kFaceSide, margin, scale);
+    else
+      return apart_along(p, n, kEdgeASide, kEdgeBSide, margin, scale);
+  };
+  for (int o = 0; o <= 4; o += 4) {  // the start of the tick, then its end
+    double e1[3], e2[3];
     if constexpr (K == Kind::kVertexFace) {
       difference(p, o + 2, o + 1, e1);
       difference(p, o + 3, o + 1, e2);
@@ -176,33 +179,25 @@ bool separated(const double* p, double margin, double scale) noexcept {
       difference(p, o + 1, o + 0, e1);
       difference(p, o + 3, o + 2, e2);
     }
-    const Vec3 c = cross(e1, e2);
-    for (int k = 0; k < 3; ++k) n[k] = c[k];
-    const bool apart = K == Kind::kVertexFace
-                           ? apart_along(p, n, kVertexSide, kFaceSide, margin, scale)
-                           : apart_along(p, n, kEdgeASide, kEdgeBSide, margin, scale);
-    if (apart) return true;
+    if (apart(cross(e1, e2).data())) return true;
   }
+  double n[3];
   difference(p, 0, K == Kind::kVertexFace ? 1 : 2, n);
-  if constexpr (K == Kind::kVertexFace) {
-    return apart_along(p, n, kVertexSide, kFaceSide, margin, scale);
-  } else {
-    if (apart_along(p, n, kEdgeASide, kEdgeBSide, margin, scale)) return true;
+  if (apart(n)) return true;
+  if constexpr (K == Kind::kEdgeEdge) {
     // Parallel edges (a structured mesh's diagonals, one surface resting on another) have no
     // cross product to go by: take b's offset from edge a's line, across edge a (n = w |d|^2 -
     // (w . d) d), at the start and at the end of the tick.
-    for (int end = 0; end < 2; ++end) {
-      const int o = 4 * end;
+    for (int o = 0; o <= 4; o += 4) {
       double d[3], w[3];
       difference(p, o + 1, o + 0, d);
       difference(p, o + 2, o + 0, w);
-      const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      const double wd = w[0] * d[0] + w[1] * d[1] + w[2] * d[2];
+      const double dd = dot(d, d), wd = dot(w, d);
       for (int k = 0; k < 3; ++k) n[k] = w[k] * dd - wd * d[k];
-      if (apart_along(p, n, kEdgeASide, kEdgeBSide, margin, scale)) return true;
+      if (apart(n)) return true;
     }
-    return false;
   }
+  return false;
 }
 
 template <Kind K>
