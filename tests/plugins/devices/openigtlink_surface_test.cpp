@@ -133,6 +133,10 @@ TEST(OpenIgtlinkSurface, FourThousandTrianglesEveryFrameInLockstep) {
     EXPECT_EQ(client.points.size(), 3u * 2000u);
     EXPECT_NEAR(client.surface_time, k / 60.0, 1e-6);
   }
+  // The link counts a message once its send returns, which may be after the client has read
+  // it: wait for the count (up to 0.5 s) before reading it.
+  for (int i = 0; i < 5000 && link.counts().surfaces_out.load() < kFrames; ++i)
+    std::this_thread::sleep_for(100us);
   EXPECT_EQ(link.counts().surfaces_out.load(), static_cast<uint64_t>(kFrames));
   std::sort(ms.begin(), ms.end());
   std::printf(
