@@ -60,7 +60,24 @@ typedef struct tacta_host_services {
    * zeroed; only during create(). NULL when `bytes` is past what the engine grants. */
   void* (*scratch)(void* arena, size_t bytes);
   void* arena;
+  /* appended (read only when struct_size reaches it): how many threads a parallel_for called
+   * now, from this thread, can spread over: 1 while this thread runs one part of a split
+   * parallel_for of the same engine (a body stepped in a group, one body per job), else
+   * worker_count. It depends on where the call is made, never on timing, so a model may pick
+   * its code path by it each step and stay deterministic; the call may still run serially when
+   * another body holds the workers. */
+  uint32_t (*workers_here)(void* jobs);
 } tacta_host_services;
+
+/* Threads a parallel_for called now from this thread can spread over (see workers_here); an
+ * engine that predates the entry answers worker_count. */
+static inline uint32_t tacta_host_workers_here(const tacta_host_services* host) {
+  if (host == NULL) return 1;
+  if (host->struct_size < offsetof(tacta_host_services, workers_here) + sizeof host->workers_here ||
+      host->workers_here == NULL)
+    return host->worker_count;
+  return host->workers_here(host->jobs);
+}
 
 /* What create() receives. Everything is valid only during create() unless stated otherwise. */
 typedef struct tacta_model_setup {

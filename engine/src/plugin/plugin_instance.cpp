@@ -54,6 +54,7 @@ ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_mod
   services_.jobs = jobs;
   services_.scratch = &ScratchArena::allocate_entry;
   services_.arena = &arena_;
+  services_.workers_here = jobs != nullptr ? &JobPool::workers_here_entry : nullptr;
   tacta_model_setup setup = given;
   setup.struct_size = sizeof setup;
   setup.host = &services_;

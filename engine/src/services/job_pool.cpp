@@ -27,6 +27,23 @@ inline void cpu_relax() noexcept {
   asm volatile("yield");
 #endif
 }
+
+// The pool whose split job this thread is running a part of, if any (workers_here).
+thread_local const JobPool* splitting_here = nullptr;
+
+// Marks this thread as running a part of `pool`'s split job for its scope (nested: restored).
+class SplitMark {
+ public:
+  explicit SplitMark(const JobPool* pool) noexcept : outer_(splitting_here) {
+    splitting_here = pool;
+  }
+  ~SplitMark() { splitting_here = outer_; }
+  SplitMark(const SplitMark&) = delete;
+  SplitMark& operator=(const SplitMark&) = delete;
+
+ private:
+  const JobPool* outer_;
+};
 }  // namespace
 
 JobPool::JobPool(uint32_t threads) {
@@ -58,7 +75,10 @@ void JobPool::run_chunks(uint32_t job, uint32_t worker) noexcept {
     if (begin >= count) return;
     const uint32_t end = begin + std::min(grain, count - begin);
     if (!ticket_.compare_exchange_weak(ticket, (ticket & ~uint64_t{0xffffffff}) | end)) continue;
-    body(user, begin, end, worker);
+    {
+      const SplitMark mark(this);
+      body(user, begin, end, worker);
+    }
     if (done_.fetch_add(end - begin) + (end - begin) == count) done_.notify_one();
   }
 }
@@ -97,8 +117,13 @@ void JobPool::work(uint32_t worker) noexcept {
 void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user) noexcept {
   if (count == 0) return;
   grain = std::max<uint32_t>(grain, 1);
+  if (count <= grain) {  // one part: it runs alone, as the call's caller would
+    body(user, 0, count, 0);
+    return;
+  }
   bool expected = false;
-  if (workers_.empty() || count <= grain || !busy_.compare_exchange_strong(expected, true)) {
+  if (workers_.empty() || !busy_.compare_exchange_strong(expected, true)) {
+    const SplitMark mark(this);
     body(user, 0, count, 0);
     return;
   }
@@ -130,6 +155,12 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
     }
   }
   busy_.store(false);
+}
+
+uint32_t JobPool::workers_here() const noexcept { return splitting_here == this ? 1u : threads(); }
+
+uint32_t JobPool::workers_here_entry(void* jobs) {
+  return static_cast<const JobPool*>(jobs)->workers_here();
 }
 
 void JobPool::parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body,

@@ -33,6 +33,11 @@ class JobPool {
   void parallel_for(uint32_t count, uint32_t grain, Body body, void* user) noexcept;
   // The C entry of tacta_host_services (jobs = this).
   static void parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body, void* user);
+  // Threads a parallel_for called now from this thread can spread over: 1 inside a part of one
+  // of this pool's split jobs (count > grain, spread or run serially), else threads(). Set by
+  // the call's structure, not by timing (tacta_host_services::workers_here).
+  uint32_t workers_here() const noexcept;
+  static uint32_t workers_here_entry(void* jobs);
   // Workers that have parked (futex) since their last job, now; for tests.
   uint32_t parked() const noexcept { return parked_.load(); }
 

@@ -182,7 +182,8 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   const double h = dt;
   uint32_t result = TACTA_STEP_OK;
   polar_iterations_ = 0;
-  if (rows_.threaded()) {
+  const bool threaded = rows_.threaded();  // one path for the whole step (the solve's too)
+  if (threaded) {
     rows_.run([&](uint32_t, uint32_t begin, uint32_t end) {
       matrix_.zero_rows(begin, end);
       std::fill(forces_.begin() + 3 * std::ptrdiff_t{begin},
@@ -209,7 +210,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
     accumulate(e, frame, stiffness_scale, forces_.data());
   }
   double force2 = 0.0;
-  if (rows_.threaded()) {
+  if (threaded) {
     force2 = finish_system_threaded(state, h);
   } else {
     // The matrix holds h (beta + h) K now: its product with v is the rhs's stiffness and
@@ -223,7 +224,7 @@ uint32_t CorotationalFem::step(tacta_body_state& state, double dt) noexcept {
   const double floor = options_.force_scaled_tolerance ? h * std::sqrt(force2) : 0.0;
   last_solve_ = solver_->solve(matrix_, rhs_.data(), delta_v_.data(), false, floor);
   if (!last_solve_.converged) result |= TACTA_STEP_SOLVER_NOT_CONVERGED;
-  if (rows_.threaded()) {
+  if (threaded) {
     advance_threaded(state, h);
   } else {
     if (solver_->iterative() && options_.adaptive_guess) {

@@ -73,9 +73,9 @@ struct Options {
   // zeroing, its product with v, the mass and the held nodes, the rhs, the CG solve (block
   // Jacobi or Jacobi) and the update of the state, on fixed row chunks (sparse::RowTeam).
   const tacta_host_services* host = nullptr;
-  // Off by default: on the 2-CPU VM it was measured on, it made a threaded step slower
-  // (docs/BENCHMARKS.md, threads).
-  bool threaded_solve = false;
+  // Taken only in the steps the body has the workers to itself (RowTeam::threaded); in a group
+  // of bodies stepped one per thread the serial code runs, which is faster there.
+  bool threaded_solve = true;
 };
 
 struct StaticCounters {

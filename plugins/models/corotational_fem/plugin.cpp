@@ -50,11 +50,12 @@ class CorotationalFemPlugin {
                                    "and the step's force impulse h (|f_int|^2 + |f_ext|^2)^1/2 "
                                    "(forces), or the rhs norm alone, which near equilibrium is "
                                    "what is left of forces that cancel (rhs)"),
-                 sdk::bool_param("threaded_solve", false,
+                 sdk::bool_param("threaded_solve", true,
                                  "with scene threads >= 2 and 384+ nodes: the row passes and the "
                                  "(block) Jacobi CG on the engine's workers too, not only the "
-                                 "element pass (off: not yet faster on the 2-CPU VM measured, "
-                                 "docs/BENCHMARKS.md)")});
+                                 "element pass, in the steps the body has the workers to itself "
+                                 "(stepped in a group of bodies, one per thread, it runs the "
+                                 "serial solve)")});
 
   explicit CorotationalFemPlugin(const tacta_model_setup& setup) {
     const sdk::Params params(kParams, setup.params, setup.param_count);

@@ -40,7 +40,7 @@ ConjugateGradientSolver::ConjugateGradientSolver(const BlockSparseMatrix& patter
     incomplete_cholesky_ = std::make_unique<BlockIncompleteCholesky>(pattern);
   else
     team_ = RowTeam(host, pattern.node_count(), kMinThreadedNodes);
-  if (team_.threaded()) p_next_.assign(x_.size(), 0.0);
+  if (team_.may_thread()) p_next_.assign(x_.size(), 0.0);
 }
 
 void ConjugateGradientSolver::build_preconditioner(const BlockSparseMatrix& a) {

@@ -78,10 +78,9 @@ class RowTeam {
   static constexpr uint32_t kMaxChunks = 64;     // enough to balance 16 threads
 
   RowTeam() = default;
-  // Threaded when host offers parallel_for on two or more workers and rows >= min_rows;
-  // otherwise threaded() is false and the caller keeps its serial code.
-  RowTeam(const tacta_host_services* host, uint32_t rows, uint32_t min_rows)
-      : sums_(kMaxChunks) {
+  // May thread when host offers parallel_for on two or more workers and rows >= min_rows;
+  // otherwise threaded() is always false and the caller keeps its serial code.
+  RowTeam(const tacta_host_services* host, uint32_t rows, uint32_t min_rows) : sums_(kMaxChunks) {
     if (host == nullptr || host->worker_count < 2 || host->parallel_for == nullptr ||
         rows < min_rows)
       return;
@@ -94,8 +93,16 @@ class RowTeam {
       bounds_[c] = static_cast<uint32_t>(uint64_t{rows} * c / chunks);
   }
 
-  bool threaded() const { return host_ != nullptr; }
-  uint32_t chunks() const { return bounds_.empty() ? 0 : static_cast<uint32_t>(bounds_.size() - 1); }
+  // The threaded code is for this call: two or more workers are offered and can spread from
+  // here. Inside one job of a split parallel_for (a body stepped in a group) the serial code
+  // runs instead: the threaded code run serially reads each block twice and is slower. Stable
+  // within a step, and fixed by the scene's structure, not by timing (workers_here).
+  bool threaded() const { return host_ != nullptr && tacta_host_workers_here(host_) > 1; }
+  // Whether threaded() can ever be true (buffers the threaded code needs are sized for it).
+  bool may_thread() const { return host_ != nullptr; }
+  uint32_t chunks() const {
+    return bounds_.empty() ? 0 : static_cast<uint32_t>(bounds_.size() - 1);
+  }
 
   // f(chunk, first_row, end_row) for every chunk, on the host's workers and the caller, each
   // worker its own run of chunks first (OwnedSplit); returns when every chunk has run. f writes

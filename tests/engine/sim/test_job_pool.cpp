@@ -1,8 +1,8 @@
 // The engine's job pool (host services' parallel_for): every index runs exactly once on any
 // thread count and grain, the chunks really spread over workers, a second caller while a job
-// runs is served serially on its own thread, idle workers park after their spin and wake for
-// the next job, and the scratch arena hands out aligned zeroed blocks up to its limit. Runs
-// under ThreadSanitizer (label tsan).
+// runs is served serially on its own thread, workers_here is 1 only inside a split job's parts,
+// idle workers park after their spin and wake for the next job, and the scratch arena hands out
+// aligned zeroed blocks up to its limit. Runs under ThreadSanitizer (label tsan).
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -66,6 +66,57 @@ TEST(JobPool, TwoCallersAtOnceBothFinish) {
     ASSERT_EQ(a.hits[i].load(), 20);
     ASSERT_EQ(b.hits[i].load(), 20);
   }
+}
+
+// How many parts of a job saw workers_here() as 1, and how many as the pool's threads.
+struct WorkersSeen {
+  const tacta::JobPool* pool = nullptr;
+  std::atomic<uint32_t> one{0}, all{0};
+};
+
+void note_workers_here(void* user, uint32_t, uint32_t, uint32_t) {
+  auto& seen = *static_cast<WorkersSeen*>(user);
+  const uint32_t here = seen.pool->workers_here();
+  if (here == 1) seen.one.fetch_add(1);
+  if (here == seen.pool->threads()) seen.all.fetch_add(1);
+  std::this_thread::yield();
+}
+
+TEST(JobPool, WorkersHereIsOneOnlyInsideTheSplitJobsParts) {
+  tacta::JobPool pool(3), other(3);
+  EXPECT_EQ(pool.workers_here(), 3u);
+  WorkersSeen split{&pool}, alone{&pool}, busy{&pool}, foreign{&pool};
+  pool.parallel_for(64, 1, &note_workers_here, &split);  // spread: caller and workers
+  EXPECT_EQ(split.one.load(), 64u);
+  pool.parallel_for(1, 1, &note_workers_here, &alone);  // one part: it has the workers
+  EXPECT_EQ(alone.all.load(), 1u);
+  // A split job run serially because another caller holds the workers is still split: the
+  // answer follows the call, not the timing.
+  std::atomic<bool> held{false}, release{false};
+  std::thread holder([&] {
+    struct Hold {
+      std::atomic<bool>* held;
+      std::atomic<bool>* release;
+    } hold{&held, &release};
+    pool.parallel_for(
+        2, 1,
+        [](void* user, uint32_t, uint32_t, uint32_t) {
+          auto& h = *static_cast<Hold*>(user);
+          h.held->store(true);
+          while (!h.release->load()) std::this_thread::yield();
+        },
+        &hold);
+  });
+  while (!held.load()) std::this_thread::yield();
+  pool.parallel_for(8, 1, &note_workers_here, &busy);
+  release.store(true);
+  holder.join();
+  EXPECT_EQ(busy.one.load(), 1u);  // one serial run of all 8
+  EXPECT_EQ(busy.all.load(), 0u);
+  // Another pool's job does not take this pool's workers.
+  other.parallel_for(8, 1, &note_workers_here, &foreign);
+  EXPECT_EQ(foreign.all.load(), 8u);
+  EXPECT_EQ(pool.workers_here(), 3u);
 }
 
 TEST(JobPool, IdleWorkersSpinThenParkAndWakeForTheNextJob) {

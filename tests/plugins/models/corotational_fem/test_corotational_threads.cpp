@@ -1,7 +1,8 @@
 // The threaded paths (issue: every core used): the row-range products equal the serial ones to
 // rounding; the threaded CG and a threaded corotational step equal the serial ones to rounding,
 // repeat bit for bit at a fixed thread count and give the same bits on 2 and 3 threads (the row
-// chunks and the colouring do not depend on the count); a threaded step allocates nothing.
+// chunks and the colouring do not depend on the count); a threaded step allocates nothing; a body
+// stepped in a group (one body per job) runs the serial solve, bit for bit.
 // The host services are the engine's JobPool, as the engine hands them to a plugin.
 #include <algorithm>
 #include <cmath>
@@ -29,6 +30,7 @@ struct Host {
     services.worker_count = pool.threads();
     services.parallel_for = &JobPool::parallel_for_entry;
     services.jobs = &pool;
+    services.workers_here = &JobPool::workers_here_entry;
   }
   JobPool pool;
   tacta_host_services services{};
@@ -51,11 +53,11 @@ struct KickedBox {
     material.rayleigh_stiffness = 0.01;
   }
   // Positions after `steps` steps with the given host (null: serial).
-  std::vector<double> run(const tacta_host_services* host, int steps = 30,
-                          bool* threaded = nullptr) const {
+  std::vector<double> run(const tacta_host_services* host, int steps = 30, bool* threaded = nullptr,
+                          bool threaded_solve = true) const {
     Options options;
     options.host = host;
-    options.threaded_solve = true;
+    options.threaded_solve = threaded_solve;
     auto model = make_model(mesh, material, options);
     if (threaded) *threaded = model->threaded();
     BodyState body(mesh);
@@ -65,6 +67,19 @@ struct KickedBox {
     for (int i = 0; i < steps; ++i)
       EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
     return body.positions;
+  }
+};
+
+// Two boxes stepped as the engine steps a group: one body per part of one parallel_for on the
+// pool, so each model's own parallel_for runs serially inside its part.
+struct GroupedBoxes {
+  const KickedBox& box;
+  const tacta_host_services* host;
+  std::vector<double> positions[2];
+  bool threaded[2] = {true, true};
+  static void step_one(void* user, uint32_t begin, uint32_t end, uint32_t) {
+    auto& g = *static_cast<GroupedBoxes*>(user);
+    for (uint32_t b = begin; b < end; ++b) g.positions[b] = g.box.run(g.host, 30, &g.threaded[b]);
   }
 };
 
@@ -198,8 +213,8 @@ TEST(ThreadedConjugateGradient, SmallSystemsAndIncompleteCholeskyStaySerial) {
   EXPECT_FALSE(ConjugateGradientSolver(a, Preconditioner::kBlockJacobi, 25, 1e-5, 1, &two.services)
                    .threaded());
   BoxSystem system;
-  EXPECT_FALSE(ConjugateGradientSolver(system.matrix, Preconditioner::kIncompleteCholesky, 25,
-                                       1e-5, 1, &two.services)
+  EXPECT_FALSE(ConjugateGradientSolver(system.matrix, Preconditioner::kIncompleteCholesky, 25, 1e-5,
+                                       1, &two.services)
                    .threaded());
   Host one(1);
   EXPECT_FALSE(ConjugateGradientSolver(system.matrix, Preconditioner::kBlockJacobi, 25, 1e-5, 1,
@@ -227,10 +242,30 @@ TEST(ThreadedCorotational, EqualsSerialToRoundingAndRepeatsBitForBit) {
   EXPECT_LT(difference, 1e-8 * displacement) << difference << " of " << displacement;
   EXPECT_EQ(box.run(&two.services), on_two) << "two threads, twice";
   EXPECT_EQ(box.run(&three.services), on_two) << "two and three threads";
-  // Without threaded_solve (the default) only the element pass goes to the workers.
+  // With threaded_solve off only the element pass goes to the workers.
   Options colours_only;
   colours_only.host = &two.services;
+  colours_only.threaded_solve = false;
   EXPECT_FALSE(make_model(box.mesh, box.material, colours_only)->threaded());
+}
+
+TEST(ThreadedCorotational, ABodySteppedInAGroupRunsTheSerialSolveBitForBit) {
+  KickedBox box;
+  Host two(2);
+  const std::vector<double> colours_only = box.run(&two.services, 30, nullptr, false);
+  GroupedBoxes group{box, &two.services, {}};
+  two.pool.parallel_for(2, 1, &GroupedBoxes::step_one, &group);
+  for (int b = 0; b < 2; ++b) {
+    EXPECT_FALSE(group.threaded[b]) << b;
+    // The element pass's colouring is the same, the solve is the serial one: the same bits as
+    // threaded_solve off, whichever thread the part ran on.
+    EXPECT_EQ(group.positions[b], colours_only) << b;
+  }
+  // Alone (a group of one), the body has the workers again.
+  GroupedBoxes alone{box, &two.services, {}};
+  two.pool.parallel_for(1, 1, &GroupedBoxes::step_one, &alone);
+  EXPECT_TRUE(alone.threaded[0]);
+  EXPECT_EQ(alone.positions[0], box.run(&two.services)) << "alone: the threaded solve's bits";
 }
 
 TEST(ThreadedCorotational, StepsWithoutAllocating) {
