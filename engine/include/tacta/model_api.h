@@ -62,7 +62,8 @@ typedef struct tacta_host_services {
   void* arena;
   /* appended (read only when struct_size reaches it): how many threads a parallel_for called
    * now, from this thread, can spread over: 1 while this thread runs one part of a split
-   * parallel_for of the same engine (a body stepped in a group, one body per job), else
+   * parallel_for of the same engine (a body stepped in a group, one body per job) or steps a
+   * body on a thread of its own (which shares the workers with the tick's bodies), else
    * worker_count. It depends on where the call is made, never on timing, so a model may pick
    * its code path by it each step and stay deterministic; the call may still run serially when
    * another body holds the workers. */

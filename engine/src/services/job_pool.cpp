@@ -30,6 +30,7 @@ inline void cpu_relax() noexcept {
 
 // The pool whose split job this thread is running a part of, if any (workers_here).
 thread_local const JobPool* splitting_here = nullptr;
+thread_local bool serial_thread = false;  // keep_serial_on_this_thread was called
 
 // Marks this thread as running a part of `pool`'s split job for its scope (nested: restored).
 class SplitMark {
@@ -157,7 +158,11 @@ void JobPool::parallel_for(uint32_t count, uint32_t grain, Body body, void* user
   busy_.store(false);
 }
 
-uint32_t JobPool::workers_here() const noexcept { return splitting_here == this ? 1u : threads(); }
+uint32_t JobPool::workers_here() const noexcept {
+  return serial_thread || splitting_here == this ? 1u : threads();
+}
+
+void JobPool::keep_serial_on_this_thread() noexcept { serial_thread = true; }
 
 uint32_t JobPool::workers_here_entry(void* jobs) {
   return static_cast<const JobPool*>(jobs)->workers_here();

@@ -34,10 +34,15 @@ class JobPool {
   // The C entry of tacta_host_services (jobs = this).
   static void parallel_for_entry(void* jobs, uint32_t count, uint32_t grain, Body body, void* user);
   // Threads a parallel_for called now from this thread can spread over: 1 inside a part of one
-  // of this pool's split jobs (count > grain, spread or run serially), else threads(). Set by
-  // the call's structure, not by timing (tacta_host_services::workers_here).
+  // of this pool's split jobs (count > grain, spread or run serially) or on a thread that keeps
+  // serial, else threads(). Set by the call's structure, not by timing
+  // (tacta_host_services::workers_here).
   uint32_t workers_here() const noexcept;
   static uint32_t workers_here_entry(void* jobs);
+  // For the rest of the calling thread's life workers_here answers 1 on it: a body stepping on a
+  // thread of its own (BodyWorker) beside the tick's bodies keeps its serial solve rather than
+  // holding the workers they share for a whole step (a threaded CG takes them ~50 times a step).
+  static void keep_serial_on_this_thread() noexcept;
   // Workers that have parked (futex) since their last job, now; for tests.
   uint32_t parked() const noexcept { return parked_.load(); }
 

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <pthread.h>
 
+#include "services/job_pool.hpp"
+
 namespace tacta {
 
 BodyWorker::BodyWorker(const SoftBody& body, const Vec3& gravity, bool wait_at_boundaries,
@@ -115,6 +117,7 @@ void BodyWorker::post(double time, double dt) noexcept {
 }
 
 void BodyWorker::run() noexcept {
+  JobPool::keep_serial_on_this_thread();  // the tick's bodies share the workers (JobPool)
   uint32_t seen = done_.load(std::memory_order_relaxed);
   for (;;) {
     posted_.wait(seen, std::memory_order_acquire);

@@ -1,8 +1,9 @@
 // The engine's job pool (host services' parallel_for): every index runs exactly once on any
 // thread count and grain, the chunks really spread over workers, a second caller while a job
-// runs is served serially on its own thread, workers_here is 1 only inside a split job's parts,
-// idle workers park after their spin and wake for the next job, and the scratch arena hands out
-// aligned zeroed blocks up to its limit. Runs under ThreadSanitizer (label tsan).
+// runs is served serially on its own thread, workers_here is 1 inside a split job's parts and
+// on serial threads, idle workers park after their spin and wake for the next job, and the
+// scratch arena hands out aligned zeroed blocks up to its limit. Runs under ThreadSanitizer
+// (label tsan).
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -82,7 +83,7 @@ void note_workers_here(void* user, uint32_t, uint32_t, uint32_t) {
   std::this_thread::yield();
 }
 
-TEST(JobPool, WorkersHereIsOneOnlyInsideTheSplitJobsParts) {
+TEST(JobPool, WorkersHereIsOneInsideTheSplitJobsPartsAndOnSerialThreads) {
   tacta::JobPool pool(3), other(3);
   EXPECT_EQ(pool.workers_here(), 3u);
   WorkersSeen split{&pool}, alone{&pool}, busy{&pool}, foreign{&pool};
@@ -117,6 +118,16 @@ TEST(JobPool, WorkersHereIsOneOnlyInsideTheSplitJobsParts) {
   other.parallel_for(8, 1, &note_workers_here, &foreign);
   EXPECT_EQ(foreign.all.load(), 8u);
   EXPECT_EQ(pool.workers_here(), 3u);
+  // A thread that keeps serial (a body on its own thread) is answered 1 by every pool.
+  uint32_t on_serial_thread[2] = {0, 0};
+  std::thread([&] {
+    tacta::JobPool::keep_serial_on_this_thread();
+    on_serial_thread[0] = pool.workers_here();
+    on_serial_thread[1] = other.workers_here();
+  }).join();
+  EXPECT_EQ(on_serial_thread[0], 1u);
+  EXPECT_EQ(on_serial_thread[1], 1u);
+  EXPECT_EQ(pool.workers_here(), 3u) << "only that thread";
 }
 
 TEST(JobPool, IdleWorkersSpinThenParkAndWakeForTheNextJob) {

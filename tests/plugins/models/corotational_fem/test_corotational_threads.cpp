@@ -6,6 +6,7 @@
 // The host services are the engine's JobPool, as the engine hands them to a plugin.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <gtest/gtest.h>
 #include <memory>
 #include <vector>
@@ -266,6 +267,61 @@ TEST(ThreadedCorotational, ABodySteppedInAGroupRunsTheSerialSolveBitForBit) {
   two.pool.parallel_for(1, 1, &GroupedBoxes::step_one, &alone);
   EXPECT_TRUE(alone.threaded[0]);
   EXPECT_EQ(alone.positions[0], box.run(&two.services)) << "alone: the threaded solve's bits";
+}
+
+// One model stepped alone, then inside a part of a split job, then alone again: each step asks
+// where it runs (the threaded solve alone, the serial one in the part), and the mixed run
+// repeats bit for bit and stays within rounding of the threaded one.
+struct SwitchingRun {
+  const KickedBox& box;
+  Host& host;
+  bool threaded_alone = false, threaded_in_part = true;
+  std::vector<double> run() {
+    Options options;
+    options.host = &host.services;
+    auto model = make_model(box.mesh, box.material, options);  // threaded_solve by default
+    BodyState body(box.mesh);
+    body.add_gravity(box.mesh, {0.0, -9.81, 0.0});
+    body.kick_sideways(box.mesh, 3.0);
+    model->begin(body.state, 1e-3);
+    const auto steps = [&](int n) {
+      for (int i = 0; i < n; ++i)
+        EXPECT_EQ(model->step(body.state, 1e-3) & TACTA_STEP_FAULT_MASK, 0u);
+    };
+    steps(10);
+    threaded_alone = model->threaded();
+    std::function<void()> in_part = [&] {
+      threaded_in_part = model->threaded();
+      steps(10);
+    };
+    host.pool.parallel_for(
+        2, 1,
+        [](void* user, uint32_t begin, uint32_t, uint32_t) {
+          if (begin == 0) (*static_cast<std::function<void()>*>(user))();  // 1: another body's
+        },
+        &in_part);
+    steps(10);
+    return body.positions;
+  }
+};
+
+TEST(ThreadedCorotational, EachStepTakesThePathOfWhereItRuns) {
+  KickedBox box;
+  Host two(2);
+  SwitchingRun switching{box, two};
+  const std::vector<double> mixed = switching.run();
+  EXPECT_TRUE(switching.threaded_alone);
+  EXPECT_FALSE(switching.threaded_in_part);
+  SwitchingRun again{box, two};
+  EXPECT_EQ(again.run(), mixed) << "repeats bit for bit";
+  const std::vector<double> threaded = box.run(&two.services);
+  EXPECT_NE(mixed, threaded) << "the middle steps ran the serial solve";
+  double difference = 0.0, displacement = 0.0;
+  for (size_t k = 0; k < mixed.size(); ++k) {
+    difference = std::max(difference, std::abs(mixed[k] - threaded[k]));
+    displacement = std::max(displacement, std::abs(threaded[k] - box.mesh.positions[k]));
+  }
+  EXPECT_LT(difference, 1e-8 * displacement) << difference << " of " << displacement;
 }
 
 TEST(ThreadedCorotational, StepsWithoutAllocating) {
