@@ -122,14 +122,21 @@ class CollisionContext {
     proxy_slices_ = c[2];
   }
   // Before the haptic proxy's queries: with collision.proxy_refit sliced (and a broad phase that
-  // offers update_elements) one slice of each surface is refit and the queries are widened by
-  // what the rest may have moved (SurfaceFreshness); an embedded surface's vertices are brought
-  // up to date only where a query looks (the patch near the tool). Otherwise a whole refit.
+  // offers update_elements) the margins take in what moved since the last upkeep_for_proxy
+  // (which refits the slices, after the write), the queries are widened by what the surface may
+  // have moved (SurfaceFreshness), and a margin past its cap refits whole; an embedded surface's
+  // vertices are brought up to date only where a query looks (the patch near the tool).
+  // Otherwise a whole refit.
   // The vertices made current stay so for the rest of this pass only because nothing moves a
   // node between this call and the proxy's last query of the tick (the reaction only adds
   // contact forces; the step and the response come after): a query made later in the tick must
   // call this again first.
   void refit_for_proxy(double time, double dt) noexcept;
+  // After the tick's device write, off the haptic path (`time`: the next tick's start, s): the
+  // sliced hierarchies follow what the tick moved (a slice while a margin is past its target, up
+  // to four while past half its cap; a whole refit past the cap). The queries answer alike
+  // whenever the slices are refit: they are widened by the margin.
+  void upkeep_for_proxy(double time, double dt) noexcept;
   // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
   // that brought embedded vertices up to date for them; for the tick breakdown.
   double query_ms() const noexcept { return query_ms_; }
@@ -141,6 +148,8 @@ class CollisionContext {
   // any whose margin passed its cap), and slices refit, since load.
   uint64_t proxy_whole_refits() const noexcept { return proxy_whole_refits_; }
   uint64_t proxy_slices() const noexcept { return proxy_slices_; }
+  // Of those, the slices upkeep_for_proxy refit (after the write) since load; for tests.
+  uint64_t proxy_upkeep_slices() const noexcept { return proxy_upkeep_slices_; }
   // The proxy's hierarchies are refit by slices (collision.proxy_refit sliced, and a broad phase
   // serving the proxy that offers it); false: whole, every tick.
   bool proxy_sliced() const noexcept { return sliced_; }
@@ -180,6 +189,11 @@ class CollisionContext {
   // and an embedded surface's vertices the query can reach are made current, or (a proxy plugin
   // with TACTA_COLLISION_PROXY_MAKES_CURRENT) will be as it reads them, by make_current_entry.
   void prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept;
+  // The margins take in the nodes' moves and up to max_slices of the stalest slices are refit;
+  // false: a whole refit is needed (not built yet, a margin past its cap, a hierarchy that
+  // cannot refit in part).
+  bool refit_slices(double time, double dt, int max_slices) noexcept;
+  void refit_whole_for_proxy(double time, double dt) noexcept;
   static void make_current_entry(void* context, uint32_t surface, uint32_t triangle) noexcept;
   // The query over `box` is answered from the surface's patch, gathered again first when it does
   // not cover the box; false: from the hierarchy (the patch would hold too many triangles).
@@ -259,7 +273,7 @@ class CollisionContext {
   uint64_t proxy_pass_ = 0;                    // refit_for_proxy calls, for vertex freshness
   double query_ms_ = 0, patch_ms_ = 0;
   uint32_t raised_bits_ = 0;  // see take_bits()
-  uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0;
+  uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0, proxy_upkeep_slices_ = 0;
   std::vector<int> body_of_surface_;
   std::vector<std::unique_ptr<CollisionInstance>> instances_;  // broad, narrow, convex (as named)
   std::vector<tacta_collision_pair> pairs_;

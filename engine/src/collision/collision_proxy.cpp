@@ -14,7 +14,7 @@
 namespace tacta {
 
 namespace {
-constexpr int kMaxSlicesPerTick = 4;  // while the margin is past half its cap
+constexpr int kMaxSlicesPerTick = 4;  // while the margin is past half its cap (the upkeep's)
 }  // namespace
 
 void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
@@ -27,6 +27,25 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     refit(time, dt);
     return;
   }
+  // The slices are the upkeep's, after the last tick's write: here only what moved since counts
+  // (a body's step taken in from its own thread), and a margin past its cap refits whole.
+  if (!refit_slices(time, dt, 0)) refit_whole_for_proxy(time, dt);
+}
+
+void CollisionContext::upkeep_for_proxy(double time, double dt) noexcept {
+  if (!sliced_ || !refitted_once_) return;  // refit whole every tick, or not built yet
+  const uint64_t before = proxy_slices_;
+  if (!refit_slices(time, dt, kMaxSlicesPerTick)) refit_whole_for_proxy(time, dt);
+  proxy_upkeep_slices_ += proxy_slices_ - before;
+}
+
+void CollisionContext::refit_whole_for_proxy(double time, double dt) noexcept {
+  ++proxy_whole_refits_;
+  refitted_once_ = false;  // a whole refit, whatever moved (the margin restarts from it)
+  refit(time, dt);
+}
+
+bool CollisionContext::refit_slices(double time, double dt, int max_slices) noexcept {
   bool whole = !refitted_once_;
   for (uint32_t k = 0; k < view_.surface_count; ++k) {
     if (!surface_present(k)) {  // its moves are not followed while it is away
@@ -35,43 +54,37 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     } else if (!whole &&
                !freshness_[k].advance(
                    world_.body_nodes(static_cast<size_t>(body_of_surface_[k])).positions.data())) {
-      whole = true;
+      whole = true;  // a margin past its cap
     }
   }
-  if (!whole) {
-    sync_tools();
-    view_.time = time;
-    view_.dt = dt;
-    for (uint32_t k = 0; k < view_.surface_count && !whole; ++k) {
-      if (!surface_present(k)) continue;
-      uint32_t first = 0, count = 0, total = 0;
-      const uint32_t* order = nullptr;
-      if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
-          total != surfaces_[k].triangle_count) {
-        whole = true;  // no hierarchy yet, or one over other elements than triangles (tets)
-        break;
-      }
-      // One slice a tick while the margin is past its target, up to kMaxSlicesPerTick while a
-      // fast body keeps it there: the cost follows the motion, and a whole refit (a spike of
-      // the whole surface's cost) waits for motion faster than that.
-      for (int n = 0; n < kMaxSlicesPerTick && !whole; ++n) {
-        freshness_[k].next_slice(first, count);
-        if (count == 0) break;
-        if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
-          e->refresh_triangles(order + first, count, proxy_pass_);
-        // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
-        const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
-        raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};
-        if (bits & TACTA_COLLIDE_UNPREPARED) whole = true;
-        ++proxy_slices_;
-        if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
-      }
+  if (whole) return false;
+  sync_tools();
+  view_.time = time;
+  view_.dt = dt;
+  for (uint32_t k = 0; k < view_.surface_count; ++k) {
+    if (!surface_present(k)) continue;
+    uint32_t first = 0, count = 0, total = 0;
+    const uint32_t* order = nullptr;
+    if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
+        total != surfaces_[k].triangle_count)
+      return false;  // no hierarchy yet, or one over other elements than triangles (tets)
+    // One slice while the margin is past its target, up to max_slices while a fast body keeps
+    // it past half its cap: the cost follows the motion, and a whole refit (a spike of the
+    // whole surface's cost) waits for motion faster than that.
+    for (int n = 0; n < max_slices; ++n) {
+      freshness_[k].next_slice(first, count);
+      if (count == 0) break;
+      if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
+        e->refresh_triangles(order + first, count, proxy_pass_);
+      // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
+      const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
+      raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};
+      if (bits & TACTA_COLLIDE_UNPREPARED) return false;
+      ++proxy_slices_;
+      if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
     }
-    if (!whole) return;
   }
-  ++proxy_whole_refits_;
-  refitted_once_ = false;  // a whole refit, whatever moved (the margin restarts from it)
-  refit(time, dt);
+  return true;
 }
 
 void CollisionContext::make_current_entry(void* context, uint32_t surface,

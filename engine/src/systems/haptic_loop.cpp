@@ -54,8 +54,8 @@ void HapticLoop::reserve(size_t expected_ticks, double duration_s) {
 }
 
 const char* HapticLoop::stage_name(int stage) noexcept {
-  static const char* const names[kStageCount] = {"device_read", "haptics", "models",
-                                                 "collision_response", "device_write"};
+  static const char* const names[kStageCount] = {
+      "device_read", "haptics", "models", "collision_response", "device_write", "surface_upkeep"};
   return stage >= 0 && stage < kStageCount ? names[stage] : "?";
 }
 
@@ -138,12 +138,16 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   write_devices(world_, *this, time + dt, time, !healthy, device_log_.get());
   if (haptics_ != nullptr) haptics_->after_write(world_);
   record(time + dt);
+  const auto write_done = Clock::now();
+  // The force is out: the hierarchies' upkeep for the next tick's queries waits no device.
+  if (haptics_ != nullptr) haptics_->upkeep_surfaces(time + dt, dt);
   const auto end = Clock::now();
   stages_[kDeviceRead].record(ms(start, read_done));
   stages_[kHaptics].record(ms(read_done, haptics_done));
   stages_[kModels].record(ms(haptics_done, models_done));
   stages_[kResponse].record(ms(models_done, response_done));
-  stages_[kDeviceWrite].record(ms(response_done, end));
+  stages_[kDeviceWrite].record(ms(response_done, write_done));
+  stages_[kSurfaceUpkeep].record(ms(write_done, end));
   last_tick_ms_ = ms(start, end);
   last_status_.error =
       last_status_.error || has_error_bit(StatusSource::Collision, last_status_.collision_bits);

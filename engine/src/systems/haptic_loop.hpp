@@ -94,7 +94,15 @@ class HapticLoop final : public HapticTask, private TickEvents {
   static Snapshot make_prototype(World& world);
 
   // Where a tick's time goes (ms per tick, every tick), for report.json's tick_breakdown_ms.
-  enum Stage { kDeviceRead, kHaptics, kModels, kResponse, kDeviceWrite, kStageCount };
+  enum Stage {
+    kDeviceRead,
+    kHaptics,
+    kModels,
+    kResponse,
+    kDeviceWrite,
+    kSurfaceUpkeep,  // after the write: the proxy's hierarchies follow the tick's motion
+    kStageCount
+  };
   static const char* stage_name(int stage) noexcept;
   const TickRecorder& stage(int s) const { return stages_[s]; }
   // The haptics stage's parts (HapticParts, in that order), each tick.

@@ -103,6 +103,18 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   EXPECT_EQ(whole.collision->proxy_whole_refits(), ticks);
 }
 
+// The slices are refit after the device write, for the next tick: on the demo nothing moves a
+// node between ticks, so the haptic stage's own pass refits none (every slice is the upkeep's),
+// and the touch is the same as with the refit every tick (above).
+TEST(ProxyRefit, SlicesAreRefitAfterTheWriteNotInTheHapticStage) {
+  ProxyRun run("sliced", {}, 1500);
+  for (int k = 0; k < 1500; ++k) run.tick();
+  const CollisionContext& c = *run.collision;
+  EXPECT_GT(c.proxy_slices(), 100u);  // the liver settles, is pressed and let go
+  EXPECT_EQ(c.proxy_upkeep_slices(), c.proxy_slices()) << "none left to the haptic stage";
+  EXPECT_EQ(c.proxy_whole_refits(), 1u) << "the first tick's build only";
+}
+
 TEST(ProxyRefit, SlicedTouchesTheEmbeddedLiverAsAWholeRefitDoes) {
   expect_same_touch({}, 2600, true);  // two presses and the travel between them
 }
