@@ -27,8 +27,8 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     refit(time, dt);
     return;
   }
-  // The slices are the upkeep's, after the last tick's write: here only what moved since counts
-  // (a body's step taken in from its own thread), and a margin past its cap refits whole.
+  // The slices are the upkeep's, after the last tick's write: here the margins take in what
+  // moved since (nothing, in a tick as the loop runs it), and a margin past its cap refits whole.
   if (!refit_slices(time, dt, 0)) refit_whole_for_proxy(time, dt);
 }
 
@@ -74,8 +74,10 @@ bool CollisionContext::refit_slices(double time, double dt, int max_slices) noex
     for (int n = 0; n < max_slices; ++n) {
       freshness_[k].next_slice(first, count);
       if (count == 0) break;
+      // Still the tick's pass, but after its step: the vertices its queries made current have
+      // moved since, and the slice's boxes need them where they are now.
       if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
-        e->refresh_triangles(order + first, count, proxy_pass_);
+        e->refresh_triangles(order + first, count, proxy_pass_, true);
       // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
       const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
       raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};

@@ -64,8 +64,8 @@ void EmbeddedCollisionSurface::refresh_from(const double* node_start, const doub
 }
 
 void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint32_t count,
-                                                 uint64_t pass) noexcept {
-  if (pass != nodes_pass_ || nodes_end_ == nullptr) {
+                                                 uint64_t pass, bool after_step) noexcept {
+  if (pass != nodes_pass_ || nodes_end_ == nullptr || after_step) {
     // Looked up once a pass: a query may call this for one triangle at a time.
     nodes_end_ = world_.body_nodes(body_).positions.data();
     nodes_pass_ = pass;
@@ -74,7 +74,7 @@ void EmbeddedCollisionSurface::refresh_triangles(const uint32_t* triangles, uint
   for (uint32_t i = 0; i < count; ++i)
     for (size_t k = 0; k < 3; ++k) {
       const uint32_t v = s.triangles[3 * size_t{triangles[i]} + k];
-      if (fresh_at_[v] == pass) continue;
+      if (fresh_at_[v] == pass && !after_step) continue;
       fresh_at_[v] = pass;
       double* end = &surface_->positions[3 * size_t{v}];
       interpolate_vertex(s, v, nodes_end_, end);

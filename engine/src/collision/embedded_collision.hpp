@@ -33,8 +33,10 @@ class EmbeddedCollisionSurface {
   // `pass`: the slices a hierarchy is refit by and the patch the proxy's queries read. Their
   // start is set to their end: the proxy reads only where vertices are, and the boxes a slice
   // refit computes from start and end need be no wider. refresh(), which runs before a contact
-  // response, makes start, end and velocities whole again.
-  void refresh_triangles(const uint32_t* triangles, uint32_t count, uint64_t pass) noexcept;
+  // response, makes start, end and velocities whole again. `after_step`: the nodes moved since
+  // the pass's queries made vertices current (the upkeep after the write): none is skipped.
+  void refresh_triangles(const uint32_t* triangles, uint32_t count, uint64_t pass,
+                         bool after_step = false) noexcept;
   // Largest sum of |weight| over the vertices: no vertex moves further than this times the
   // furthest-moving node (1 inside the tets, more for extrapolated vertices).
   double weight_bound() const noexcept { return weight_bound_; }

@@ -2,12 +2,12 @@
 // whole hierarchy. The hierarchy's elements are cut into slices (runs of its element order); each
 // slice keeps how far any of its vertices may have moved since its boxes were computed: the
 // longest path since, among the nodes its vertices follow, times the surface's weight bound (a
-// vertex is a weighted sum of nodes). Each node sums its own path every tick; the slices take
-// their nodes' longest every few ticks, and until then every slice adds the longest of all
+// vertex is a weighted sum of nodes). Each node sums its own path at every advance; the slices
+// take their nodes' longest every few advances, and until then every slice adds the longest of all
 // (pending). Until the slices' nodes are known (bind), every slice takes the body's largest node
 // move. The queries widen their search by the largest drift (the margin). While the margin is
-// past its target the stalest slice is refit, one a tick: a still body, or its still part, costs
-// nothing. A path summed over ticks overstates where a jiggling node is, so before a slice is
+// past its target the stalest slice is refit, one an upkeep: a still body, or its still part,
+// costs nothing. A path summed over ticks overstates where a jiggling node is, so before a slice is
 // refit its nodes are measured against where they were at its last refit (a slice's worth of
 // reads against a refit's worth of work): a slice still near its boxes takes that distance as its
 // drift and is not refit. A margin past its cap (a fast body) asks for a whole refit. No
@@ -22,7 +22,7 @@ namespace tacta {
 
 class SurfaceFreshness {
  public:
-  static constexpr uint32_t kSliceElements = 64;  // elements refit per tick, at most
+  static constexpr uint32_t kSliceElements = 64;  // elements a slice refits
 
   // node_count: the body's nodes; element_count: the surface's triangles; weight_bound: the
   // largest sum of |weight| of a vertex over the nodes it follows (1: vertices are nodes);
@@ -39,8 +39,9 @@ class SurfaceFreshness {
   // vertices are nodes). Again after each rebuild, which may reorder. No allocation.
   void bind(const uint32_t* order, const uint32_t* triangles,
             const uint32_t* vertex_nodes) noexcept;
-  // Once a tick before the proxy's queries: takes in the nodes' moves since the last call. False
-  // when the margin is past its cap: the caller refits everything and calls reset.
+  // Before the proxy's queries and in the upkeep after the write (twice a tick): takes in the
+  // nodes' moves since the last call. False when the margin is past its cap: the caller refits
+  // everything and calls reset.
   bool advance(const double* nodes) noexcept;
   // The run [first, first + count) of the hierarchy's element order to refit this tick, from the
   // nodes as the last advance read them: the stalest slice while the margin is past its target
@@ -64,7 +65,7 @@ class SurfaceFreshness {
   double odometer_base() const noexcept { return weight_bound_ * taken_; }
 
  private:
-  static constexpr int kPendingTicks = 8;  // ticks between the slices taking their nodes' paths
+  static constexpr int kPendingTicks = 8;  // advances between the slices taking their paths
   void update_margin() noexcept;
   void take_paths() noexcept;  // each slice's drift grows by its nodes' longest path; paths restart
   // The largest distance of the slice's nodes from where they were at its last refit, m (the

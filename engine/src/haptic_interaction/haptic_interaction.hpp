@@ -40,9 +40,13 @@ class HapticInteraction {
   void couple(World& world, double time, double dt) noexcept;
   // The renderer's energy observers integrate the force each device really held.
   void after_write(World& world) noexcept;
-  // After the write, off the haptic path: the surfaces' hierarchies follow what the tick (at
-  // `time`, of `dt` s) moved, for the next tick's queries (CollisionContext::upkeep_for_proxy).
-  void upkeep_surfaces(double time, double dt) noexcept { collision_.upkeep_for_proxy(time, dt); }
+  // After the write, off the read-to-write path: the surfaces' hierarchies follow what the tick
+  // moved, for the next tick's queries (CollisionContext::upkeep_for_proxy; `time`: the next
+  // tick's start, s). Returns the TACTA_COLLIDE_* bits the refits raised.
+  uint32_t upkeep_surfaces(double time, double dt) noexcept {
+    collision_.upkeep_for_proxy(time, dt);
+    return collision_.take_bits();
+  }
   const HapticParts& parts() const noexcept { return parts_; }
   // Body `body`'s surface was made again by a cut (between ticks): proxies touching it let go of
   // their contact triangle and find the new surface at the next tick.

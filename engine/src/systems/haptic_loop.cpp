@@ -140,7 +140,11 @@ bool HapticLoop::tick(uint64_t index, double time, double dt) noexcept {
   record(time + dt);
   const auto write_done = Clock::now();
   // The force is out: the hierarchies' upkeep for the next tick's queries waits no device.
-  if (haptics_ != nullptr) haptics_->upkeep_surfaces(time + dt, dt);
+  if (haptics_ != nullptr) {
+    const uint32_t bits = haptics_->upkeep_surfaces(time + dt, dt);
+    collision_status_.add(bits & ~last_status_.collision_bits, time);  // a tick counts once
+    last_status_.collision_bits |= bits;
+  }
   const auto end = Clock::now();
   stages_[kDeviceRead].record(ms(start, read_done));
   stages_[kHaptics].record(ms(read_done, haptics_done));

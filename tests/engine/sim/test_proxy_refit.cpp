@@ -8,6 +8,7 @@
 #include <iterator>
 #include <memory>
 
+#include "collision/embedded_collision.hpp"
 #include "sim_test_support.hpp"
 
 namespace tacta::simtest {
@@ -103,16 +104,44 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   EXPECT_EQ(whole.collision->proxy_whole_refits(), ticks);
 }
 
-// The slices are refit after the device write, for the next tick: on the demo nothing moves a
-// node between ticks, so the haptic stage's own pass refits none (every slice is the upkeep's),
-// and the touch is the same as with the refit every tick (above).
+// The slices are refit after the device write, for the next tick (the haptic stage only checks
+// the margins): the upkeep runs, slices while the liver settles, is pressed and let go, and its
+// slices keep the margins under their cap (no whole refit after the first tick's build).
 TEST(ProxyRefit, SlicesAreRefitAfterTheWriteNotInTheHapticStage) {
   ProxyRun run("sliced", {}, 1500);
   for (int k = 0; k < 1500; ++k) run.tick();
   const CollisionContext& c = *run.collision;
-  EXPECT_GT(c.proxy_slices(), 100u);  // the liver settles, is pressed and let go
-  EXPECT_EQ(c.proxy_upkeep_slices(), c.proxy_slices()) << "none left to the haptic stage";
+  EXPECT_GT(c.proxy_upkeep_slices(), 100u);
+  EXPECT_EQ(c.proxy_upkeep_slices(), c.proxy_slices()) << "none in the haptic stage";
   EXPECT_EQ(c.proxy_whole_refits(), 1u) << "the first tick's build only";
+}
+
+// The upkeep runs in the tick's proxy pass, after the step: a vertex the pass's queries made
+// current has moved since, and the slice refit must recompute it rather than skip it as current.
+TEST(ProxyRefit, AVertexMadeCurrentBeforeTheStepIsRecomputedAfterIt) {
+  ProxyRun run("sliced", {}, 1);
+  const SoftBody body = run.world->body(0);
+  ASSERT_NE(body.surface.mesh, nullptr);
+  std::vector<double> inverse_masses(body.node_count(), 1.0);
+  EmbeddedCollisionSurface surface(*run.world, 0, *body.surface.mesh, body.node_count(),
+                                   inverse_masses.data());
+  const uint32_t triangle = 0, vertex = body.surface.mesh->triangles[0];
+  const auto where = [&] {
+    const double* p = &body.surface.mesh->positions[3 * size_t{vertex}];
+    return std::vector<double>(p, p + 3);
+  };
+  const auto interpolated = [&] {
+    std::vector<double> p(3);
+    interpolate_vertex(*body.surface.mesh, vertex, body.nodes.positions.data(), p.data());
+    return p;
+  };
+  surface.refresh_triangles(&triangle, 1, 7);
+  EXPECT_EQ(where(), interpolated());
+  for (double& x : body.nodes.positions) x += 1e-3;  // the step moves every node 1 mm a side
+  surface.refresh_triangles(&triangle, 1, 7);
+  EXPECT_NE(where(), interpolated()) << "current as of pass 7: skipped";
+  surface.refresh_triangles(&triangle, 1, 7, true);
+  EXPECT_EQ(where(), interpolated()) << "after the step: recomputed";
 }
 
 TEST(ProxyRefit, SlicedTouchesTheEmbeddedLiverAsAWholeRefitDoes) {
