@@ -79,20 +79,12 @@ const std::vector<ModelCase>& model_cases() {
   return cases;
 }
 
-// The engine's host services over a JobPool of `threads` (as plugin_instance.cpp fills them).
+// The engine's host services over a JobPool of `threads`, as the engine fills them.
 struct BenchHost {
-  explicit BenchHost(uint32_t threads) : pool(threads) {
-    services.struct_size = sizeof services;
-    services.worker_count = pool.threads();
-    services.parallel_for = &JobPool::parallel_for_entry;
-    services.jobs = &pool;
-    services.scratch = &ScratchArena::allocate_entry;
-    services.arena = &arena;
-    services.workers_here = &JobPool::workers_here_entry;
-  }
+  explicit BenchHost(uint32_t threads) : pool(threads) {}
   JobPool pool;
   ScratchArena arena;
-  tacta_host_services services{};
+  tacta_host_services services = host_services(&pool, &arena);
 };
 
 void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells, uint32_t extra,

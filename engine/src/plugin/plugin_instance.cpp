@@ -37,24 +37,12 @@ bool state_loaded(const tacta_descriptor& d, tacta_status status, const char* me
   why = plugin_failure(d, "refused its state", message);
   return false;
 }
-
-// parallel_for without an engine pool (a model created alone, e.g. by a test): the caller does all.
-void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t),
-                void* user) {
-  if (count > 0) body(user, 0, count, 0);
-}
 }  // namespace
 
 ModelInstance::ModelInstance(const tacta_descriptor& descriptor, const tacta_model_setup& given,
                              const SourceLocation& where, JobPool* jobs)
     : descriptor_(descriptor), api_(*static_cast<const tacta_model_api*>(descriptor.api)) {
-  services_.struct_size = sizeof services_;
-  services_.worker_count = jobs != nullptr ? jobs->threads() : 1;
-  services_.parallel_for = jobs != nullptr ? &JobPool::parallel_for_entry : &serial_for;
-  services_.jobs = jobs;
-  services_.scratch = &ScratchArena::allocate_entry;
-  services_.arena = &arena_;
-  services_.workers_here = jobs != nullptr ? &JobPool::workers_here_entry : nullptr;
+  services_ = host_services(jobs, &arena_);
   tacta_model_setup setup = given;
   setup.struct_size = sizeof setup;
   setup.host = &services_;

@@ -66,6 +66,7 @@ JobPool::~JobPool() {
 }
 
 void JobPool::run_chunks(uint32_t job, uint32_t worker) noexcept {
+  const SplitMark mark(this);  // every chunk run here is a part of a split job
   for (;;) {
     uint64_t ticket = ticket_.load();
     if (static_cast<uint32_t>(ticket >> 32) != job) return;
@@ -76,10 +77,7 @@ void JobPool::run_chunks(uint32_t job, uint32_t worker) noexcept {
     if (begin >= count) return;
     const uint32_t end = begin + std::min(grain, count - begin);
     if (!ticket_.compare_exchange_weak(ticket, (ticket & ~uint64_t{0xffffffff}) | end)) continue;
-    {
-      const SplitMark mark(this);
-      body(user, begin, end, worker);
-    }
+    body(user, begin, end, worker);
     if (done_.fetch_add(end - begin) + (end - begin) == count) done_.notify_one();
   }
 }
@@ -196,6 +194,26 @@ void* ScratchArena::allocate(size_t bytes) noexcept {
 
 void* ScratchArena::allocate_entry(void* arena, size_t bytes) {
   return static_cast<ScratchArena*>(arena)->allocate(bytes);
+}
+
+namespace {
+// parallel_for without an engine pool (a model created alone, e.g. by a test): the caller does all.
+void serial_for(void*, uint32_t count, uint32_t, void (*body)(void*, uint32_t, uint32_t, uint32_t),
+                void* user) {
+  if (count > 0) body(user, 0, count, 0);
+}
+}  // namespace
+
+tacta_host_services host_services(JobPool* jobs, ScratchArena* arena) noexcept {
+  tacta_host_services services{};
+  services.struct_size = sizeof services;
+  services.worker_count = jobs != nullptr ? jobs->threads() : 1;
+  services.parallel_for = jobs != nullptr ? &JobPool::parallel_for_entry : &serial_for;
+  services.jobs = jobs;
+  services.scratch = arena != nullptr ? &ScratchArena::allocate_entry : nullptr;
+  services.arena = arena;
+  services.workers_here = jobs != nullptr ? &JobPool::workers_here_entry : nullptr;
+  return services;
 }
 
 }  // namespace tacta

@@ -15,6 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "tacta/model_api.h"
+
 namespace tacta {
 
 class JobPool {
@@ -83,5 +85,9 @@ class ScratchArena {
   std::vector<void*> blocks_;
   size_t bytes_ = 0;
 };
+
+// The host services a model instance is handed, as the engine fills them: parallel_for on
+// `jobs` (null: serial, on the caller) and scratch memory from `arena` (null: none).
+tacta_host_services host_services(JobPool* jobs, ScratchArena* arena) noexcept;
 
 }  // namespace tacta

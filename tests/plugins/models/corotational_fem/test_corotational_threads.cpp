@@ -26,15 +26,9 @@ using testing::make_model;
 
 // The engine's host services over a pool of `threads`.
 struct Host {
-  explicit Host(uint32_t threads) : pool(threads) {
-    services.struct_size = sizeof services;
-    services.worker_count = pool.threads();
-    services.parallel_for = &JobPool::parallel_for_entry;
-    services.jobs = &pool;
-    services.workers_here = &JobPool::workers_here_entry;
-  }
+  explicit Host(uint32_t threads) : pool(threads) {}
   JobPool pool;
-  tacta_host_services services{};
+  tacta_host_services services = host_services(&pool, nullptr);
 };
 
 double max_abs(const std::vector<double>& v) {
