@@ -63,6 +63,7 @@ void CorotationalFem::build_batches() {
       for (int a = 0; a < 4; ++a)
         for (int c = 0; c < 3; ++c) batches_[b].gradients[a][c][l] = element.gradients[a][c];
       batches_[b].volume[l] = element.volume;
+      for (int a = 0; a < 4; ++a) batches_[b].nodes[a][l] = element.nodes[a];
     }
 }
 
@@ -75,8 +76,7 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
   for (int a = 0; a < 4; ++a) {
     Lanes x[3];
     for (int l = 0; l < kLanes; ++l)
-      for (int c = 0; c < 3; ++c)
-        x[c][l] = positions[3 * size_t{elements_[first + l].nodes[a]} + c];
+      for (int c = 0; c < 3; ++c) x[c][l] = positions[3 * size_t{rest.nodes[a][l]} + c];
     for (int r = 0; r < 3; ++r)
       for (int k = 0; k < 3; ++k)
         for (int l = 0; l < kLanes; ++l) f[3 * r + k][l] += x[r][l] * rest.gradients[a][k][l];
@@ -223,7 +223,7 @@ TACTA_HOT_PATH uint32_t CorotationalFem::step_batch(uint32_t batch, const double
                       (world[3 * r][l] * g0 + world[3 * r + 1][l] * g1 + world[3 * r + 2][l] * g2);
       }
     for (int l = 0; l < kLanes; ++l) {
-      double* target = &forces_[3 * size_t{elements_[first + l].nodes[a]}];
+      double* target = &forces_[3 * size_t{rest.nodes[a][l]}];
       for (int r = 0; r < 3; ++r) target[r] += force[r][l];
     }
   }
