@@ -53,9 +53,12 @@ class ProxyPatch {
   // A gather for a query over `box` is worth trying in proxy pass `pass`: none for a query of
   // 3/4 the side or more (about half the area) held too many in the last kRetryPasses passes (the
   // god-object's search for a surface that came onto a device well clear of it: a large ball
-  // each tick, which the hierarchy answers).
+  // each tick, which the hierarchy answers), twice as many after each such failure in a row (a
+  // failed gather of a few hundred triangles costs tens of us, and a large query that failed
+  // twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
-    if (pass - failed_pass_ >= kRetryPasses) return true;
+    const uint32_t doublings = std::min(failures_ > 0 ? failures_ - 1 : 0u, kMaxDoublings);
+    if (pass - failed_pass_ >= (kRetryPasses << doublings)) return true;
     for (int a = 0; a < 3; ++a)
       if (box[a + 3] - box[a] < 0.75 * failed_side_) return true;
     return false;
@@ -70,12 +73,17 @@ class ProxyPatch {
   // surface's odometer_base then: kept when they fit (false: the patch is as it was).
   bool keep(const std::array<double, 3>& center, double half, const uint32_t* triangles,
             uint32_t count, const Box& box, uint64_t pass, double odometer_base) noexcept {
+    double side = 0.0;
+    for (int a = 0; a < 3; ++a) side = std::max(side, box[a + 3] - box[a]);
     if (count > kCapacity) {
+      failures_ = failed_side_ <= 1.5 * side && side <= 1.5 * failed_side_
+                      ? std::min(failures_ + 1, 64u)
+                      : 1u;
       failed_pass_ = pass;
-      failed_side_ = 0.0;
-      for (int a = 0; a < 3; ++a) failed_side_ = std::max(failed_side_, box[a + 3] - box[a]);
+      failed_side_ = side;
       return false;
     }
+    if (side >= 0.75 * failed_side_) failures_ = 0;   // a query of the size that failed now fits
     triangles_.assign(triangles, triangles + count);  // within the capacity reserved
     center_ = center;
     half_ = half;
@@ -95,9 +103,11 @@ class ProxyPatch {
 
  private:
   static constexpr uint64_t kRetryPasses = 64;
+  static constexpr uint32_t kMaxDoublings = 4;  // retries at least every 1,024 passes
   std::vector<uint32_t> triangles_;
   uint64_t failed_pass_ = 0;    // the last pass a gather held too many triangles, and the query's
   double failed_side_ = 1e300;  // largest side then, m
+  uint32_t failures_ = 0;       // failed gathers in a row for queries of about that side
   std::array<double, 3> center_{};
   double half_ = 0.0;           // m, of the cube gathered over
   double odometer_base_ = 0.0;  // m, the surface's at the gather

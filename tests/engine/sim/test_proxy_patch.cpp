@@ -1,7 +1,7 @@
 // ProxyPatch's bookkeeping: a query is answered from the patch only while its box lies inside
 // the gathered cube shrunk by how far the surface's odometer advanced since; the next cube holds
 // the queries served; a gather that held too many triangles is not tried again for as large a
-// query for a while.
+// query for a while, twice as long after each such failure in a row.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
@@ -63,6 +63,34 @@ TEST(ProxyPatch, TooManyTrianglesAreNotKeptNorSoughtAgainForAsLargeAQuery) {
   EXPECT_FALSE(patch.worth_gathering(box_about(0, 0, 0, 0.016), 11));  // 4/5 of the side
   EXPECT_TRUE(patch.worth_gathering(box_about(0, 0, 0, 0.01), 11));    // half the side
   EXPECT_TRUE(patch.worth_gathering(large, 10 + 64));                  // tried again later
+}
+
+TEST(ProxyPatch, AQueryThatKeepsFailingIsTriedAgainLessOftenUntilItFits) {
+  ProxyPatch patch;
+  std::vector<uint32_t> many(ProxyPatch::kCapacity + 1);
+  const uint32_t too_many = ProxyPatch::kCapacity + 1;
+  const ProxyPatch::Box large = box_about(0, 0, 0, 0.02);
+  uint64_t pass = 100;
+  // Failures in a row wait 64, 128, 256, 512, then 1,024 passes at most.
+  for (uint64_t wait : {64u, 128u, 256u, 512u, 1024u, 1024u}) {
+    ASSERT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), too_many, large, pass, 0.0));
+    EXPECT_FALSE(patch.worth_gathering(large, pass + wait - 1)) << wait;
+    EXPECT_TRUE(patch.worth_gathering(large, pass + wait)) << wait;
+    pass += wait;
+  }
+  // A smaller query's patch does not end the run of failures; one of the failed size does.
+  const std::vector<uint32_t> few{1, 2};
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.01, few.data(), 2, box_about(0, 0, 0, 0.005), pass, 0.0));
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), too_many, large, pass + 1, 0.0));
+  EXPECT_FALSE(patch.worth_gathering(large, pass + 1 + 1023));
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.04, few.data(), 2, large, pass + 1024, 0.0));
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), too_many, large, pass + 2000, 0.0));
+  EXPECT_TRUE(patch.worth_gathering(large, pass + 2000 + 64));
+  // A failure of a query of another size starts a new run.
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), too_many, large, pass + 3000, 0.0));
+  const ProxyPatch::Box larger = box_about(0, 0, 0, 0.04);
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.08, many.data(), too_many, larger, pass + 3001, 0.0));
+  EXPECT_TRUE(patch.worth_gathering(larger, pass + 3001 + 64));
 }
 
 }  // namespace
