@@ -53,9 +53,9 @@ class ProxyPatch {
   // A gather for a query over `box` is worth trying in proxy pass `pass`: none for a query of
   // 3/4 the side or more (about half the area) held too many in the last kRetryPasses passes (the
   // god-object's search for a surface that came onto a device well clear of it: a large ball
-  // each tick, which the hierarchy answers), twice as many after each such failure in a row (a
-  // failed gather of a few hundred triangles costs tens of us, and a large query that failed
-  // twice tends to go on failing while the tool stays clear).
+  // each tick, which the hierarchy answers), twice as many after each further failure in a row,
+  // up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
+  // query that failed twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
     const uint32_t doublings = std::min(failures_ > 0 ? failures_ - 1 : 0u, kMaxDoublings);
     if (pass - failed_pass_ >= (kRetryPasses << doublings)) return true;
@@ -76,14 +76,17 @@ class ProxyPatch {
     double side = 0.0;
     for (int a = 0; a < 3; ++a) side = std::max(side, box[a + 3] - box[a]);
     if (count > kCapacity) {
-      failures_ = failed_side_ <= 1.5 * side && side <= 1.5 * failed_side_
-                      ? std::min(failures_ + 1, 64u)
-                      : 1u;
+      // One failure a pass: a query gathered for the cube served and then alone fails twice.
+      const bool similar = failed_side_ <= 1.5 * side && side <= 1.5 * failed_side_;
+      if (!similar)
+        failures_ = 1;
+      else if (pass != failed_pass_ || failures_ == 0)
+        failures_ = std::min(failures_ + 1, 64u);
       failed_pass_ = pass;
       failed_side_ = side;
       return false;
     }
-    if (side >= 0.75 * failed_side_) failures_ = 0;   // a query of the size that failed now fits
+    if (side >= 0.75 * failed_side_) failures_ = 0;   // one of the size that failed, or larger
     triangles_.assign(triangles, triangles + count);  // within the capacity reserved
     center_ = center;
     half_ = half;
@@ -93,7 +96,12 @@ class ProxyPatch {
     made_current_in_ = 0;
     return true;
   }
-  void drop() noexcept { held_ = false; }  // the surface changed
+  // The surface changed (a cut, a replacement) or is away: what failed on it says nothing now.
+  void drop() noexcept {
+    held_ = false;
+    failures_ = 0;
+    failed_side_ = 1e300;
+  }
   bool held() const noexcept { return held_; }
   const uint32_t* triangles() const noexcept { return triangles_.data(); }
   uint32_t count() const noexcept { return static_cast<uint32_t>(triangles_.size()); }

@@ -137,7 +137,7 @@ class CorotationalFem {
   };
   // guess: the polar iteration's warm start on entry, the element's rotation on exit.
   ElementFrame frame_of(uint32_t e, const double* positions, Eigen::Quaterniond& guess) noexcept;
-  // Rest data of kBatchLanes consecutive elements, lane-minor (structure of arrays).
+  // Rest data and nodes of kBatchLanes consecutive elements, lane-minor (structure of arrays).
   struct ElementBatch {
     double gradients[4][3][kBatchLanes];  // 1/m
     double volume[kBatchLanes];           // m^3

@@ -1,7 +1,8 @@
 // ProxyPatch's bookkeeping: a query is answered from the patch only while its box lies inside
 // the gathered cube shrunk by how far the surface's odometer advanced since; the next cube holds
 // the queries served; a gather that held too many triangles is not tried again for as large a
-// query for a while, twice as long after each such failure in a row.
+// query for a while, twice as long after each further failure in a row (one a pass), until a
+// query of that size fits or the surface changes.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
@@ -91,6 +92,16 @@ TEST(ProxyPatch, AQueryThatKeepsFailingIsTriedAgainLessOftenUntilItFits) {
   const ProxyPatch::Box larger = box_about(0, 0, 0, 0.04);
   ASSERT_FALSE(patch.keep({0, 0, 0}, 0.08, many.data(), too_many, larger, pass + 3001, 0.0));
   EXPECT_TRUE(patch.worth_gathering(larger, pass + 3001 + 64));
+  // Two failures in one pass (the cube served, then the query alone) count once.
+  pass += 4000;
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.08, many.data(), too_many, larger, pass, 0.0));
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.04, many.data(), too_many, larger, pass, 0.0));
+  EXPECT_TRUE(patch.worth_gathering(larger, pass + 128));  // the second failure in a row
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.08, many.data(), too_many, larger, pass + 128, 0.0));
+  EXPECT_FALSE(patch.worth_gathering(larger, pass + 128 + 255));
+  // A changed surface starts afresh.
+  patch.drop();
+  EXPECT_TRUE(patch.worth_gathering(larger, pass + 129));
 }
 
 }  // namespace
