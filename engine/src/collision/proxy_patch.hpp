@@ -57,7 +57,7 @@ class ProxyPatch {
   // up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
   // query that failed twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
-    const uint32_t doublings = std::min(failures_ > 0 ? failures_ - 1 : 0u, kMaxDoublings);
+    const uint32_t doublings = failures_ > 0 ? failures_ - 1 : 0u;  // at most kMaxDoublings
     if (pass - failed_pass_ >= (kRetryPasses << doublings)) return true;
     for (int a = 0; a < 3; ++a)
       if (box[a + 3] - box[a] < 0.75 * failed_side_) return true;
@@ -81,7 +81,7 @@ class ProxyPatch {
       if (!similar)
         failures_ = 1;
       else if (pass != failed_pass_ || failures_ == 0)
-        failures_ = std::min(failures_ + 1, 64u);
+        failures_ = std::min(failures_ + 1, kMaxDoublings + 1);
       failed_pass_ = pass;
       failed_side_ = side;
       return false;
@@ -100,7 +100,7 @@ class ProxyPatch {
   void drop() noexcept {
     held_ = false;
     failures_ = 0;
-    failed_side_ = 1e300;
+    failed_side_ = kNoFailedSide;
   }
   bool held() const noexcept { return held_; }
   const uint32_t* triangles() const noexcept { return triangles_.data(); }
@@ -111,11 +111,12 @@ class ProxyPatch {
 
  private:
   static constexpr uint64_t kRetryPasses = 64;
-  static constexpr uint32_t kMaxDoublings = 4;  // retries at least every 1,024 passes
+  static constexpr uint32_t kMaxDoublings = 4;    // retries at least every 1,024 passes
+  static constexpr double kNoFailedSide = 1e300;  // m: no gather failed (since the surface changed)
   std::vector<uint32_t> triangles_;
-  uint64_t failed_pass_ = 0;    // the last pass a gather held too many triangles, and the query's
-  double failed_side_ = 1e300;  // largest side then, m
-  uint32_t failures_ = 0;       // failed gathers in a row for queries of about that side
+  uint64_t failed_pass_ = 0;  // the last pass a gather held too many triangles, and the query's
+  double failed_side_ = kNoFailedSide;  // largest side then, m
+  uint32_t failures_ = 0;               // failed gathers in a row for queries of about that side
   std::array<double, 3> center_{};
   double half_ = 0.0;           // m, of the cube gathered over
   double odometer_base_ = 0.0;  // m, the surface's at the gather
