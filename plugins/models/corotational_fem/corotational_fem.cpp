@@ -78,7 +78,7 @@ CorotationalFem::CorotationalFem(const tacta_mesh_view& mesh, const tacta_materi
   step_rotation_ = polar_guess_;
   step_turn_ = polar_guess_;
   build_batches();
-  colour_batches();
+  tile_batches();
   const size_t n = 3 * static_cast<size_t>(node_count_);
   forces_.assign(n, 0.0);
   stiffness_velocity_.assign(n, 0.0);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "block_sparse.hpp"
+#include "element_tiles.hpp"
 #include "row_team.hpp"
 #include "safe_solver.hpp"
 #include "tacta/model_api.h"
@@ -68,7 +69,8 @@ struct Options {
   // most solves to the iteration cap.
   bool force_scaled_tolerance = true;
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
-  // colour by colour (no two batches of a colour share a node), each colour in parallel, and
+  // in tiles of neighbouring batches, colour by colour (no two tiles of a colour share a node),
+  // each colour's tiles in parallel, and
   // with threaded_solve, from kMinThreadedNodes nodes, the rest of the step too: the matrix's
   // zeroing, its product with v, the mass and the held nodes, the rhs, the CG solve (block
   // Jacobi or Jacobi) and the update of the state, on fixed row chunks (sparse::RowTeam).
@@ -150,9 +152,11 @@ class CorotationalFem {
   // TACTA_STEP_INVERTED_ELEMENT if a lane is inverted.
   uint32_t step_batch(uint32_t batch, const double* positions, double scale,
                       long& polar_iterations) noexcept;
-  // Colours the batches greedily (parallel pass); leaves colours_ empty when it would not pay.
-  void colour_batches();
-  // The batched pass over every batch: in order, or colour by colour on the host's workers.
+  // Cuts the batches into coloured tiles (parallel pass); leaves tiles_ empty when it would not
+  // pay.
+  void tile_batches();
+  // The batched pass over every batch: in order, or colour by colour of tiles on the host's
+  // workers.
   uint32_t batched_pass(const double* positions, double scale) noexcept;
   // step() between the element pass and the solve, on the host's workers (rows_): the rhs's
   // h (beta + h) K v, the mass and the held nodes into the matrix, the rhs, the CG guess.
@@ -203,14 +207,13 @@ class CorotationalFem {
   StaticCounters static_counters_;
   std::vector<double> loads_, equilibrium_loads_, static_start_;  // static solve, 3 per node
   long polar_iterations_ = 0;
-  // Parallel pass: batch indices grouped by colour, colour c at [colour_start_[c], [c + 1]).
-  std::vector<uint32_t> colour_batches_, colour_start_;
+  sparse::ElementTiles tiles_;      // parallel pass: batches in tiles, tiles by colour
   struct alignas(64) WorkerTally {  // one cache line per worker: no false sharing
     uint32_t bits = 0;
     long polar_iterations = 0;
   };
   std::vector<WorkerTally> tallies_;
-  sparse::OwnedSplit colour_split_;  // a colour's batches, each worker its own share first
+  sparse::OwnedSplit tile_split_;  // a colour's tiles, each worker its own share first
   sparse::RowTeam rows_;  // threaded row passes (none below kMinThreadedNodes or one worker)
 };
 

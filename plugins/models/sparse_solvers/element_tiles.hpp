@@ -1,0 +1,49 @@
+// The schedule of a threaded element pass that scatters into its nodes' rows (forces, matrix
+// blocks): the items (element batches) cut into tiles of spatial neighbours, and the tiles
+// coloured so that no two tiles of a colour share a node. A colour's tiles run in parallel and
+// a tile's items in order on one thread, so the blocks consecutive items add into stay in that
+// core's cache. (Colouring single batches instead spreads every colour over the whole body,
+// and each colour re-reads the matrix: 1.5x the serial pass's time at 10k tets.) Fixed by the
+// mesh alone, never by the thread count, so a threaded pass gives the same bits on any number
+// of threads.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace tacta::models::sparse {
+
+class ElementTiles {
+ public:
+  // Items per tile: a tile is a few microseconds of work, and a colour of a 10k-tet body has
+  // enough tiles to balance a few threads.
+  static constexpr uint32_t kItemsPerTile = 16;
+
+  ElementTiles() = default;
+  // Item i touches nodes[i * nodes_per_item, (i + 1) * nodes_per_item) (each < node_count) and
+  // sits at centres[3 i, 3 i + 3) (m). Tiles are runs of kItemsPerTile items in the Morton
+  // order of their centres; colours are given greedily, tile by tile.
+  ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
+               std::span<const double> centres, uint32_t node_count);
+
+  bool empty() const { return tile_start_.empty(); }
+  uint32_t colours() const {
+    return colour_start_.empty() ? 0 : static_cast<uint32_t>(colour_start_.size() - 1);
+  }
+  // The tiles of colour c, in Morton order.
+  std::span<const uint32_t> tiles_of(uint32_t colour) const {
+    return std::span(tiles_).subspan(colour_start_[colour],
+                                     colour_start_[colour + 1] - colour_start_[colour]);
+  }
+  // The items of tile t, in Morton order.
+  std::span<const uint32_t> items_of(uint32_t tile) const {
+    return std::span(items_).subspan(tile_start_[tile], tile_start_[tile + 1] - tile_start_[tile]);
+  }
+
+ private:
+  std::vector<uint32_t> items_, tile_start_;    // tile t: items_[tile_start_[t], [t + 1])
+  std::vector<uint32_t> tiles_, colour_start_;  // colour c: tiles_[colour_start_[c], [c + 1])
+};
+
+}  // namespace tacta::models::sparse
