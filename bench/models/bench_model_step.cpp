@@ -8,7 +8,8 @@
 // JobPool of T threads as the engine gives it (threads 1: a pool of one, serial). T is 1, 2 and
 // `auto` (the CPUs less one, as the scene key). With TACTA_BASELINE_PLUGIN_DIR set, the same
 // cases with the plugins of that folder (an earlier build) as Sweep/baseline_<model>/..., so a
-// baseline and this build can be timed in one interleaved run.
+// baseline and this build can be timed in one interleaved run, and Paired/<model>/... steps the
+// two in turn in one benchmark, for a noisy host (paired_steps).
 #include <algorithm>
 #include <benchmark/benchmark.h>
 #include <chrono>
@@ -87,17 +88,26 @@ struct BenchHost {
   tacta_host_services services = host_services(&pool, &arena);
 };
 
+// Soft tissue-like, and soft enough (c_p = 4.6 m/s, dt_crit about 2 ms on 1 cm cells) that the
+// explicit models are stable at the 1 ms tick too, so every model is timed doing work.
+tacta_material box_material() {
+  tacta_material material = models::make_material(1e4, 0.4, 1000.0);
+  material.rayleigh_mass = 0.1;
+  material.rayleigh_stiffness = 0.01;
+  return material;
+}
+
+double percentile(const std::vector<double>& sorted, double p) {
+  return sorted.empty() ? 0.0 : sorted[static_cast<size_t>(p * (sorted.size() - 1))];
+}
+
 void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cells, uint32_t extra,
                   uint32_t threads = 0) {
   const models::TestMesh mesh = clamped_box(cells, extra);
   // threads 0: no host services (StepBySize, as before the sweep); else an engine pool.
-  const std::unique_ptr<BenchHost> host = threads > 0 ? std::make_unique<BenchHost>(threads) : nullptr;
-  // Soft tissue-like, and soft enough (c_p = 4.6 m/s, dt_crit about 2 ms on 1 cm cells) that
-  // the explicit models are stable at the 1 ms tick too, so every model is timed doing work.
-  tacta_material material = models::make_material(1e4, 0.4, 1000.0);
-  material.rayleigh_mass = 0.1;
-  material.rayleigh_stiffness = 0.01;
-  PluginBody body(model.file, model.model, mesh, material, {0.0, -9.81, 0.0}, 1e-3,
+  const std::unique_ptr<BenchHost> host =
+      threads > 0 ? std::make_unique<BenchHost>(threads) : nullptr;
+  PluginBody body(model.file, model.model, mesh, box_material(), {0.0, -9.81, 0.0}, 1e-3,
                   model.overrides, host ? &host->services : nullptr);
   for (int i = 0; i < 20; ++i) body.step();  // warm-up: solver history, caches
   uint32_t bits = 0;
@@ -114,16 +124,13 @@ void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cell
     bits |= body.step();
     if (step_ms.size() < step_ms.capacity()) {
       step_ms.push_back(thread_cpu_ms() - begin);
-      wall_ms.push_back(std::chrono::duration<double, std::milli>(
-                            std::chrono::steady_clock::now() - wall_begin)
-                            .count());
+      wall_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_begin)
+              .count());
     }
   }
   std::sort(step_ms.begin(), step_ms.end());
   std::sort(wall_ms.begin(), wall_ms.end());
-  const auto percentile = [](const std::vector<double>& sorted, double p) {
-    return sorted.empty() ? 0.0 : sorted[static_cast<size_t>(p * (sorted.size() - 1))];
-  };
   state.counters["cpu_p50_ms"] = percentile(step_ms, 0.5);
   state.counters["cpu_p99_ms"] = percentile(step_ms, 0.99);
   state.counters["wall_p10_ms"] = percentile(wall_ms, 0.1);
@@ -133,6 +140,61 @@ void step_by_size(benchmark::State& state, const ModelCase& model, uint32_t cell
   state.counters["budget_ms"] = 1.0;
   state.counters["fault"] = (bits & TACTA_STEP_FAULT_MASK) ? 1 : 0;
   if (threads > 0) state.counters["threads"] = threads;
+}
+
+// Two bodies on the same box stepped in turn (which goes first alternating), each step's wall
+// time kept: a busy host slows neighbouring steps alike, so the median of the pairs' ratios holds
+// where separate runs of the same code drift by 1.3x. Each body's step starts with the other's
+// data in the caches. Paired/<model>/...: this build's plugin against the baseline's
+// (TACTA_BASELINE_PLUGIN_DIR), both on one pool of T threads. (Not for one build on 1 thread
+// against 2: the pool idle while the other body steps parks its workers, and the threaded step
+// then pays their wake-up and cold caches, 1.24x where back-to-back steps give 1.6x.)
+void paired_steps(benchmark::State& state, const ModelCase& model, const ModelCase& baseline,
+                  uint32_t cells, uint32_t extra, uint32_t threads) {
+  const models::TestMesh mesh = clamped_box(cells, extra);
+  BenchHost host(threads);
+  PluginBody ours(model.file, model.model, mesh, box_material(), {0.0, -9.81, 0.0}, 1e-3,
+                  model.overrides, &host.services);
+  PluginBody theirs(baseline.file, baseline.model, mesh, box_material(), {0.0, -9.81, 0.0}, 1e-3,
+                    baseline.overrides, &host.services);
+  for (int i = 0; i < 20; ++i) ours.step(), theirs.step();
+  const auto timed = [](PluginBody& body, uint32_t& bits) {
+    const auto begin = std::chrono::steady_clock::now();
+    bits |= body.step();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+        .count();
+  };
+  std::vector<double> ours_ms, theirs_ms, ratios;
+  ours_ms.reserve(1 << 16);
+  theirs_ms.reserve(1 << 16);
+  ratios.reserve(1 << 16);
+  uint32_t bits = 0;
+  bool ours_first = true;
+  for (auto _ : state) {
+    double a = 0.0, b = 0.0;
+    if (ours_first) {
+      a = timed(ours, bits);
+      b = timed(theirs, bits);
+    } else {
+      b = timed(theirs, bits);
+      a = timed(ours, bits);
+    }
+    ours_first = !ours_first;
+    if (ratios.size() < ratios.capacity()) {
+      ours_ms.push_back(a);
+      theirs_ms.push_back(b);
+      ratios.push_back(a / b);
+    }
+  }
+  for (std::vector<double>* v : {&ours_ms, &theirs_ms, &ratios}) std::sort(v->begin(), v->end());
+  state.counters["ours_p50_ms"] = percentile(ours_ms, 0.5);
+  state.counters["baseline_p50_ms"] = percentile(theirs_ms, 0.5);
+  state.counters["ours_p10_ms"] = percentile(ours_ms, 0.1);
+  state.counters["baseline_p10_ms"] = percentile(theirs_ms, 0.1);
+  state.counters["ratio_p50"] = percentile(ratios, 0.5);
+  state.counters["tets"] = static_cast<double>(mesh.tets.size() / 4);
+  state.counters["threads"] = threads;
+  state.counters["fault"] = (bits & TACTA_STEP_FAULT_MASK) ? 1 : 0;
 }
 
 // `threads: auto` as the scene loader reads it: the CPUs this process may use, less one.
@@ -197,7 +259,8 @@ const bool registered = [] {
     }
   }
   // The sweep: ~500 to ~50k tets (cells per side, extra cells in z).
-  const std::pair<uint32_t, uint32_t> sweep_sizes[] = {{4, 1}, {7, 0}, {9, 0}, {12, 0}, {15, 0}, {20, 1}};
+  const std::pair<uint32_t, uint32_t> sweep_sizes[] = {{4, 1},  {7, 0},  {9, 0},
+                                                       {12, 0}, {15, 0}, {20, 1}};
   std::set<uint32_t> thread_counts = {1, 2, auto_threads()};
   for (const ModelCase& model : sweep_cases()) {
     if (!case_built(model)) continue;
@@ -210,6 +273,26 @@ const bool registered = [] {
                                      [&model, cells, extra, threads](benchmark::State& s) {
                                        step_by_size(s, model, cells, extra, threads);
                                      })
+            ->Unit(benchmark::kMillisecond)
+            ->MinWarmUpTime(0.2);
+      }
+  }
+  for (const ModelCase& model : sweep_cases()) {
+    const std::string label = model.label;
+    const auto baseline = std::find_if(
+        sweep_cases().begin(), sweep_cases().end(),
+        [&](const ModelCase& m) { return std::string(m.label) == "baseline_" + label; });
+    if (!case_built(model) || baseline == sweep_cases().end() || !case_built(*baseline)) continue;
+    for (auto [cells, extra] : sweep_sizes)
+      for (uint32_t threads : thread_counts) {
+        const uint32_t tets = 6 * cells * cells * (cells + extra);
+        benchmark::RegisterBenchmark(
+            ("Paired/" + label + "/tets:" + std::to_string(tets) +
+             "/threads:" + std::to_string(threads))
+                .c_str(),
+            [&model, &baseline = *baseline, cells, extra, threads](benchmark::State& s) {
+              paired_steps(s, model, baseline, cells, extra, threads);
+            })
             ->Unit(benchmark::kMillisecond)
             ->MinWarmUpTime(0.2);
       }
