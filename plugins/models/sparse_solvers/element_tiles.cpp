@@ -51,12 +51,23 @@ ElementTiles::ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_i
                            std::span<const double> centres, uint32_t node_count) {
   const size_t count = centres.size() / 3;
   if (count == 0 || nodes_per_item == 0) return;
-  const std::vector<uint32_t> codes = morton_codes(centres, count);
   items_.resize(count);
   std::iota(items_.begin(), items_.end(), 0u);
+  colour_tiles(nodes, nodes_per_item, node_count);
+  if (tiles_.size() >= kMinTilesPerColour * colours()) return;
+  // Too few tiles per colour: the items' order is not spatial (a mesher's random order), so
+  // tiles of consecutive items are scattered and clash. Tiles in Morton order instead.
+  const std::vector<uint32_t> codes = morton_codes(centres, count);
   std::stable_sort(items_.begin(), items_.end(),
                    [&](uint32_t a, uint32_t b) { return codes[a] < codes[b]; });
+  colour_tiles(nodes, nodes_per_item, node_count);
+}
+
+void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
+                                uint32_t node_count) {
+  const size_t count = items_.size();
   const auto tiles = static_cast<uint32_t>((count + kItemsPerTile - 1) / kItemsPerTile);
+  tile_start_.clear();
   for (uint32_t t = 0; t <= tiles; ++t)
     tile_start_.push_back(
         static_cast<uint32_t>(std::min<size_t>(count, size_t{t} * kItemsPerTile)));

@@ -1,11 +1,11 @@
 // The schedule of a threaded element pass that scatters into its nodes' rows (forces, matrix
-// blocks): the items (element batches) cut into tiles of spatial neighbours, and the tiles
+// blocks): the items (element batches) cut into tiles of consecutive items, and the tiles
 // coloured so that no two tiles of a colour share a node. A colour's tiles run in parallel and
-// a tile's items in order on one thread, so the blocks consecutive items add into stay in that
-// core's cache. (Colouring single batches instead spreads every colour over the whole body,
-// and each colour re-reads the matrix: 1.5x the serial pass's time at 10k tets.) Fixed by the
-// mesh alone, never by the thread count, so a threaded pass gives the same bits on any number
-// of threads.
+// a tile's items in order on one thread, so the blocks neighbouring items add into stay in that
+// core's cache and the items' own data streams. (Colouring single items instead spreads every
+// colour over the whole body: each colour re-reads the matrix.) Where the items' order is not
+// spatial, tiles follow the Morton order of their centres instead. Fixed by the mesh alone,
+// never by the thread count, so a threaded pass gives the same bits on any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -19,11 +19,13 @@ class ElementTiles {
   // Items per tile: a tile is a few microseconds of work, and a colour of a 10k-tet body has
   // enough tiles to balance a few threads.
   static constexpr uint32_t kItemsPerTile = 16;
+  // Tiles of consecutive items are kept while the colours average at least this many tiles.
+  static constexpr uint32_t kMinTilesPerColour = 4;
 
   ElementTiles() = default;
   // Item i touches nodes[i * nodes_per_item, (i + 1) * nodes_per_item) (each < node_count) and
-  // sits at centres[3 i, 3 i + 3) (m). Tiles are runs of kItemsPerTile items in the Morton
-  // order of their centres; colours are given greedily, tile by tile.
+  // sits at centres[3 i, 3 i + 3) (m). Tiles are runs of kItemsPerTile items (in index order,
+  // or in the Morton order of their centres); colours are given greedily, tile by tile.
   ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                std::span<const double> centres, uint32_t node_count);
 
@@ -31,17 +33,20 @@ class ElementTiles {
   uint32_t colours() const {
     return colour_start_.empty() ? 0 : static_cast<uint32_t>(colour_start_.size() - 1);
   }
-  // The tiles of colour c, in Morton order.
+  // The tiles of colour c, in order.
   std::span<const uint32_t> tiles_of(uint32_t colour) const {
     return std::span(tiles_).subspan(colour_start_[colour],
                                      colour_start_[colour + 1] - colour_start_[colour]);
   }
-  // The items of tile t, in Morton order.
+  // The items of tile t, in index order.
   std::span<const uint32_t> items_of(uint32_t tile) const {
     return std::span(items_).subspan(tile_start_[tile], tile_start_[tile + 1] - tile_start_[tile]);
   }
 
  private:
+  // Cuts items_ (in the order given) into tiles and colours them.
+  void colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item, uint32_t node_count);
+
   std::vector<uint32_t> items_, tile_start_;    // tile t: items_[tile_start_[t], [t + 1])
   std::vector<uint32_t> tiles_, colour_start_;  // colour c: tiles_[colour_start_[c], [c + 1])
 };
