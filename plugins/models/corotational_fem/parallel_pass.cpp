@@ -2,8 +2,9 @@
 // and the matrix blocks of their nodes, so batches that share a node must not run at once: they
 // are cut into tiles of neighbours, the tiles coloured (sparse::ElementTiles), and each colour
 // is one parallel_for over its tiles. The row passes around the solve
-// (sparse::RowTeam): each chunk of nodes writes only its own rows. With one worker (or no host)
-// everything runs in order, as it always has: results then match earlier builds bit for bit.
+// (sparse::RowTeam): each chunk of nodes writes only its own rows. With one worker (or no host,
+// or inside a part of a split job: a body stepped in a group) everything runs in order, as it
+// always has: results then match earlier builds bit for bit.
 // With two or more, one result on any thread count (the colouring and the row chunks do not
 // depend on it), equal to the serial one to rounding.
 #include <algorithm>
@@ -43,7 +44,9 @@ void CorotationalFem::tile_batches() {
 
 uint32_t CorotationalFem::batched_pass(const double* positions, double scale) noexcept {
   uint32_t result = TACTA_STEP_OK;
-  if (tiles_.empty()) {
+  // In order where the workers cannot spread (a body stepped in a group runs inside one part of
+  // the engine's job): the serial pass, its bits and its locality (tile order costs more alone).
+  if (tiles_.empty() || tacta_host_workers_here(options_.host) < 2) {
     for (uint32_t b = 0; b < batches_.size(); ++b)
       result |= step_batch(b, positions, scale, polar_iterations_);
     return result;

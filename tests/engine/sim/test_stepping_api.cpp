@@ -215,13 +215,14 @@ TEST(HostServices, TwoWorkersGiveTheSerialPassToRoundingAndRepeat) {
   EXPECT_EQ(beam_after(2, 50), parallel) << "a thread count gives one result, run after run";
 }
 
-// Bodies due on the same tick step together, one per job on the scene's threads: each body's
-// state is, bit for bit, what it reaches alone in a scene with the same `threads` (its model's
-// own parallel_for runs serially inside its job, over the same fixed chunks), and within
-// rounding of `threads: 1`. These beams (240 tets, 99 nodes) are under corotational_fem's 384
-// nodes for its threaded solve; a larger body takes that solve alone and the serial one in a
-// group (BodiesOfThreadedSizeTakeTheSerialSolveInAGroup). A body that faults in the group
-// freezes; the others step on.
+// Bodies due on the same tick step together, one per job on the scene's threads: inside its job
+// a corotational_fem or tensor_mass body runs its serial step (its model's parallel_for cannot
+// spread there), so its state is, bit for bit, what it reaches alone with `threads: 1`, and
+// within rounding of what it reaches alone with the scene's `threads` (corotational_fem's
+// element pass then runs in tiles on the workers). A body of corotational_fem's threaded-solve
+// size takes that solve alone and the serial one in a group
+// (BodiesOfThreadedSizeTakeTheSerialStepInAGroup). A body that faults in the group freezes; the
+// others step on.
 std::string beams_scene(uint32_t threads, const std::vector<std::string>& bodies) {
   std::string text = "name: beams_together\nthreads: " + std::to_string(threads) +
                      "\ngravity: [0, -9, 0]\nclock: {haptic_rate_hz: 100}\nbodies:\n";
@@ -256,21 +257,21 @@ TEST(HostServices, BodiesDueTogetherStepOnTheWorkersAsEachStepsAlone) {
   for (size_t b = 0; b < bodies.size(); ++b) {
     const std::string name = b == 0 ? "polar" : (b == 1 ? "svd" : "tensor");
     const std::vector<double> grouped = positions_after(together, name, 40);
-    EXPECT_EQ(grouped, positions_after(beams_scene(2, {bodies[b]}), name, 40)) << name;
-    const std::vector<double> serial = positions_after(beams_scene(1, bodies), name, 40);
+    EXPECT_EQ(grouped, positions_after(beams_scene(1, {bodies[b]}), name, 40)) << name;
+    const std::vector<double> alone = positions_after(beams_scene(2, {bodies[b]}), name, 40);
     double difference = 0, largest = 0;
-    for (size_t i = 0; i < serial.size(); ++i) {
-      difference = std::max(difference, std::fabs(serial[i] - grouped[i]));
-      largest = std::max(largest, std::fabs(serial[i]));
+    for (size_t i = 0; i < alone.size(); ++i) {
+      difference = std::max(difference, std::fabs(alone[i] - grouped[i]));
+      largest = std::max(largest, std::fabs(alone[i]));
     }
     EXPECT_LT(difference, 1e-9 * largest) << name;
   }
 }
 
-// corotational_fem's threaded solve is taken where the body has the workers to itself: in a
-// group a body's bits are those of `threaded_solve: false` alone; alone, the threaded solve's,
-// equal to them to rounding (637 nodes, 2,592 tets a beam).
-TEST(HostServices, BodiesOfThreadedSizeTakeTheSerialSolveInAGroup) {
+// corotational_fem's threaded step is taken where the body has the workers to itself: in a
+// group a body's bits are those of `threads: 1`; alone, the threaded step's (tiled element
+// pass, threaded solve), equal to them to rounding (637 nodes, 2,592 tets a beam).
+TEST(HostServices, BodiesOfThreadedSizeTakeTheSerialStepInAGroup) {
   const auto beam = [](const std::string& name, double x, const std::string& extra) {
     std::string text = beam_body(name, x, "{name: corotational_fem" + extra + "}");
     const std::string cells = "cells: [2, 2, 10]";
@@ -279,16 +280,15 @@ TEST(HostServices, BodiesOfThreadedSizeTakeTheSerialSolveInAGroup) {
   };
   const std::string grouped = beams_scene(2, {beam("a", 0, ""), beam("b", 20, "")});
   const std::vector<double> in_group = positions_after(grouped, "a", 30);
-  const std::vector<double> serial_solve =
-      positions_after(beams_scene(2, {beam("a", 0, ", threaded_solve: false")}), "a", 30);
+  const std::vector<double> serial = positions_after(beams_scene(1, {beam("a", 0, "")}), "a", 30);
   const std::vector<double> alone = positions_after(beams_scene(2, {beam("a", 0, "")}), "a", 30);
   ASSERT_EQ(in_group.size(), 3u * 637u);
-  EXPECT_EQ(in_group, serial_solve) << "in a group: the serial solve, bit for bit";
-  EXPECT_NE(alone, serial_solve) << "alone: the threaded solve (sums in another order)";
+  EXPECT_EQ(in_group, serial) << "in a group: the serial step, bit for bit";
+  EXPECT_NE(alone, serial) << "alone: the threaded step (sums in another order)";
   double difference = 0, largest = 0;
   for (size_t i = 0; i < alone.size(); ++i) {
-    difference = std::max(difference, std::fabs(alone[i] - serial_solve[i]));
-    largest = std::max(largest, std::fabs(serial_solve[i]));
+    difference = std::max(difference, std::fabs(alone[i] - serial[i]));
+    largest = std::max(largest, std::fabs(serial[i]));
   }
   EXPECT_LT(difference, 1e-9 * largest);
   EXPECT_EQ(positions_after(beams_scene(2, {beam("a", 0, "")}), "a", 30), alone) << "repeats";
@@ -307,7 +307,8 @@ TEST(HostServices, ABodyFaultingInTheGroupFreezesAndTheOthersStepOn) {
   EXPECT_TRUE(report.bodies[1].frozen);
   EXPECT_FALSE(report.bodies[0].frozen);
   EXPECT_FALSE(report.bodies[2].frozen);
-  EXPECT_EQ(positions_after(beams_scene(2, {bodies[0]}), "steady", 20), [&] {
+  // The steady body steps on as it would alone (serially, as in any group).
+  EXPECT_EQ(positions_after(beams_scene(1, {bodies[0]}), "steady", 20), [&] {
     const BodyArrays a = simulation.body_arrays(simulation.body("steady"));
     return std::vector<double>(a.positions, a.positions + 3 * a.nodes);
   }());
