@@ -231,7 +231,7 @@ const std::vector<ModelCase>& sweep_cases() {
         storage.push_back("baseline_" + std::string(list[i].label));
         const char* label = storage.back().c_str();
         storage.push_back(path);
-        list.push_back({label, storage.back().c_str(), list[i].model, {}, 20});
+        list.push_back({label, storage.back().c_str(), list[i].model, list[i].overrides, 20});
       }
     }
     return list;
@@ -290,8 +290,8 @@ const bool registered = [] {
             ("Paired/" + label + "/tets:" + std::to_string(tets) +
              "/threads:" + std::to_string(threads))
                 .c_str(),
-            [&model, &baseline = *baseline, cells, extra, threads](benchmark::State& s) {
-              paired_steps(s, model, baseline, cells, extra, threads);
+            [&model, &base = *baseline, cells, extra, threads](benchmark::State& s) {
+              paired_steps(s, model, base, cells, extra, threads);
             })
             ->Unit(benchmark::kMillisecond)
             ->MinWarmUpTime(0.2);

@@ -68,10 +68,10 @@ struct Options {
   // on it alone asks for digits no force in the step has: the liver demo resting pressed ran
   // most solves to the iteration cap.
   bool force_scaled_tolerance = true;
-  // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs
-  // in tiles of neighbouring batches, colour by colour (no two tiles of a colour share a node),
-  // each colour's tiles in parallel, and
-  // with threaded_solve, from kMinThreadedNodes nodes, the rest of the step too: the matrix's
+  // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs in
+  // tiles of consecutive batches, colour by colour (no two tiles of a colour share a node), each
+  // colour's tiles in parallel, and with threaded_solve, from kMinThreadedNodes nodes, the rest
+  // of the step too: the matrix's
   // zeroing, its product with v, the mass and the held nodes, the rhs, the CG solve (block
   // Jacobi or Jacobi) and the update of the state, on fixed row chunks (sparse::RowTeam).
   const tacta_host_services* host = nullptr;

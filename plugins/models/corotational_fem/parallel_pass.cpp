@@ -1,7 +1,7 @@
 // step() on the engine's workers. The batched element pass: batches scatter into the forces
 // and the matrix blocks of their nodes, so batches that share a node must not run at once: they
-// are cut into tiles of neighbours, the tiles coloured (sparse::ElementTiles), and each colour
-// is one parallel_for over its tiles. The row passes around the solve
+// are cut into tiles of consecutive batches, the tiles coloured (sparse::ElementTiles), and each
+// colour is one parallel_for over its tiles. The row passes around the solve
 // (sparse::RowTeam): each chunk of nodes writes only its own rows. With one worker (or no host,
 // or inside a part of a split job: a body stepped in a group) everything runs in order, as it
 // always has: results then match earlier builds bit for bit.
@@ -38,6 +38,10 @@ void CorotationalFem::tile_batches() {
           centres[3 * b + c] += rest_[3 * size_t{node} + c] / (4.0 * kBatchLanes);
       }
   tiles_ = sparse::ElementTiles(nodes, 4 * kBatchLanes, centres, node_count_);
+  if (tiles_.largest_colour() < 2) {  // a small body: every colour one tile, nothing to share
+    tiles_ = sparse::ElementTiles();
+    return;
+  }
   tallies_.assign(host->worker_count, WorkerTally{});
   tile_split_ = sparse::OwnedSplit(host);
 }

@@ -4,6 +4,7 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace tacta::models::sparse {
 
@@ -37,8 +38,10 @@ std::vector<uint32_t> morton_codes(std::span<const double> centres, size_t count
   for (size_t i = 0; i < count; ++i) {
     uint32_t code = 0;
     for (size_t c = 0; c < 3; ++c) {
-      const double cell = std::clamp((centres[3 * i + c] - low[c]) * cells_per_metre, 0.0, 1023.0);
-      code |= spread_bits(static_cast<uint32_t>(cell)) << c;
+      const double cell = (centres[3 * i + c] - low[c]) * cells_per_metre;
+      // A non-finite centre (never from a mesh the models accept) goes to cell 0.
+      const uint32_t index = cell >= 0.0 ? static_cast<uint32_t>(std::min(cell, 1023.0)) : 0u;
+      code |= spread_bits(index) << c;
     }
     codes[i] = code;
   }
@@ -50,17 +53,32 @@ std::vector<uint32_t> morton_codes(std::span<const double> centres, size_t count
 ElementTiles::ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                            std::span<const double> centres, uint32_t node_count) {
   const size_t count = centres.size() / 3;
-  if (count == 0 || nodes_per_item == 0) return;
+  if (count == 0 || nodes_per_item == 0 || nodes.size() < count * nodes_per_item ||
+      count > std::numeric_limits<uint32_t>::max() / kItemsPerTile)
+    return;  // nothing to schedule, or not a list of items: no schedule (the pass stays serial)
+  for (size_t k = 0; k < count * nodes_per_item; ++k)
+    if (nodes[k] >= node_count) return;
   items_.resize(count);
   std::iota(items_.begin(), items_.end(), 0u);
   colour_tiles(nodes, nodes_per_item, node_count);
-  if (tiles_.size() >= kMinTilesPerColour * colours()) return;
-  // Too few tiles per colour: the items' order is not spatial (a mesher's random order), so
-  // tiles of consecutive items are scattered and clash. Tiles in Morton order instead.
+  if (count <= kMinTilesPerColour * kItemsPerTile ||
+      tiles_.size() >= kMinTilesPerColour * colours())
+    return;
+  // Too few tiles per colour: perhaps the items' order is not spatial (a mesher's random order),
+  // so tiles of consecutive items are scattered and clash. Tiles in Morton order, where they
+  // need fewer colours.
+  ElementTiles in_order = *this;
   const std::vector<uint32_t> codes = morton_codes(centres, count);
   std::stable_sort(items_.begin(), items_.end(),
                    [&](uint32_t a, uint32_t b) { return codes[a] < codes[b]; });
   colour_tiles(nodes, nodes_per_item, node_count);
+  if (colours() >= in_order.colours()) *this = std::move(in_order);
+}
+
+size_t ElementTiles::largest_colour() const {
+  size_t largest = 0;
+  for (uint32_t c = 0; c < colours(); ++c) largest = std::max(largest, tiles_of(c).size());
+  return largest;
 }
 
 void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
@@ -98,21 +116,21 @@ void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_
 
   // Greedy: each tile takes the lowest colour no earlier tile it shares a node with has.
   std::vector<uint32_t> colour(tiles, 0), taken_by;  // taken_by[c]: last tile that saw c taken
-  uint32_t colours = 0;
+  uint32_t colour_count = 0;
   for (uint32_t t = 0; t < tiles; ++t) {
     for_each_node(t, [&](uint32_t n) {
       for (uint32_t k = node_start[n]; k < node_start[n + 1] && node_tiles[k] < t; ++k)
         taken_by[colour[node_tiles[k]]] = t;
     });
     uint32_t c = 0;
-    while (c < colours && taken_by[c] == t) ++c;
-    if (c == colours) {
-      ++colours;
+    while (c < colour_count && taken_by[c] == t) ++c;
+    if (c == colour_count) {
+      ++colour_count;
       taken_by.push_back(tiles);
     }
     colour[t] = c;
   }
-  colour_start_.assign(colours + 1, 0);
+  colour_start_.assign(colour_count + 1, 0);
   for (uint32_t t = 0; t < tiles; ++t) ++colour_start_[colour[t] + 1];
   std::partial_sum(colour_start_.begin(), colour_start_.end(), colour_start_.begin());
   tiles_.resize(tiles);

@@ -3,9 +3,11 @@
 // coloured so that no two tiles of a colour share a node. A colour's tiles run in parallel and
 // a tile's items in order on one thread, so the blocks neighbouring items add into stay in that
 // core's cache and the items' own data streams. (Colouring single items instead spreads every
-// colour over the whole body: each colour re-reads the matrix.) Where the items' order is not
-// spatial, tiles follow the Morton order of their centres instead. Fixed by the mesh alone,
-// never by the thread count, so a threaded pass gives the same bits on any number of threads.
+// colour over the whole body: each colour re-reads the matrix.) Where that leaves fewer than
+// kMinTilesPerColour tiles per colour on average (the items' order is not spatial, as a mesher's
+// random order), tiles follow the Morton order of the items' centres if that needs fewer colours.
+// Fixed by the mesh alone, never by the thread count, so a threaded pass gives the same bits on
+// any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +26,7 @@ class ElementTiles {
 
   ElementTiles() = default;
   // Item i touches nodes[i * nodes_per_item, (i + 1) * nodes_per_item) (each < node_count) and
-  // sits at centres[3 i, 3 i + 3) (m). Tiles are runs of kItemsPerTile items (in index order,
+  // sits at centres[3 i, 3 i + 3) (m); otherwise (or with no items) the schedule is empty. Tiles are runs of kItemsPerTile items (in index order,
   // or in the Morton order of their centres); colours are given greedily, tile by tile.
   ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                std::span<const double> centres, uint32_t node_count);
@@ -33,6 +35,8 @@ class ElementTiles {
   uint32_t colours() const {
     return colour_start_.empty() ? 0 : static_cast<uint32_t>(colour_start_.size() - 1);
   }
+  // The most tiles any colour has: below 2, no colour can use a second thread.
+  size_t largest_colour() const;
   // The tiles of colour c, in order.
   std::span<const uint32_t> tiles_of(uint32_t colour) const {
     return std::span(tiles_).subspan(colour_start_[colour],

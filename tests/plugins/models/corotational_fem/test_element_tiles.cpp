@@ -1,12 +1,14 @@
-// The threaded element pass's schedule (sparse::ElementTiles): every item in exactly one tile and
-// every tile in exactly one colour; no two tiles of a colour share a node (the pass's tiles
-// scatter into their nodes' rows at once); items in index order within a tile; the same
-// schedule every time; runs of consecutive items where the items' order is spatial, compact
-// tiles (Morton order) where it is not.
+// The threaded element pass's schedule (sparse::ElementTiles), on every path it takes (runs of
+// consecutive items, Morton order, a small body): every item in exactly one tile and every tile
+// in exactly one colour; at most kItemsPerTile items a tile, in index order; no two tiles of a
+// colour share a node (the pass's tiles scatter into their nodes' rows at once). Runs of
+// consecutive items where the items' order is spatial, compact tiles where it is not; an input
+// that is not a list of items gives no schedule.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -18,27 +20,68 @@ namespace tacta::models::sparse {
 namespace {
 
 constexpr uint32_t kTetsPerItem = 4;  // a batch of the corotational pass
+constexpr uint32_t kNodesPerItem = 4 * kTetsPerItem;
 
 // Items of kTetsPerItem consecutive tets of `tets` (4 node indices each): their nodes and centres.
 struct Items {
   std::vector<uint32_t> nodes;
   std::vector<double> centres;
   Items(const std::vector<uint32_t>& tets, const std::vector<double>& positions) {
-    const size_t items = tets.size() / (4 * kTetsPerItem);
-    nodes.assign(tets.begin(),
-                 tets.begin() + static_cast<std::ptrdiff_t>(items * 4 * kTetsPerItem));
+    const size_t items = tets.size() / kNodesPerItem;
+    nodes.assign(tets.begin(), tets.begin() + static_cast<std::ptrdiff_t>(items * kNodesPerItem));
     centres.assign(3 * items, 0.0);
     for (size_t i = 0; i < items; ++i)
-      for (size_t k = 0; k < 4 * kTetsPerItem; ++k)
+      for (size_t k = 0; k < kNodesPerItem; ++k)
         for (size_t c = 0; c < 3; ++c)
           centres[3 * i + c] +=
-              positions[3 * size_t{nodes[4 * kTetsPerItem * i + k]} + c] / (4.0 * kTetsPerItem);
+              positions[3 * size_t{nodes[kNodesPerItem * i + k]} + c] / double{kNodesPerItem};
   }
   size_t count() const { return centres.size() / 3; }
+  // The same items in a random order: tiles of consecutive ones would clash everywhere.
+  Items shuffled(unsigned seed) const {
+    std::vector<uint32_t> order(count());
+    std::iota(order.begin(), order.end(), 0u);
+    std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+    Items out = *this;
+    for (size_t i = 0; i < order.size(); ++i) {
+      std::copy_n(&nodes[kNodesPerItem * order[i]], kNodesPerItem, &out.nodes[kNodesPerItem * i]);
+      std::copy_n(&centres[3 * order[i]], 3, &out.centres[3 * i]);
+    }
+    return out;
+  }
 };
 
 ElementTiles tile(const Items& items, uint32_t node_count) {
-  return ElementTiles(items.nodes, 4 * kTetsPerItem, items.centres, node_count);
+  return ElementTiles(items.nodes, kNodesPerItem, items.centres, node_count);
+}
+
+// Every invariant the threaded pass relies on.
+void expect_valid_schedule(const ElementTiles& tiles, const Items& items, uint32_t node_count) {
+  ASSERT_FALSE(tiles.empty());
+  std::vector<int> item_seen(items.count(), 0), tile_seen;
+  for (uint32_t c = 0; c < tiles.colours(); ++c) {
+    std::vector<int> node_owner(node_count, -1);
+    for (uint32_t t : tiles.tiles_of(c)) {
+      if (t >= tile_seen.size()) tile_seen.resize(t + 1, 0);
+      ++tile_seen[t];
+      const auto tile_items = tiles.items_of(t);
+      EXPECT_LE(tile_items.size(), ElementTiles::kItemsPerTile);
+      EXPECT_TRUE(std::is_sorted(tile_items.begin(), tile_items.end())) << "tile " << t;
+      for (uint32_t i : tile_items) {
+        ++item_seen[i];
+        for (size_t k = 0; k < kNodesPerItem; ++k) {
+          int& owner = node_owner[items.nodes[kNodesPerItem * i + k]];
+          ASSERT_TRUE(owner == -1 || owner == static_cast<int>(t))
+              << "tiles " << owner << " and " << t << " of colour " << c << " share a node";
+          owner = static_cast<int>(t);
+        }
+      }
+    }
+  }
+  EXPECT_TRUE(std::all_of(item_seen.begin(), item_seen.end(), [](int n) { return n == 1; }));
+  EXPECT_TRUE(std::all_of(tile_seen.begin(), tile_seen.end(), [](int n) { return n == 1; }));
+  EXPECT_EQ(tile_seen.size(),
+            (items.count() + ElementTiles::kItemsPerTile - 1) / ElementTiles::kItemsPerTile);
 }
 
 // The mean over tiles of the diagonal of their items' centres' bounding box, m.
@@ -59,39 +102,12 @@ double mean_tile_diagonal(const ElementTiles& tiles, const Items& items) {
   return sum / count;
 }
 
-TEST(ElementTiles, EveryItemOnceAndNoTwoTilesOfAColourShareANode) {
+TEST(ElementTiles, ItemsInASpatialOrderGetRunsOfConsecutiveItems) {
   const TestMesh mesh = box_tet_mesh({12, 6, 6}, {0.24, 0.06, 0.06}, 1000.0);
   const Items items(mesh.tets, mesh.positions);
   const ElementTiles tiles = tile(items, mesh.node_count());
-  ASSERT_FALSE(tiles.empty());
-  std::vector<int> item_seen(items.count(), 0), tile_seen;
-  size_t largest_colour = 0;
-  for (uint32_t c = 0; c < tiles.colours(); ++c) {
-    std::vector<int> node_owner(mesh.node_count(), -1);
-    largest_colour = std::max(largest_colour, tiles.tiles_of(c).size());
-    for (uint32_t t : tiles.tiles_of(c)) {
-      if (t >= tile_seen.size()) tile_seen.resize(t + 1, 0);
-      ++tile_seen[t];
-      const auto tile_items = tiles.items_of(t);
-      EXPECT_LE(tile_items.size(), ElementTiles::kItemsPerTile);
-      EXPECT_TRUE(std::is_sorted(tile_items.begin(), tile_items.end()));
-      for (uint32_t i : tile_items) {
-        ++item_seen[i];
-        for (size_t k = 0; k < 4 * kTetsPerItem; ++k) {
-          int& owner = node_owner[items.nodes[4 * kTetsPerItem * i + k]];
-          EXPECT_TRUE(owner == -1 || owner == static_cast<int>(t))
-              << "tiles " << owner << " and " << t << " of colour " << c << " share a node";
-          owner = static_cast<int>(t);
-        }
-      }
-    }
-  }
-  EXPECT_TRUE(std::all_of(item_seen.begin(), item_seen.end(), [](int n) { return n == 1; }));
-  EXPECT_TRUE(std::all_of(tile_seen.begin(), tile_seen.end(), [](int n) { return n == 1; }));
-  EXPECT_EQ(tile_seen.size(),
-            (items.count() + ElementTiles::kItemsPerTile - 1) / ElementTiles::kItemsPerTile);
-  EXPECT_GE(largest_colour, 4u) << "a colour this body's threads can share";
-  // The box's items are in a spatial order already: its tiles are runs of consecutive items.
+  expect_valid_schedule(tiles, items, mesh.node_count());
+  EXPECT_GE(tiles.largest_colour(), 4u) << "a colour this body's threads can share";
   for (uint32_t c = 0; c < tiles.colours(); ++c)
     for (uint32_t t : tiles.tiles_of(c)) {
       const auto run = tiles.items_of(t);
@@ -99,43 +115,41 @@ TEST(ElementTiles, EveryItemOnceAndNoTwoTilesOfAColourShareANode) {
     }
 }
 
-TEST(ElementTiles, TheSameScheduleEveryTime) {
-  const TestMesh mesh = box_tet_mesh({7, 7, 7}, {0.07, 0.07, 0.07}, 1000.0);
-  const Items items(mesh.tets, mesh.positions);
-  const ElementTiles a = tile(items, mesh.node_count()), b = tile(items, mesh.node_count());
-  ASSERT_EQ(a.colours(), b.colours());
-  for (uint32_t c = 0; c < a.colours(); ++c) {
-    ASSERT_TRUE(std::ranges::equal(a.tiles_of(c), b.tiles_of(c)));
-    for (uint32_t t : a.tiles_of(c)) EXPECT_TRUE(std::ranges::equal(a.items_of(t), b.items_of(t)));
-  }
-}
-
-TEST(ElementTiles, ItemsInARandomOrderStillGetCompactTiles) {
+TEST(ElementTiles, ItemsInARandomOrderGetCompactTiles) {
   const TestMesh mesh = box_tet_mesh({10, 10, 10}, {0.1, 0.1, 0.1}, 1000.0);
-  const Items in_order(mesh.tets, mesh.positions);
-  // The same items in a random order: tiles of consecutive ones would clash everywhere.
-  std::vector<uint32_t> order(in_order.count());
-  std::iota(order.begin(), order.end(), 0u);
-  std::shuffle(order.begin(), order.end(), std::mt19937(7));
-  std::vector<uint32_t> shuffled;
-  for (uint32_t i : order)
-    shuffled.insert(shuffled.end(), &mesh.tets[4 * kTetsPerItem * i],
-                    &mesh.tets[4 * kTetsPerItem * (i + 1)]);
-  const Items scattered(shuffled, mesh.positions);
+  const Items scattered = Items(mesh.tets, mesh.positions).shuffled(7);
   const ElementTiles tiles = tile(scattered, mesh.node_count());
+  expect_valid_schedule(tiles, scattered, mesh.node_count());
   // 16 items of 4 tets are about 11 of the 1 cm cells: a compact tile spans a few cells (a cube
   // of 11 cells has a 3.8 cm diagonal), where 16 items taken at random span the 17 cm body.
   EXPECT_LT(mean_tile_diagonal(tiles, scattered), 0.06);
-  size_t largest_colour = 0;
-  for (uint32_t c = 0; c < tiles.colours(); ++c)
-    largest_colour = std::max(largest_colour, tiles.tiles_of(c).size());
-  EXPECT_GE(largest_colour, 4u) << "a colour the threads can share";
+  EXPECT_GE(tiles.largest_colour(), 4u) << "a colour the threads can share";
 }
 
-TEST(ElementTiles, NoItemsNoTiles) {
-  const ElementTiles tiles({}, 16, {}, 10);
-  EXPECT_TRUE(tiles.empty());
-  EXPECT_EQ(tiles.colours(), 0u);
+TEST(ElementTiles, SmallBodiesAndNonFiniteCentresStillGetAValidSchedule) {
+  for (const uint32_t cells : {1u, 2u, 3u, 5u}) {
+    const TestMesh mesh = box_tet_mesh({cells, cells, cells}, {0.1, 0.1, 0.1}, 1000.0);
+    const Items items(mesh.tets, mesh.positions);
+    if (items.count() == 0) continue;
+    expect_valid_schedule(tile(items, mesh.node_count()), items, mesh.node_count());
+    Items broken = items.shuffled(3);  // the Morton path, with centres it cannot place
+    broken.centres[0] = std::numeric_limits<double>::quiet_NaN();
+    broken.centres[4] = std::numeric_limits<double>::infinity();
+    expect_valid_schedule(tile(broken, mesh.node_count()), broken, mesh.node_count());
+  }
+}
+
+TEST(ElementTiles, AnInputThatIsNotAListOfItemsGivesNoSchedule) {
+  const TestMesh mesh = box_tet_mesh({3, 3, 3}, {0.1, 0.1, 0.1}, 1000.0);
+  Items items(mesh.tets, mesh.positions);
+  EXPECT_TRUE(ElementTiles({}, kNodesPerItem, {}, 10).empty());
+  EXPECT_TRUE(ElementTiles(std::span(items.nodes).first(items.nodes.size() - 1), kNodesPerItem,
+                           items.centres, mesh.node_count())
+                  .empty())
+      << "a node list shorter than the items";
+  items.nodes[5] = mesh.node_count();
+  EXPECT_TRUE(tile(items, mesh.node_count()).empty()) << "a node past the body's";
+  EXPECT_EQ(ElementTiles().colours(), 0u);
 }
 
 }  // namespace
