@@ -39,7 +39,8 @@ std::vector<uint32_t> morton_codes(std::span<const double> centres, size_t count
     uint32_t code = 0;
     for (size_t c = 0; c < 3; ++c) {
       const double cell = (centres[3 * i + c] - low[c]) * cells_per_metre;
-      // A non-finite centre (never from a mesh the models accept) goes to cell 0.
+      // Non-finite centres (never from a mesh the models accept) go to cell 0; an infinite one
+      // makes the extent infinite and every code 0 (the order is then kept).
       const uint32_t index = cell >= 0.0 ? static_cast<uint32_t>(std::min(cell, 1023.0)) : 0u;
       code |= spread_bits(index) << c;
     }

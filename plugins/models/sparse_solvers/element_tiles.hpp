@@ -26,8 +26,9 @@ class ElementTiles {
 
   ElementTiles() = default;
   // Item i touches nodes[i * nodes_per_item, (i + 1) * nodes_per_item) (each < node_count) and
-  // sits at centres[3 i, 3 i + 3) (m); otherwise (or with no items) the schedule is empty. Tiles are runs of kItemsPerTile items (in index order,
-  // or in the Morton order of their centres); colours are given greedily, tile by tile.
+  // sits at centres[3 i, 3 i + 3) (m); otherwise (or with no items) the schedule is empty. Tiles
+  // are runs of kItemsPerTile items (in index order, or in the Morton order of their centres);
+  // colours are given greedily, tile by tile.
   ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                std::span<const double> centres, uint32_t node_count);
 

@@ -259,6 +259,10 @@ TEST(HostServices, BodiesDueTogetherStepOnTheWorkersAsEachStepsAlone) {
     const std::vector<double> grouped = positions_after(together, name, 40);
     EXPECT_EQ(grouped, positions_after(beams_scene(1, {bodies[b]}), name, 40)) << name;
     const std::vector<double> alone = positions_after(beams_scene(2, {bodies[b]}), name, 40);
+    // corotational_fem alone on 2 threads runs its element pass in tiles: other sums.
+    if (b < 2) {
+      EXPECT_NE(alone, grouped) << name;
+    }
     double difference = 0, largest = 0;
     for (size_t i = 0; i < alone.size(); ++i) {
       difference = std::max(difference, std::fabs(alone[i] - grouped[i]));

@@ -237,11 +237,19 @@ TEST(ThreadedCorotational, EqualsSerialToRoundingAndRepeatsBitForBit) {
   EXPECT_LT(difference, 1e-8 * displacement) << difference << " of " << displacement;
   EXPECT_EQ(box.run(&two.services), on_two) << "two threads, twice";
   EXPECT_EQ(box.run(&three.services), on_two) << "two and three threads";
-  // With threaded_solve off only the element pass goes to the workers.
+  // With threaded_solve off only the element pass goes to the workers (in tiles): its own bits,
+  // the same on 2 and 3 threads, within rounding of the serial run.
   Options colours_only;
   colours_only.host = &two.services;
   colours_only.threaded_solve = false;
   EXPECT_FALSE(make_model(box.mesh, box.material, colours_only)->threaded());
+  const std::vector<double> tiles_two = box.run(&two.services, 30, nullptr, false);
+  EXPECT_NE(tiles_two, serial) << "the tiled pass adds in another order";
+  EXPECT_EQ(box.run(&three.services, 30, nullptr, false), tiles_two) << "two and three threads";
+  difference = 0.0;
+  for (size_t k = 0; k < serial.size(); ++k)
+    difference = std::max(difference, std::abs(tiles_two[k] - serial[k]));
+  EXPECT_LT(difference, 1e-8 * displacement) << difference << " of " << displacement;
 }
 
 TEST(ThreadedCorotational, ABodySteppedInAGroupRunsTheSerialStepBitForBit) {
@@ -264,7 +272,7 @@ TEST(ThreadedCorotational, ABodySteppedInAGroupRunsTheSerialStepBitForBit) {
 }
 
 // One model stepped alone, then inside a part of a split job, then alone again: each step asks
-// where it runs (the threaded solve alone, the serial one in the part), and the mixed run
+// where it runs (the threaded step alone, the serial one in the part), and the mixed run
 // repeats bit for bit and stays within rounding of the threaded one.
 struct SwitchingRun {
   const KickedBox& box;
@@ -309,7 +317,7 @@ TEST(ThreadedCorotational, EachStepTakesThePathOfWhereItRuns) {
   SwitchingRun again{box, two};
   EXPECT_EQ(again.run(), mixed) << "repeats bit for bit";
   const std::vector<double> threaded = box.run(&two.services);
-  EXPECT_NE(mixed, threaded) << "the middle steps ran the serial solve";
+  EXPECT_NE(mixed, threaded) << "the middle steps ran the serial step";
   double difference = 0.0, displacement = 0.0;
   for (size_t k = 0; k < mixed.size(); ++k) {
     difference = std::max(difference, std::abs(mixed[k] - threaded[k]));
