@@ -71,9 +71,9 @@ struct Options {
   // The engine's parallel_for (model_api.h); with more than one worker the batched pass runs in
   // tiles of consecutive batches, colour by colour (no two tiles of a colour share a node), each
   // colour's tiles in parallel, and with threaded_solve, from kMinThreadedNodes nodes, the rest
-  // of the step too: the matrix's
-  // zeroing, its product with v, the mass and the held nodes, the rhs, the CG solve (block
-  // Jacobi or Jacobi) and the update of the state, on fixed row chunks (sparse::RowTeam).
+  // of the step too: the matrix's zeroing, its product with v, the mass and the held nodes, the
+  // rhs, the CG solve (block Jacobi or Jacobi) and the update of the state, on fixed row chunks
+  // (sparse::RowTeam).
   const tacta_host_services* host = nullptr;
   // Taken only in the steps the body has the workers to itself (RowTeam::threaded); in a group
   // of bodies stepped one per thread the serial code runs, which is faster there.

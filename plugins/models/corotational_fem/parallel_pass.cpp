@@ -1,12 +1,12 @@
 // step() on the engine's workers. The batched element pass: batches scatter into the forces
 // and the matrix blocks of their nodes, so batches that share a node must not run at once: they
 // are cut into tiles of consecutive batches, the tiles coloured (sparse::ElementTiles), and each
-// colour is one parallel_for over its tiles. The row passes around the solve
-// (sparse::RowTeam): each chunk of nodes writes only its own rows. With one worker (or no host,
-// or inside a part of a split job: a body stepped in a group) everything runs in order, as it
-// always has: results then match earlier builds bit for bit.
-// With two or more, one result on any thread count (the colouring and the row chunks do not
-// depend on it), equal to the serial one to rounding.
+// colour is one parallel_for over its tiles. The row passes around the solve (sparse::RowTeam):
+// each chunk of nodes writes only its own rows. With one worker (or no host, or inside a part of
+// a split job: a body stepped in a group) everything runs in order, as it always has: results
+// then match earlier builds bit for bit. With two or more, one result on any thread count (the
+// tiles, their colours and the row chunks do not depend on it), equal to the serial one to
+// rounding.
 #include <algorithm>
 #include <span>
 
