@@ -6,6 +6,8 @@
 #include <numeric>
 #include <utility>
 
+#include "tacta/models/greedy_colouring.hpp"
+
 namespace tacta::models::sparse {
 
 namespace {
@@ -86,20 +88,16 @@ void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_
                                 uint32_t node_count) {
   const size_t count = items_.size();
   const auto tiles = static_cast<uint32_t>((count + kItemsPerTile - 1) / kItemsPerTile);
-  tile_start_.clear();
-  for (uint32_t t = 0; t <= tiles; ++t)
-    tile_start_.push_back(
-        static_cast<uint32_t>(std::min<size_t>(count, size_t{t} * kItemsPerTile)));
   // Within a tile, items go in index order: their rest data and history then stream from memory.
-  for (uint32_t t = 0; t < tiles; ++t)
-    std::sort(items_.begin() + tile_start_[t], items_.begin() + tile_start_[t + 1]);
+  for (size_t first = 0; first < count; first += kItemsPerTile)
+    std::sort(items_.begin() + static_cast<std::ptrdiff_t>(first),
+              items_.begin() + static_cast<std::ptrdiff_t>(std::min(count, first + kItemsPerTile)));
+  const auto for_each_node = [&](uint32_t t, auto&& f) {
+    for (uint32_t item : items_of(t))
+      for (uint32_t m = 0; m < nodes_per_item; ++m) f(nodes[size_t{item} * nodes_per_item + m]);
+  };
   // The tiles touching each node (CSR), each listed once per node.
   std::vector<uint32_t> node_start(node_count + 1, 0), last_tile(node_count, tiles);
-  const auto for_each_node = [&](uint32_t t, auto&& f) {
-    for (uint32_t k = tile_start_[t]; k < tile_start_[t + 1]; ++k)
-      for (uint32_t m = 0; m < nodes_per_item; ++m)
-        f(nodes[size_t{items_[k]} * nodes_per_item + m]);
-  };
   for (uint32_t t = 0; t < tiles; ++t)
     for_each_node(t, [&](uint32_t n) {
       if (last_tile[n] != t) ++node_start[n + 1];
@@ -114,29 +112,17 @@ void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_
       if (last_tile[n] != t) node_tiles[fill[n]++] = t;
       last_tile[n] = t;
     });
-
-  // Greedy: each tile takes the lowest colour no earlier tile it shares a node with has.
-  std::vector<uint32_t> colour(tiles, 0), taken_by;  // taken_by[c]: last tile that saw c taken
-  uint32_t colour_count = 0;
-  for (uint32_t t = 0; t < tiles; ++t) {
-    for_each_node(t, [&](uint32_t n) {
-      for (uint32_t k = node_start[n]; k < node_start[n + 1] && node_tiles[k] < t; ++k)
-        taken_by[colour[node_tiles[k]]] = t;
-    });
-    uint32_t c = 0;
-    while (c < colour_count && taken_by[c] == t) ++c;
-    if (c == colour_count) {
-      ++colour_count;
-      taken_by.push_back(tiles);
-    }
-    colour[t] = c;
-  }
-  colour_start_.assign(colour_count + 1, 0);
-  for (uint32_t t = 0; t < tiles; ++t) ++colour_start_[colour[t] + 1];
-  std::partial_sum(colour_start_.begin(), colour_start_.end(), colour_start_.begin());
-  tiles_.resize(tiles);
-  std::vector<uint32_t> next(colour_start_.begin(), colour_start_.end() - 1);
-  for (uint32_t t = 0; t < tiles; ++t) tiles_[next[colour[t]]++] = t;
+  // Tiles that share a node clash.
+  ColourGroups groups = greedy_colouring(
+      tiles,
+      [&](uint32_t t, auto&& visit) {
+        for_each_node(t, [&](uint32_t n) {
+          for (uint32_t k = node_start[n]; k < node_start[n + 1]; ++k) visit(node_tiles[k]);
+        });
+      },
+      [](uint32_t) { return false; });
+  colour_start_ = std::move(groups.starts);
+  tiles_ = std::move(groups.members);
 }
 
 }  // namespace tacta::models::sparse

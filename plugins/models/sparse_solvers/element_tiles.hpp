@@ -10,6 +10,7 @@
 // any number of threads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -32,7 +33,7 @@ class ElementTiles {
   ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                std::span<const double> centres, uint32_t node_count);
 
-  bool empty() const { return tile_start_.empty(); }
+  bool empty() const { return items_.empty(); }
   uint32_t colours() const {
     return colour_start_.empty() ? 0 : static_cast<uint32_t>(colour_start_.size() - 1);
   }
@@ -43,16 +44,17 @@ class ElementTiles {
     return std::span(tiles_).subspan(colour_start_[colour],
                                      colour_start_[colour + 1] - colour_start_[colour]);
   }
-  // The items of tile t, in index order.
+  // The items of tile t (kItemsPerTile of them, fewer in the last), in index order.
   std::span<const uint32_t> items_of(uint32_t tile) const {
-    return std::span(items_).subspan(tile_start_[tile], tile_start_[tile + 1] - tile_start_[tile]);
+    const size_t first = size_t{tile} * kItemsPerTile;
+    return std::span(items_).subspan(first, std::min<size_t>(kItemsPerTile, items_.size() - first));
   }
 
  private:
   // Cuts items_ (in the order given) into tiles and colours them.
   void colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item, uint32_t node_count);
 
-  std::vector<uint32_t> items_, tile_start_;    // tile t: items_[tile_start_[t], [t + 1])
+  std::vector<uint32_t> items_;                 // in tile order, kItemsPerTile a tile
   std::vector<uint32_t> tiles_, colour_start_;  // colour c: tiles_[colour_start_[c], [c + 1])
 };
 

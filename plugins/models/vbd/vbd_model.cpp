@@ -5,10 +5,12 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "element_energy.hpp"
 #include "element_rotation.hpp"  // corotational_fem's warm-started polar rotation
 #include "hot_path.hpp"          // the sweep built for AVX2 + FMA too, picked at load
+#include "tacta/models/greedy_colouring.hpp"
 
 namespace tacta::models::vbd {
 
@@ -90,26 +92,15 @@ void VbdModel::build_incidence_and_colours(std::span<const uint8_t> fixed) {
 
   // Greedy colouring in node order: the smallest colour no free tet-neighbour holds yet. Fixed
   // vertices never move, so they neither need a colour nor constrain one.
-  constexpr uint32_t kNone = UINT32_MAX;
-  std::vector<uint32_t> colour(n, kNone), taken_by;  // taken_by[c] = i + 1: a neighbour of i has c
-  for (uint32_t i = 0; i < n; ++i) {
-    if (fixed[i]) continue;
-    for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k)
-      for (uint32_t j : tets_[incidence_[k].tet].nodes)
-        if (j != i && colour[j] != kNone) taken_by[colour[j]] = i + 1;
-    uint32_t c = 0;
-    while (c < taken_by.size() && taken_by[c] == i + 1) ++c;
-    if (c == taken_by.size()) taken_by.push_back(0);
-    colour[i] = c;
-  }
-  colour_start_.assign(taken_by.size() + 1, 0);
-  for (uint32_t i = 0; i < n; ++i)
-    if (colour[i] != kNone) ++colour_start_[colour[i] + 1];
-  for (size_t c = 0; c < taken_by.size(); ++c) colour_start_[c + 1] += colour_start_[c];
-  colour_vertices_.resize(colour_start_.back());
-  std::vector<uint32_t> fill(colour_start_.begin(), colour_start_.end() - 1);
-  for (uint32_t i = 0; i < n; ++i)
-    if (colour[i] != kNone) colour_vertices_[fill[colour[i]]++] = i;
+  ColourGroups groups = greedy_colouring(
+      n,
+      [&](uint32_t i, auto&& visit) {
+        for (uint32_t k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k)
+          for (uint32_t j : tets_[incidence_[k].tet].nodes) visit(j);
+      },
+      [&](uint32_t i) { return fixed[i] != 0; });
+  colour_start_ = std::move(groups.starts);
+  colour_vertices_ = std::move(groups.members);
 }
 
 template <class Body>
