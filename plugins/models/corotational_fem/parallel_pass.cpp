@@ -22,7 +22,6 @@ constexpr uint32_t kMinParallelBatches = 32;
 }  // namespace
 
 void CorotationalFem::tile_batches() {
-  tiles_ = sparse::ElementTiles();
   const tacta_host_services* host = options_.host;
   if (host == nullptr || host->worker_count < 2 || host->parallel_for == nullptr ||
       batches_.size() < kMinParallelBatches)
