@@ -54,17 +54,20 @@ std::vector<uint32_t> morton_codes(std::span<const double> centres, size_t count
 }  // namespace
 
 ElementTiles::ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
-                           std::span<const double> centres, uint32_t node_count) {
+                           std::span<const double> centres, uint32_t node_count,
+                           uint32_t items_per_tile)
+    : items_per_tile_(items_per_tile) {
   const size_t count = centres.size() / 3;
-  if (count == 0 || nodes_per_item == 0 || nodes.size() < count * nodes_per_item ||
-      count > std::numeric_limits<uint32_t>::max() / kItemsPerTile)
+  if (count == 0 || nodes_per_item == 0 || items_per_tile == 0 ||
+      nodes.size() < count * nodes_per_item ||
+      count > std::numeric_limits<uint32_t>::max() - items_per_tile)
     return;  // nothing to schedule, or not a list of items: no schedule (the pass stays serial)
   for (size_t k = 0; k < count * nodes_per_item; ++k)
     if (nodes[k] >= node_count) return;
   items_.resize(count);
   std::iota(items_.begin(), items_.end(), 0u);
   colour_tiles(nodes, nodes_per_item, node_count);
-  if (count <= kMinTilesPerColour * kItemsPerTile ||
+  if (count <= size_t{kMinTilesPerColour} * items_per_tile ||
       tiles_.size() >= kMinTilesPerColour * colours())
     return;
   // Too few tiles per colour: perhaps the items' order is not spatial (a mesher's random order),
@@ -87,11 +90,12 @@ size_t ElementTiles::largest_colour() const {
 void ElementTiles::colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
                                 uint32_t node_count) {
   const size_t count = items_.size();
-  const auto tiles = static_cast<uint32_t>((count + kItemsPerTile - 1) / kItemsPerTile);
+  const auto tiles = static_cast<uint32_t>((count + items_per_tile_ - 1) / items_per_tile_);
   // Within a tile, items go in index order: their rest data and history then stream from memory.
-  for (size_t first = 0; first < count; first += kItemsPerTile)
-    std::sort(items_.begin() + static_cast<std::ptrdiff_t>(first),
-              items_.begin() + static_cast<std::ptrdiff_t>(std::min(count, first + kItemsPerTile)));
+  for (size_t first = 0; first < count; first += items_per_tile_)
+    std::sort(
+        items_.begin() + static_cast<std::ptrdiff_t>(first),
+        items_.begin() + static_cast<std::ptrdiff_t>(std::min(count, first + items_per_tile_)));
   const auto for_each_node = [&](uint32_t t, auto&& f) {
     for (uint32_t item : items_of(t))
       for (uint32_t m = 0; m < nodes_per_item; ++m) f(nodes[size_t{item} * nodes_per_item + m]);

@@ -1,5 +1,5 @@
 // The schedule of a threaded element pass that scatters into its nodes' rows (forces, matrix
-// blocks): the items (element batches) cut into tiles of consecutive items, and the tiles
+// blocks): the items (element batches, or elements) cut into tiles of consecutive items, and the tiles
 // coloured so that no two tiles of a colour share a node. A colour's tiles run in parallel and
 // a tile's items in order on one thread, so the blocks neighbouring items add into stay in that
 // core's cache and the items' own data streams. (Colouring single items instead spreads every
@@ -19,19 +19,20 @@ namespace tacta::models::sparse {
 
 class ElementTiles {
  public:
-  // Items per tile: a tile is a few microseconds of work, and a colour of a 10k-tet body has
-  // enough tiles to balance a few threads.
+  // Items per tile by default (batches of 4 tets: 64 tets a tile): a tile is a few microseconds
+  // of work, and a colour of a 10k-tet body has enough tiles to balance a few threads.
   static constexpr uint32_t kItemsPerTile = 16;
   // Tiles of consecutive items are kept while the colours average at least this many tiles.
   static constexpr uint32_t kMinTilesPerColour = 4;
 
   ElementTiles() = default;
   // Item i touches nodes[i * nodes_per_item, (i + 1) * nodes_per_item) (each < node_count) and
-  // sits at centres[3 i, 3 i + 3) (m); otherwise (or with no items) the schedule is empty. Tiles
-  // are runs of kItemsPerTile items (in index order, or in the Morton order of their centres);
-  // colours are given greedily, tile by tile.
+  // sits at centres[3 i, 3 i + 3) (m); otherwise (or with no items, or items_per_tile 0) the
+  // schedule is empty. Tiles are runs of items_per_tile items (in index order, or in the Morton
+  // order of their centres); colours are given greedily, tile by tile.
   ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item,
-               std::span<const double> centres, uint32_t node_count);
+               std::span<const double> centres, uint32_t node_count,
+               uint32_t items_per_tile = kItemsPerTile);
 
   bool empty() const { return items_.empty(); }
   uint32_t colours() const {
@@ -44,17 +45,20 @@ class ElementTiles {
     return std::span(tiles_).subspan(colour_start_[colour],
                                      colour_start_[colour + 1] - colour_start_[colour]);
   }
-  // The items of tile t (kItemsPerTile of them, fewer in the last), in index order.
+  uint32_t tiles() const { return static_cast<uint32_t>(tiles_.size()); }
+  // The items of tile t (items_per_tile of them, fewer in the last), in index order.
   std::span<const uint32_t> items_of(uint32_t tile) const {
-    const size_t first = size_t{tile} * kItemsPerTile;
-    return std::span(items_).subspan(first, std::min<size_t>(kItemsPerTile, items_.size() - first));
+    const size_t first = size_t{tile} * items_per_tile_;
+    return std::span(items_).subspan(first,
+                                     std::min<size_t>(items_per_tile_, items_.size() - first));
   }
 
  private:
   // Cuts items_ (in the order given) into tiles and colours them.
   void colour_tiles(std::span<const uint32_t> nodes, uint32_t nodes_per_item, uint32_t node_count);
 
-  std::vector<uint32_t> items_;                 // in tile order, kItemsPerTile a tile
+  uint32_t items_per_tile_ = kItemsPerTile;
+  std::vector<uint32_t> items_;                 // in tile order, items_per_tile_ a tile
   std::vector<uint32_t> tiles_, colour_start_;  // colour c: tiles_[colour_start_[c], [c + 1])
 };
 

@@ -1,9 +1,10 @@
 // The threaded element pass's schedule (sparse::ElementTiles), on every path it takes (runs of
 // consecutive items, Morton order, small bodies): every item in exactly one tile and every tile
-// in exactly one colour; at most kItemsPerTile items a tile, in index order; no two tiles of a
+// in exactly one colour; at most items_per_tile items a tile, in index order; no two tiles of a
 // colour share a node (the pass's tiles scatter into their nodes' rows at once). Runs of
 // consecutive items where the items' order is spatial, compact tiles where it is not; an input
-// that is not a list of items gives no schedule.
+// that is not a list of items gives no schedule. Items are batches of 4 tets (the corotational
+// pass, 16 a tile) or single tets (the hyperelastic pass, 64 a tile).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -22,19 +23,23 @@ namespace {
 constexpr uint32_t kTetsPerItem = 4;  // a batch of the corotational pass
 constexpr uint32_t kNodesPerItem = 4 * kTetsPerItem;
 
-// Items of kTetsPerItem consecutive tets of `tets` (4 node indices each): their nodes and centres.
+// Items of tets_per_item consecutive tets of `tets` (4 node indices each): their nodes and
+// centres, and the tile length their pass uses.
 struct Items {
+  uint32_t nodes_per_item = kNodesPerItem, items_per_tile = ElementTiles::kItemsPerTile;
   std::vector<uint32_t> nodes;
   std::vector<double> centres;
-  Items(const std::vector<uint32_t>& tets, const std::vector<double>& positions) {
-    const size_t items = tets.size() / kNodesPerItem;
-    nodes.assign(tets.begin(), tets.begin() + static_cast<std::ptrdiff_t>(items * kNodesPerItem));
+  Items(const std::vector<uint32_t>& tets, const std::vector<double>& positions,
+        uint32_t tets_per_item = kTetsPerItem, uint32_t tile_length = ElementTiles::kItemsPerTile)
+      : nodes_per_item(4 * tets_per_item), items_per_tile(tile_length) {
+    const size_t items = tets.size() / nodes_per_item;
+    nodes.assign(tets.begin(), tets.begin() + static_cast<std::ptrdiff_t>(items * nodes_per_item));
     centres.assign(3 * items, 0.0);
     for (size_t i = 0; i < items; ++i)
-      for (size_t k = 0; k < kNodesPerItem; ++k)
+      for (size_t k = 0; k < nodes_per_item; ++k)
         for (size_t c = 0; c < 3; ++c)
-          centres[3 * i + c] +=
-              positions[3 * size_t{nodes[kNodesPerItem * i + k]} + c] / double{kNodesPerItem};
+          centres[3 * i + c] += positions[3 * size_t{nodes[nodes_per_item * i + k]} + c] /
+                                static_cast<double>(nodes_per_item);
   }
   size_t count() const { return centres.size() / 3; }
   // The same items in a random order: tiles of consecutive ones would clash everywhere.
@@ -44,7 +49,8 @@ struct Items {
     std::shuffle(order.begin(), order.end(), std::mt19937(seed));
     Items out = *this;
     for (size_t i = 0; i < order.size(); ++i) {
-      std::copy_n(&nodes[kNodesPerItem * order[i]], kNodesPerItem, &out.nodes[kNodesPerItem * i]);
+      std::copy_n(&nodes[nodes_per_item * order[i]], nodes_per_item,
+                  &out.nodes[nodes_per_item * i]);
       std::copy_n(&centres[3 * order[i]], 3, &out.centres[3 * i]);
     }
     return out;
@@ -52,7 +58,8 @@ struct Items {
 };
 
 ElementTiles tile(const Items& items, uint32_t node_count) {
-  return ElementTiles(items.nodes, kNodesPerItem, items.centres, node_count);
+  return ElementTiles(items.nodes, items.nodes_per_item, items.centres, node_count,
+                      items.items_per_tile);
 }
 
 // Every invariant the threaded pass relies on.
@@ -65,12 +72,12 @@ void expect_valid_schedule(const ElementTiles& tiles, const Items& items, uint32
       if (t >= tile_seen.size()) tile_seen.resize(t + 1, 0);
       ++tile_seen[t];
       const auto tile_items = tiles.items_of(t);
-      EXPECT_LE(tile_items.size(), ElementTiles::kItemsPerTile);
+      EXPECT_LE(tile_items.size(), items.items_per_tile);
       EXPECT_TRUE(std::is_sorted(tile_items.begin(), tile_items.end())) << "tile " << t;
       for (uint32_t i : tile_items) {
         ++item_seen[i];
-        for (size_t k = 0; k < kNodesPerItem; ++k) {
-          int& owner = node_owner[items.nodes[kNodesPerItem * i + k]];
+        for (size_t k = 0; k < items.nodes_per_item; ++k) {
+          int& owner = node_owner[items.nodes[items.nodes_per_item * i + k]];
           ASSERT_TRUE(owner == -1 || owner == static_cast<int>(t))
               << "tiles " << owner << " and " << t << " of colour " << c << " share a node";
           owner = static_cast<int>(t);
@@ -80,8 +87,7 @@ void expect_valid_schedule(const ElementTiles& tiles, const Items& items, uint32
   }
   EXPECT_TRUE(std::all_of(item_seen.begin(), item_seen.end(), [](int n) { return n == 1; }));
   EXPECT_TRUE(std::all_of(tile_seen.begin(), tile_seen.end(), [](int n) { return n == 1; }));
-  EXPECT_EQ(tile_seen.size(),
-            (items.count() + ElementTiles::kItemsPerTile - 1) / ElementTiles::kItemsPerTile);
+  EXPECT_EQ(tile_seen.size(), (items.count() + items.items_per_tile - 1) / items.items_per_tile);
 }
 
 // The mean over tiles of the diagonal of their items' centres' bounding box, m.
@@ -124,6 +130,22 @@ TEST(ElementTiles, ItemsInARandomOrderGetCompactTiles) {
   // of 11 cells has a 3.8 cm diagonal), where 16 items taken at random span the 17 cm body.
   EXPECT_LT(mean_tile_diagonal(tiles, scattered), 0.06);
   EXPECT_GE(tiles.largest_colour(), 4u) << "a colour the threads can share";
+}
+
+TEST(ElementTiles, SingleTetsInARandomOrderGetCompactTilesOf64) {
+  // The hyperelastic pass: items of one tet, 64 a tile, in a mesher's order (here shuffled).
+  const TestMesh mesh = box_tet_mesh({10, 10, 10}, {0.1, 0.1, 0.1}, 1000.0);
+  const Items in_order(mesh.tets, mesh.positions, 1, 64);
+  const Items scattered = in_order.shuffled(11);
+  for (const Items* items : {&in_order, &scattered}) {
+    const ElementTiles tiles = tile(*items, mesh.node_count());
+    expect_valid_schedule(tiles, *items, mesh.node_count());
+    EXPECT_GE(tiles.largest_colour(), 4u) << "a colour the threads can share";
+  }
+  // 64 tets are about 11 of the 1 cm cells, as 16 batches of 4 are (above).
+  EXPECT_LT(mean_tile_diagonal(tile(scattered, mesh.node_count()), scattered), 0.06);
+  EXPECT_TRUE(ElementTiles(in_order.nodes, 4, in_order.centres, mesh.node_count(), 0).empty())
+      << "tiles of no items";
 }
 
 TEST(ElementTiles, SmallBodiesGetAValidSchedule) {
