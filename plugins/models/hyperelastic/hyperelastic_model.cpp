@@ -80,72 +80,88 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
     buffer->assign(n, 0.0);
   weights_.assign(node_count_, 0.0);
   assembled_deformation_.assign(elements_.size(), Eigen::Matrix3d::Identity());
+  // With nodal volumes the step stays serial: their term (nodal_volume.hpp) is serial, and the
+  // solve's row-parallel products read both triangles of its wide matrix (a node's 1-ring's
+  // 1-ring), doubling reads already bound by memory; threaded, that step measured no faster
+  // or slower (docs/BENCHMARKS.md).
+  const tacta_host_services* host = nodal_ ? nullptr : options_.host;
+  options_.solver.host = host;
   solver_ = std::make_unique<sparse::SafeSolver>(matrix_, options_.solver);
+  if (host != nullptr) tile_elements(mesh.rest_positions);
+  rows_ = sparse::RowTeam(host, node_count_, sparse::ConjugateGradientSolver::kMinThreadedNodes);
   matrix_.apply_fixed(fixed_);  // builds the list of blocks to clear, while allocation is allowed
 }
 
 HyperelasticModel::~HyperelasticModel() = default;
 
 double HyperelasticModel::element_pass(const double* x, double* forces, double scale) noexcept {
-  const MaterialConstants& material = element_material_;
-  double energy = 0.0;
-  inverted_ = false;
+  PassTally tally{0.0, deformation_change_, false};
   if (nodal_) {
-    energy += nodal_->evaluate(x);
+    tally.energy += nodal_->evaluate(x);
     if (forces != nullptr) nodal_->add_forces(forces);
     if (scale != 0.0) nodal_->add_tangent(matrix_, scale, options_.project_tangent);
   }
-  for (uint32_t e = 0; e < elements_.size(); ++e) {
-    const Element& element = elements_[e];
-    Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
-    for (int a = 0; a < 4; ++a)
-      deformation.noalias() += node_position(x, element.nodes[a]) *
-                               Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
-    if (record_deformation_) assembled_deformation_[e] = deformation;
-    if (track_change_) {
-      deformation_change_ =
-          std::max(deformation_change_, (deformation - assembled_deformation_[e]).squaredNorm());
-      // The lagged system is ruled out: the caller assembles a fresh tangent, which computes
-      // the forces again, so the rest of this pass would be wasted.
-      if (deformation_change_ > options_.tangent_reuse_change * options_.tangent_reuse_change)
-        return energy;
-    }
-    if (scale == 0.0) {  // no tangent: the invariants give psi and P without an SVD
-      double psi = 0.0;
-      Eigen::Matrix3d stress;
-      if (invariant_stress(material, deformation, psi, forces != nullptr ? &stress : nullptr)) {
-        energy += element.volume * psi;
-        if (forces != nullptr) scatter_forces(element, stress, forces);
-        continue;
-      }
-    }
-    const StretchFrame frame = rotation_variant_svd(deformation);
-    if (frame.sigma[2] <= 0.0) inverted_ = true;
-    if (forces == nullptr && scale == 0.0) {
-      energy += element.volume * clamped_stretch_energy(material, frame.sigma);
-      continue;
-    }
-    const StretchDerivatives psi = clamped_stretch_derivatives(material, frame.sigma);
-    energy += element.volume * psi.energy;
-    if (forces != nullptr) scatter_forces(element, first_piola(frame, psi), forces);
-    if (scale == 0.0) continue;
-    const DiagonalTangent tangent = diagonal_tangent(frame.sigma, psi, options_.project_tangent);
-    Eigen::Vector3d w[4];  // V^T grad_a
-    for (int a = 0; a < 4; ++a)
-      w[a] = frame.v.transpose() * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]);
-    Eigen::Matrix3d blocks[10];
-    element_stiffness(frame, tangent, w, scale * element.volume, blocks);
-    const uint32_t* slots = matrix_.element_slots(e);
-    for (int p = 0; p < 10; ++p) {
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> stored(matrix_.block(slots[p]));
-      // The stored block is (low node, high node): K_ba = K_ab^T when a's node is the higher.
-      if (element.nodes[kPairA[p]] > element.nodes[kPairB[p]])
-        stored += blocks[p].transpose();
-      else
-        stored += blocks[p];
+  if (!tiles_.empty() && tacta_host_workers_here(options_.host) >= 2) {
+    tiled_elements(x, forces, scale, tally);
+  } else {  // in mesh order: a body stepped in a group, or a host with one worker
+    for (uint32_t e = 0; e < elements_.size(); ++e)
+      if (!add_element(e, x, forces, scale, tally)) break;
+  }
+  inverted_ = tally.inverted;
+  deformation_change_ = tally.change;
+  return tally.energy;
+}
+
+bool HyperelasticModel::add_element(uint32_t e, const double* x, double* forces, double scale,
+                                    PassTally& tally) noexcept {
+  const MaterialConstants& material = element_material_;
+  const Element& element = elements_[e];
+  Eigen::Matrix3d deformation = Eigen::Matrix3d::Zero();  // F = sum_a x_a grad_a^T
+  for (int a = 0; a < 4; ++a)
+    deformation.noalias() += node_position(x, element.nodes[a]) *
+                             Eigen::Map<const Eigen::Vector3d>(element.gradients[a]).transpose();
+  if (record_deformation_) assembled_deformation_[e] = deformation;
+  if (track_change_) {
+    tally.change = std::max(tally.change, (deformation - assembled_deformation_[e]).squaredNorm());
+    // The lagged system is ruled out: the caller assembles a fresh tangent, which computes
+    // the forces again, so the rest of this pass would be wasted.
+    if (tally.change > options_.tangent_reuse_change * options_.tangent_reuse_change) return false;
+  }
+  if (scale == 0.0) {  // no tangent: the invariants give psi and P without an SVD
+    double psi = 0.0;
+    Eigen::Matrix3d stress;
+    if (invariant_stress(material, deformation, psi, forces != nullptr ? &stress : nullptr)) {
+      tally.energy += element.volume * psi;
+      if (forces != nullptr) scatter_forces(element, stress, forces);
+      return true;
     }
   }
-  return energy;
+  const StretchFrame frame = rotation_variant_svd(deformation);
+  if (frame.sigma[2] <= 0.0) tally.inverted = true;
+  if (forces == nullptr && scale == 0.0) {
+    tally.energy += element.volume * clamped_stretch_energy(material, frame.sigma);
+    return true;
+  }
+  const StretchDerivatives psi = clamped_stretch_derivatives(material, frame.sigma);
+  tally.energy += element.volume * psi.energy;
+  if (forces != nullptr) scatter_forces(element, first_piola(frame, psi), forces);
+  if (scale == 0.0) return true;
+  const DiagonalTangent tangent = diagonal_tangent(frame.sigma, psi, options_.project_tangent);
+  Eigen::Vector3d w[4];  // V^T grad_a
+  for (int a = 0; a < 4; ++a)
+    w[a] = frame.v.transpose() * Eigen::Map<const Eigen::Vector3d>(element.gradients[a]);
+  Eigen::Matrix3d blocks[10];
+  element_stiffness(frame, tangent, w, scale * element.volume, blocks);
+  const uint32_t* slots = matrix_.element_slots(e);
+  for (int p = 0; p < 10; ++p) {
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> stored(matrix_.block(slots[p]));
+    // The stored block is (low node, high node): K_ba = K_ab^T when a's node is the higher.
+    if (element.nodes[kPairA[p]] > element.nodes[kPairB[p]])
+      stored += blocks[p].transpose();
+    else
+      stored += blocks[p];
+  }
+  return true;
 }
 
 double HyperelasticModel::elastic_energy(const double* positions) noexcept {

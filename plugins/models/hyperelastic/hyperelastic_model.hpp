@@ -12,13 +12,16 @@
 // The sparsity pattern and every buffer are fixed at creation: step() allocates nothing.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "block_sparse.hpp"
+#include "element_tiles.hpp"
 #include "nodal_volume.hpp"
+#include "row_team.hpp"
 #include "safe_solver.hpp"
 #include "stretch_energy.hpp"
 #include "tacta/model_api.h"
@@ -52,6 +55,12 @@ struct Options {
   double static_tolerance = 1e-6;  // static: |f_int + f_ext| <= this * the load scale (N)
   int max_load_cuts = 8;           // static: halvings of a failed increment, at most
   sparse::SolverOptions solver;
+  // The engine's parallel_for (model_api.h). With two or more workers, in the steps the body
+  // has them to itself (not in a group), and per-element volumes: the element pass colour by
+  // colour of tiles of elements (sparse::ElementTiles), and from 384 nodes the passes over the
+  // matrix and a (block) Jacobi CG on row chunks (solver.host is set from it). One result on
+  // any thread count, equal to the serial one to rounding. Nodal volumes keep the serial step.
+  const tacta_host_services* host = nullptr;
 };
 
 struct NewtonCounters {
@@ -87,6 +96,9 @@ class HyperelasticModel {
   const Options& options() const { return options_; }
   uint32_t node_count() const { return node_count_; }
   uint32_t element_count() const { return static_cast<uint32_t>(elements_.size()); }
+  // Whether the element pass runs in tiles on the host's workers (in the steps the body has
+  // them to itself): two or more workers, per-element volumes, a body of a few hundred tets.
+  bool tiled() const { return !tiles_.empty(); }
   // Checkpoints (state_blob.hpp): the counters, the next step's first guess, the static solve's
   // last loads, and the lagged system (A, Kd, the F it was assembled at, its age, the solver's
   // preconditioner) that a later step's first correction may reuse.
@@ -97,6 +109,24 @@ class HyperelasticModel {
   // One pass over the elements at x: returns W (J); adds internal forces into forces (if not
   // null) and scale * K into matrix_ (if scale != 0); sets inverted_ when an element is.
   double element_pass(const double* x, double* forces, double scale) noexcept;
+  // What an element pass gathers besides forces and matrix blocks.
+  struct PassTally {
+    double energy = 0.0;  // J
+    double change = 0.0;  // the largest |F - assembled F|^2 met (track_change_)
+    bool inverted = false;
+  };
+  // Element e's share of element_pass into tally; false when track_change_ has just ruled the
+  // lagged system out (the pass may stop there: its forces are then not needed).
+  bool add_element(uint32_t e, const double* x, double* forces, double scale,
+                   PassTally& tally) noexcept;
+  // Threaded element pass (parallel_pass.cpp): the elements in coloured tiles of
+  // kElementsPerTile (a few to tens of microseconds each); tile_elements() leaves tiles_ empty
+  // where that would not pay.
+  static constexpr uint32_t kElementsPerTile = 64;
+  void tile_elements(const double* rest_positions);
+  // element_pass's loop over the elements, colour by colour of tiles on the host's workers;
+  // the energy is summed per tile and then in tile order (the same bits on any thread count).
+  void tiled_elements(const double* x, double* forces, double scale, PassTally& tally) noexcept;
   // Newton on Phi with weights (inertia a, mass damping b, stiffness damping c, potential s);
   // x holds the first iterate and the result. Returns true when converged.
   struct Objective {
@@ -114,6 +144,15 @@ class HyperelasticModel {
   // nodes) to residual and its norm. Leaves scratch_ = x - x_n and product_ = Kd scratch_.
   double measure_at(const Objective& objective, const double* x, double energy, double* residual,
                     double& residual_norm) noexcept;
+  // The passes over the whole system matrix, on row chunks (rows_) when the body has the
+  // workers to itself, else in order; each gives the serial code's bits. matrix_ zeroed:
+  void zero_system() noexcept;
+  // damping_ = matrix_ / potential (Kd: the tangent at the step's first iterate).
+  void store_damping(double potential) noexcept;
+  // A = (a + b) M + c Kd + s K(x): matrix_ holds s K(x); held nodes' rows and columns identity.
+  void finish_system(const Objective& objective) noexcept;
+  // s . Kd s into product_ = Kd s, s = scratch_ (measure_at's one matrix product).
+  double damping_product() noexcept;
   uint32_t step_dynamic(tacta_body_state& state, double h) noexcept;
   uint32_t solve_static(tacta_body_state& state) noexcept;
 
@@ -148,6 +187,18 @@ class HyperelasticModel {
   int system_age_ = 0;
   double system_step_ = 0.0;          // s
   bool linear_solve_failed_ = false;  // in this step
+  // The threaded element pass: the tiles, each tile's energy, per worker what it met (one
+  // cache line each), and a flag that stops the pass once track_change_ rules the system out.
+  sparse::ElementTiles tiles_;
+  std::vector<double> tile_energy_;
+  struct alignas(64) WorkerTally {
+    double change = 0.0;
+    bool inverted = false;
+  };
+  std::vector<WorkerTally> tallies_;
+  sparse::OwnedSplit tile_split_;
+  std::atomic<bool> stop_pass_{false};
+  sparse::RowTeam rows_;  // the matrix passes on row chunks (none below 384 nodes or 1 worker)
 };
 
 }  // namespace tacta::models::hyperelastic

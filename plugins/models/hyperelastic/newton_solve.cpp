@@ -23,9 +23,7 @@ double HyperelasticModel::measure_at(const Objective& o, const double* x, double
   const size_t n = residual_.size();
   const bool has_fixed = !fixed_.empty();
   for (size_t k = 0; k < n; ++k) scratch_[k] = x[k] - o.start[k];
-  const double skds = o.stiffness_damping != 0.0
-                          ? damping_.multiply(scratch_.data(), product_.data())  // s.Kd s
-                          : 0.0;
+  const double skds = o.stiffness_damping != 0.0 ? damping_product() : 0.0;  // s.Kd s
   double inertia = 0.0, mass_damping = 0.0, work = 0.0, norm2 = 0.0;
   for (size_t k = 0; k < n; ++k) {
     const double m = masses_[k / 3];
@@ -71,17 +69,14 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       if (last || lagged) value = measure_at(o, x, energy, residual_.data(), residual_norm);
     }
     if (!measured && !last && !lagged) {
-      matrix_.set_zero();
+      zero_system();
       std::fill(forces_.begin(), forces_.end(), 0.0);
       record_deformation_ = iteration == 0;
       const double energy = element_pass(x, forces_.data(), o.potential);
       record_deformation_ = false;
       tangent_ready = true;
-      if (iteration == 0 && o.stiffness_damping != 0.0) {  // Kd: the tangent at the first iterate
-        const auto from = matrix_.values();
-        const auto to = damping_.values();
-        for (size_t k = 0; k < from.size(); ++k) to[k] = from[k] / o.potential;
-      }
+      if (iteration == 0 && o.stiffness_damping != 0.0)  // Kd: the tangent at the first iterate
+        store_damping(o.potential);
       value = measure_at(o, x, energy, residual_.data(), residual_norm);
     }
     if (iteration == 0) first_norm = residual_norm;
@@ -97,19 +92,11 @@ bool HyperelasticModel::newton(const Objective& o, double* x) noexcept {
       ++counters_.lagged_tangents;
     } else {
       if (!tangent_ready) {  // forces_ and Phi at x are the line search's; only K is missing
-        matrix_.set_zero();
+        zero_system();
         std::fill(forces_.begin(), forces_.end(), 0.0);
         element_pass(x, forces_.data(), o.potential);
       }
-      // A = (a + b) M + c Kd + s K(x)
-      if (o.stiffness_damping != 0.0) {
-        const auto kd = damping_.values();
-        const auto a = matrix_.values();
-        for (size_t k = 0; k < a.size(); ++k) a[k] += o.stiffness_damping * kd[k];
-      }
-      if (o.inertia + o.mass_damping != 0.0)
-        matrix_.add_to_diagonal(masses_, o.inertia + o.mass_damping);
-      matrix_.apply_fixed(fixed_);
+      finish_system(o);
       system_valid_ = o.reuse_system;
       if (iteration == 0) system_age_ = 0;  // the age of Kd, which only a first iterate sets
     }

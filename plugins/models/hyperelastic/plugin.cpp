@@ -1,5 +1,6 @@
 // hyperelastic plugin: descriptor, parameter schema and the SDK glue around HyperelasticModel.
 #include <array>
+#include <cstddef>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -113,6 +114,9 @@ class HyperelasticPlugin {
     options.mode =
         sparse::read_static_params(params, options) ? SolveMode::kStatic : SolveMode::kDynamic;
     sparse::read_solver_params(params, options.solver);
+    // An engine older than the host services passes a shorter setup: no workers then.
+    if (setup.struct_size >= offsetof(tacta_model_setup, host) + sizeof setup.host)
+      options.host = setup.host;
     const uint32_t n = setup.mesh->node_count;
     model_ = std::make_unique<HyperelasticModel>(
         *setup.mesh, material, std::span<const double>(setup.masses, n),
