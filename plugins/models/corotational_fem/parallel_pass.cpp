@@ -37,7 +37,7 @@ void CorotationalFem::tile_batches() {
           centres[3 * b + c] += rest_[3 * size_t{node} + c] / (4.0 * kBatchLanes);
       }
   tiles_ = sparse::ElementTiles(nodes, 4 * kBatchLanes, centres, node_count_);
-  if (tiles_.largest_colour() < 2) {  // a small body: every colour one tile, nothing to share
+  if (!tiles_.shares_work()) {  // a small body, or scattered tiles: little to share
     tiles_ = sparse::ElementTiles();
     return;
   }

@@ -60,6 +60,7 @@ ElementTiles::ElementTiles(std::span<const uint32_t> nodes, uint32_t nodes_per_i
   const size_t count = centres.size() / 3;
   if (count == 0 || nodes_per_item == 0 || items_per_tile == 0 ||
       nodes.size() < count * nodes_per_item ||
+      count > std::numeric_limits<uint32_t>::max() / nodes_per_item ||  // 32-bit node counts
       count > std::numeric_limits<uint32_t>::max() - items_per_tile)
     return;  // nothing to schedule, or not a list of items: no schedule (the pass stays serial)
   for (size_t k = 0; k < count * nodes_per_item; ++k)
