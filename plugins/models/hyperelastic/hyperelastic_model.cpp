@@ -82,8 +82,8 @@ HyperelasticModel::HyperelasticModel(const tacta_mesh_view& mesh, const tacta_ma
   assembled_deformation_.assign(elements_.size(), Eigen::Matrix3d::Identity());
   // With nodal volumes the step stays serial: their term (nodal_volume.hpp) is serial, and the
   // solve's row-parallel products read both triangles of its wide matrix (a node's 1-ring's
-  // 1-ring), doubling reads already bound by memory; threaded, that step measured no faster
-  // or slower (docs/BENCHMARKS.md).
+  // 1-ring), doubling reads already bound by memory; threaded, that step measured no faster, or
+  // slower (docs/BENCHMARKS.md, *hyperelastic on the workers*).
   const tacta_host_services* host = nodal_ ? nullptr : options_.host;
   options_.solver.host = host;
   solver_ = std::make_unique<sparse::SafeSolver>(matrix_, options_.solver);
@@ -101,7 +101,10 @@ double HyperelasticModel::element_pass(const double* x, double* forces, double s
     if (forces != nullptr) nodal_->add_forces(forces);
     if (scale != 0.0) nodal_->add_tangent(matrix_, scale, options_.project_tangent);
   }
-  if (!tiles_.empty() && tacta_host_workers_here(options_.host) >= 2) {
+  // Tiles only within step() (and for tile_queries): a query may come from another thread (a
+  // cut being prepared), which must not take the workers from the tick.
+  if (!tiles_.empty() && (stepping_ || options_.tile_queries) &&
+      tacta_host_workers_here(options_.host) >= 2) {
     tiled_elements(x, forces, scale, tally);
   } else {  // in mesh order: a body stepped in a group, or a host with one worker
     for (uint32_t e = 0; e < elements_.size(); ++e)

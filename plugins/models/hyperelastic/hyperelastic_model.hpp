@@ -61,6 +61,9 @@ struct Options {
   // matrix and a (block) Jacobi CG on row chunks (solver.host is set from it). One result on
   // any thread count, equal to the serial one to rounding. Nodal volumes keep the serial step.
   const tacta_host_services* host = nullptr;
+  // Tests: the queries (elastic_energy, internal_forces, assemble_stiffness) on the tiles too.
+  // Off, they run in mesh order: they may come from a thread other than the stepping one.
+  bool tile_queries = false;
 };
 
 struct NewtonCounters {
@@ -145,7 +148,8 @@ class HyperelasticModel {
   double measure_at(const Objective& objective, const double* x, double energy, double* residual,
                     double& residual_norm) noexcept;
   // The passes over the whole system matrix, on row chunks (rows_) when the body has the
-  // workers to itself, else in order; each gives the serial code's bits. matrix_ zeroed:
+  // workers to itself, else in order; the first three give the serial code's bits, the product
+  // equals it to rounding. matrix_ zeroed:
   void zero_system() noexcept;
   // damping_ = matrix_ / potential (Kd: the tangent at the step's first iterate).
   void store_damping(double potential) noexcept;
@@ -187,6 +191,7 @@ class HyperelasticModel {
   int system_age_ = 0;
   double system_step_ = 0.0;          // s
   bool linear_solve_failed_ = false;  // in this step
+  bool stepping_ = false;             // inside step(): the element pass may use the tiles
   // The threaded element pass: the tiles, each tile's energy, per worker what it met (one
   // cache line each), and a flag that stops the pass once track_change_ rules the system out.
   sparse::ElementTiles tiles_;

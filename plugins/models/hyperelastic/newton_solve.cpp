@@ -249,8 +249,10 @@ uint32_t HyperelasticModel::solve_static(tacta_body_state& state) noexcept {
 uint32_t HyperelasticModel::step(tacta_body_state& state, double dt) noexcept {
   ++counters_.steps;
   linear_solve_failed_ = false;
+  stepping_ = true;
   uint32_t result =
       options_.mode == SolveMode::kStatic ? solve_static(state) : step_dynamic(state, dt);
+  stepping_ = false;
   if (inverted_) {
     result |= TACTA_STEP_INVERTED_ELEMENT;
     ++counters_.inverted_element_steps;

@@ -2,12 +2,12 @@
 // the matrix blocks of their nodes, so elements that share a node must not run at once: they are
 // cut into tiles of kElementsPerTile (sparse::ElementTiles: runs of the mesh's order, or of the
 // Morton order of their centres where a mesher's order scatters runs; the tiles coloured so that
-// no two tiles of a colour share a node), and each colour is one parallel_for over its tiles. The schedule and the order of every sum are fixed by the mesh,
-// so the threaded pass gives the same bits on any thread count, equal to the serial pass (mesh
-// order) to rounding. With nodal volumes (nodal_volume.hpp) the whole step stays serial.
-// The passes over the system matrix run on fixed row chunks (sparse::RowTeam): each chunk writes
-// only its own rows' blocks, with the serial code's bits, except measure_at's product with Kd
-// (summed per chunk, then in chunk order).
+// no two tiles of a colour share a node), and each colour is one parallel_for over its tiles.
+// The schedule and the order of every sum are fixed by the mesh, so the threaded pass gives the
+// same bits on any thread count, equal to the serial pass (mesh order) to rounding. The passes
+// over the system matrix run on fixed row chunks (sparse::RowTeam): each chunk writes only its
+// own rows' blocks, with the serial code's bits, except measure_at's product with Kd (summed per
+// chunk, then in chunk order). With nodal volumes (nodal_volume.hpp) the whole step is serial.
 #include <algorithm>
 #include <span>
 
@@ -37,7 +37,7 @@ void HyperelasticModel::tile_elements(const double* rest_positions) {
         centres[3 * size_t{e} + c] += 0.25 * rest_positions[3 * size_t{node} + c];
     }
   tiles_ = sparse::ElementTiles(nodes, 4, centres, node_count_, kElementsPerTile);
-  if (tiles_.largest_colour() < 2) {  // a small body: every colour one tile, nothing to share
+  if (!tiles_.shares_work()) {  // a small body, or scattered tiles: little to share
     tiles_ = sparse::ElementTiles();
     return;
   }
@@ -77,6 +77,8 @@ void HyperelasticModel::tiled_elements(const double* x, double* forces, double s
     tally.change = std::max(tally.change, t.change);
     tally.inverted = tally.inverted || t.inverted;
   }
+  // A stopped pass's energy is left partial, as the serial pass leaves it (nothing reads it).
+  if (stop_pass_.load(std::memory_order_relaxed)) return;
   for (const double energy : tile_energy_) tally.energy += energy;
 }
 
