@@ -136,6 +136,10 @@ class CollisionContext {
   // sliced hierarchies follow what the tick moved (a slice while a margin is past its target, up
   // to four while past half its cap; a whole refit past the cap). The queries answer alike
   // whenever the slices are refit: they are widened by the margin.
+  // Then the proxy's patches the tick used are made ready for the next tick's queries (gathered
+  // again ahead of need, their embedded vertices made current): the haptic stage then only
+  // checks them, as long as nothing moves a node between the upkeep and the next tick's queries
+  // (a move is seen by the margins, and the patch's vertices are made current again).
   void upkeep_for_proxy(double time, double dt) noexcept;
   // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
   // that brought embedded vertices up to date for them; for the tick breakdown.
@@ -161,6 +165,8 @@ class CollisionContext {
   void set_proxy_patches(bool on) noexcept { patches_on_ = on; }
   // Gathers of the proxy's patches since load, and the queries they answered.
   uint64_t patch_gathers() const noexcept { return patch_gathers_; }
+  // Of those, the gathers the upkeep made ahead of need (after the write).
+  uint64_t patch_upkeep_gathers() const noexcept { return patch_upkeep_gathers_; }
   uint64_t patch_queries() const noexcept { return patch_queries_; }
   // Free-space checks the last closest points answered without a search (Query::clear_of).
   uint64_t clear_answers() const noexcept { return clear_answers_; }
@@ -201,6 +207,9 @@ class CollisionContext {
                  EmbeddedCollisionSurface* embedded) noexcept;
   bool gather(uint32_t surface, const ProxyPatch::Box& box, bool alone,
               const CollisionInstance& proxy) noexcept;
+  // In the upkeep: each patch the tick's queries used gathered again where its slack is running
+  // out, and its embedded vertices made current for the next tick.
+  void prepare_patches() noexcept;
   // Of patch_triangles_[0, count), made current, those whose box meets the cube (centre, half
   // size, m) are moved to the front; returns how many.
   uint32_t keep_in_cube(uint32_t surface, const std::array<double, 3>& center, double half,
@@ -247,6 +256,8 @@ class CollisionContext {
   std::vector<std::array<double, 6>> covered_;  // per surface: box made current this pass, m
   std::vector<double> last_distance_;           // per surface: the last closest point's distance, m
   std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
+  // A query's candidates: the patch's triangles its box meets (ProxyPatch::meeting).
+  std::vector<uint32_t> patch_candidates_ = std::vector<uint32_t>(ProxyPatch::kCapacity);
   // Where a surface's last closest point was asked, how far it was, and the surface's
   // odometer_base then (for Query::clear_of); outside false: not known to be outside.
   struct Sighting {
@@ -266,7 +277,7 @@ class CollisionContext {
     for (size_t d = 0; d < patch_slots_; ++d) patches_[surface * patch_slots_ + d].drop();
   }
   bool patches_on_ = true;  // tests: false searches the hierarchies
-  uint64_t patch_gathers_ = 0, patch_queries_ = 0, clear_answers_ = 0;
+  uint64_t patch_gathers_ = 0, patch_queries_ = 0, clear_answers_ = 0, patch_upkeep_gathers_ = 0;
   bool sliced_ = false;                        // refit_for_proxy refits slices
   bool eager_patches_ = false;                 // tests: the box pass even for MAKES_CURRENT
   const CollisionInstance* slicer_ = nullptr;  // the plugin whose hierarchies are sliced

@@ -15,6 +15,9 @@ namespace tacta {
 
 namespace {
 constexpr int kMaxSlicesPerTick = 4;  // while the margin is past half its cap (the upkeep's)
+// The upkeep gathers a patch in use again while its last query's box, grown by this share of
+// its side on every side, leaves the cube: about a tool's radius of slack for the next ticks.
+constexpr double kAheadShare = 0.25;
 }  // namespace
 
 void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
@@ -29,14 +32,76 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
   }
   // The slices are the upkeep's, after the last tick's write: here the margins take in what
   // moved since (nothing, in a tick as the loop runs it), and a margin past its cap refits whole.
-  if (!refit_slices(time, dt, 0)) refit_whole_for_proxy(time, dt);
+  if (!refit_slices(time, dt, 0)) {
+    refit_whole_for_proxy(time, dt);
+    return;
+  }
+  // The patches the upkeep made current (prepare_patches) still are where nothing the surface
+  // follows has moved since: their vertices are where the nodes put them.
+  for (uint32_t k = 0; k < view_.surface_count; ++k) {
+    if (!surface_present(k) || !(freshness_[k].last_move() == 0.0)) continue;
+    for (size_t d = 0; d < patch_slots_; ++d) {
+      ProxyPatch& patch = patches_[k * patch_slots_ + d];
+      if (patch.made_current_in() == proxy_pass_ - 1) patch.set_made_current_in(proxy_pass_);
+      if (patch.boxes_in() == proxy_pass_ - 1) patch.set_boxes_in(proxy_pass_);
+    }
+  }
 }
 
 void CollisionContext::upkeep_for_proxy(double time, double dt) noexcept {
   if (!sliced_ || !refitted_once_) return;  // refit whole every tick, or not built yet
+  // A pass of its own: the step has moved the nodes since the tick's queries made vertices
+  // current, and what it makes current now serves the next tick's queries.
+  ++proxy_pass_;
   const uint64_t before = proxy_slices_;
-  if (!refit_slices(time, dt, kMaxSlicesPerTick)) refit_whole_for_proxy(time, dt);
+  if (!refit_slices(time, dt, kMaxSlicesPerTick)) {
+    refit_whole_for_proxy(time, dt);
+    return;
+  }
   proxy_upkeep_slices_ += proxy_slices_ - before;
+  prepare_patches();
+}
+
+void CollisionContext::prepare_patches() noexcept {
+  if (!patches_wanted()) return;
+  const CollisionInstance& proxy = *served_[role_index(TACTA_COLLISION_ROLE_PROXY)];
+  const size_t asking = asking_;
+  for (uint32_t k = 0; k < view_.surface_count; ++k) {
+    if (!surface_present(k)) continue;
+    EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get();
+    for (size_t d = 0; d < patch_slots_; ++d) {
+      asking_ = d;
+      ProxyPatch& patch = patch_of(k);
+      // Only the patches the tick's queries used (the pass before this one).
+      if (!patch.held() || patch.served_in() != proxy_pass_ - 1) continue;
+      // Gathered again here, while the last query's box grown by kAheadShare of its side on every
+      // side no longer fits the cube (less the surface's travel since): the next tick's queries,
+      // the tool and the surface a little further on, then find it ready.
+      const ProxyPatch::Box& last = patch.last_served();
+      double side = 0.0;
+      for (int a = 0; a < 3; ++a) side = std::max(side, last[a + 3] - last[a]);
+      ProxyPatch::Box ahead = last;
+      for (int a = 0; a < 3; ++a) {
+        ahead[a] -= kAheadShare * side;
+        ahead[a + 3] += kAheadShare * side;
+      }
+      if (!patch.covers(ahead, freshness_[k].odometer())) {
+        view_.query_margin = freshness_[k].margin();
+        const bool held =
+            gather(k, last, false, proxy) || (patch.widens(last) && gather(k, last, true, proxy));
+        patch_upkeep_gathers_ += held ? 1 : 0;
+        if (!held) continue;  // the next query gathers, or searches the hierarchy
+        patch.note_served(last, proxy_pass_ - 1);  // still the patch in use
+      }
+      if (e != nullptr) {
+        e->refresh_triangles(patch.triangles(), patch.count(), proxy_pass_);
+        patch.set_made_current_in(proxy_pass_);
+      }
+      patch.set_boxes(surfaces_[k].positions_end, surfaces_[k].triangles, proxy_pass_);
+    }
+  }
+  asking_ = asking;
+  view_.query_margin = 0.0;  // as every proxy query leaves it: other callers read boxes as current
 }
 
 void CollisionContext::refit_whole_for_proxy(double time, double dt) noexcept {
@@ -156,7 +221,7 @@ bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
   if (gathering && !patch.worth_gathering(box, proxy_pass_)) return false;
   const bool refreshing = embedded != nullptr && patch.made_current_in() != proxy_pass_;
   if (!gathering && !refreshing) {
-    patch.note_served(box);
+    patch.note_served(box, proxy_pass_);
   } else {
     // Timed only when there is work (a gather, or the tick's first refresh): two clock reads on
     // every query would cost about what the query does.
@@ -171,11 +236,15 @@ bool CollisionContext::use_patch(uint32_t surface, const ProxyPatch::Box& box,
     patch_ms_ +=
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!held) return false;
-    patch.note_served(box);
+    patch.note_served(box, proxy_pass_);
   }
   ++patch_queries_;
-  view_.proxy_candidates = patch.triangles();
-  view_.proxy_candidate_count = patch.count();
+  // The pass's positions stay put through its queries: the boxes are computed once a pass (or
+  // carried from the upkeep's), and each query gets the triangles its box meets.
+  if (patch.boxes_in() != proxy_pass_)
+    patch.set_boxes(surfaces_[surface].positions_end, surfaces_[surface].triangles, proxy_pass_);
+  view_.proxy_candidates = patch_candidates_.data();
+  view_.proxy_candidate_count = patch.meeting(box, patch_candidates_.data());
   return true;
 }
 

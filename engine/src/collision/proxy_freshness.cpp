@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tacta {
 
@@ -38,6 +39,7 @@ void SurfaceFreshness::reset(const double* nodes) noexcept {
   // The boxes start afresh, the odometer does not: the nodes may have moved since the last read.
   if (read_once_) taken_ += pending_ + largest_move(nodes);
   read_once_ = true;
+  last_move_ = std::numeric_limits<double>::infinity();
   std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
   std::fill(drift_.begin(), drift_.end(), 0.0);
   std::fill(paths_.begin(), paths_.end(), 0.0);
@@ -119,6 +121,7 @@ double SurfaceFreshness::measured_drift(size_t slice) const noexcept {
 bool SurfaceFreshness::advance(const double* nodes) noexcept {
   if (!bound_) {
     const double move = largest_move(nodes);  // NaN fails the cap below
+    last_move_ = move;
     std::copy(nodes, nodes + last_nodes_.size(), last_nodes_.begin());
     for (double& d : drift_) d += move;
     taken_ += move;
@@ -129,15 +132,19 @@ bool SurfaceFreshness::advance(const double* nodes) noexcept {
   // Only the nodes some slice follows: the others (a body's inside) move no vertex. Each adds
   // its move to its own path; the slices take their nodes' largest path now and then.
   double finite = 0.0;  // 0 * x is NaN for a NaN or infinite x
+  double largest = 0.0;
   for (const uint32_t node : surface_nodes_) {
     double* last = &last_nodes_[3 * size_t{node}];
     const double* now = nodes + 3 * size_t{node};
-    const double path = paths_[node] + std::sqrt(squared_distance(now, last));
+    const double move = std::sqrt(squared_distance(now, last));
+    const double path = paths_[node] + move;
     std::copy(now, now + 3, last);
     paths_[node] = path;
     finite += 0.0 * path;
+    largest = std::max(largest, move);
     pending_ = std::max(pending_, path);
   }
+  last_move_ = std::isnan(finite) ? finite : largest;
   if (std::isnan(finite)) {
     margin_ = finite;
     return false;

@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace tacta {
@@ -62,6 +63,9 @@ class SurfaceFreshness {
   // the first, m. Every node move the advances and resets read counts, whatever refit followed;
   // NaN once a node was not finite.
   double odometer() const noexcept { return weight_bound_ * (taken_ + pending_); }
+  // The largest move of a followed node the last advance read, m (infinite after a reset, NaN
+  // for a node not finite): 0 when nothing the surface follows moved since the call before.
+  double last_move() const noexcept { return last_move_; }
   double odometer_base() const noexcept { return weight_bound_ * taken_; }
 
  private:
@@ -91,8 +95,9 @@ class SurfaceFreshness {
   double margin_target_ = 0.0;
   double margin_cap_ = 0.0;
   double margin_ = 0.0;
-  double pending_ = 0.0;    // the longest of paths_, m
-  double taken_ = 0.0;      // m: the longest paths taken, summed (pending_ apart)
+  double pending_ = 0.0;  // the longest of paths_, m
+  double taken_ = 0.0;    // m: the longest paths taken, summed (pending_ apart)
+  double last_move_ = std::numeric_limits<double>::infinity();  // m, see last_move()
   bool read_once_ = false;  // last_nodes_ holds nodes read by a reset or an advance
   int pending_ticks_ = 0;
 };

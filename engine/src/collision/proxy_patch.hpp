@@ -21,7 +21,10 @@ class ProxyPatch {
   static constexpr uint32_t kCapacity = 96;
   using Box = std::array<double, 6>;  // lo x, y, z then hi x, y, z; m
 
-  ProxyPatch() { triangles_.reserve(kCapacity); }
+  ProxyPatch() {
+    triangles_.reserve(kCapacity);
+    boxes_.reserve(kCapacity);
+  }
 
   // A query over `box` finds every triangle within its reach among triangles(): the box lies
   // inside the gathered cube shrunk on every side by how far the surface's odometer (m) has
@@ -35,9 +38,16 @@ class ProxyPatch {
     return true;
   }
   // A query over `box` was answered from the patch: the next gather's cube holds such boxes too.
-  void note_served(const Box& box) noexcept {
+  // `pass`: the proxy pass it was served in.
+  void note_served(const Box& box, uint64_t pass = 0) noexcept {
     for (int a = 0; a < 3; ++a) served_extent_ = std::max(served_extent_, box[a + 3] - box[a]);
+    last_served_ = box;
+    served_in_ = pass;
   }
+  // The proxy pass of the last query the patch (or one gathered before it) served, and that
+  // query's box: the upkeep prepares the patches in use for the next tick's queries.
+  uint64_t served_in() const noexcept { return served_in_; }
+  const Box& last_served() const noexcept { return last_served_; }
   // The cube to gather for a query over `box`, m: centred on it, of half size the largest query
   // side the patch served or this one's (so the tick's other queries fit too, and the tool may
   // move about half a query before the next gather). `alone`: this query's side only.
@@ -93,7 +103,7 @@ class ProxyPatch {
     odometer_base_ = odometer_base;
     held_ = true;
     served_extent_ = 0.0;
-    made_current_in_ = 0;
+    made_current_in_ = boxes_in_ = 0;
     return true;
   }
   // The surface changed (a cut, a replacement) or is away: what failed on it says nothing now.
@@ -108,6 +118,42 @@ class ProxyPatch {
   // The proxy pass in which the patch's vertices were last made current (0: never).
   uint64_t made_current_in() const noexcept { return made_current_in_; }
   void set_made_current_in(uint64_t pass) noexcept { made_current_in_ = pass; }
+  // The triangles' boxes, from the surface's positions (3 per vertex, m) and triangles (3 vertex
+  // indices each), as of proxy pass `pass`: a pass's queries then test only the triangles whose
+  // box meets theirs (meeting), without reading every candidate's corners each query.
+  void set_boxes(const double* positions, const uint32_t* surface_triangles,
+                 uint64_t pass) noexcept {
+    boxes_.clear();  // within the capacity reserved
+    for (const uint32_t t : triangles_) {
+      Box b;
+      const double* x = &positions[3 * size_t{surface_triangles[3 * size_t{t}]}];
+      for (int a = 0; a < 3; ++a) b[a] = b[a + 3] = x[a];
+      for (size_t c = 1; c < 3; ++c) {
+        x = &positions[3 * size_t{surface_triangles[3 * size_t{t} + c]}];
+        for (int a = 0; a < 3; ++a) {
+          b[a] = std::min(b[a], x[a]);
+          b[a + 3] = std::max(b[a + 3], x[a]);
+        }
+      }
+      boxes_.push_back(b);
+    }
+    boxes_in_ = pass;
+  }
+  uint64_t boxes_in() const noexcept { return boxes_in_; }
+  void set_boxes_in(uint64_t pass) noexcept { boxes_in_ = pass; }  // nothing moved since
+  // The triangles whose box meets `box` (closed intervals; one with a NaN corner is kept, for the
+  // plugin to read as before) into out (kCapacity); returns how many. Those left out lie wholly
+  // outside the query's reach, which `box` bounds.
+  uint32_t meeting(const Box& box, uint32_t* out) const noexcept {
+    uint32_t count = 0;
+    for (size_t i = 0; i < boxes_.size(); ++i) {
+      const Box& b = boxes_[i];
+      bool apart = false;
+      for (int a = 0; a < 3; ++a) apart = apart || b[a] > box[a + 3] || b[a + 3] < box[a];
+      if (!apart) out[count++] = triangles_[i];
+    }
+    return count;
+  }
 
  private:
   static constexpr uint64_t kRetryPasses = 64;
@@ -122,6 +168,10 @@ class ProxyPatch {
   double odometer_base_ = 0.0;  // m, the surface's at the gather
   double served_extent_ = 0.0;  // m: the largest side of a query box served since the gather
   uint64_t made_current_in_ = 0;
+  std::vector<Box> boxes_;  // of triangles_, as of pass boxes_in_
+  uint64_t boxes_in_ = 0;
+  Box last_served_{};
+  uint64_t served_in_ = 0;
   bool held_ = false;
 };
 

@@ -82,7 +82,10 @@ Json collision(const RunStatus& s) {
               {"proxy_refits",
                {{"mode", s.proxy_sliced ? "sliced" : "every_tick"},
                 {"slices", s.proxy_slices},
-                {"whole", s.proxy_whole_refits}}},
+                {"whole", s.proxy_whole_refits},
+                {"patch_gathers", s.patch_gathers},
+                {"patch_upkeep_gathers", s.patch_upkeep_gathers},
+                {"patch_queries", s.patch_queries}}},
               {"status", status_bits(s.collision)}};
 }
 

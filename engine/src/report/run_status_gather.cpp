@@ -44,6 +44,9 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
     status.proxy_slices = collision->proxy_slices();
     status.proxy_whole_refits = collision->proxy_whole_refits();
     status.proxy_sliced = collision->proxy_sliced();
+    status.patch_gathers = collision->patch_gathers();
+    status.patch_upkeep_gathers = collision->patch_upkeep_gathers();
+    status.patch_queries = collision->patch_queries();
   }
   return status;
 }

@@ -205,6 +205,8 @@ void expect_patches_touch_as_the_search(ProxyRun& patch, ProxyRun& search, size_
   EXPECT_GT(queries, ticks * patch.world->device_count());
   EXPECT_LT(gathers, queries / 4);
   EXPECT_EQ(search.collision->patch_queries(), 0u);
+  // Most gathers were made by the upkeep, after the write, ahead of the queries that need them.
+  EXPECT_GT(patch.collision->patch_upkeep_gathers(), gathers / 2);
 }
 
 void expect_patch_touches_as_the_hierarchy(const std::vector<std::string>& overrides) {
@@ -219,6 +221,36 @@ TEST(ProxyPatch, TouchesTheEmbeddedLiverAsTheHierarchySearchDoes) {
 
 TEST(ProxyPatch, TouchesTheTetBoundaryAsTheHierarchySearchDoes) {
   expect_patch_touches_as_the_hierarchy({"bodies.0.mesh.surface=tet_boundary"});
+}
+
+// The upkeep makes the patch current for the next tick's queries, and the haptic stage takes it
+// as current only where nothing moved a node since: nodes nudged between ticks (as a restored
+// checkpoint or a script may) are seen, and the touch is still the hierarchy search's, bit for bit.
+TEST(ProxyPatch, NodesMovedBetweenTicksAreSeenByThePreparedPatch) {
+  constexpr size_t kTicks = 1200;  // the first press
+  ProxyRun patch("sliced", {}, kTicks), search("sliced", {}, kTicks);
+  search.collision->set_proxy_patches(false);
+  size_t nudges = 0;
+  for (size_t k = 0; k < kTicks; ++k) {
+    if (k % 7 == 3) {
+      for (ProxyRun* run : {&patch, &search}) {
+        std::vector<double>& x = run->world->body(0).nodes.positions;
+        for (size_t i = 0; i < x.size(); ++i)
+          x[i] += 2e-5 * std::sin(0.37 * static_cast<double>(i + k));  // m
+      }
+      ++nudges;
+    }
+    patch.tick();
+    search.tick();
+    const DeviceComponents a = patch.world->device(0), b = search.world->device(0);
+    ASSERT_EQ(a.contact.in_contact, b.contact.in_contact) << "tick " << k;
+    for (size_t i = 0; i < 3; ++i)
+      ASSERT_EQ(a.contact.force[i], b.contact.force[i]) << "tick " << k << " axis " << i;
+  }
+  EXPECT_GT(nudges, 100u);
+  EXPECT_GT(patch.collision->patch_queries(), kTicks);
+  EXPECT_GT(patch.collision->patch_upkeep_gathers(), 0u);
+  EXPECT_EQ(patch.world->body(0).nodes.positions, search.world->body(0).nodes.positions);
 }
 
 // Two styluses on the liver, pressing the demo's points in opposite orders: each device's proxy

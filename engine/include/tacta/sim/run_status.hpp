@@ -37,6 +37,9 @@ struct RunStatus {
   uint32_t pairs_high_water = 0, contacts_high_water = 0;
   // The proxy's hierarchies: slices refit, whole refits (a margin past its cap, or not sliced).
   uint64_t proxy_slices = 0, proxy_whole_refits = 0;
+  // The proxy's patches: gathers (all; of them, those the upkeep made ahead of need) and the
+  // queries they answered.
+  uint64_t patch_gathers = 0, patch_upkeep_gathers = 0, patch_queries = 0;
   bool proxy_sliced = false;  // the mode that ran: sliced, or every_tick (asked, or fallen back)
   size_t errors = 0, warnings = 0;  // kinds (who x bit) seen
   std::vector<std::string> lines;   // one per warning or error kind, for the console
