@@ -25,6 +25,15 @@ long g_allocations = 0;
 // The same count per thread: a test whose other threads allocate by design (a worker) reads the
 // thread it checks.
 thread_local long t_allocations = 0;
+// Heap allocations on every thread while `work` runs (0 where TACTA_COUNT_ALLOCATIONS is 0).
+template <class Work>
+long allocations_in(Work&& work) {
+  g_allocations = 0;
+  g_counting = true;
+  work();
+  g_counting = false;
+  return g_allocations;
+}
 }  // namespace
 
 #if TACTA_COUNT_ALLOCATIONS
