@@ -117,6 +117,8 @@ class CollisionContext {
     return {proxy_pass_, proxy_whole_refits_, proxy_slices_};
   }
   void set_proxy_counters(const std::array<uint64_t, 3>& c) noexcept {
+    // The pass may go back: no patch keeps a stamp of a pass still to come.
+    for (ProxyPatch& patch : patches_) patch.drop();
     proxy_pass_ = c[0];
     proxy_whole_refits_ = c[1];
     proxy_slices_ = c[2];
@@ -139,7 +141,7 @@ class CollisionContext {
   // Then the proxy's patches the tick used are made ready for the next tick's queries (gathered
   // again ahead of need, their embedded vertices made current): the haptic stage then only
   // checks them, as long as nothing moves a node between the upkeep and the next tick's queries
-  // (a move is seen by the margins, and the patch's vertices are made current again).
+  // (a node moved is seen by SurfaceFreshness::last_move, and the patch made current again).
   void upkeep_for_proxy(double time, double dt) noexcept;
   // Time (ms) spent since the last refit_for_proxy in the proxy's queries, and the part of it
   // that brought embedded vertices up to date for them; for the tick breakdown.
@@ -281,7 +283,7 @@ class CollisionContext {
   bool sliced_ = false;                        // refit_for_proxy refits slices
   bool eager_patches_ = false;                 // tests: the box pass even for MAKES_CURRENT
   const CollisionInstance* slicer_ = nullptr;  // the plugin whose hierarchies are sliced
-  uint64_t proxy_pass_ = 0;                    // refit_for_proxy calls, for vertex freshness
+  uint64_t proxy_pass_ = 0;  // proxy passes (the haptic stage's and the upkeep's), for freshness
   double query_ms_ = 0, patch_ms_ = 0;
   uint32_t raised_bits_ = 0;  // see take_bits()
   uint64_t proxy_whole_refits_ = 0, proxy_slices_ = 0, proxy_upkeep_slices_ = 0;

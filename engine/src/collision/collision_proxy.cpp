@@ -16,7 +16,7 @@ namespace tacta {
 namespace {
 constexpr int kMaxSlicesPerTick = 4;  // while the margin is past half its cap (the upkeep's)
 // The upkeep gathers a patch in use again while its last query's box, grown by this share of
-// its side on every side, leaves the cube: about a tool's radius of slack for the next ticks.
+// its side on every side, leaves the cube: a few millimetres of slack for the next ticks.
 constexpr double kAheadShare = 0.25;
 }  // namespace
 
@@ -42,6 +42,7 @@ void CollisionContext::refit_for_proxy(double time, double dt) noexcept {
     if (!surface_present(k) || !(freshness_[k].last_move() == 0.0)) continue;
     for (size_t d = 0; d < patch_slots_; ++d) {
       ProxyPatch& patch = patches_[k * patch_slots_ + d];
+      if (!patch.held()) continue;
       if (patch.made_current_in() == proxy_pass_ - 1) patch.set_made_current_in(proxy_pass_);
       if (patch.boxes_in() == proxy_pass_ - 1) patch.set_boxes_in(proxy_pass_);
     }
@@ -85,13 +86,14 @@ void CollisionContext::prepare_patches() noexcept {
         ahead[a] -= kAheadShare * side;
         ahead[a + 3] += kAheadShare * side;
       }
-      if (!patch.covers(ahead, freshness_[k].odometer())) {
+      if (!patch.covers(ahead, freshness_[k].odometer()) &&
+          patch.worth_gathering(last, proxy_pass_)) {
         view_.query_margin = freshness_[k].margin();
-        const bool held =
-            gather(k, last, false, proxy) || (patch.widens(last) && gather(k, last, true, proxy));
-        patch_upkeep_gathers_ += held ? 1 : 0;
-        if (!held) continue;  // the next query gathers, or searches the hierarchy
-        patch.note_served(last, proxy_pass_ - 1);  // still the patch in use
+        const uint64_t before = patch_gathers_;
+        if (gather(k, last, false, proxy) || (patch.widens(last) && gather(k, last, true, proxy)))
+          patch.note_served(last, proxy_pass_ - 1);  // still the patch in use
+        // A failed gather leaves the patch as it was: still good while queries fit its cube.
+        patch_upkeep_gathers_ += patch_gathers_ - before;
       }
       if (e != nullptr) {
         e->refresh_triangles(patch.triangles(), patch.count(), proxy_pass_);
@@ -139,8 +141,8 @@ bool CollisionContext::refit_slices(double time, double dt, int max_slices) noex
     for (int n = 0; n < max_slices; ++n) {
       freshness_[k].next_slice(first, count);
       if (count == 0) break;
-      // Still the tick's pass, but after its step: the vertices its queries made current have
-      // moved since, and the slice's boxes need them where they are now.
+      // After the step: in the upkeep's own pass, and (after_step) recomputed even where this
+      // pass already made them current, as the slice's boxes need them where they are now.
       if (EmbeddedCollisionSurface* e = embedded_[static_cast<size_t>(body_of_surface_[k])].get())
         e->refresh_triangles(order + first, count, proxy_pass_, true);
       // UNPREPARED (no hierarchy to refit in part) is answered here by a whole refit.
@@ -170,6 +172,10 @@ bool CollisionContext::patches_wanted() const noexcept {
 }
 
 void CollisionContext::prepare_query(uint32_t surface, const Vec3& lo, const Vec3& hi) noexcept {
+  // No candidates unless a patch answers this query: a search that falls back to the hierarchy
+  // (a growing ball's second try, another surface) must not read the last one's.
+  view_.proxy_candidates = nullptr;
+  view_.proxy_candidate_count = 0;
   // The query widens its search by how far any vertex may be from its element's box.
   view_.query_margin = sliced_ ? freshness_[surface].margin() : 0.0;
   if (!sliced_) return;

@@ -71,7 +71,7 @@ class EmbeddedCollisionSurface {
   std::vector<uint32_t> node_reached_;        // 1 per node: corrected vertices that reach it
   std::vector<uint64_t> fresh_at_;  // 1 per vertex: the proxy pass it was last made current
   // The body's node arrays refresh_triangles reads in pass nodes_pass_ (its arrays change only
-  // between ticks, each tick a new pass).
+  // between ticks; each tick's haptic stage and upkeep are passes of their own).
   const double* nodes_end_ = nullptr;
   uint64_t nodes_pass_ = 0;
   double weight_bound_ = 1.0;

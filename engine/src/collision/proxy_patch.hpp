@@ -60,10 +60,10 @@ class ProxyPatch {
     }
     half = alone ? side : std::max(side, served_extent_);
   }
-  // A gather for a query over `box` is worth trying in proxy pass `pass`: none for a query of
-  // 3/4 the side or more (about half the area) held too many in the last kRetryPasses passes (the
-  // god-object's search for a surface that came onto a device well clear of it: a large ball
-  // each tick, which the hierarchy answers), twice as many after each further failure in a row,
+  // A gather for a query over `box` is worth trying in proxy pass `pass` (two passes a tick: the
+  // haptic stage's and the upkeep's): none for a query of 3/4 the side or more (about half the
+  // area) held too many in the last kRetryPasses passes (the god-object's search for a surface
+  // that came onto a device well clear of it: a large ball each tick, which the hierarchy answers), twice as many after each further failure in a row,
   // up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
   // query that failed twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
@@ -109,6 +109,7 @@ class ProxyPatch {
   // The surface changed (a cut, a replacement) or is away: what failed on it says nothing now.
   void drop() noexcept {
     held_ = false;
+    made_current_in_ = boxes_in_ = served_in_ = 0;
     failures_ = 0;
     failed_side_ = kNoFailedSide;
   }
@@ -141,9 +142,9 @@ class ProxyPatch {
   }
   uint64_t boxes_in() const noexcept { return boxes_in_; }
   void set_boxes_in(uint64_t pass) noexcept { boxes_in_ = pass; }  // nothing moved since
-  // The triangles whose box meets `box` (closed intervals; one with a NaN corner is kept, for the
-  // plugin to read as before) into out (kCapacity); returns how many. Those left out lie wholly
-  // outside the query's reach, which `box` bounds.
+  // The triangles whose box meets `box` (closed intervals; the boxes are the bvh plugin's own
+  // candidate test's, NaN corners included) into out (kCapacity); returns how many. Those left
+  // out lie wholly outside the query's reach, which `box` bounds.
   uint32_t meeting(const Box& box, uint32_t* out) const noexcept {
     uint32_t count = 0;
     for (size_t i = 0; i < boxes_.size(); ++i) {

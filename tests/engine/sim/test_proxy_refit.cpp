@@ -116,8 +116,8 @@ TEST(ProxyRefit, SlicesAreRefitAfterTheWriteNotInTheHapticStage) {
   EXPECT_EQ(c.proxy_whole_refits(), 1u) << "the first tick's build only";
 }
 
-// The upkeep runs in the tick's proxy pass, after the step: a vertex the pass's queries made
-// current has moved since, and the slice refit must recompute it rather than skip it as current.
+// The upkeep runs after the step: a vertex made current earlier in a pass has moved since, and
+// the slice refit (after_step) must recompute it rather than skip it as current.
 TEST(ProxyRefit, AVertexMadeCurrentBeforeTheStepIsRecomputedAfterIt) {
   ProxyRun run("sliced", {}, 1);
   const SoftBody body = run.world->body(0);
@@ -230,9 +230,10 @@ TEST(ProxyPatch, NodesMovedBetweenTicksAreSeenByThePreparedPatch) {
   constexpr size_t kTicks = 1200;  // the first press
   ProxyRun patch("sliced", {}, kTicks), search("sliced", {}, kTicks);
   search.collision->set_proxy_patches(false);
-  size_t nudges = 0;
+  size_t nudges = 0, nudged_in_contact = 0;
   for (size_t k = 0; k < kTicks; ++k) {
-    if (k % 7 == 3) {
+    const bool nudged = k % 7 == 3;
+    if (nudged) {
       for (ProxyRun* run : {&patch, &search}) {
         std::vector<double>& x = run->world->body(0).nodes.positions;
         for (size_t i = 0; i < x.size(); ++i)
@@ -244,10 +245,12 @@ TEST(ProxyPatch, NodesMovedBetweenTicksAreSeenByThePreparedPatch) {
     search.tick();
     const DeviceComponents a = patch.world->device(0), b = search.world->device(0);
     ASSERT_EQ(a.contact.in_contact, b.contact.in_contact) << "tick " << k;
+    nudged_in_contact += nudged && a.contact.in_contact ? 1 : 0;
     for (size_t i = 0; i < 3; ++i)
       ASSERT_EQ(a.contact.force[i], b.contact.force[i]) << "tick " << k << " axis " << i;
   }
   EXPECT_GT(nudges, 100u);
+  EXPECT_GT(nudged_in_contact, 50u) << "the nudges moved a surface being pressed";
   EXPECT_GT(patch.collision->patch_queries(), kTicks);
   EXPECT_GT(patch.collision->patch_upkeep_gathers(), 0u);
   EXPECT_EQ(patch.world->body(0).nodes.positions, search.world->body(0).nodes.positions);
