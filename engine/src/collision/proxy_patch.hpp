@@ -63,8 +63,8 @@ class ProxyPatch {
   // A gather for a query over `box` is worth trying in proxy pass `pass` (two passes a tick: the
   // haptic stage's and the upkeep's): none for a query of 3/4 the side or more (about half the
   // area) held too many in the last kRetryPasses passes (the god-object's search for a surface
-  // that came onto a device well clear of it: a large ball each tick, which the hierarchy answers), twice as many after each further failure in a row,
-  // up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
+  // that came onto a device well clear of it: a large ball each tick, which the hierarchy
+  // answers), twice as many after each further failure in a row, up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
   // query that failed twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
     const uint32_t doublings = failures_ > 0 ? failures_ - 1 : 0u;  // at most kMaxDoublings

@@ -63,10 +63,7 @@ uint32_t CorotationalFem::batched_pass(const double* positions, double scale) no
         for (uint32_t b : tiles_.items_of(tiles[t]))
           tally.bits |= step_batch(b, positions, scale, tally.polar_iterations);
     };
-    if (tiles.size() < 2)
-      run(0, static_cast<uint32_t>(tiles.size()), 0);
-    else  // each worker its own share of the colour first: the same tiles step after step
-      tile_split_.run(static_cast<uint32_t>(tiles.size()), 1, run);
+    tiles_.run_colour(c, tile_split_, run);
   }
   for (const WorkerTally& t : tallies_) {
     result |= t.bits;

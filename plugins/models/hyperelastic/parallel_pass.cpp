@@ -66,10 +66,7 @@ void HyperelasticModel::tiled_elements(const double* x, double* forces, double s
         if (!go_on) stop_pass_.store(true, std::memory_order_relaxed);
       }
     };
-    if (tiles.size() < 2)
-      run(0, static_cast<uint32_t>(tiles.size()), 0);
-    else  // each worker its own share of the colour first: the same tiles step after step
-      tile_split_.run(static_cast<uint32_t>(tiles.size()), 1, run);
+    tiles_.run_colour(c, tile_split_, run);
     // Some element ruled the lagged system out: the caller discards this pass.
     if (stop_pass_.load(std::memory_order_relaxed)) break;
   }

@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include "row_team.hpp"
+
 namespace tacta::models::sparse {
 
 class ElementTiles {
@@ -50,6 +52,17 @@ class ElementTiles {
                                      colour_start_[colour + 1] - colour_start_[colour]);
   }
   uint32_t tiles() const { return static_cast<uint32_t>(tiles_.size()); }
+  // run(begin, end, worker) over colour c's tiles, [begin, end) indexing tiles_of(c): on split's
+  // workers, each its own share first (the same tiles step after step), or on the caller
+  // (worker 0) when the colour has one tile.
+  template <class Run>
+  void run_colour(uint32_t colour, const OwnedSplit& split, Run&& run) const {
+    const auto count = static_cast<uint32_t>(tiles_of(colour).size());
+    if (count < 2)
+      run(0u, count, 0u);
+    else
+      split.run(count, 1, run);
+  }
   // The items of tile t (items_per_tile of them, fewer in the last), in index order.
   std::span<const uint32_t> items_of(uint32_t tile) const {
     const size_t first = size_t{tile} * items_per_tile_;
