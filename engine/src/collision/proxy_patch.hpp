@@ -67,6 +67,7 @@ class ProxyPatch {
   // answers), twice as many after each further failure in a row, up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
   // query that failed twice tends to go on failing while the tool stays clear).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
+    if (failures_ == 0) return true;  // none yet, or a query of the size that failed fit since
     const uint32_t doublings = failures_ > 0 ? failures_ - 1 : 0u;  // at most kMaxDoublings
     if (pass - failed_pass_ >= (kRetryPasses << doublings)) return true;
     for (int a = 0; a < 3; ++a)

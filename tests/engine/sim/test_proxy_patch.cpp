@@ -104,4 +104,18 @@ TEST(ProxyPatch, AQueryThatKeepsFailingIsTriedAgainLessOftenUntilItFits) {
   EXPECT_TRUE(patch.worth_gathering(larger, pass + 129));
 }
 
+// The cube for the queries served held too many, the query's own cube fit: queries of that size
+// are gathered for again at once (they fit), not left to the hierarchy for the next 64 passes.
+TEST(ProxyPatch, AQueryOfTheSizeThatFailedIsGatheredForOnceOneFits) {
+  ProxyPatch patch;
+  std::vector<uint32_t> many(ProxyPatch::kCapacity + 1);
+  const std::vector<uint32_t> few{1, 2};
+  const ProxyPatch::Box query = box_about(0, 0, 0, 0.0045);
+  ASSERT_FALSE(patch.keep({0, 0, 0}, 0.02, many.data(), ProxyPatch::kCapacity + 1, query, 7, 0));
+  EXPECT_FALSE(patch.worth_gathering(query, 8));
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.009, few.data(), 2, query, 7, 0.0));
+  EXPECT_TRUE(patch.worth_gathering(query, 8));
+  EXPECT_TRUE(patch.worth_gathering(box_about(0.01, 0, 0, 0.0045), 9));
+}
+
 }  // namespace
