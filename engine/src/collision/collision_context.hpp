@@ -170,8 +170,10 @@ class CollisionContext {
   // Of those, the gathers the upkeep made ahead of need (after the write).
   uint64_t patch_upkeep_gathers() const noexcept { return patch_upkeep_gathers_; }
   uint64_t patch_queries() const noexcept { return patch_queries_; }
-  // Free-space checks the last closest points answered without a search (Query::clear_of).
+  // Free-space checks answered without a closest-point search (Query::clear_of), and of those
+  // the ones the slices' boxes answered where the last closest points alone did not.
   uint64_t clear_answers() const noexcept { return clear_answers_; }
+  uint64_t clear_bound_answers() const noexcept { return clear_bound_answers_; }
   // Contacts over the tick and the response (positions and velocities corrected in place).
   // Returns TACTA_COLLIDE_* bits.
   uint32_t detect_and_respond(double time, double dt) noexcept;
@@ -202,6 +204,9 @@ class CollisionContext {
   // cannot refit in part).
   bool refit_slices(double time, double dt, int max_slices) noexcept;
   void refit_whole_for_proxy(double time, double dt) noexcept;
+  // Each run of kSliceElements in order[first, first + count) of the surface's element order
+  // gives the surface's freshness its box, from the vertices where they are (current).
+  void box_slices(uint32_t surface, const uint32_t* order, uint32_t first, uint32_t count) noexcept;
   static void make_current_entry(void* context, uint32_t surface, uint32_t triangle) noexcept;
   // The query over `box` is answered from the surface's patch, gathered again first when it does
   // not cover the box; false: from the hierarchy (the patch would hold too many triangles).
@@ -280,6 +285,7 @@ class CollisionContext {
   }
   bool patches_on_ = true;  // tests: false searches the hierarchies
   uint64_t patch_gathers_ = 0, patch_queries_ = 0, clear_answers_ = 0, patch_upkeep_gathers_ = 0;
+  uint64_t clear_bound_answers_ = 0;
   bool sliced_ = false;                        // refit_for_proxy refits slices
   bool eager_patches_ = false;                 // tests: the box pass even for MAKES_CURRENT
   const CollisionInstance* slicer_ = nullptr;  // the plugin whose hierarchies are sliced

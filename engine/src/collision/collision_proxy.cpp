@@ -3,7 +3,9 @@
 // a query looks: each triangle it reads (a plugin that calls make_current), else every triangle
 // in its box beforehand.
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "collision/collision_context.hpp"
@@ -149,11 +151,34 @@ bool CollisionContext::refit_slices(double time, double dt, int max_slices) noex
       const uint32_t bits = slicer_->update_elements(slicer_->instance, &view_, k, first, count);
       raised_bits_ |= bits & ~uint32_t{TACTA_COLLIDE_UNPREPARED};
       if (bits & TACTA_COLLIDE_UNPREPARED) return false;
+      box_slices(k, order, first, count);
       ++proxy_slices_;
       if (n == 0 && !(freshness_[k].margin() > 0.5 * freshness_[k].margin_cap())) break;
     }
   }
   return true;
+}
+
+void CollisionContext::box_slices(uint32_t surface, const uint32_t* order, uint32_t first,
+                                  uint32_t count) noexcept {
+  const tacta_collision_surface& s = surfaces_[surface];
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (uint32_t start = first; start < first + count; start += SurfaceFreshness::kSliceElements) {
+    const uint32_t end = std::min(first + count, start + SurfaceFreshness::kSliceElements);
+    std::array<double, 6> box{kInf, kInf, kInf, -kInf, -kInf, -kInf};
+    double finite = 0.0;  // 0 * x is NaN for a NaN or infinite x
+    for (uint32_t e = start; e < end; ++e)
+      for (size_t c = 0; c < 3; ++c) {
+        const double* x = &s.positions_end[3 * size_t{s.triangles[3 * size_t{order[e]} + c]}];
+        for (size_t a = 0; a < 3; ++a) {
+          box[a] = std::min(box[a], x[a]);
+          box[a + 3] = std::max(box[a + 3], x[a]);
+          finite += 0.0 * x[a];
+        }
+      }
+    if (std::isnan(finite)) box = {-kInf, -kInf, -kInf, kInf, kInf, kInf};  // holds every point
+    freshness_[surface].set_slice_box(start, box);
+  }
 }
 
 void CollisionContext::make_current_entry(void* context, uint32_t surface,

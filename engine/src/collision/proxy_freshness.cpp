@@ -21,6 +21,8 @@ SurfaceFreshness::SurfaceFreshness(size_t node_count, uint32_t element_count, do
       drift_(std::max<size_t>(1, (element_count + kSliceElements - 1) / kSliceElements), 0.0),
       slice_start_(drift_.size() + 1, 0),
       referenced_(drift_.size(), 0),
+      slice_boxes_(drift_.size()),
+      boxed_(drift_.size(), 0),
       seen_in_(node_count, 0),
       nodes_per_vertex_(nodes_per_vertex),
       element_count_(element_count),
@@ -47,11 +49,13 @@ void SurfaceFreshness::reset(const double* nodes) noexcept {
   pending_ticks_ = 0;
   margin_ = 0.0;
   for (size_t slice = 0; bound_ && slice < drift_.size(); ++slice) take_reference(slice);
+  std::fill(boxed_.begin(), boxed_.end(), uint8_t{0});
 }
 
 void SurfaceFreshness::bind(const uint32_t* order, const uint32_t* triangles,
                             const uint32_t* vertex_nodes) noexcept {
   bound_ = false;
+  std::fill(boxed_.begin(), boxed_.end(), uint8_t{0});
   slice_nodes_.clear();  // keeps the capacity reserved for every slice's nodes
   std::fill(seen_in_.begin(), seen_in_.end(), 0u);
   for (uint32_t slice = 0; slice < drift_.size(); ++slice) {
@@ -188,6 +192,7 @@ void SurfaceFreshness::next_slice(uint32_t& first, uint32_t& count) noexcept {
     first = std::min(stalest * kSliceElements, element_count_);
     count = std::min(kSliceElements, element_count_ - first);
     drift_[stalest] = 0.0;
+    boxed_[stalest] = 0;  // until the caller gives the refit slice its box
     if (bound_) take_reference(stalest);
     update_margin();
     return;
@@ -196,6 +201,36 @@ void SurfaceFreshness::next_slice(uint32_t& first, uint32_t& count) noexcept {
 
 void SurfaceFreshness::update_margin() noexcept {
   margin_ = weight_bound_ * (*std::max_element(drift_.begin(), drift_.end()) + pending_);
+}
+
+void SurfaceFreshness::set_slice_box(uint32_t first, const std::array<double, 6>& box) noexcept {
+  const size_t slice = first / kSliceElements;
+  if (slice >= slice_boxes_.size()) return;
+  slice_boxes_[slice] = box;
+  boxed_[slice] = 1;
+}
+
+double SurfaceFreshness::clearance(const double* point, double limit) const noexcept {
+  if (!bound_ || !(margin_ >= 0.0) ||
+      !(std::isfinite(point[0]) && std::isfinite(point[1]) && std::isfinite(point[2])))
+    return 0.0;
+  double best = limit;
+  for (size_t slice = 0; slice < slice_boxes_.size(); ++slice) {
+    const double margin = slice_margin(slice);
+    if (!boxed_[slice] || !(margin >= 0.0 && margin < std::numeric_limits<double>::infinity()))
+      return 0.0;
+    const std::array<double, 6>& box = slice_boxes_[slice];
+    double d2 = 0.0;  // m^2, 0 inside
+    for (int a = 0; a < 3; ++a) {
+      const double out = std::max({box[a] - point[a], point[a] - box[a + 3], 0.0});
+      d2 += out * out;
+    }
+    const double reach = best + margin;  // a box further than this leaves best as it is
+    if (!(d2 < reach * reach)) continue;
+    best = std::sqrt(d2) - margin;
+    if (!(best > 0.0)) return 0.0;
+  }
+  return best;
 }
 
 }  // namespace tacta

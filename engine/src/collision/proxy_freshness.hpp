@@ -14,6 +14,7 @@
 // allocation per tick.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -67,6 +68,16 @@ class SurfaceFreshness {
   // for a node not finite): 0 when nothing the surface follows moved since the call before.
   double last_move() const noexcept { return last_move_; }
   double odometer_base() const noexcept { return weight_bound_ * taken_; }
+  // The box (lo x, y, z then hi, m) of the vertices of the run [first, first + kSliceElements)
+  // of the element order, where the hierarchy's boxes for it were just computed (after reset
+  // and bind, or the run's refit): what clearance reads. A reset or bind forgets every box, and
+  // next_slice the box of the slice it hands out, so a box not given again is never trusted.
+  void set_slice_box(uint32_t first, const std::array<double, 6>& box) noexcept;
+  // A lower bound on the distance from point (3, m) to the surface now: the least distance to a
+  // slice's box less how far its vertices may have moved since, or `limit` (m) when none is
+  // nearer; 0 when not known (unbound, a slice without its box, a node or the point not finite).
+  // Local, where the odometer is not: a far slice's moves matter only once they near the point.
+  double clearance(const double* point, double limit) const noexcept;
 
  private:
   static constexpr int kPendingTicks = 8;  // advances between the slices taking their paths
@@ -82,10 +93,12 @@ class SurfaceFreshness {
   std::vector<double> last_nodes_;  // 3 per node, m: at the last advance or reset
   std::vector<double> paths_;       // 1 per node, m: its moves summed since the slices took them
   std::vector<double> drift_;  // per slice, m: its nodes' longest path since refit, less pending_
-  std::vector<uint32_t> slice_nodes_;    // the nodes each slice follows, slice after slice
-  std::vector<uint32_t> slice_start_;    // per slice + 1: its first entry in slice_nodes_
-  std::vector<double> reference_;        // 3 per slice_nodes_ entry, m: where it was at the refit
-  std::vector<uint8_t> referenced_;      // per slice: reference_ holds its nodes at its last refit
+  std::vector<uint32_t> slice_nodes_;  // the nodes each slice follows, slice after slice
+  std::vector<uint32_t> slice_start_;  // per slice + 1: its first entry in slice_nodes_
+  std::vector<double> reference_;      // 3 per slice_nodes_ entry, m: where it was at the refit
+  std::vector<uint8_t> referenced_;    // per slice: reference_ holds its nodes at its last refit
+  std::vector<std::array<double, 6>> slice_boxes_;  // per slice, m: see set_slice_box
+  std::vector<uint8_t> boxed_;                      // per slice: slice_boxes_ holds its box
   std::vector<uint32_t> seen_in_;        // 1 per node: the last slice (+ 1) that listed it
   std::vector<uint32_t> surface_nodes_;  // the nodes any slice follows, once each
   bool bound_ = false;

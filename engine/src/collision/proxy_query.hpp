@@ -94,7 +94,8 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
 
   // Each surface's last closest point was found outside it, and since then neither the point
   // nor the surface can have closed the distance to below `distance`: the point has moved by
-  // |point - then|, no vertex by more than the surface's odometer since.
+  // |point - then|, no vertex by more than the surface's odometer since. Where they may have,
+  // but not to zero (the point is still outside), the hierarchy's boxes may tell (bounded_clear).
   bool clear_of(const Vec3& point, double distance) const noexcept override {
     if (!context_.sliced_) return false;
     bool any = false;
@@ -104,7 +105,8 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
       if (!seen.outside) return false;
       const double moved =
           norm(sub(point, seen.point)) + (context_.freshness_[s].odometer() - seen.odometer_base);
-      if (!(seen.distance - moved >= distance)) return false;  // NaN: not known
+      const double left = seen.distance - moved;  // NaN: not known
+      if (!(left >= distance) && !(left > 0.0 && bounded_clear(s, point, distance))) return false;
       any = true;
     }
     context_.clear_answers_ += any ? 1 : 0;
@@ -112,6 +114,19 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   }
 
  private:
+  // Surface s, which `point` is outside, is no nearer to it than `distance` by its slices' boxes
+  // grown by how far each slice's vertices may have moved (SurfaceFreshness::clearance), found
+  // up to kClearanceLimit x distance: a new sighting. A few dozen boxes, where closest_point
+  // would make current and test every fine triangle within its ball (60-100 on the liver demo,
+  // 10-40 us).
+  bool bounded_clear(uint32_t s, const Vec3& point, double distance) const noexcept {
+    const Timed timed(context_);
+    const double bound = context_.freshness_[s].clearance(point.data(), kClearanceLimit * distance);
+    if (!(bound >= distance)) return false;
+    ++context_.clear_bound_answers_;
+    context_.sightings_[s] = {point, bound, context_.freshness_[s].odometer_base(), true};
+    return true;
+  }
   // Surface s is one this query answers for: present, and the one it is restricted to, if any.
   bool asked(uint32_t s) const noexcept {
     return (surface_ < 0 || static_cast<uint32_t>(surface_) == s) && context_.surface_present(s);
@@ -141,6 +156,9 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     out.body = context_.body_of(surface);
     out.triangle = static_cast<int>(h.triangle);
   }
+  // How far bounded_clear searches, in units of the distance asked (the tool's radius): a bound
+  // up to this leaves the point that many radii less one to travel before the next check.
+  static constexpr double kClearanceLimit = 4.0;
   CollisionContext& context_;
   const CollisionInstance* answerer_;
   int surface_ = -1;

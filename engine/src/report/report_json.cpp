@@ -85,7 +85,9 @@ Json collision(const RunStatus& s) {
                 {"whole", s.proxy_whole_refits},
                 {"patch_gathers", s.patch_gathers},
                 {"patch_upkeep_gathers", s.patch_upkeep_gathers},
-                {"patch_queries", s.patch_queries}}},
+                {"patch_queries", s.patch_queries},
+                {"clear_answers", s.clear_answers},
+                {"clear_bound_answers", s.clear_bound_answers}}},
               {"status", status_bits(s.collision)}};
 }
 

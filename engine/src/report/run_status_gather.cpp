@@ -47,6 +47,8 @@ RunStatus collect_run_status(const HapticLoop& loop, const World& world,
     status.patch_gathers = collision->patch_gathers();
     status.patch_upkeep_gathers = collision->patch_upkeep_gathers();
     status.patch_queries = collision->patch_queries();
+    status.clear_answers = collision->clear_answers();
+    status.clear_bound_answers = collision->clear_bound_answers();
   }
   return status;
 }

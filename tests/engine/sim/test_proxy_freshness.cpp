@@ -2,13 +2,15 @@
 // the slice's margin of where it was when that slice was last refit (the property the proxy's widened
 // queries rely on), and every vertex within the odometer's advance of where it was at a mark
 // (the proxy's patches and free-space check rely on that), whole refits (resets) between
-// included. Checked by replaying random, local motions of a strip of triangles whose
+// included; and the slices' boxes grown by their margins keep every vertex, so no point is
+// nearer the surface than clearance says (the free-space check). Checked by replaying random, local motions of a strip of triangles whose
 // vertices are nodes, and of vertices that are weighted sums of four nodes (an embedded
 // surface, weights outside [0, 1] included). And the point of slices that know their nodes:
 // a body moving in one place refits only the slices there; nodes shaking in place refit none.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <random>
 #include <vector>
@@ -47,8 +49,32 @@ std::vector<double> vertex_positions(const std::vector<double>& nodes, uint32_t 
   return out;
 }
 
+// The least distance (m) from p to the vertices and the centroids of the triangles: no nearer than
+// the surface, so a bound on the surface's distance is a bound on this.
+double sampled_distance(const std::array<double, 3>& p, const std::vector<double>& vertices,
+                        const std::vector<uint32_t>& triangles) {
+  double least2 = 1e300;  // m^2
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    std::array<double, 3> centroid{};
+    for (size_t c = 0; c < 3; ++c) {
+      const double* x = &vertices[3 * size_t{triangles[t + c]}];
+      double d2 = 0;
+      for (size_t a = 0; a < 3; ++a) {
+        d2 += (x[a] - p[a]) * (x[a] - p[a]);
+        centroid[a] += x[a] / 3.0;
+      }
+      least2 = std::min(least2, d2);
+    }
+    double d2 = 0;
+    for (size_t a = 0; a < 3; ++a) d2 += (centroid[a] - p[a]) * (centroid[a] - p[a]);
+    least2 = std::min(least2, d2);
+  }
+  return std::sqrt(least2);
+}
+
 // Random local motion for `ticks` ticks; every tick, each slice's vertices are checked against
-// where they were at that slice's last refit. Returns the slices refit.
+// where they were at that slice's last refit, and clearance against points near the strip.
+// Returns the slices refit.
 uint64_t replay(uint32_t per_vertex, uint64_t seed) {
   const Strip strip(700);  // 1,400 triangles: 11 slices
   std::mt19937_64 rng(seed);
@@ -85,6 +111,23 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
   fresh.reset(nodes.data());
   fresh.bind(order.data(), strip.triangles.data(), per_vertex == 1 ? nullptr : vertex_nodes.data());
   const uint32_t slices = (strip.count() + kSlice - 1) / kSlice;
+  // Each slice's box, as the collision context gives it: from its vertices where they are when
+  // the slice (or everything) is refit.
+  const auto box_slice = [&](uint32_t slice, const std::vector<double>& at) {
+    std::array<double, 6> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+    for (uint32_t e = slice * kSlice; e < std::min(strip.count(), (slice + 1) * kSlice); ++e)
+      for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) {
+          const double x = at[3 * size_t{strip.triangles[3 * order[e] + c]} + a];
+          box[a] = std::min(box[a], x);
+          box[a + 3] = std::max(box[a + 3], x);
+        }
+    fresh.set_slice_box(slice * kSlice, box);
+  };
+  EXPECT_EQ(fresh.clearance(nodes.data(), 1.0), 0.0) << "no box yet";
+  for (uint32_t s = 0; s < slices; ++s)
+    box_slice(s, vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex));
+  uint64_t clear_points = 0;
   std::vector<std::vector<double>> at_refit(
       slices, vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex));
   std::vector<double> at_mark = at_refit[0];
@@ -100,6 +143,8 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
       fresh.reset(nodes.data());
       for (auto& slice : at_refit)
         slice = vertex_positions(nodes, strip.vertices, vertex_nodes, weights, per_vertex);
+      EXPECT_EQ(fresh.clearance(nodes.data(), 1.0), 0.0) << "a reset forgets the boxes";
+      for (uint32_t s = 0; s < slices; ++s) box_slice(s, at_refit[s]);
     }
     // A patch of nodes moves (the tool's neighbourhood, somewhere along the strip), plus a
     // slow drift of everything now and then.
@@ -122,6 +167,21 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
         return refits;
       }
     }
+    // Points up to 3 cm from a vertex: none nearer the strip than its clearance.
+    for (int k = 0; k < 4; ++k) {
+      const uint32_t v = static_cast<uint32_t>(rng() % strip.vertices);
+      const std::array<double, 3> p{now[3 * v] + 0.03 * unit(rng),
+                                    now[3 * v + 1] + 0.03 * unit(rng),
+                                    now[3 * v + 2] + 0.03 * unit(rng)};
+      const double bound = fresh.clearance(p.data(), 1.0);
+      const double sampled = sampled_distance(p, now, strip.triangles);
+      if (bound > sampled * (1 + 1e-12) + 1e-15) {
+        ADD_FAILURE() << "clearance " << bound << " m past the distance " << sampled
+                      << " m at tick " << tick;
+        return refits;
+      }
+      clear_points += bound > 0.0 ? 1 : 0;
+    }
     for (uint32_t s = 0; s < slices; ++s)
       for (uint32_t e = s * kSlice; e < std::min(strip.count(), (s + 1) * kSlice); ++e)
         for (int c = 0; c < 3; ++c) {
@@ -143,10 +203,13 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
       fresh.next_slice(first, count);
       if (count == 0) continue;
       at_refit[first / kSlice] = now;  // the slice's boxes are computed from where it is now
+      box_slice(first / kSlice, now);
       ++refits;
     }
     EXPECT_LE(fresh.margin(), target);
   }
+  std::printf("%llu of 8,000 points found clear\n", static_cast<unsigned long long>(clear_points));
+  EXPECT_GT(clear_points, 250u) << "of 8,000 points up to 3 cm from a vertex";
   return refits;
 }
 
@@ -172,6 +235,39 @@ struct BoundStrip {
     fresh.bind(order.data(), strip.triangles.data(), nullptr);
   }
 };
+
+// The bound reads only what is known: nothing before the boxes, nothing for a point or node not
+// finite; the limit caps it; a point inside a slice's box grown by its margin gets 0.
+TEST(ProxyFreshness, ClearanceIsZeroWhereNothingIsKnown) {
+  BoundStrip bound(1e-3);
+  SurfaceFreshness& fresh = bound.fresh;
+  const std::array<double, 3> above{0.5, 0.0, 0.2};  // m: 20 cm over the strip's middle
+  EXPECT_EQ(fresh.clearance(above.data(), 1.0), 0.0);
+  const uint32_t slices = (bound.strip.count() + kSlice - 1) / kSlice;
+  for (uint32_t s = 0; s < slices; ++s) {
+    std::array<double, 6> box{1e300, 1e300, 0.0, -1e300, -1e300, 0.0};
+    for (uint32_t e = s * kSlice; e < std::min(bound.strip.count(), (s + 1) * kSlice); ++e)
+      for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 2; ++a) {
+          const double x = bound.nodes[3 * size_t{bound.strip.triangles[3 * e + c]} + a];
+          box[a] = std::min(box[a], x);
+          box[a + 3] = std::max(box[a + 3], x);
+        }
+    fresh.set_slice_box(s * kSlice, box);
+  }
+  EXPECT_NEAR(fresh.clearance(above.data(), 1.0), 0.2, 1e-15);
+  EXPECT_EQ(fresh.clearance(above.data(), 0.05), 0.05);  // searched no further
+  const std::array<double, 3> on{0.5, 0.0, 0.0005};      // within the margin to come
+  bound.nodes[2] += 1e-3;                                // slice 0 rises 1 mm
+  ASSERT_TRUE(fresh.advance(bound.nodes.data()));
+  EXPECT_NEAR(fresh.clearance(above.data(), 1.0), 0.2 - 1e-3, 1e-12);
+  EXPECT_EQ(fresh.clearance(on.data(), 1.0), 0.0);
+  const std::array<double, 3> nan{std::nan(""), 0.0, 0.2};
+  EXPECT_EQ(fresh.clearance(nan.data(), 1.0), 0.0);
+  bound.nodes[5] = std::nan("");
+  fresh.advance(bound.nodes.data());
+  EXPECT_EQ(fresh.clearance(above.data(), 1.0), 0.0);
+}
 
 // One end of the strip moves; the slices at the other end are never refit.
 TEST(ProxyFreshness, StillSlicesAreNotRefit) {

@@ -93,9 +93,15 @@ void expect_same_touch(const std::vector<std::string>& overrides, size_t ticks, 
   }
   // Between presses the device in free space was found clear of the liver without a search,
   // and the touch is the same as where it searched every tick (every_tick knows no clear_of).
-  std::printf("%llu free-space checks answered without a search\n",
-              static_cast<unsigned long long>(sliced.collision->clear_answers()));
+  std::printf("%llu free-space checks answered without a search, %llu of them by slice boxes\n",
+              static_cast<unsigned long long>(sliced.collision->clear_answers()),
+              static_cast<unsigned long long>(sliced.collision->clear_bound_answers()));
   EXPECT_GT(sliced.collision->clear_answers(), ticks / 10);
+  // Some where the liver's motion used up the last closest point's slack (the embedded surface's
+  // many slices, refit as it moves, each given its box again).
+  if (slices) {
+    EXPECT_GT(sliced.collision->clear_bound_answers(), 10u);
+  }
   EXPECT_EQ(whole.collision->clear_answers(), 0u);
   EXPECT_LT(sliced.collision->proxy_whole_refits(), ticks / 20);
   EXPECT_EQ(whole.collision->proxy_slices(), 0u);

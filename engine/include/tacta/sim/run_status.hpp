@@ -40,6 +40,8 @@ struct RunStatus {
   // The proxy's patches: gathers (all; of them, those the upkeep made ahead of need) and the
   // queries they answered.
   uint64_t patch_gathers = 0, patch_upkeep_gathers = 0, patch_queries = 0;
+  // Free-space checks answered clear without a search; of them, those the slices' boxes answered.
+  uint64_t clear_answers = 0, clear_bound_answers = 0;
   bool proxy_sliced = false;  // the mode that ran: sliced, or every_tick (asked, or fallen back)
   size_t errors = 0, warnings = 0;  // kinds (who x bit) seen
   std::vector<std::string> lines;   // one per warning or error kind, for the console
@@ -50,7 +52,7 @@ struct RunStatus {
 struct TickStatus {
   uint32_t model_bits = 0;      // TACTA_STEP_* over every body stepped
   uint32_t collision_bits = 0;  // TACTA_COLLIDE_*
-  uint32_t device_bits = 0;     // device bits (engine/src/systems/status_bits.hpp) over every device
+  uint32_t device_bits = 0;  // device bits (engine/src/systems/status_bits.hpp) over every device
   bool error = false;
   void merge(const TickStatus& t) noexcept {
     model_bits |= t.model_bits;
