@@ -103,6 +103,7 @@ class ProxyPatch {
     half_ = half;
     odometer_base_ = odometer_base;
     held_ = true;
+    near_valid_ = false;
     served_extent_ = 0.0;
     made_current_in_ = boxes_in_ = 0;
     return true;
@@ -110,6 +111,7 @@ class ProxyPatch {
   // The surface changed (a cut, a replacement) or is away: what failed on it says nothing now.
   void drop() noexcept {
     held_ = false;
+    near_valid_ = false;
     made_current_in_ = boxes_in_ = served_in_ = 0;
     failures_ = 0;
     failed_side_ = kNoFailedSide;
@@ -126,6 +128,7 @@ class ProxyPatch {
   void set_boxes(const double* positions, const uint32_t* surface_triangles,
                  uint64_t pass) noexcept {
     boxes_.clear();  // within the capacity reserved
+    near_valid_ = false;
     for (const uint32_t t : triangles_) {
       Box b;
       const double* x = &positions[3 * size_t{surface_triangles[3 * size_t{t}]}];
@@ -144,21 +147,44 @@ class ProxyPatch {
   uint64_t boxes_in() const noexcept { return boxes_in_; }
   void set_boxes_in(uint64_t pass) noexcept { boxes_in_ = pass; }  // nothing moved since
   // The triangles whose box meets `box` (closed intervals; the boxes are the bvh plugin's own
-  // candidate test's, NaN corners included) into out (kCapacity); returns how many. Those left
-  // out lie wholly outside the query's reach, which `box` bounds.
-  uint32_t meeting(const Box& box, uint32_t* out) const noexcept {
+  // candidate test's, NaN corners included) into out (kCapacity); returns how many, in the
+  // patch's order. Those left out lie wholly outside the query's reach, which `box` bounds. The
+  // boxes are tested against a pass's first query grown by kNearShare of its side once, and the
+  // queries after it (the proxy's iterations, micrometres apart) test only those that met it.
+  uint32_t meeting(const Box& box, uint32_t* out) noexcept {
+    bool inside = near_valid_;
+    for (int a = 0; a < 3; ++a)
+      inside = inside && box[a] >= near_box_[a] && box[a + 3] <= near_box_[a + 3];
+    if (!inside) {  // (a NaN box too: every box then meets it, as it meets the query)
+      double side = 0.0;
+      for (int a = 0; a < 3; ++a) side = std::max(side, box[a + 3] - box[a]);
+      for (int a = 0; a < 3; ++a) {
+        near_box_[a] = box[a] - kNearShare * side;
+        near_box_[a + 3] = box[a + 3] + kNearShare * side;
+      }
+      near_count_ = 0;
+      for (uint32_t i = 0; i < boxes_.size(); ++i) {
+        near_[near_count_] = static_cast<uint8_t>(i);
+        near_count_ += meets(boxes_[i], near_box_) ? 1u : 0u;
+      }
+      near_valid_ = true;
+    }
     uint32_t count = 0;
-    for (size_t i = 0; i < boxes_.size(); ++i) {
-      const Box& b = boxes_[i];
-      bool apart = false;
-      for (int a = 0; a < 3; ++a) apart = apart || b[a] > box[a + 3] || b[a + 3] < box[a];
-      if (!apart) out[count++] = triangles_[i];
+    for (uint32_t k = 0; k < near_count_; ++k) {
+      out[count] = triangles_[near_[k]];
+      count += meets(boxes_[near_[k]], box) ? 1u : 0u;
     }
     return count;
   }
 
  private:
   static constexpr uint64_t kRetryPasses = 64;
+  static constexpr double kNearShare = 0.25;  // see meeting
+  // Closed intervals, without branches (most boxes of a patch are apart from a query's, at random).
+  static bool meets(const Box& b, const Box& box) noexcept {
+    return !(b[0] > box[3]) & !(b[3] < box[0]) & !(b[1] > box[4]) & !(b[4] < box[1]) &
+           !(b[2] > box[5]) & !(b[5] < box[2]);
+  }
   static constexpr uint32_t kMaxDoublings = 4;    // retries at least every 1,024 passes
   static constexpr double kNoFailedSide = 1e300;  // m: no gather failed (since the surface changed)
   std::vector<uint32_t> triangles_;
@@ -172,6 +198,11 @@ class ProxyPatch {
   uint64_t made_current_in_ = 0;
   std::vector<Box> boxes_;  // of triangles_, as of pass boxes_in_
   uint64_t boxes_in_ = 0;
+  // The boxes (indices, kCapacity < 256) meeting near_box_, a query's grown, until the boxes change.
+  std::array<uint8_t, kCapacity> near_{};
+  uint32_t near_count_ = 0;
+  Box near_box_{};
+  bool near_valid_ = false;
   Box last_served_{};
   uint64_t served_in_ = 0;
   bool held_ = false;

@@ -196,10 +196,11 @@ class BvhBroadPhase {
       hit.toi = toi;
       hit.distance = 0.0;
     };
+    // The host's candidates met this sweep's box when it chose them: each is tested outright
+    // (sphere_cast_triangle turns most away on its plane).
     if (const Candidates c(world, s); c.list != nullptr) {
       for (uint32_t i = 0; i < c.count; ++i)
-        if (c.list[i] < s.triangle_count && triangle_box(s, c.list[i]).overlaps(box))
-          test(c.list[i]);
+        if (c.list[i] < s.triangle_count) test(c.list[i]);
       return best <= 1.0;
     }
     const CurrentMaker make_current(world, surface);

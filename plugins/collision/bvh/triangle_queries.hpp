@@ -65,6 +65,16 @@ inline double entering_root(double a, double b, double c) {
 // radius r around a corner). A start already within r touches at 0.
 inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, const Vec3& a,
                                    const Vec3& b, const Vec3& c) {
+  // Ends on one side of the triangle's plane, both further than r (and 1 pm for rounding) from
+  // it: no point of the sweep comes within r. A proxy sliding over a face rejects the faces
+  // around it so, for a cross product and two dots instead of two closest points.
+  const Vec3 normal = cross(sub(b, a), sub(c, a));
+  const double twice_area = norm(normal);
+  if (twice_area > 0.0) {
+    const double h0 = dot(sub(from, a), normal) / twice_area;
+    const double h1 = dot(sub(to, a), normal) / twice_area;
+    if ((h0 - r > 1e-12 && h1 - r > 1e-12) || (-h0 - r > 1e-12 && -h1 - r > 1e-12)) return -1.0;
+  }
   if (distance_to_triangle(from, a, b, c) <= r) return 0.0;
   const Vec3 d = sub(to, from);
   // Every point of the sweep is within half its length of its middle: a triangle further than
@@ -74,8 +84,6 @@ inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, c
   if (distance_to_triangle(middle, a, b, c) - 0.5 * norm(d) - r > 1e-12) return -1.0;
   double first = 2.0;
   // Face: the centre reaches the plane offset by r on its own side, over the triangle.
-  const Vec3 normal = cross(sub(b, a), sub(c, a));
-  const double twice_area = norm(normal);
   if (twice_area > 0.0) {
     const Vec3 n = scaled(normal, 1.0 / twice_area);
     const double height = dot(sub(from, a), n), closing = dot(d, n);

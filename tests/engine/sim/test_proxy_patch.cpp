@@ -3,8 +3,10 @@
 // the queries served; a gather that held too many triangles is not tried again for as large a
 // query for a while, twice as long after each further failure in a row (one a pass), until a
 // query of that size fits or the surface changes.
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <random>
 #include <vector>
 
 #include "collision/proxy_patch.hpp"
@@ -116,6 +118,67 @@ TEST(ProxyPatch, AQueryOfTheSizeThatFailedIsGatheredForOnceOneFits) {
   ASSERT_TRUE(patch.keep({0, 0, 0}, 0.009, few.data(), 2, query, 7, 0.0));
   EXPECT_TRUE(patch.worth_gathering(query, 8));
   EXPECT_TRUE(patch.worth_gathering(box_about(0.01, 0, 0, 0.0045), 9));
+}
+
+// meeting() answers as a test of every box would, in the patch's order, whether a query falls
+// inside the grown box of the pass's first (the triangles that met it) or not (all of them);
+// new boxes, a new patch or a NaN query start again.
+TEST(ProxyPatch, MeetingFindsEveryTriangleWhoseBoxMeetsTheQuery) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  ProxyPatch patch;
+  std::vector<uint32_t> triangles(ProxyPatch::kCapacity);
+  for (uint32_t t = 0; t < triangles.size(); ++t) triangles[t] = t;
+  ASSERT_TRUE(patch.keep({0, 0, 0}, 0.02, triangles.data(), ProxyPatch::kCapacity,
+                         box_about(0, 0, 0, 0.005), 1, 0.0));
+  std::vector<double> positions(9 * triangles.size());  // three corners a triangle, m
+  const auto scatter = [&] {  // triangles of about 3 mm anywhere in a 4 cm cube
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      std::array<double, 3> centre{0.02 * unit(rng), 0.02 * unit(rng), 0.02 * unit(rng)};
+      for (size_t c = 0; c < 3; ++c)
+        for (size_t a = 0; a < 3; ++a)
+          positions[9 * t + 3 * c + a] = centre[a] + 0.0015 * unit(rng);
+    }
+  };
+  std::vector<uint32_t> corners(3 * triangles.size());
+  for (uint32_t c = 0; c < corners.size(); ++c) corners[c] = c;
+  std::vector<uint32_t> found(ProxyPatch::kCapacity);
+  uint64_t met = 0;
+  // The same place each round: the triangles that met it last round must not be taken again.
+  const ProxyPatch::Box first = box_about(0.005, -0.003, 0, 0.004);
+  for (int round = 0; round < 4; ++round) {
+    scatter();
+    patch.set_boxes(positions.data(), corners.data(), static_cast<uint64_t>(round + 1));
+    for (int q = 0; q < 200; ++q) {
+      // Queries near the first (the proxy's iterations) and anywhere in the patch.
+      ProxyPatch::Box box = first;
+      const double shift = q % 2 == 0 ? 0.001 : 0.02;
+      for (int a = 0; a < 3; ++a) {
+        const double d = shift * unit(rng);
+        box[a] += d;
+        box[a + 3] += d;
+      }
+      if (q == 150) box[0] = std::nan("");
+      std::vector<uint32_t> expected;
+      for (uint32_t t = 0; t < triangles.size(); ++t) {
+        bool apart = false;
+        for (size_t a = 0; a < 3; ++a) {
+          double lo = 1e300, hi = -1e300;
+          for (size_t c = 0; c < 3; ++c) {
+            lo = std::min(lo, positions[9 * t + 3 * c + a]);
+            hi = std::max(hi, positions[9 * t + 3 * c + a]);
+          }
+          apart = apart || lo > box[a + 3] || hi < box[a];
+        }
+        if (!apart) expected.push_back(t);
+      }
+      const uint32_t count = patch.meeting(box, found.data());
+      ASSERT_EQ(std::vector<uint32_t>(found.begin(), found.begin() + count), expected)
+          << "round " << round << " query " << q;
+      met += count;
+    }
+  }
+  EXPECT_GT(met, 400u);  // the queries met something (824 of 800 queries x 96 boxes)
 }
 
 }  // namespace

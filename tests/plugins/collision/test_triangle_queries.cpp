@@ -89,4 +89,23 @@ TEST(SphereCastTriangle, FaceEdgeCornerAndStartCases) {
   EXPECT_NEAR(sphere_cast_triangle({-1, 0, 0}, {1, 0, 0}, r, a, a, a), 0.45, 1e-15);
 }
 
+// A proxy sliding over a face (its plane test's case): ends on one side further than r from the
+// plane never touch; one end within r does, at once or where the sweep comes within r.
+TEST(SphereCastTriangle, SweepsAlongThePlaneTouchOnlyWithinR) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  const double r = 0.1;
+  EXPECT_LT(sphere_cast_triangle({0.2, 0.2, r + 1e-9}, {0.3, 0.2, r + 1e-9}, r, a, b, c), 0.0);
+  EXPECT_LT(sphere_cast_triangle({0.2, 0.2, -r - 1e-9}, {0.3, 0.2, -r - 1e-9}, r, a, b, c), 0.0);
+  EXPECT_EQ(sphere_cast_triangle({0.2, 0.2, r - 1e-9}, {0.3, 0.2, r}, r, a, b, c), 0.0);
+  // Sinking from 2r to r / 2 over the face: touches half way down (height r), as marched.
+  const Vec3 from{0.2, 0.2, 2 * r}, to{0.3, 0.2, 0.5 * r};
+  EXPECT_NEAR(sphere_cast_triangle(from, to, r, a, b, c), 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(sphere_cast_triangle(from, to, r, a, b, c), marched(from, to, r, a, b, c), 1e-9);
+  // Ends on opposite sides (through the plane, past the triangle's edge): the edge's cylinder.
+  EXPECT_NEAR(sphere_cast_triangle({-0.5, 0.2, 1}, {-0.5, 0.2, -1}, r, a, b, c), -1.0, 0.0);
+  const Vec3 across_from{-0.05, 0.2, 1}, across_to{-0.05, 0.2, -1};
+  EXPECT_NEAR(sphere_cast_triangle(across_from, across_to, r, a, b, c),
+              marched(across_from, across_to, r, a, b, c), 1e-9);
+}
+
 }  // namespace
