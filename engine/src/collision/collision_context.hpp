@@ -265,8 +265,9 @@ class CollisionContext {
   std::vector<uint32_t> patch_triangles_;       // overlap_shape's answer (capacity: triangles)
   // A query's candidates: the patch's triangles its box meets (ProxyPatch::meeting).
   std::vector<uint32_t> patch_candidates_ = std::vector<uint32_t>(ProxyPatch::kCapacity);
-  // Where a surface's last closest point was asked, how far it was, and the surface's
-  // odometer_base then (for Query::clear_of); outside false: not known to be outside.
+  // Where a surface's last closest point was asked, how far it was (or at least, by the slices'
+  // boxes), and the surface's odometer_base then (for Query::clear_of); outside false: not known
+  // to be outside.
   struct Sighting {
     Vec3 point{0, 0, 0};       // m
     double distance = 0;       // m

@@ -211,7 +211,7 @@ void SurfaceFreshness::set_slice_box(uint32_t first, const std::array<double, 6>
 }
 
 double SurfaceFreshness::clearance(const double* point, double limit) const noexcept {
-  if (!bound_ || !(margin_ >= 0.0) ||
+  if (!bound_ || !(margin_ >= 0.0) || !(limit > 0.0) ||
       !(std::isfinite(point[0]) && std::isfinite(point[1]) && std::isfinite(point[2])))
     return 0.0;
   double best = limit;

@@ -64,11 +64,13 @@ class ProxyPatch {
   // haptic stage's and the upkeep's): none for a query of 3/4 the side or more (about half the
   // area) held too many in the last kRetryPasses passes (the god-object's search for a surface
   // that came onto a device well clear of it: a large ball each tick, which the hierarchy
-  // answers), twice as many after each further failure in a row, up to 16 times (a failed gather of a few hundred triangles costs tens of us, and a large
-  // query that failed twice tends to go on failing while the tool stays clear).
+  // answers), twice as many after each further failure in a row, up to 16 times (a failed
+  // gather of a few hundred triangles costs tens of us, and a large query that failed twice
+  // tends to go on failing while the tool stays clear). Any, once a gather of the size that
+  // failed has fit since (the cube served failing, the query's own fitting).
   bool worth_gathering(const Box& box, uint64_t pass) const noexcept {
-    if (failures_ == 0) return true;  // none yet, or a query of the size that failed fit since
-    const uint32_t doublings = failures_ > 0 ? failures_ - 1 : 0u;  // at most kMaxDoublings
+    if (failures_ == 0) return true;
+    const uint32_t doublings = failures_ - 1;  // at most kMaxDoublings
     if (pass - failed_pass_ >= (kRetryPasses << doublings)) return true;
     for (int a = 0; a < 3; ++a)
       if (box[a + 3] - box[a] < 0.75 * failed_side_) return true;
@@ -149,8 +151,9 @@ class ProxyPatch {
   // The triangles whose box meets `box` (closed intervals; the boxes are the bvh plugin's own
   // candidate test's, NaN corners included) into out (kCapacity); returns how many, in the
   // patch's order. Those left out lie wholly outside the query's reach, which `box` bounds. The
-  // boxes are tested against a pass's first query grown by kNearShare of its side once, and the
-  // queries after it (the proxy's iterations, micrometres apart) test only those that met it.
+  // boxes are tested once against a query grown by kNearShare of its side, and the queries after
+  // it that lie inside that (the proxy's iterations, micrometres apart) test only those that met
+  // it, until the boxes change or a query falls outside.
   uint32_t meeting(const Box& box, uint32_t* out) noexcept {
     bool inside = near_valid_;
     for (int a = 0; a < 3; ++a)
@@ -178,6 +181,7 @@ class ProxyPatch {
   }
 
  private:
+  static_assert(kCapacity <= 256, "near_ holds box indices in a byte");
   static constexpr uint64_t kRetryPasses = 64;
   static constexpr double kNearShare = 0.25;  // see meeting
   // Closed intervals, without branches (most boxes of a patch are apart from a query's, at random).

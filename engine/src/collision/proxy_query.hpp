@@ -1,7 +1,8 @@
 // CollisionContext's answers to the god-object proxy's queries (haptics::SurfaceQuery): the
 // proxy plugin's sphere cast and closest point over each present surface, each made ready by
 // prepare_query (margin, vertices made current, the patch near the tool), and what the last
-// closest points tell without a search (clear_of). Included by collision_context.cpp only.
+// closest points (or the slices' boxes) tell without a search (clear_of). Included by
+// collision_context.cpp only.
 #pragma once
 
 #include <algorithm>
@@ -95,10 +96,11 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
   // Each surface's last closest point was found outside it, and since then neither the point
   // nor the surface can have closed the distance to below `distance`: the point has moved by
   // |point - then|, no vertex by more than the surface's odometer since. Where they may have,
-  // but not to zero (the point is still outside), the hierarchy's boxes may tell (bounded_clear).
+  // but not to zero (the point is still outside), the slices' boxes may tell (bounded_clear).
   bool clear_of(const Vec3& point, double distance) const noexcept override {
     if (!context_.sliced_) return false;
     bool any = false;
+    uint64_t bounded = 0;  // surfaces the boxes answered for
     for (uint32_t s = 0; s < context_.view_.surface_count; ++s) {
       if (!asked(s)) continue;
       const Sighting& seen = context_.sightings_[s];
@@ -106,10 +108,14 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
       const double moved =
           norm(sub(point, seen.point)) + (context_.freshness_[s].odometer() - seen.odometer_base);
       const double left = seen.distance - moved;  // NaN: not known
-      if (!(left >= distance) && !(left > 0.0 && bounded_clear(s, point, distance))) return false;
+      if (!(left >= distance)) {
+        if (!(left > 0.0 && bounded_clear(s, point, distance))) return false;
+        bounded = 1;
+      }
       any = true;
     }
     context_.clear_answers_ += any ? 1 : 0;
+    context_.clear_bound_answers_ += any ? bounded : 0;
     return any;
   }
 
@@ -123,7 +129,6 @@ class CollisionContext::Query final : public haptics::SurfaceQuery {
     const Timed timed(context_);
     const double bound = context_.freshness_[s].clearance(point.data(), kClearanceLimit * distance);
     if (!(bound >= distance)) return false;
-    ++context_.clear_bound_answers_;
     context_.sightings_[s] = {point, bound, context_.freshness_[s].odometer_base(), true};
     return true;
   }

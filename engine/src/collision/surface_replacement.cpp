@@ -198,7 +198,10 @@ void CollisionContext::apply_replacement(SurfaceReplacement& r) noexcept {
   for (size_t i = 0; i < instances_.size(); ++i)
     std::swap(instances_[i]->instance, r.instances[i].instance);
   // The fresh hierarchies were built over the copy: the next refit refits them whole from the
-  // bodies then (their element counts match: a refit, not a rebuild).
+  // bodies then (their element counts match: a refit, not a rebuild). Every surface's is new, in
+  // an order of its own: each freshness binds its slices to it again then (until then the
+  // margins take the largest node move and no slice box is trusted).
+  for (SurfaceFreshness& fresh : freshness_) fresh.unbind();
   refitted_once_ = false;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "tacta/vec3.hpp"
 
@@ -36,7 +37,29 @@ inline Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, con
     return at(1.0 - t, t);
   }
   const double denom = va + vb + vc;
-  if (!(denom > 0.0)) return at(0, 0);  // degenerate triangle: fall back to a corner
+  // denom is |ab x ac|^2: a sliver's (angle at a under 1e-4 rad) is rounding noise, and its
+  // weights from it are too.
+  if (!(denom > 1e-8 * dot(ab, ab) * dot(ac, ac))) {
+    // No face to speak of (corners on a line, up to rounding): the nearest point of the three
+    // edges, each as (u, v) along ab, ac or from b to c.
+    const auto along = [&](const Vec3& from, const Vec3& edge) {
+      const double length2 = dot(edge, edge);
+      return length2 > 0.0 ? std::clamp(dot(sub(p, from), edge) / length2, 0.0, 1.0) : 0.0;
+    };
+    const double t_ab = along(a, ab), t_ac = along(a, ac), t_bc = along(b, sub(c, b));
+    const std::array<std::array<double, 2>, 3> uv{{{t_ab, 0.0}, {0.0, t_ac}, {1.0 - t_bc, t_bc}}};
+    size_t nearest = 0;
+    double least = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < 3; ++k) {
+      const Vec3 q = at(uv[k][0], uv[k][1]);
+      const double gap2 = dot(sub(p, q), sub(p, q));
+      if (gap2 < least) {
+        least = gap2;
+        nearest = k;
+      }
+    }
+    return at(uv[nearest][0], uv[nearest][1]);
+  }
   return at(vb / denom, vc / denom);
 }
 
@@ -67,10 +90,12 @@ inline double sphere_cast_triangle(const Vec3& from, const Vec3& to, double r, c
                                    const Vec3& b, const Vec3& c) {
   // Ends on one side of the triangle's plane, both further than r (and 1 pm for rounding) from
   // it: no point of the sweep comes within r. A proxy sliding over a face rejects the faces
-  // around it so, for a cross product and two dots instead of two closest points.
-  const Vec3 normal = cross(sub(b, a), sub(c, a));
+  // around it so, for a cross product and two dots instead of two closest points. Only where
+  // the plane is known: a sliver (angle at a under 1e-4 rad) has a normal of rounding noise.
+  const Vec3 ab = sub(b, a), ac = sub(c, a);
+  const Vec3 normal = cross(ab, ac);
   const double twice_area = norm(normal);
-  if (twice_area > 0.0) {
+  if (twice_area > 1e-4 * norm(ab) * norm(ac)) {
     const double h0 = dot(sub(from, a), normal) / twice_area;
     const double h1 = dot(sub(to, a), normal) / twice_area;
     if ((h0 - r > 1e-12 && h1 - r > 1e-12) || (-h0 - r > 1e-12 && -h1 - r > 1e-12)) return -1.0;

@@ -49,27 +49,51 @@ std::vector<double> vertex_positions(const std::vector<double>& nodes, uint32_t 
   return out;
 }
 
-// The least distance (m) from p to the vertices and the centroids of the triangles: no nearer than
-// the surface, so a bound on the surface's distance is a bound on this.
-double sampled_distance(const std::array<double, 3>& p, const std::vector<double>& vertices,
-                        const std::vector<uint32_t>& triangles) {
-  double least2 = 1e300;  // m^2
-  for (size_t t = 0; t < triangles.size(); t += 3) {
-    std::array<double, 3> centroid{};
-    for (size_t c = 0; c < 3; ++c) {
-      const double* x = &vertices[3 * size_t{triangles[t + c]}];
-      double d2 = 0;
-      for (size_t a = 0; a < 3; ++a) {
-        d2 += (x[a] - p[a]) * (x[a] - p[a]);
-        centroid[a] += x[a] / 3.0;
-      }
-      least2 = std::min(least2, d2);
-    }
-    double d2 = 0;
-    for (size_t a = 0; a < 3; ++a) d2 += (centroid[a] - p[a]) * (centroid[a] - p[a]);
-    least2 = std::min(least2, d2);
+double segment_distance(const std::array<double, 3>& p, const double* a, const double* b) {
+  double ab2 = 0, t = 0;  // m^2, and t along ab
+  for (size_t k = 0; k < 3; ++k) {
+    ab2 += (b[k] - a[k]) * (b[k] - a[k]);
+    t += (p[k] - a[k]) * (b[k] - a[k]);
   }
-  return std::sqrt(least2);
+  t = ab2 > 0 ? std::clamp(t / ab2, 0.0, 1.0) : 0.0;
+  double d2 = 0;
+  for (size_t k = 0; k < 3; ++k) {
+    const double x = a[k] + t * (b[k] - a[k]) - p[k];
+    d2 += x * x;
+  }
+  return std::sqrt(d2);
+}
+
+// The exact distance (m) from p to the triangles: to the plane where p's foot falls inside a
+// triangle (by the signs of the three sub-areas), else to the nearest of its edges.
+double surface_distance(const std::array<double, 3>& p, const std::vector<double>& vertices,
+                        const std::vector<uint32_t>& triangles) {
+  const auto sub = [](const double* a, const double* b) {
+    return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  };
+  const auto cross = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
+    return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                 u[0] * v[1] - u[1] * v[0]};
+  };
+  const auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  };
+  double least = 1e300;
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    const double* x[3] = {&vertices[3 * size_t{triangles[t]}],
+                          &vertices[3 * size_t{triangles[t + 1]}],
+                          &vertices[3 * size_t{triangles[t + 2]}]};
+    for (int e = 0; e < 3; ++e) least = std::min(least, segment_distance(p, x[e], x[(e + 1) % 3]));
+    const std::array<double, 3> n = cross(sub(x[1], x[0]), sub(x[2], x[0]));
+    const double n2 = dot(n, n);
+    if (!(n2 > 0)) continue;
+    const double h = (dot(n, {p[0] - x[0][0], p[1] - x[0][1], p[2] - x[0][2]})) / std::sqrt(n2);
+    bool inside = true;
+    for (int e = 0; e < 3; ++e)
+      inside = inside && dot(cross(sub(x[(e + 1) % 3], x[e]), sub(p.data(), x[e])), n) >= 0;
+    if (inside) least = std::min(least, std::fabs(h));
+  }
+  return least;
 }
 
 // Random local motion for `ticks` ticks; every tick, each slice's vertices are checked against
@@ -174,10 +198,10 @@ uint64_t replay(uint32_t per_vertex, uint64_t seed) {
                                     now[3 * v + 1] + 0.03 * unit(rng),
                                     now[3 * v + 2] + 0.03 * unit(rng)};
       const double bound = fresh.clearance(p.data(), 1.0);
-      const double sampled = sampled_distance(p, now, strip.triangles);
-      if (bound > sampled * (1 + 1e-12) + 1e-15) {
-        ADD_FAILURE() << "clearance " << bound << " m past the distance " << sampled
-                      << " m at tick " << tick;
+      const double exact = surface_distance(p, now, strip.triangles);
+      if (bound > exact * (1 + 1e-12) + 1e-15) {
+        ADD_FAILURE() << "clearance " << bound << " m past the distance " << exact << " m at tick "
+                      << tick;
         return refits;
       }
       clear_points += bound > 0.0 ? 1 : 0;

@@ -121,14 +121,15 @@ TEST(ProxyPatch, AQueryOfTheSizeThatFailedIsGatheredForOnceOneFits) {
 }
 
 // meeting() answers as a test of every box would, in the patch's order, whether a query falls
-// inside the grown box of the pass's first (the triangles that met it) or not (all of them);
-// new boxes, a new patch or a NaN query start again.
+// inside the grown box of an earlier one (the triangles that met it) or not (all of them); new
+// boxes or a NaN query start again.
 TEST(ProxyPatch, MeetingFindsEveryTriangleWhoseBoxMeetsTheQuery) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   ProxyPatch patch;
+  // The patch's triangles are surface triangles 1000 + 7 k (not their places in the patch).
   std::vector<uint32_t> triangles(ProxyPatch::kCapacity);
-  for (uint32_t t = 0; t < triangles.size(); ++t) triangles[t] = t;
+  for (uint32_t t = 0; t < triangles.size(); ++t) triangles[t] = 1000 + 7 * t;
   ASSERT_TRUE(patch.keep({0, 0, 0}, 0.02, triangles.data(), ProxyPatch::kCapacity,
                          box_about(0, 0, 0, 0.005), 1, 0.0));
   std::vector<double> positions(9 * triangles.size());  // three corners a triangle, m
@@ -140,8 +141,10 @@ TEST(ProxyPatch, MeetingFindsEveryTriangleWhoseBoxMeetsTheQuery) {
           positions[9 * t + 3 * c + a] = centre[a] + 0.0015 * unit(rng);
     }
   };
-  std::vector<uint32_t> corners(3 * triangles.size());
-  for (uint32_t c = 0; c < corners.size(); ++c) corners[c] = c;
+  // Surface triangle 1000 + 7 k has corners 3k, 3k + 1, 3k + 2 of `positions`.
+  std::vector<uint32_t> corners(3 * (1000 + 7 * triangles.size()));
+  for (uint32_t t = 0; t < triangles.size(); ++t)
+    for (uint32_t c = 0; c < 3; ++c) corners[3 * size_t{triangles[t]} + c] = 3 * t + c;
   std::vector<uint32_t> found(ProxyPatch::kCapacity);
   uint64_t met = 0;
   // The same place each round: the triangles that met it last round must not be taken again.
@@ -170,7 +173,7 @@ TEST(ProxyPatch, MeetingFindsEveryTriangleWhoseBoxMeetsTheQuery) {
           }
           apart = apart || lo > box[a + 3] || hi < box[a];
         }
-        if (!apart) expected.push_back(t);
+        if (!apart) expected.push_back(triangles[t]);
       }
       const uint32_t count = patch.meeting(box, found.data());
       ASSERT_EQ(std::vector<uint32_t>(found.begin(), found.begin() + count), expected)

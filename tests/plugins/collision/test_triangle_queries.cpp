@@ -108,4 +108,21 @@ TEST(SphereCastTriangle, SweepsAlongThePlaneTouchOnlyWithinR) {
               marched(across_from, across_to, r, a, b, c), 1e-9);
 }
 
+// A sliver (three corners on a line, up to rounding) has no plane to test against: its normal is
+// rounding noise. A 4 mm sphere starting on the sliver touches it at once, whatever the noise.
+TEST(SphereCastTriangle, ASweepStartingOnASliverTouchesAtOnce) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int wrong = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 a{0.04 * unit(random), 0.04 * unit(random), 0.04 * unit(random)};
+    const Vec3 d{0.01 * unit(random), 0.01 * unit(random), 0.01 * unit(random)};
+    const Vec3 b = tacta::add_scaled(a, d, 1.0),
+               c = tacta::add_scaled(a, d, 0.5 * (1 + unit(random)));
+    const Vec3 from = tacta::add_scaled(a, d, 0.5), to = tacta::add_scaled(from, {1, 0, 0}, 1e-4);
+    wrong += sphere_cast_triangle(from, to, 0.004, a, b, c) == 0.0 ? 0 : 1;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
 }  // namespace
