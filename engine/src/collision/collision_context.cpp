@@ -374,7 +374,7 @@ void CollisionContext::refit(double time, double dt) noexcept {
   for (uint32_t k = 0; k < freshness_.size(); ++k) {
     const size_t body = static_cast<size_t>(body_of_surface_[k]);
     freshness_[k].reset(world_.body_nodes(body).positions.data());
-    if (!sliced_) continue;
+    if (!sliced_ || (freshness_[k].bound() && !reordered)) continue;
     const uint32_t* order = nullptr;
     uint32_t total = 0;
     if (slicer_->element_order(slicer_->instance, k, &order, &total) != TACTA_COLLIDE_OK ||
@@ -383,9 +383,7 @@ void CollisionContext::refit(double time, double dt) noexcept {
       continue;
     }
     const EmbeddedCollisionSurface* e = embedded_[body].get();
-    if (!freshness_[k].bound() || reordered)
-      freshness_[k].bind(order, surfaces_[k].triangles, e ? e->vertex_nodes() : nullptr);
-    box_slices(k, order, 0, total);  // every vertex is current after the whole refit
+    freshness_[k].bind(order, surfaces_[k].triangles, e ? e->vertex_nodes() : nullptr);
   }
 }
 
