@@ -116,10 +116,10 @@ void CollisionContext::refit_whole_for_proxy(double time, double dt) noexcept {
   // proxy's own (rare). The contact rounds' refits (collision response on: up to three a tick)
   // leave them unknown, as a box pass over the whole surface each would cost 0.05 ms a tick on
   // the demo.
-  for (uint32_t k = 0; k < view_.surface_count; ++k) {
+  for (uint32_t k = 0; sliced_ && k < view_.surface_count; ++k) {
     const uint32_t* order = nullptr;
     uint32_t total = 0;
-    if (sliced_ && freshness_[k].bound() &&
+    if (freshness_[k].bound() &&
         slicer_->element_order(slicer_->instance, k, &order, &total) == TACTA_COLLIDE_OK &&
         total == surfaces_[k].triangle_count)
       box_slices(k, order, 0, total);

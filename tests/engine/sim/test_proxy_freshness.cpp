@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "collision/proxy_freshness.hpp"
+#include "tacta/vec3.hpp"
 
 namespace {
 
@@ -49,49 +50,31 @@ std::vector<double> vertex_positions(const std::vector<double>& nodes, uint32_t 
   return out;
 }
 
-double segment_distance(const std::array<double, 3>& p, const double* a, const double* b) {
-  double ab2 = 0, t = 0;  // m^2, and t along ab
-  for (size_t k = 0; k < 3; ++k) {
-    ab2 += (b[k] - a[k]) * (b[k] - a[k]);
-    t += (p[k] - a[k]) * (b[k] - a[k]);
-  }
-  t = ab2 > 0 ? std::clamp(t / ab2, 0.0, 1.0) : 0.0;
-  double d2 = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    const double x = a[k] + t * (b[k] - a[k]) - p[k];
-    d2 += x * x;
-  }
-  return std::sqrt(d2);
+double segment_distance(const tacta::Vec3& p, const tacta::Vec3& a, const tacta::Vec3& b) {
+  const tacta::Vec3 ab = tacta::sub(b, a);
+  const double ab2 = tacta::dot(ab, ab);  // m^2
+  const double t = ab2 > 0 ? std::clamp(tacta::dot(tacta::sub(p, a), ab) / ab2, 0.0, 1.0) : 0.0;
+  return tacta::distance(tacta::add_scaled(a, ab, t), p);
 }
 
 // The exact distance (m) from p to the triangles: to the plane where p's foot falls inside a
 // triangle (by the signs of the three sub-areas), else to the nearest of its edges.
-double surface_distance(const std::array<double, 3>& p, const std::vector<double>& vertices,
+double surface_distance(const tacta::Vec3& p, const std::vector<double>& vertices,
                         const std::vector<uint32_t>& triangles) {
-  const auto sub = [](const double* a, const double* b) {
-    return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  };
-  const auto cross = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
-    return std::array<double, 3>{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                                 u[0] * v[1] - u[1] * v[0]};
-  };
-  const auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
-    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-  };
   double least = 1e300;
   for (size_t t = 0; t < triangles.size(); t += 3) {
-    const double* x[3] = {&vertices[3 * size_t{triangles[t]}],
-                          &vertices[3 * size_t{triangles[t + 1]}],
-                          &vertices[3 * size_t{triangles[t + 2]}]};
+    const tacta::Vec3 x[3] = {tacta::point_at(vertices.data(), triangles[t]),
+                              tacta::point_at(vertices.data(), triangles[t + 1]),
+                              tacta::point_at(vertices.data(), triangles[t + 2])};
     for (int e = 0; e < 3; ++e) least = std::min(least, segment_distance(p, x[e], x[(e + 1) % 3]));
-    const std::array<double, 3> n = cross(sub(x[1], x[0]), sub(x[2], x[0]));
-    const double n2 = dot(n, n);
-    if (!(n2 > 0)) continue;
-    const double h = (dot(n, {p[0] - x[0][0], p[1] - x[0][1], p[2] - x[0][2]})) / std::sqrt(n2);
+    const tacta::Vec3 n = tacta::cross(tacta::sub(x[1], x[0]), tacta::sub(x[2], x[0]));
+    if (!(tacta::dot(n, n) > 0)) continue;
     bool inside = true;
     for (int e = 0; e < 3; ++e)
-      inside = inside && dot(cross(sub(x[(e + 1) % 3], x[e]), sub(p.data(), x[e])), n) >= 0;
-    if (inside) least = std::min(least, std::fabs(h));
+      inside =
+          inside && tacta::triple(n, tacta::sub(x[(e + 1) % 3], x[e]), tacta::sub(p, x[e])) >= 0;
+    if (inside)
+      least = std::min(least, std::fabs(tacta::dot(n, tacta::sub(p, x[0]))) / tacta::norm(n));
   }
   return least;
 }
